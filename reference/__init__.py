@@ -1,0 +1,1 @@
+"""ddg-oracle reference: exact discrete differential geometry (Bobenko's notes)."""

@@ -1,0 +1,13 @@
+"""Exact numbers: rationals, square-root numbers (:class:`Surd`), angles (:class:`Angle`).
+
+>>> from reference.exact import sqrt, pi
+>>> sqrt(8) == 2 * sqrt(2)
+True
+"""
+
+from .angles import Angle, corner_angle, direction_angle, pi
+from .rationals import rational
+from .surds import Surd, limits, settings, sqrt
+
+__all__ = ["Angle", "Surd", "corner_angle", "direction_angle", "limits", "pi", "rational",
+           "settings", "sqrt"]

@@ -1,0 +1,52 @@
+"""Exact rationals: conversion of user input to ``fractions.Fraction``.
+
+Every float is a dyadic rational, so ``Fraction(x)`` takes it exactly; what is
+not a finite real number is rejected with an error naming the value and where.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from decimal import Decimal
+from fractions import Fraction
+
+from ..errors import NonFiniteValue, NotANumber
+
+
+def rational(x, where: str = "") -> Fraction:
+    """``x`` as an exact ``Fraction``; ints, Fractions, floats, Decimals, numpy scalars.
+
+    Floats are converted exactly (``rational(0.1)`` is 3602879701896397/36028797018963968).
+    NaN and infinities raise :class:`NonFiniteValue`; bools, strings, None and
+    complex numbers raise :class:`NotANumber`.  ``where`` (e.g. "vertex 3,
+    coordinate 1") is put in the message.
+
+    >>> rational(0.5), rational(3), rational(Fraction(2, 6))
+    (Fraction(1, 2), Fraction(3, 1), Fraction(1, 3))
+    """
+    at = f" at {where}" if where else ""
+    if isinstance(x, Fraction):
+        return x
+    if isinstance(x, bool) or not isinstance(x, (numbers.Real, Decimal)):
+        raise NotANumber(f"expected a real number{at}, got {x!r} ({type(x).__name__})")
+    if isinstance(x, numbers.Integral):
+        return Fraction(int(x))
+    if isinstance(x, numbers.Rational):
+        return Fraction(int(x.numerator), int(x.denominator))
+    if isinstance(x, Decimal):
+        if not x.is_finite():
+            raise NonFiniteValue(f"non-finite value {x}{at}")
+        return Fraction(x)
+    # floats, numpy floating types (float32, longdouble): as_integer_ratio is
+    # exact for all of them, where float(x) would round a longdouble.
+    try:
+        n, d = x.as_integer_ratio()
+    except (ValueError, OverflowError):
+        raise NonFiniteValue(f"non-finite value {x}{at}") from None
+    except AttributeError:
+        f = float(x)
+        if not math.isfinite(f):
+            raise NonFiniteValue(f"non-finite value {f}{at}") from None
+        return Fraction(f)
+    return Fraction(int(n), int(d))

@@ -1,0 +1,908 @@
+"""Exact square-root numbers: finite sums ``q1*sqrt(r1) + q2*sqrt(r2) + ...``.
+
+A :class:`Surd` is an exact real number of the form ``sum q_i * sqrt(r_i)``
+with rational ``q_i`` and positive integer ``r_i``; these numbers form a field
+(closed under ``+ - * /``), comparisons and signs are decided exactly, and
+``float()`` is correctly rounded.  The design follows ``fractions.Fraction``:
+one canonical form set when a value is built, operators written once and
+turned into forward and reverse methods by a helper.
+
+>>> x = sqrt(2) + sqrt(3)
+>>> x * x
+Surd('5 + 2*sqrt(6)')
+>>> x * x - 5 - 2 * sqrt(6) == 0
+True
+>>> 1 / x
+Surd('-sqrt(2) + sqrt(3)')
+>>> sqrt(2) + sqrt(3) < sqrt(10)      # 5 + 2*sqrt(6) = 9.899 < 10
+True
+>>> float(sqrt(2))
+1.4142135623730951
+
+Canonical form
+--------------
+Integers are never factored.  Every value carries a *base*: a sorted tuple of
+pairwise coprime integers > 1, none of them a perfect square.  Its terms map
+a *radicand* -- the product of a subset of the base, 1 for the rational
+part -- to a nonzero ``Fraction``.  Pairwise coprime non-squares are
+independent modulo squares, so the square roots of distinct subset products
+are linearly independent over Q (Besicovitch).  Hence, over a common base, a
+value is zero iff it has no terms, and two values are equal iff their term
+dicts are equal.  Values over different bases are brought to the common
+coprime refinement of both bases (gcd splitting, no factoring) before any
+operation.  ``sqrt(m)`` strips squares of the primes below 100 at once
+(``sqrt(12)`` is ``2*sqrt(3)``), and every result keeps only the base
+elements its radicands use, so equal numbers usually end up with identical
+representations; see :class:`Surd` for the exception.
+
+Exactness guards
+----------------
+A product of sums can have as many terms as the product of the term counts.
+``settings.term_limit`` (default 4096) bounds the number of terms of every
+result; exceeding it raises :class:`~reference.errors.TermLimitExceeded`.
+Use ``with limits(term_limit=N):`` to change it temporarily.  The setting is
+process-wide (not thread-local).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import operator
+import re
+from contextlib import contextmanager
+from fractions import Fraction
+from math import gcd, isqrt
+
+from ..errors import InputError, TermLimitExceeded
+from .rationals import rational
+
+__all__ = ["Surd", "sqrt", "settings", "limits"]
+
+
+# --- settings ----------------------------------------------------------------
+
+
+class _Settings:
+    """Guards of the exact arithmetic (process-wide).
+
+    ``term_limit``: the largest number of terms a :class:`Surd` may have.
+    """
+
+    __slots__ = ("term_limit",)
+
+    def __init__(self):
+        self.term_limit = 4096
+
+    def __repr__(self):
+        return f"settings(term_limit={self.term_limit})"
+
+
+settings = _Settings()
+
+
+def _check_limit(value, name):
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+        raise InputError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
+@contextmanager
+def limits(term_limit=None):
+    """Temporarily change the guards; ``None`` keeps the current value.
+
+    >>> with limits(term_limit=8):
+    ...     settings.term_limit
+    8
+    >>> settings.term_limit
+    4096
+    """
+    old = settings.term_limit
+    if term_limit is not None:
+        settings.term_limit = _check_limit(term_limit, "term_limit")
+    try:
+        yield settings
+    finally:
+        settings.term_limit = old
+
+
+# --- integer helpers ---------------------------------------------------------
+
+# (p, p*p) for the primes below 100: squares stripped from new radicands.
+_SMALL_SQUARES = tuple(
+    (p, p * p) for p in range(2, 100) if all(p % d for d in range(2, isqrt(p) + 1))
+)
+
+
+def _strip_small_squares(m):
+    """``(c, m')`` with ``m == c*c*m'`` and m' free of squares of primes < 100."""
+    c = 1
+    for p, pp in _SMALL_SQUARES:
+        if pp > m:
+            break
+        while m % pp == 0:
+            m //= pp
+            c *= p
+    return c, m
+
+
+def _refine(elements):
+    """Coprime refinement: sorted tuple of pairwise coprime non-squares > 1.
+
+    Every input element (> 1) is a product of powers of the output elements.
+    Uses gcd splitting only: the product of the work list and the output
+    strictly decreases at every split, so the loop terminates.
+
+    >>> _refine([6, 10])
+    (2, 3, 5)
+    >>> _refine([12, 18])
+    (2, 3)
+    """
+    out = []
+    work = [n for n in elements if n > 1]
+    while work:
+        n = work.pop()
+        for i, b in enumerate(out):
+            g = gcd(n, b)
+            if g != 1:
+                out[i] = out[-1]
+                out.pop()
+                work.append(g)
+                if b != g:
+                    work.append(b // g)
+                if n != g:
+                    work.append(n // g)
+                break
+        else:
+            out.append(n)
+    result = []
+    for c in out:
+        s = isqrt(c)
+        while s * s == c:
+            c = s
+            s = isqrt(c)
+        result.append(c)
+    result.sort()
+    return tuple(result)
+
+
+def _reexpress(terms, base):
+    """``terms`` (over an old base) rewritten over ``base``, a refinement of it."""
+    out = {}
+    for r, q in terms.items():
+        rad = 1
+        if r != 1:
+            k = 1
+            for c in base:
+                if r % c == 0:
+                    e = 0
+                    while r % c == 0:
+                        r //= c
+                        e += 1
+                    if e & 1:
+                        rad *= c
+                    if e > 1:
+                        k *= c ** (e >> 1)
+                    if r == 1:
+                        break
+            if k != 1:
+                q = q * k
+        if rad in out:
+            s = out[rad] + q
+            if s:
+                out[rad] = s
+            else:
+                del out[rad]
+        else:
+            out[rad] = q
+    return out
+
+
+def _prune(base, terms):
+    """The elements of ``base`` that divide some radicand of ``terms``."""
+    if not terms or not base:
+        return ()
+    if len(base) == 1:
+        for r in terms:
+            if r != 1:
+                return base
+        return ()
+    lcm = 1
+    for r in terms:
+        if r != 1 and lcm % r:
+            lcm = lcm * (r // gcd(lcm, r))
+    if lcm == 1:
+        return ()
+    used = tuple(b for b in base if lcm % b == 0)
+    return base if len(used) == len(base) else used
+
+
+def _t_add(ta, tb, negate=False):
+    """``ta + tb`` (``ta - tb`` if negate) for term dicts over one base.
+
+    Returns ``(terms, cancelled)``; ``cancelled`` tells whether a radicand vanished.
+    """
+    out = dict(ta)
+    cancelled = False
+    for r, q in tb.items():
+        s = out.get(r)
+        if s is None:
+            out[r] = -q if negate else q
+        else:
+            s = s - q if negate else s + q
+            if s:
+                out[r] = s
+            else:
+                del out[r]
+                cancelled = True
+    return out, cancelled
+
+
+def _t_mul(ta, tb):
+    """``ta * tb`` for term dicts over one base (radicands squarefree over it).
+
+    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.
+    """
+    out = {}
+    for r1, q1 in ta.items():
+        for r2, q2 in tb.items():
+            if r1 == 1:
+                r, q = r2, q1 * q2
+            elif r2 == 1:
+                r, q = r1, q1 * q2
+            else:
+                g = gcd(r1, r2)
+                if g == 1:
+                    r, q = r1 * r2, q1 * q2
+                else:
+                    r, q = (r1 // g) * (r2 // g), q1 * q2 * g
+            s = out.get(r)
+            if s is None:
+                out[r] = q
+            else:
+                s += q
+                if s:
+                    out[r] = s
+                else:
+                    del out[r]
+    return out
+
+
+def _t_scale(terms, k):
+    """``terms * k`` for a nonzero rational k."""
+    return {r: q * k for r, q in terms.items()}
+
+
+def _t_split(terms, p):
+    """``(a, b)`` with ``terms == a + b*sqrt(p)`` and neither using p."""
+    a, b = {}, {}
+    for r, q in terms.items():
+        if r % p:
+            a[r] = q
+        else:
+            b[r // p] = q
+    return a, b
+
+
+def _t_bounds(terms, k):
+    """Integers ``lo <= x * 2**k <= hi`` with ``hi - lo <= 2*len(terms) + 1``.
+
+    An irrational term ``(n/d)*sqrt(r)`` is bounded by
+    ``s = isqrt(n*n*r * 4**k)``, so ``|n|*sqrt(r)*2**k`` lies in (s, s+1)
+    (r is not a square), then divided by ``d`` rounding outwards (floor
+    below, ceiling above, swapped for a negative coefficient).  The rational
+    part is rounded outwards the same way.
+    """
+    lo = hi = 0
+    for r, q in terms.items():
+        n, d = q.numerator, q.denominator
+        if r == 1:
+            v = n << k
+            lo += v // d
+            hi -= -v // d
+        else:
+            s = isqrt((n * n * r) << (2 * k))
+            if n > 0:
+                lo += s // d
+                hi -= -(s + 1) // d
+            else:
+                lo += -(s + 1) // d
+                hi -= s // d
+    return lo, hi
+
+
+def _t_sign(terms, base):
+    """Exact sign of a term dict whose radicands are subset products of ``base``."""
+    n = len(terms)
+    if n == 0:
+        return 0
+    if n == 1:
+        for q in terms.values():
+            return 1 if q > 0 else -1
+    if n == 2:
+        (r1, q1), (r2, q2) = terms.items()
+        s1 = 1 if q1 > 0 else -1
+        if (q2 > 0) == (s1 > 0):
+            return s1
+        # q1^2 r1 != q2^2 r2: the two square roots are independent over Q
+        return s1 if q1 * q1 * r1 > q2 * q2 * r2 else -s1
+    extra = (2 * n + 1).bit_length()
+    for bits in (64, 256):
+        lo, hi = _t_bounds(terms, bits + extra)
+        if lo > 0:
+            return 1
+        if hi < 0:
+            return -1
+    # exact: x = a + b*sqrt(p) on the largest base element p in use
+    for i in range(len(base) - 1, -1, -1):
+        p = base[i]
+        if any(r % p == 0 for r in terms):
+            break
+    else:  # pragma: no cover - rational terms have n <= 1
+        raise AssertionError("irrational terms without a base element")
+    rest = base[:i]
+    a, b = _t_split(terms, p)
+    sa, sb = _t_sign(a, rest), _t_sign(b, rest)
+    if sb == 0:
+        return sa
+    if sa == 0 or sa == sb:
+        return sb
+    d, _ = _t_add(_t_mul(a, a), _t_scale(_t_mul(b, b), p), negate=True)
+    return sa * _t_sign(d, rest)
+
+
+
+# --- the number type ---------------------------------------------------------
+
+_ZERO = Fraction(0)
+_ONE = Fraction(1)
+
+
+def _make(base, terms, prune=True):
+    """A new Surd from canonical parts (no zero coefficients); checks the limit."""
+    n = len(terms)
+    if n > 1 and n > settings.term_limit:
+        raise TermLimitExceeded(
+            f"a square-root number would have {n} terms, more than the term limit "
+            f"{settings.term_limit}; raise it with "
+            f"`with reference.exact.limits(term_limit=...)`")
+    self = object.__new__(Surd)
+    self._base = _prune(base, terms) if prune else base
+    self._terms = terms
+    self._hash = None
+    return self
+
+
+def _from_fraction(q):
+    self = object.__new__(Surd)
+    self._base = ()
+    self._terms = {1: q} if q else {}
+    self._hash = None
+    return self
+
+
+def _common(a, b):
+    """``(base, terms_a, terms_b, refined)`` with both term dicts over ``base``."""
+    ba, bb = a._base, b._base
+    if ba == bb or not bb:
+        return ba, a._terms, b._terms, False
+    if not ba:
+        return bb, a._terms, b._terms, False
+    if len(ba) <= len(bb):
+        if all(x in bb for x in ba):
+            return bb, a._terms, b._terms, False
+    elif all(x in ba for x in bb):
+        return ba, a._terms, b._terms, False
+    base = _refine(ba + bb)
+    ta, tb = a._terms, b._terms
+    if not all(x in base for x in ba):
+        ta = _reexpress(ta, base)
+    if not all(x in base for x in bb):
+        tb = _reexpress(tb, base)
+    return base, ta, tb, True
+
+
+_TERM = re.compile(r"""
+    \s*(?P<sign>[-+])?\s*
+    (?:
+        (?P<coef>\d+(?:/\d+)?)(?:\s*\*\s*sqrt\(\s*(?P<rad1>\d+)\s*\))?
+      | sqrt\(\s*(?P<rad2>\d+)\s*\)
+    )\s*
+""", re.VERBOSE)
+
+
+def _parse(text):
+    total = Surd()
+    pos, first = 0, True
+    while pos < len(text) or first:
+        m = _TERM.match(text, pos)
+        if m is None or m.end() == pos or (not first and m["sign"] is None):
+            raise InputError(f"invalid Surd literal {text!r}")
+        coef = Fraction(m["coef"]) if m["coef"] else _ONE
+        rad = m["rad1"] or m["rad2"]
+        term = sqrt(int(rad)) * coef if rad else Surd(coef)
+        total = total - term if m["sign"] == "-" else total + term
+        pos, first = m.end(), False
+    return total
+
+
+def _short(x, width=60):
+    """``str(x)`` cut to ``width`` characters, for error messages."""
+    s = str(x)
+    return s if len(s) <= width else s[:width - 3] + "..."
+
+
+def _rebuild(base, items):
+    return _make(tuple(base), dict(items), prune=False)
+
+
+class Surd:
+    """An exact real number ``q1*sqrt(r1) + q2*sqrt(r2) + ...``.
+
+    Build one from an int, Fraction, float (taken exactly), another Surd, or
+    a string as printed by ``str``; square roots come from :func:`sqrt`.
+
+    >>> Surd(Fraction(3, 2)) + 2 * sqrt(6)
+    Surd('3/2 + 2*sqrt(6)')
+    >>> Surd('3/2 + 2*sqrt(6)').terms()
+    ((1, Fraction(3, 2)), (6, Fraction(2, 1)))
+    >>> Surd(0.5) == Fraction(1, 2), hash(Surd(0.5)) == hash(0.5)
+    (True, True)
+
+    Representations are canonical *relative to the base* (see the module
+    docstring).  Integers are not factored, so ``sqrt(p*p*q)`` for a prime
+    ``p`` above 100 is stored as the square root of ``p*p*q`` and ``p*sqrt(q)``
+    as a multiple of ``sqrt(q)``: the two have different bases (and reprs)
+    until they meet in one operation, where the common refinement finds ``p``
+    and they compare equal.  ``==``, ``<`` and ``hash`` are always exact and
+    consistent with each other and with int, Fraction and float.
+    """
+
+    __slots__ = ("_base", "_terms", "_hash")
+
+    def __new__(cls, x=0):
+        if isinstance(x, Surd):
+            if type(x) is cls:
+                return x
+            self = object.__new__(cls)
+            self._base, self._terms, self._hash = x._base, x._terms, x._hash
+            return self
+        if isinstance(x, str):
+            x = _parse(x)
+            return x if cls is Surd else cls(x)
+        q = rational(x)
+        self = object.__new__(cls)
+        self._base = ()
+        self._terms = {1: q} if q else {}
+        self._hash = None
+        return self
+
+    # --- inspection ---------------------------------------------------------
+
+    def terms(self):
+        """``((radicand, coefficient), ...)`` sorted by radicand; 1 is the rational part.
+
+        >>> (1 + sqrt(8)).terms()
+        ((1, Fraction(1, 1)), (2, Fraction(2, 1)))
+        """
+        return tuple(sorted(self._terms.items()))
+
+    @property
+    def n_terms(self):
+        """Number of nonzero terms (0 for zero)."""
+        return len(self._terms)
+
+    @property
+    def base(self):
+        """The pairwise coprime non-square integers the radicands are built from."""
+        return self._base
+
+    def is_rational(self):
+        """True iff the value is rational.
+
+        >>> sqrt(8).is_rational(), (sqrt(2) * sqrt(8)).is_rational()
+        (False, True)
+        """
+        return not self._base
+
+    def as_fraction(self):
+        """The value as a Fraction; ValueError if it is irrational.
+
+        >>> (sqrt(3) * sqrt(12)).as_fraction()
+        Fraction(6, 1)
+        """
+        if self._base:
+            raise ValueError(f"{_short(self)} is irrational, it has no Fraction value")
+        return self._terms.get(1, _ZERO)
+
+    def __repr__(self):
+        return f"Surd('{self}')"
+
+    def __str__(self):
+        parts = []
+        for r, q in sorted(self._terms.items()):
+            if r == 1:
+                s = str(q)
+            elif q == 1:
+                s = f"sqrt({r})"
+            elif q == -1:
+                s = f"-sqrt({r})"
+            else:
+                s = f"{q}*sqrt({r})"
+            if parts:
+                parts.append(f" - {s[1:]}" if s[0] == "-" else f" + {s}")
+            else:
+                parts.append(s)
+        return "".join(parts) or "0"
+
+    def __reduce__(self):
+        return (_rebuild, (self._base, tuple(self._terms.items())))
+
+    def __copy__(self):
+        return self
+
+    def __deepcopy__(self, memo):
+        return self
+
+    # --- arithmetic ---------------------------------------------------------
+
+    def _operator_fallbacks(monomorphic_operator, name):
+        """Forward and reverse operators from one Surd-by-Surd operator.
+
+        int, Fraction and other ``numbers.Rational`` and float operands are
+        converted exactly; anything else gives ``NotImplemented``.
+        """
+
+        def forward(a, b):
+            if isinstance(b, Surd):
+                return monomorphic_operator(a, b)
+            if isinstance(b, (int, Fraction, float, numbers.Rational)):
+                return monomorphic_operator(a, _from_fraction(rational(b)))
+            return NotImplemented
+
+        def reverse(b, a):
+            if isinstance(a, (int, Fraction, float, numbers.Rational)):
+                return monomorphic_operator(_from_fraction(rational(a)), b)
+            if isinstance(a, Surd):
+                return monomorphic_operator(a, b)
+            return NotImplemented
+
+        forward.__name__ = f"__{name}__"
+        forward.__doc__ = monomorphic_operator.__doc__
+        reverse.__name__ = f"__r{name}__"
+        reverse.__doc__ = monomorphic_operator.__doc__
+        return forward, reverse
+
+    def _add(a, b):
+        """a + b"""
+        if not b._terms:
+            return a
+        if not a._terms:
+            return b
+        base, ta, tb, refined = _common(a, b)
+        out, cancelled = _t_add(ta, tb)
+        return _make(base, out, cancelled or refined)
+
+    __add__, __radd__ = _operator_fallbacks(_add, "add")
+
+    def _sub(a, b):
+        """a - b"""
+        if not b._terms:
+            return a
+        if not a._terms:
+            return -b
+        base, ta, tb, refined = _common(a, b)
+        out, cancelled = _t_add(ta, tb, negate=True)
+        return _make(base, out, cancelled or refined)
+
+    __sub__, __rsub__ = _operator_fallbacks(_sub, "sub")
+
+    def _mul(a, b):
+        """a * b"""
+        ta, tb = a._terms, b._terms
+        if not ta:
+            return a
+        if not tb:
+            return b
+        if not b._base:
+            return a._scale(tb[1])
+        if not a._base:
+            return b._scale(ta[1])
+        base, ta, tb, _ = _common(a, b)
+        return _make(base, _t_mul(ta, tb))
+
+    __mul__, __rmul__ = _operator_fallbacks(_mul, "mul")
+
+    def _div(a, b):
+        """a / b (exact; ZeroDivisionError if b == 0)"""
+        if not b._base:
+            if not b._terms:
+                raise ZeroDivisionError(f"Surd division by zero: {_short(a)} / 0")
+            return a._scale(1 / b._terms[1])
+        return a * b._inverse()
+
+    __truediv__, __rtruediv__ = _operator_fallbacks(_div, "truediv")
+
+    def _scale(self, k):
+        """self * k for a nonzero Fraction k (same base, no pruning)."""
+        if k == 1:
+            return self
+        return _make(self._base, {r: q * k for r, q in self._terms.items()}, False)
+
+    def _inverse(self):
+        """1/self by conjugates.
+
+        With ``den = a + b*sqrt(p)`` (p the largest base element in use),
+        multiply numerator and denominator by ``a - b*sqrt(p)``: the
+        denominator becomes ``a*a - p*b*b``, free of p.  Repeat until it is
+        rational.
+        """
+        t = self._terms
+        if not t:
+            raise ZeroDivisionError("Surd division by zero")
+        base = self._base
+        if not base:
+            return _from_fraction(1 / t[1])
+        if len(t) == 1:
+            (r, q), = t.items()
+            return _make(base, {r: 1 / (q * r)}, False)
+        num, den = None, t
+        for i in range(len(base) - 1, -1, -1):
+            p = base[i]
+            a, b = _t_split(den, p)
+            if not b:
+                continue
+            conj = dict(a)
+            for r, q in b.items():
+                conj[r * p] = -q
+            num = conj if num is None else _t_mul(num, conj)
+            if len(num) > settings.term_limit:
+                _make(base, num, False)  # raises TermLimitExceeded
+            den, _ = _t_add(_t_mul(a, a), _t_scale(_t_mul(b, b), p), negate=True)
+        return _make(base, _t_scale(num, 1 / den[1]))
+
+    def __pow__(a, b, modulo=None):
+        """a ** b for an integer b (negative: a power of the inverse).
+
+        >>> (1 + sqrt(2)) ** 3
+        Surd('7 + 5*sqrt(2)')
+        >>> (1 + sqrt(2)) ** -1
+        Surd('-1 + sqrt(2)')
+        """
+        if modulo is not None:
+            return NotImplemented
+        if isinstance(b, Surd):
+            if b._base:
+                return NotImplemented
+            b = b._terms.get(1, _ZERO)
+        if isinstance(b, numbers.Rational) and not isinstance(b, bool):
+            if b.denominator != 1:
+                return NotImplemented
+            n = int(b.numerator)
+        else:
+            return NotImplemented
+        if n < 0:
+            a = a._inverse()
+            n = -n
+        result = None
+        while n:
+            if n & 1:
+                result = a if result is None else result * a
+            n >>= 1
+            if n:
+                a = a * a
+        return _from_fraction(_ONE) if result is None else result
+
+    def __rpow__(b, a, modulo=None):
+        """a ** b for a rational-integer Surd b."""
+        if modulo is not None or b._base:
+            return NotImplemented
+        if not isinstance(a, (int, Fraction, float, numbers.Rational)):
+            return NotImplemented
+        return Surd(a) ** b
+
+    def __neg__(a):
+        """-a"""
+        return _make(a._base, {r: -q for r, q in a._terms.items()}, False)
+
+    def __pos__(a):
+        """+a"""
+        return a
+
+    def __abs__(a):
+        """abs(a)"""
+        return -a if a.sign() < 0 else a
+
+    # --- enclosures and float -----------------------------------------------
+
+    def interval(self, bits):
+        """Rigorous rational enclosure ``(lo, hi)``, ``lo <= self <= hi``,
+        ``hi - lo <= 2**-bits``; both ends are dyadic (exact if rational).
+
+        >>> lo, hi = sqrt(2).interval(10)
+        >>> lo * lo < 2 < hi * hi and hi - lo <= Fraction(1, 2**10)
+        True
+        """
+        if isinstance(bits, bool) or not isinstance(bits, numbers.Integral):
+            raise InputError(f"bits must be an integer, got {bits!r}")
+        if not self._base:
+            q = self._terms.get(1, _ZERO)
+            return q, q
+        k = max(0, int(bits) + (2 * len(self._terms) + 1).bit_length())
+        lo, hi = _t_bounds(self._terms, k)
+        return Fraction(lo, 1 << k), Fraction(hi, 1 << k)
+
+    def __float__(self):
+        """The correctly rounded float (round half to even), like ``float(Fraction)``.
+
+        Enclosures are refined until both ends round to the same float; an
+        irrational value is never a rounding midpoint, so this terminates.
+        OverflowError if the value rounds beyond the float range.
+
+        >>> float(sqrt(2) + sqrt(3)) == 3.1462643699419726
+        True
+        """
+        if not self._base:
+            return float(self._terms.get(1, _ZERO))
+        extra = (2 * len(self._terms) + 1).bit_length()
+        bits = 64
+        while True:
+            k = bits + extra
+            lo, hi = _t_bounds(self._terms, k)
+            if lo > 0 or hi < 0:
+                den = 1 << k
+                try:
+                    flo = lo / den
+                except OverflowError:
+                    flo = math.inf if lo > 0 else -math.inf
+                try:
+                    fhi = hi / den
+                except OverflowError:
+                    fhi = math.inf if hi > 0 else -math.inf
+                if flo == fhi:
+                    if math.isinf(flo):
+                        raise OverflowError("Surd too large to convert to float")
+                    return flo
+                # relative precision: aim at ~64 bits below the magnitude
+                m = min(abs(lo), abs(hi))
+                bits = max(2 * bits, k - m.bit_length() + 72)
+            else:
+                bits *= 2
+
+    def __floor__(self):
+        """math.floor(self), exact (without it math.floor would round via float).
+
+        >>> math.floor(sqrt(10**40 - 1)), math.ceil(-sqrt(2)), int(-sqrt(2))
+        (99999999999999999999, -1, -1)
+        """
+        if not self._base:
+            return math.floor(self._terms.get(1, _ZERO))
+        bits = 16
+        while True:
+            lo, hi = self.interval(bits)
+            f = math.floor(lo)
+            if f == math.floor(hi):   # an irrational number is never an integer
+                return f
+            bits *= 2
+
+    def __ceil__(self):
+        """math.ceil(self), exact."""
+        return -(-self).__floor__()
+
+    def __trunc__(self):
+        """math.trunc(self), exact."""
+        return self.__floor__() if self.sign() >= 0 else self.__ceil__()
+
+    __int__ = __trunc__
+
+    # --- sign and comparisons -----------------------------------------------
+
+    def sign(self):
+        """-1, 0 or 1, decided exactly.
+
+        Up to two terms by squaring; otherwise enclosures at 64 and 256 bits,
+        then exact recursion: ``x = a + b*sqrt(p)`` on the largest base
+        element ``p``; if ``a`` and ``b*sqrt(p)`` have opposite signs, the sign
+        is ``sign(a) * sign(a*a - p*b*b)`` (a number without ``p``).
+
+        >>> (sqrt(10**12 + 1) - 10**6).sign()
+        1
+        >>> (sqrt(2) + sqrt(3) - sqrt(10)).sign()
+        -1
+        >>> (sqrt(5) + sqrt(6) + sqrt(7) - sqrt(54)).sign()
+        -1
+        """
+        return _t_sign(self._terms, self._base)
+
+    def __bool__(a):
+        """a != 0"""
+        return bool(a._terms)
+
+    def __eq__(a, b):
+        """a == b (exact)"""
+        if isinstance(b, Surd):
+            if a._base == b._base:
+                return a._terms == b._terms
+            if not a._base or not b._base:
+                return False
+            _, ta, tb, _ = _common(a, b)
+            return ta == tb
+        if isinstance(b, float):
+            if not math.isfinite(b):
+                return False
+            b = Fraction(b)
+        elif not isinstance(b, (int, Fraction, numbers.Rational)):
+            return NotImplemented
+        if a._base:
+            return False
+        return a._terms.get(1, 0) == b
+
+    def _richcmp(a, b, op):
+        if isinstance(b, Surd):
+            return op((a - b).sign(), 0)
+        if isinstance(b, float):
+            if not math.isfinite(b):
+                return op(0.0, b)
+            b = Fraction(b)
+        elif not isinstance(b, (int, Fraction, numbers.Rational)):
+            return NotImplemented
+        if not a._base:
+            return op(a._terms.get(1, 0), b)
+        return op((a - _from_fraction(rational(b))).sign(), 0)
+
+    def __lt__(a, b):
+        """a < b"""
+        return a._richcmp(b, operator.lt)
+
+    def __gt__(a, b):
+        """a > b"""
+        return a._richcmp(b, operator.gt)
+
+    def __le__(a, b):
+        """a <= b"""
+        return a._richcmp(b, operator.le)
+
+    def __ge__(a, b):
+        """a >= b"""
+        return a._richcmp(b, operator.ge)
+
+    def __hash__(self):
+        """hash(self): ``hash(Fraction)`` if rational, else hash of the correctly
+        rounded float (a function of the value, whatever the base)."""
+        h = self._hash
+        if h is None:
+            if not self._base:
+                h = hash(self._terms.get(1, _ZERO))
+            else:
+                try:
+                    h = hash(float(self))
+                except OverflowError:
+                    h = hash(math.inf if self.sign() > 0 else -math.inf)
+            self._hash = h
+        return h
+
+
+def sqrt(q):
+    """The exact square root of a rational ``q >= 0`` as a :class:`Surd`.
+
+    ints, Fractions, floats (taken exactly) and rational Surds are accepted;
+    a negative value raises :class:`~reference.errors.InputError`.
+
+    >>> sqrt(8), sqrt(Fraction(9, 4)), sqrt(Fraction(1, 2))
+    (Surd('2*sqrt(2)'), Surd('3/2'), Surd('1/2*sqrt(2)'))
+    """
+    if isinstance(q, Surd):
+        if q._base:
+            raise InputError(f"sqrt of the irrational number {_short(q)} is not supported")
+        q = q._terms.get(1, _ZERO)
+    else:
+        q = rational(q, "sqrt argument")
+    if q < 0:
+        raise InputError(f"sqrt of the negative number {q}")
+    n, d = q.numerator, q.denominator
+    m = n * d
+    s = isqrt(m)
+    if s * s == m:
+        return _from_fraction(Fraction(s, d))
+    c, m = _strip_small_squares(m)
+    return _make((m,), {m: Fraction(c, d)}, False)

@@ -1,0 +1,153 @@
+"""Exact angles: triangle sums are pi exactly, comparisons are exact, enclosures are certified."""
+
+from fractions import Fraction
+
+import mpmath
+import pytest
+from hypothesis import assume, given, strategies as st
+
+from reference.errors import InputError
+from reference.exact.angles import Angle, corner_angle, direction_angle, pi
+from reference.exact.surds import Surd, sqrt
+
+mpmath.mp.dps = 120
+
+
+def _cot(a, b, c):
+    """cot of the corner at a of triangle abc in R^n, exactly: (u.v) / |u x v|."""
+    u = [y - x for x, y in zip(a, b)]
+    v = [y - x for x, y in zip(a, c)]
+    dot = sum(x * y for x, y in zip(u, v))
+    cross2 = sum(x * x for x in u) * sum(y * y for y in v) - dot * dot   # Lagrange identity
+    return dot / sqrt(cross2)
+
+
+def _mp_cot_angle(c: Surd):
+    """arccot(c) in (0, pi) evaluated by mpmath from the exact terms of c."""
+    x = sum(mpmath.mpf(q.numerator) / q.denominator * mpmath.sqrt(r) for r, q in c.terms())
+    return mpmath.pi / 2 - mpmath.atan(x)
+
+
+def _mp(angle: Angle):
+    v = angle.pi_coefficient * mpmath.pi
+    for c, m in angle.parts.items():
+        v += m * _mp_cot_angle(c)
+    return v
+
+
+coord = st.one_of(st.integers(-30, 30).map(Fraction),
+                  st.fractions(min_value=-10, max_value=10, max_denominator=50),
+                  st.floats(-10, 10, allow_nan=False, width=32).map(Fraction))
+point3 = st.tuples(coord, coord, coord)
+
+
+def _nondegenerate(P):
+    a, b, c = P
+    u = [y - x for x, y in zip(a, b)]
+    v = [y - x for x, y in zip(a, c)]
+    dot = sum(x * y for x, y in zip(u, v))
+    return sum(x * x for x in u) * sum(y * y for y in v) - dot * dot > 0
+
+
+@given(st.tuples(point3, point3, point3))
+def test_angles_of_a_triangle_sum_to_pi_exactly(P):
+    assume(_nondegenerate(P))
+    a, b, c = P
+    s = corner_angle(_cot(a, b, c)) + corner_angle(_cot(b, c, a)) + corner_angle(_cot(c, a, b))
+    assert s == pi
+    assert s - pi == 0 and not (s < pi) and not (s > pi)
+    # one corner counted twice is strictly more than pi
+    assert s + corner_angle(_cot(a, b, c)) > pi
+
+
+def test_cube_vertex_has_angle_defect_pi_over_2():
+    right = corner_angle(0)
+    assert 2 * pi - 3 * right == pi * Fraction(1, 2)
+    assert 8 * (2 * pi - 3 * right) == 2 * pi * 2      # Gauss-Bonnet: 8 vertices, chi = 2
+
+
+def test_multiples_of_pi_over_24_are_recognised_exactly():
+    assert corner_angle(1 / sqrt(3)) == pi / 3           # equilateral corner
+    assert corner_angle(2 - sqrt(3)) == pi * Fraction(5, 12)
+    assert corner_angle(sqrt(2) - 1) == pi * Fraction(3, 8)   # cot(3pi/8) = tan(pi/8)
+    assert corner_angle(-1) == pi * Fraction(3, 4)
+    assert corner_angle(Fraction(1, 2)).as_multiple_of_pi() is None
+
+
+def test_direction_angle_covers_all_quadrants():
+    assert direction_angle(1, 0) == 0
+    assert direction_angle(0, 1) == pi / 2
+    assert direction_angle(-1, 0) == pi
+    assert direction_angle(0, -1) == pi * Fraction(3, 2)
+    assert direction_angle(1, -1) == pi * Fraction(7, 4)
+    with pytest.raises(InputError):
+        direction_angle(0, 0)
+
+
+@given(st.lists(st.tuples(st.fractions(-5, 5, max_denominator=20), st.integers(-2, 2)),
+                min_size=1, max_size=4), st.fractions(-2, 2, max_denominator=12))
+def test_sign_agrees_with_high_precision_evaluation(parts, r):
+    angle = Angle({Surd(c) + sqrt(2) * Fraction(i % 3, 3): m for i, (c, m) in enumerate(parts)}, r)
+    exact = angle.sign()
+    value = _mp(angle)
+    if abs(value) > mpmath.mpf(10) ** -100:
+        assert exact == (1 if value > 0 else -1)
+    else:
+        assert exact == 0
+
+
+def test_near_tie_is_decided_exactly():
+    # arccot(c) + arccot(-c') vs 0 with c' = c + 1e-30: differs from 0 by about 1e-30
+    c = Fraction(3, 7)
+    eps = Fraction(1, 10 ** 30)
+    angle = corner_angle(c) - corner_angle(c + eps)
+    assert angle > 0                         # arccot is decreasing
+    assert corner_angle(c) - corner_angle(c) == 0
+    assert float(angle) == float(_mp(angle))
+
+
+@given(st.fractions(-50, 50, max_denominator=1000), st.integers(1, 60))
+def test_enclosure_is_certified_and_narrow(c, digits):
+    angle = corner_angle(Surd(c) + sqrt(5))
+    lo, hi = angle.enclosure(digits)
+    assert hi - lo <= Fraction(1, 10 ** digits)
+    v = _mp(angle)
+    assert mpmath.mpf(lo.numerator) / lo.denominator <= v <= mpmath.mpf(hi.numerator) / hi.denominator
+
+
+def test_pi_enclosure_against_known_digits():
+    digits = "3.14159265358979323846264338327950288419716939937510582097494459230781640628620899"
+    lo, hi = pi.enclosure(75)
+    known = Fraction(digits)
+    assert lo <= known + Fraction(1, 10 ** 79) and known - Fraction(1, 10 ** 79) <= hi
+    # decimal() is certified to 0.51 units of the 50th decimal
+    assert abs(Fraction(pi.decimal(50)) - known) <= Fraction(51, 100 * 10 ** 50)
+    assert pi.decimal(50)[:51] == digits[:51]
+
+
+@given(st.fractions(-100, 100, max_denominator=10 ** 6), st.integers(1, 50))
+def test_float_is_correctly_rounded(c, r):
+    angle = corner_angle(Surd(c) + sqrt(r))
+    v = _mp(angle)
+    f = float(angle)
+    # correctly rounded: no float is closer to the exact value
+    import math
+    for g in (math.nextafter(f, -math.inf), math.nextafter(f, math.inf)):
+        assert abs(mpmath.mpf(f) - v) <= abs(mpmath.mpf(g) - v)
+
+
+def test_equal_angles_hash_equal():
+    assert hash(corner_angle(0)) == hash(pi / 2)
+    a = corner_angle(Fraction(1, 3)) + corner_angle(Fraction(1, 2))
+    b = corner_angle(Fraction(1, 2)) + corner_angle(Fraction(1, 3)) + pi - pi
+    assert a == b and hash(a) == hash(b)
+    # arccot(1/3) + arccot(1/2) = arccot(-1) by the cot addition formula ... = 3 pi / 4
+    assert a == pi * Fraction(3, 4)
+
+
+def test_only_multiples_of_pi_scale_by_fractions():
+    assert pi * Fraction(1, 2) * 2 == pi
+    generic = corner_angle(Fraction(1, 3))
+    assert generic * 3 == generic + generic + generic
+    with pytest.raises(InputError):
+        generic * Fraction(1, 2)
