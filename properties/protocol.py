@@ -1,0 +1,45 @@
+"""The implementation protocol: what a checked implementation may provide.
+
+An implementation is any object with some of the methods below.  Each takes
+``V`` (float64 array, n x 3) and ``F`` (int array, m x 3) and answers in the
+reference's conventions (README, "Conventions").  Adapters in ``oracles/``
+translate libraries into these conventions; properties call only these names,
+so they never mention a library.
+
+An implementation declares what it has simply by defining the method; a
+property that needs a method the implementation lacks is "not applicable".
+"""
+
+from __future__ import annotations
+
+# name -> one-line contract; the single source of the protocol's method names.
+METHODS: dict[str, str] = {
+    # chapter 1: topology
+    "euler_characteristic": "int: V - E + F of the surface (D1.6)",
+    "boundary_loops": "list of boundary cycles, each a list of vertex indices in order",
+    "is_orientable": "bool: whether the surface is orientable",
+    "genus": "int: g of an orientable surface, chi = 2 - 2g - k",
+    # chapter 2: curvature (integrated values, never divided by an area)
+    "corner_angles": "(m, 3) float array: angle at corner c of face f, in (0, pi)",
+    "angle_defects": "(n,) float array: 2 pi - angle sum at interior vertices, "
+                     "pi - angle sum (turning angle) at boundary vertices (D2.2, R2.4)",
+    "edge_mean_curvature": "dict {(i, j) with i < j: H(e) = 1/2 theta(e) l(e)} over interior "
+                           "edges, theta > 0 where convex (D2.3); a regular mesh has one edge per pair",
+    "area": "float: total area",
+    # chapter 3: Laplacians and mass matrices
+    "cotan_laplacian": "(n, n) scipy.sparse: (L f)(i) = sum_j nu(ij) (f(i) - f(j)), "
+                       "nu = 1/2 (cot a + cot b), boundary 1/2 cot a; positive semidefinite",
+    "vertex_areas_barycentric": "(n,) float array: one third of the area of each incident face",
+    "vertex_areas_voronoi": "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, "
+                            "obtuse-triangle rule)",
+}
+
+
+def capabilities(impl) -> frozenset[str]:
+    """The protocol methods ``impl`` defines."""
+    return frozenset(m for m in METHODS if callable(getattr(impl, m, None)))
+
+
+def implementation_name(impl) -> str:
+    """A display name: ``impl.name`` if set, else the class name."""
+    return str(getattr(impl, "name", None) or type(impl).__name__)

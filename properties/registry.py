@@ -1,0 +1,76 @@
+"""Properties: one per catalog row, named by its ID, runnable on any implementation.
+
+A :class:`Property` couples a Hypothesis strategy of examples with a check
+``check(impl, example)`` that raises :class:`PropertyFailure` naming the catalog
+ID, the implementation, the (shrunk) mesh, the offending element and the
+expected vs observed values.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+from .protocol import implementation_name
+
+
+class PropertyFailure(AssertionError):
+    """A property does not hold for an implementation on an example."""
+
+    def __init__(self, property_id: str, impl, message: str, *, mesh=None,
+                 element=None, expected=None, observed=None):
+        self.property_id = property_id
+        self.implementation = implementation_name(impl)
+        self.message = message
+        self.mesh = mesh                # (V, F) as nested lists, when there is one
+        self.element = element
+        self.expected = expected
+        self.observed = observed
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        lines = [f"[{self.property_id}] {self.implementation}: {self.message}"]
+        if self.element is not None:
+            lines.append(f"  at: {self.element}")
+        if self.expected is not None or self.observed is not None:
+            lines.append(f"  expected: {self.expected!r}")
+            lines.append(f"  observed: {self.observed!r}")
+        if self.mesh is not None:
+            V, F = self.mesh
+            lines.append(f"  mesh: {len(V)} vertices, {len(F)} faces; F = {F}")
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class Property:
+    id: str                      # catalog ID as in THEOREMS.md, e.g. "D1.6"
+    name: str                    # python name of the check function
+    statement: str               # what it checks, one line
+    needs: frozenset[str]        # protocol methods the implementation must have
+    strategy: Callable[[], Any]  # () -> hypothesis strategy of examples
+    check: Callable[[Any, Any], None] = field(repr=False)
+
+    def applies_to(self, caps: frozenset[str]) -> bool:
+        return self.needs <= caps
+
+
+PROPERTIES: dict[str, Property] = {}
+
+
+def prop(catalog_id: str, statement: str, *, needs, strategy):
+    """Register ``check(impl, example)`` as the property of ``catalog_id``."""
+    def register(check):
+        if catalog_id in PROPERTIES:
+            raise ValueError(f"property {catalog_id} registered twice")
+        PROPERTIES[catalog_id] = Property(
+            catalog_id, check.__name__, statement, frozenset(needs), strategy, check)
+        check.property_id = catalog_id
+        return check
+    return register
+
+
+def all_properties() -> list[Property]:
+    """Every registered property, in catalog order of registration."""
+    # importing a module registers its properties; one module per chapter topic
+    from . import topology  # noqa: F401
+    return list(PROPERTIES.values())

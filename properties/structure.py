@@ -1,0 +1,56 @@
+"""Structural properties of the reference's own data structures (catalog rows that
+concern the representation rather than a computed quantity).
+
+They take reference objects, not an implementation, and raise AssertionError
+naming the catalog ID.
+"""
+
+from __future__ import annotations
+
+from hypothesis import strategies as st
+
+from reference.combinatorics import Triangulation
+
+from .strategies import closed_surfaces
+
+
+def unrestricted_flips():
+    """(surface, flip choices): flips applied without keeping the triangulation regular."""
+    return st.tuples(closed_surfaces(max_genus=1, relabel=False),
+                     st.lists(st.integers(0, 1 << 16), min_size=1, max_size=12))
+
+
+def flip_freely(t: Triangulation, choices) -> Triangulation:
+    """Flip the edges chosen (skipping unflippable ones); loops and double edges may appear."""
+    from reference.errors import NotFlippable
+    for c in choices:
+        e = c % t.n_edges
+        try:
+            t = t.flip(e)
+        except NotFlippable:
+            continue
+    return t
+
+
+def regularity_predicates(t: Triangulation) -> None:
+    """D1.4: regular = no loops; strongly regular = also no double edges, no repeated faces.
+
+    Checked against an independent scan of the edge list, and the halfedge
+    structure stays valid (twin is an involution with matching endpoints).
+    """
+    ends = [t.edge_vertices(e) for e in range(t.n_edges)]
+    loops = any(a == b for a, b in ends)
+    pairs = [frozenset(p) for p in ends]
+    double = len(set(pairs)) != len(pairs)
+    faces = [frozenset(f) for f in t.faces]
+    repeated_face = len(set(faces)) != len(faces)
+    assert t.is_regular() == (not loops), "D1.4: is_regular disagrees with the loop scan"
+    assert t.is_strongly_regular() == (not loops and not double and not repeated_face), \
+        "D1.4: is_strongly_regular disagrees with the edge and face scan"
+    for h in range(3 * t.n_faces):
+        g = t.twin(h)
+        if g < 0:
+            continue
+        assert t.twin(g) == h, f"D1.4: twin is not an involution at halfedge {h}"
+        same = {t.tail(h), t.head(h)} == {t.tail(g), t.head(g)}
+        assert same, f"D1.4: glued halfedges {h}, {g} have different endpoints"

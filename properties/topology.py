@@ -1,0 +1,117 @@
+"""Chapter 1 properties: Euler characteristic and the classification of surfaces.
+
+Each property takes an implementation (see :mod:`properties.protocol`) and an
+example drawn from its strategy.  The truth comes from how the example was
+built (genus, crosscaps, holes), never from the implementation under test.
+"""
+
+from __future__ import annotations
+
+from hypothesis import strategies as st
+
+from reference.combinatorics import connected_sum
+
+from .registry import PropertyFailure, prop
+from .strategies import (SurfaceCase, apply_moves, closed_surfaces, extend_positions,
+                         named_surfaces, surface_moves, triangulated_surfaces)
+
+
+def _call(impl, method: str, case: SurfaceCase):
+    V, F = case.arrays()
+    return getattr(impl, method)(V, F)
+
+
+def _mesh(case: SurfaceCase):
+    return (case.vertices, case.faces)
+
+
+@prop("D1.6", "euler_characteristic(V, F) equals chi = 2 - 2g - k (2 - h - k) of the surface built",
+      needs={"euler_characteristic"}, strategy=triangulated_surfaces)
+def euler_characteristic_of_known_surfaces(impl, case: SurfaceCase):
+    chi = int(_call(impl, "euler_characteristic", case))
+    if chi != case.expected.euler_characteristic:
+        raise PropertyFailure("D1.6", impl, "wrong Euler characteristic", mesh=_mesh(case),
+                              expected=case.expected.euler_characteristic, observed=chi)
+
+
+@prop("R1.5", "chi is unchanged by edge flips, edge splits and 1-to-4 subdivision",
+      needs={"euler_characteristic"},
+      strategy=lambda: st.tuples(triangulated_surfaces(moves=False), surface_moves()))
+def euler_characteristic_is_invariant(impl, example):
+    case, moves = example
+    t = apply_moves(case.triangulation, moves)
+    refined = SurfaceCase(t, extend_positions(t, case.positions), case.expected, case.recipe + f" then {moves}")
+    before = int(_call(impl, "euler_characteristic", case))
+    after = int(_call(impl, "euler_characteristic", refined))
+    if before != after:
+        raise PropertyFailure("R1.5", impl, f"chi changed under {moves}", mesh=_mesh(refined),
+                              expected=before, observed=after)
+
+
+@prop("X1.4", "disk 1, sphere 2, torus 0, double torus -2 (and annulus 0, Möbius strip 0)",
+      needs={"euler_characteristic"}, strategy=named_surfaces)
+def euler_characteristic_of_named_surfaces(impl, case: SurfaceCase):
+    chi = int(_call(impl, "euler_characteristic", case))
+    if chi != case.expected.euler_characteristic:
+        raise PropertyFailure("X1.4", impl, f"wrong Euler characteristic of the {case.recipe}",
+                              mesh=_mesh(case), expected=case.expected.euler_characteristic,
+                              observed=chi)
+
+
+@prop("CS", "chi(M # N) = chi(M) + chi(N) - 2 and chi(M minus a disk) = chi(M) - 1",
+      needs={"euler_characteristic"},
+      strategy=lambda: st.tuples(closed_surfaces(max_genus=2), closed_surfaces(max_genus=2),
+                                 st.integers(0, 1 << 16)))
+def connected_sum_lowers_chi_by_two(impl, example):
+    a, b, where = example
+    s = a.triangulation
+    ab = connected_sum(s, b.triangulation)
+    summed = SurfaceCase(ab, extend_positions(ab, a.positions), a.expected, f"({a.recipe}) # ({b.recipe})")
+    ca, cb, cab = (int(_call(impl, "euler_characteristic", c)) for c in (a, b, summed))
+    if cab != ca + cb - 2:
+        raise PropertyFailure("CS", impl, "chi(M # N) != chi(M) + chi(N) - 2", mesh=_mesh(summed),
+                              expected=ca + cb - 2, observed=cab)
+    f = where % s.n_faces
+    holed_t = s.remove_face(f)
+    holed = SurfaceCase(holed_t, a.positions, a.expected, a.recipe + f" minus face {f}")
+    ch = int(_call(impl, "euler_characteristic", holed))
+    if ch != ca - 1:
+        raise PropertyFailure("CS", impl, f"chi(M minus face {f}) != chi(M) - 1",
+                              mesh=_mesh(holed), expected=ca - 1, observed=ch)
+
+
+@prop("T1.1 / C1.2", "a closed surface's orientability and genus match how it was built",
+      needs={"is_orientable", "genus"}, strategy=lambda: closed_surfaces(max_genus=3))
+def classification_of_closed_surfaces(impl, case: SurfaceCase):
+    orientable = bool(_call(impl, "is_orientable", case))
+    if orientable != case.expected.orientable:
+        raise PropertyFailure("T1.1 / C1.2", impl, "wrong orientability", mesh=_mesh(case),
+                              expected=case.expected.orientable, observed=orientable)
+    if orientable:
+        g = int(_call(impl, "genus", case))
+        if g != case.expected.genus:
+            raise PropertyFailure("T1.1 / C1.2", impl, "wrong genus", mesh=_mesh(case),
+                                  expected=case.expected.genus, observed=g)
+
+
+@prop("R1.6", "with k boundary loops, orientable: chi = 2 - 2g - k, k and g as built",
+      needs={"euler_characteristic", "boundary_loops", "genus"},
+      strategy=lambda: triangulated_surfaces(orientable=True, max_holes=3))
+def boundary_loops_and_genus(impl, case: SurfaceCase):
+    loops = _call(impl, "boundary_loops", case)
+    k = len(loops)
+    if k != case.expected.boundary_components:
+        raise PropertyFailure("R1.6", impl, "wrong number of boundary loops", mesh=_mesh(case),
+                              expected=case.expected.boundary_components, observed=k)
+    boundary = {tuple(sorted(e)) for loop in loops for e in zip(loop, list(loop[1:]) + list(loop[:1]))}
+    truth = {tuple(sorted(case.triangulation.edge_vertices(e)))
+             for e in range(case.triangulation.n_edges) if case.triangulation.is_boundary_edge(e)}
+    if boundary != truth:
+        raise PropertyFailure("R1.6", impl, "boundary loops do not run along the boundary edges",
+                              mesh=_mesh(case), expected=sorted(truth), observed=sorted(boundary))
+    chi = int(_call(impl, "euler_characteristic", case))
+    g = int(_call(impl, "genus", case))
+    if chi != 2 - 2 * g - k or g != case.expected.genus:
+        raise PropertyFailure("R1.6", impl, "chi != 2 - 2g - k", mesh=_mesh(case),
+                              expected=(case.expected.euler_characteristic, case.expected.genus),
+                              observed=(chi, g))

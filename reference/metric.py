@@ -1,0 +1,153 @@
+"""Piecewise flat surfaces: a triangulation with exact squared edge lengths (D2.6).
+
+Everything that depends on edge lengths alone is computed here once: face
+areas, corner cotangents, corner angles.  Squared lengths are Fractions; a face
+area is a :class:`~reference.exact.Surd` (one square root per face), carried
+alongside the lengths and never recomputed once known, so that intrinsic edge
+flips (chapter 4) stay exact.
+
+Conventions: halfedge h = 3 f + c runs in face f from corner c to corner c+1;
+the corner c of face f is opposite to halfedge 3 f + (c+1) % 3.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Sequence
+
+from .combinatorics import Triangulation
+from .errors import BadShape, DegenerateFace, TriangleInequalityViolated
+from .exact import Angle, Surd, corner_angle, rational, sqrt
+
+
+def heron16(a: Fraction, b: Fraction, c: Fraction) -> Fraction:
+    """16 A^2 of a triangle with squared side lengths a, b, c (Heron, exact).
+
+    Positive iff the side lengths satisfy the strict triangle inequality.
+    """
+    return 2 * (a * b + b * c + c * a) - a * a - b * b - c * c
+
+
+class PiecewiseFlatSurface:
+    """A triangulation with exact squared edge lengths and face areas (D2.6).
+
+    Build from squared lengths (``PiecewiseFlatSurface(t, squared_lengths)``),
+    from lengths (:meth:`from_lengths`, each squared exactly), or from a
+    polyhedral surface (``PolyhedralSurface.metric()``).  Every face must
+    satisfy the strict triangle inequality; the error names the face.
+
+    >>> from reference import Triangulation
+    >>> t = Triangulation.from_faces([[0, 1, 2]])
+    >>> s = PiecewiseFlatSurface(t, [1, 1, 1])            # equilateral, side 1
+    >>> s.area(0)
+    Surd('1/4*sqrt(3)')
+    """
+
+    __slots__ = ("triangulation", "squared_lengths", "areas", "_cots")
+
+    def __init__(self, triangulation: Triangulation, squared_lengths: Sequence, areas=None):
+        t = triangulation
+        if len(squared_lengths) != t.n_edges:
+            raise BadShape(f"{len(squared_lengths)} squared lengths for {t.n_edges} edges")
+        sq = tuple(rational(x, where=f"squared length of edge {e}")
+                   for e, x in enumerate(squared_lengths))
+        for e, x in enumerate(sq):
+            if x <= 0:
+                raise TriangleInequalityViolated(f"edge {e} has squared length {x} <= 0")
+        self.triangulation = t
+        self.squared_lengths = sq
+        if areas is None:
+            areas = []
+            for f in range(t.n_faces):
+                a, b, c = self.face_squared_lengths(f)
+                h = heron16(a, b, c)
+                if h <= 0:
+                    raise TriangleInequalityViolated(
+                        f"face {f} {t.faces[f]}: squared side lengths {a}, {b}, {c} violate the "
+                        f"strict triangle inequality (16 A^2 = {h})")
+                areas.append(sqrt(h) / 4)
+        elif len(areas) != t.n_faces:
+            raise BadShape(f"{len(areas)} areas for {t.n_faces} faces")
+        self.areas = tuple(a if isinstance(a, Surd) else Surd(a) for a in areas)
+        self._cots = None
+
+    @classmethod
+    def from_lengths(cls, triangulation: Triangulation, lengths: Sequence) -> "PiecewiseFlatSurface":
+        """From edge lengths (ints, Fractions, floats: squared exactly)."""
+        ls = [rational(x, where=f"length of edge {e}") for e, x in enumerate(lengths)]
+        return cls(triangulation, [x * x for x in ls])
+
+    # -- per element ----------------------------------------------------------------
+
+    def squared_length(self, h: int) -> Fraction:
+        """Squared length of the edge of halfedge h."""
+        return self.squared_lengths[self.triangulation.edge_of(h)]
+
+    def face_squared_lengths(self, f: int) -> tuple[Fraction, Fraction, Fraction]:
+        """Squared lengths of halfedges 3f, 3f+1, 3f+2 (opposite corners 2, 0, 1)."""
+        e = self.triangulation.edge_of
+        sq = self.squared_lengths
+        return sq[e(3 * f)], sq[e(3 * f + 1)], sq[e(3 * f + 2)]
+
+    def area(self, f: int) -> Surd:
+        """Area of face f (exact)."""
+        return self.areas[f]
+
+    def total_area(self) -> Surd:
+        """Sum of the face areas (exact)."""
+        return sum(self.areas, Surd(0))
+
+    def corner_cot(self, f: int, c: int) -> Surd:
+        """cot of the angle at corner c of face f: (a + b - o) / (4 A), exact.
+
+        a, b are the squared lengths of the two sides at the corner, o that of
+        the opposite side.
+        """
+        if self._cots is None:
+            self._cots = self._all_cots()
+        return self._cots[3 * f + c]
+
+    def corner_angle(self, f: int, c: int) -> Angle:
+        """The angle at corner c of face f, an exact angle in (0, pi)."""
+        return corner_angle(self.corner_cot(f, c))
+
+    def _all_cots(self) -> list[Surd]:
+        cots = []
+        for f in range(self.triangulation.n_faces):
+            l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
+            inv = 1 / (4 * self.areas[f])
+            cots += [(l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv, (l1 + l2 - l0) * inv]
+        return cots
+
+    def __repr__(self) -> str:
+        t = self.triangulation
+        return f"PiecewiseFlatSurface(V={t.n_vertices}, E={t.n_edges}, F={t.n_faces})"
+
+
+def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
+    """The intrinsic metric of a triangulation with exact points in R^n.
+
+    Areas come from the Lagrange identity 4 A^2 = |u|^2 |v|^2 - (u.v)^2, which
+    holds in every dimension; a zero-area face raises :class:`DegenerateFace`.
+    """
+    t = triangulation
+    sq = []
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        sq.append(sum((x - y) ** 2 for x, y in zip(points[i], points[j])))
+    areas = []
+    for f, (i, j, k) in enumerate(t.faces):
+        u = [y - x for x, y in zip(points[i], points[j])]
+        v = [y - x for x, y in zip(points[i], points[k])]
+        uv = sum(x * y for x, y in zip(u, v))
+        four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
+        if four_a2 == 0:
+            raise DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
+                                 "(zero area)")
+        areas.append(sqrt(four_a2) / 2)
+    for e, x in enumerate(sq):
+        if x == 0:
+            i, j = t.edge_vertices(e)
+            raise DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "
+                                 "(coincident vertices)")
+    return PiecewiseFlatSurface(t, sq, areas)

@@ -1,0 +1,38 @@
+"""Deliberately wrong implementations: each must be caught by a property.
+
+Each class is the reference with one plausible bug planted, the kind a
+developer actually writes.
+"""
+
+from oracles.exact_reference import ReferenceImplementation
+
+
+class ChiIgnoresBoundary(ReferenceImplementation):
+    """Assumes a closed surface: E = 3F/2 (wrong as soon as there is a boundary)."""
+
+    name = "chi-ignores-boundary"
+
+    def euler_characteristic(self, V, F):
+        return len(V) - (3 * len(F)) // 2 + len(F)
+
+
+class AlwaysOrientable(ReferenceImplementation):
+    """Never looks for an orientation-reversing loop."""
+
+    name = "always-orientable"
+
+    def is_orientable(self, V, F):
+        return True
+
+    def genus(self, V, F):
+        return (2 - self.euler_characteristic(V, F)) // 2
+
+
+class OneBoundaryLoop(ReferenceImplementation):
+    """Chains all boundary edges into a single loop."""
+
+    name = "one-boundary-loop"
+
+    def boundary_loops(self, V, F):
+        loops = super().boundary_loops(V, F)
+        return [sum(loops, [])] if loops else []

@@ -1,0 +1,125 @@
+"""The project's own promises: README commands, CI script, traceability table, CLI exit codes."""
+
+import ast
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from oracles.cli import main
+from properties import traceability
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _readme_commands():
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text.split("## Two commands", 1)[1].split("\n## ", 1)[0]
+    return [c.strip() for c in re.findall(r"```bash\n(.+?)\n\s*```", section, re.S)]
+
+
+def test_readme_has_exactly_two_commands_and_ci_runs_both_verbatim():
+    commands = _readme_commands()
+    assert len(commands) == 2
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    for c in commands:
+        assert c.strip() in ci.splitlines(), f"CI does not run README's command: {c}"
+    assert "ddg-oracle check" in commands[0]
+    assert "pytest" in commands[1]
+    assert '"$rc" -eq 5' in ci            # pytest's "no tests collected" fails CI
+
+
+def test_reference_imports_only_the_standard_library():
+    # The one exception is an export adapter (to_scipy) marked as such in a comment.
+    allowed = set(sys.stdlib_module_names) | {"reference"}
+    for path in (ROOT / "reference").rglob("*.py"):
+        source = path.read_text(encoding="utf-8")
+        lines = source.splitlines()
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.level == 0:
+                names = [node.module]
+            else:
+                continue
+            for name in names:
+                top = name.split(".")[0]
+                if top not in allowed:
+                    assert "export adapter" in lines[node.lineno - 1] + lines[node.lineno - 2], \
+                        f"{path.name}:{node.lineno} imports {name}"
+
+
+def test_reference_uses_no_float_literals_or_float_calls_in_decisions():
+    # floats may appear only in conversions out (float views); never math.isclose / tolerances
+    for path in (ROOT / "reference").rglob("*.py"):
+        text = path.read_text(encoding="utf-8")
+        assert "isclose" not in text and "1e-" not in text, path.name
+
+
+def test_traceability_table_is_true():
+    assert traceability.check() == []
+
+
+def test_traceability_check_catches_a_missing_function(tmp_path):
+    bad = tmp_path / "t.toml"
+    text = traceability.TABLE.read_text(encoding="utf-8")
+    text = text.replace('reference = ["reference.combinatorics:Triangulation.euler_characteristic"]',
+                        'reference = ["reference.combinatorics:Triangulation.no_such_thing"]', 1)
+    bad.write_text(text, encoding="utf-8")
+    assert any("no_such_thing does not exist" in p for p in traceability.check(bad))
+
+
+def test_every_claimed_row_has_a_registered_property():
+    from properties.registry import all_properties
+    claimed, entries = traceability.load()
+    registered = {f"{p.check.__module__}:{p.name}" for p in all_properties()}
+    for e in entries:
+        if e.chapter in claimed:
+            assert set(e.property) <= registered | {p for p in e.property if ".structure:" in p}, e.id
+
+
+def test_traceability_check_catches_a_missing_test_and_an_unverified_claimed_row(tmp_path):
+    bad = tmp_path / "t.toml"
+    text = traceability.TABLE.read_text(encoding="utf-8")
+    text = text.replace("test_X1_4_named_surfaces", "test_that_was_never_written", 1)
+    i = text.index('["R1.6"]')
+    text = text[:i] + text[i:].replace('status = "verified"', 'status = "not yet"', 1)
+    bad.write_text(text, encoding="utf-8")
+    problems = traceability.check(bad)
+    assert any("test_that_was_never_written does not exist" in p for p in problems)
+    assert any(p.startswith("R1.6: chapter 1 is claimed") for p in problems)
+
+
+def test_cli_theorems_check_exits_zero(capsys):
+    assert main(["theorems", "--check"]) == 0
+    assert "traceability table: true" in capsys.readouterr().out
+
+
+def test_cli_check_passes_on_the_reference(capsys):
+    assert main(["check", "--impl", "reference", "--only", "D1.6", "--only", "X1.4"]) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"D1\.6 .*passed \(\d+ examples\)", out)
+
+
+def test_cli_check_fails_with_exit_1_on_a_wrong_implementation(capsys):
+    assert main(["check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary", "--only", "D1.6"]) == 1
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "[D1.6]" in out
+
+
+def test_cli_bad_usage_is_one_line_and_exit_2(capsys):
+    assert main(["check", "--impl", "no.such.module:Thing"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ddg-oracle: error:") and err.count("\n") == 1
+    assert main(["check", "--impl", "reference", "--only", "Z9.9"]) == 2
+
+
+def test_console_script_is_installed():
+    exe = shutil.which("ddg-oracle")
+    if exe is None:
+        pytest.skip("ddg-oracle is not on PATH (package not installed)")
+    out = subprocess.run([exe, "theorems"], capture_output=True, text=True)
+    assert out.returncode == 0 and "D1.6" in out.stdout
