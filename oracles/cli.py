@@ -23,6 +23,9 @@ def main(argv=None) -> int:
     c.add_argument("--profile", default="default", help="Hypothesis profile: default, ci, thorough")
     c.add_argument("--seed", type=int, default=None, help="Hypothesis seed")
     c.add_argument("--only", action="append", metavar="ID", help="only these catalog IDs")
+    c.add_argument("--timeout", type=float, default=60.0,
+                   help="seconds per call of a checked implementation before it is killed "
+                        "and reported as hanging (default 60)")
 
     t = sub.add_parser("theorems", help="print the traceability table")
     t.add_argument("--check", action="store_true",
@@ -68,8 +71,12 @@ def _check(args) -> int:
     from properties.registry import all_properties
     from properties.runner import describe, run_properties
 
+    from oracles.isolation import Isolated
     specs = args.impl or available()
-    impls = [load_implementation(s) for s in specs]
+    # The exact reference runs in this process; everything else in a worker
+    # process, so a segfault or a hang becomes a reported result.
+    impls = [load_implementation(s) if s == "reference" else Isolated(s, timeout=args.timeout)
+             for s in specs]
     only = set(args.only) if args.only else None
     props = [p for p in all_properties() if only is None or p.id in only]
     if only:
@@ -88,8 +95,13 @@ def _check(args) -> int:
         print(f"\r[{bar:<20}] {done}/{total} {r.implementation}: {r.property_id:<12}",
               end="", file=sys.stderr, flush=True)
 
-    for impl in impls:
-        results += run_properties(impl, args.profile, only, args.seed, on_result=progress)
+    try:
+        for impl in impls:
+            results += run_properties(impl, args.profile, only, args.seed, on_result=progress)
+    finally:
+        for impl in impls:
+            if isinstance(impl, Isolated):
+                impl.close()
     print(file=sys.stderr)
 
     names = [implementation_name(i) for i in impls]

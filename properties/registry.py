@@ -69,8 +69,13 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
     return register
 
 
+#: Modules whose import registers properties, one per chapter topic.
+PROPERTY_MODULES = ("topology",)
+
+
 def all_properties() -> list[Property]:
     """Every registered property, in catalog order of registration."""
-    # importing a module registers its properties; one module per chapter topic
-    from . import topology  # noqa: F401
+    import importlib
+    for m in PROPERTY_MODULES:
+        importlib.import_module(f"{__package__}.{m}")
     return list(PROPERTIES.values())

@@ -123,3 +123,12 @@ def test_console_script_is_installed():
         pytest.skip("ddg-oracle is not on PATH (package not installed)")
     out = subprocess.run([exe, "theorems"], capture_output=True, text=True)
     assert out.returncode == 0 and "D1.6" in out.stdout
+
+
+def test_cli_check_reports_a_segfaulting_implementation_and_goes_on(capsys):
+    rc = main(["check", "--impl", "tests.misbehaving:SegfaultsOnBoundary", "--impl", "reference",
+               "--only", "R1.6", "--only", "T1.1 / C1.2", "--profile", "ci", "--timeout", "20"])
+    assert rc == 1
+    out = capsys.readouterr().out
+    assert "crashed" in out and "SIGSEGV" in out
+    assert re.search(r"T1\.1 / C1\.2 .*passed .*passed", out)   # the run went on

@@ -1,0 +1,148 @@
+"""Run a checked implementation in a worker process with a time and memory limit.
+
+A segfault, an abort or a hang of third-party code must not stop a check run.
+:class:`Isolated` wraps an implementation spec (``"libigl"`` or
+``"module:object"``) as a proxy with the same protocol methods; each call is
+sent to a persistent worker process and waited for at most ``timeout``
+seconds.  If the worker dies or overruns, it is killed, restarted for the next
+call, and the call raises :class:`ImplementationCrashed` saying how (signal,
+exit code, time limit).  Hypothesis treats that exception like any failure, so
+the input that crashes the library is shrunk before it is reported.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import resource
+import signal
+import traceback
+
+from properties.protocol import METHODS
+
+
+class ImplementationCrashed(RuntimeError):
+    """The implementation's process died or exceeded its time limit on this call."""
+
+    def __init__(self, implementation: str, method: str, how: str):
+        self.implementation, self.method, self.how = implementation, method, how
+        super().__init__(f"{implementation}.{method} {how}")
+
+
+class ImplementationError(RuntimeError):
+    """The implementation raised a Python exception (its traceback is in the message)."""
+
+
+def _worker(spec: str, memory_bytes: int | None, conn) -> None:
+    if memory_bytes:
+        resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+    from oracles.implementations import load_implementation
+    try:
+        impl = load_implementation(spec)
+        conn.send(("ready", sorted(m for m in METHODS if callable(getattr(impl, m, None))),
+                   getattr(impl, "name", spec)))
+    except BaseException as e:  # noqa: BLE001  (report any import failure to the parent)
+        conn.send(("error", f"{type(e).__name__}: {e}", None))
+        return
+    while True:
+        try:
+            method, args = conn.recv()
+        except EOFError:
+            return
+        try:
+            conn.send(("ok", getattr(impl, method)(*args), None))
+        except BaseException as e:  # noqa: BLE001
+            conn.send(("raised", "".join(traceback.format_exception_only(type(e), e)).strip(),
+                       None))
+
+
+class Isolated:
+    """Proxy of an implementation living in a worker process.
+
+    ``timeout`` is per call, in seconds; ``memory`` caps the worker's address
+    space in bytes (None: no cap).  Use as a context manager or call
+    :meth:`close`.
+    """
+
+    def __init__(self, spec: str, timeout: float = 60.0, memory: int | None = 8 << 30):
+        self.spec, self.timeout, self.memory = spec, timeout, memory
+        self._ctx = mp.get_context("spawn")     # no fork of a parent holding threads
+        self._proc = None
+        self._conn = None
+        self._start()
+
+    def _start(self) -> None:
+        parent, child = self._ctx.Pipe()
+        self._proc = self._ctx.Process(target=_worker, args=(self.spec, self.memory, child),
+                                       daemon=True)
+        self._proc.start()
+        child.close()
+        self._conn = parent
+        if not parent.poll(120):
+            self._kill()
+            raise ImplementationCrashed(self.spec, "load", "did not start within 120 s")
+        try:
+            status, payload, name = parent.recv()
+        except EOFError:
+            raise ImplementationCrashed(self.spec, "load", self._how_it_died()) from None
+        if status != "ready":
+            from oracles.implementations import ImplementationNotFound
+            raise ImplementationNotFound(f"{self.spec}: {payload}")
+        self.methods = frozenset(payload)
+        self.name = name
+
+    def _kill(self) -> None:
+        if self._proc is not None and self._proc.is_alive():
+            self._proc.kill()
+        if self._proc is not None:
+            self._proc.join(5)
+
+    def _how_it_died(self) -> str:
+        self._proc.join(5)
+        code = self._proc.exitcode
+        if code is not None and code < 0:
+            try:
+                return f"crashed with signal {signal.Signals(-code).name}"
+            except ValueError:
+                return f"crashed with signal {-code}"
+        return f"exited with code {code}"
+
+    def call(self, method: str, *args):
+        if self._proc is None or not self._proc.is_alive():
+            self._start()
+        try:
+            self._conn.send((method, args))
+        except (BrokenPipeError, OSError):
+            how = self._how_it_died()
+            self._start()
+            raise ImplementationCrashed(self.name, method, how) from None
+        if not self._conn.poll(self.timeout):
+            self._kill()
+            self._start()
+            raise ImplementationCrashed(self.name, method,
+                                        f"did not return within {self.timeout:g} s (killed)")
+        try:
+            status, payload, _ = self._conn.recv()
+        except EOFError:
+            how = self._how_it_died()
+            self._start()
+            raise ImplementationCrashed(self.name, method, how) from None
+        if status == "raised":
+            raise ImplementationError(f"{self.name}.{method} raised {payload}")
+        return payload
+
+    def __getattr__(self, method: str):
+        # only protocol methods the worker's implementation has are exposed
+        if method in METHODS and method in self.__dict__.get("methods", ()):
+            return lambda *args: self.call(method, *args)
+        raise AttributeError(method)
+
+    def close(self) -> None:
+        if self._conn is not None:
+            self._conn.close()
+        self._kill()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

@@ -1,0 +1,40 @@
+"""Implementations that crash the interpreter or never return, on some inputs.
+
+Used to show that a check run reports them and goes on (issues 6 and 8).
+"""
+
+import ctypes
+import os
+
+from oracles.exact_reference import ReferenceImplementation
+
+
+def _has_boundary(F) -> bool:
+    from collections import Counter
+    count = Counter(tuple(sorted((int(f[i]), int(f[(i + 1) % 3])))) for f in F for i in range(3))
+    return any(c == 1 for c in count.values())
+
+
+class SegfaultsOnBoundary(ReferenceImplementation):
+    name = "segfaults-on-boundary"
+
+    def euler_characteristic(self, V, F):
+        if _has_boundary(F):
+            ctypes.string_at(0)          # reads address 0: SIGSEGV
+        return super().euler_characteristic(V, F)
+
+
+class AbortsAlways(ReferenceImplementation):
+    name = "aborts"
+
+    def euler_characteristic(self, V, F):
+        os.abort()
+
+
+class HangsOnBoundary(ReferenceImplementation):
+    name = "hangs-on-boundary"
+
+    def euler_characteristic(self, V, F):
+        while _has_boundary(F):
+            pass
+        return super().euler_characteristic(V, F)

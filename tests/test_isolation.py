@@ -1,0 +1,53 @@
+"""Isolation: a crashing or looping implementation is reported with its input; the run goes on."""
+
+import numpy as np
+import pytest
+from hypothesis import settings
+
+from oracles.isolation import ImplementationCrashed, Isolated
+from properties import PROPERTIES
+from properties.runner import CRASHED, PASSED, run_property
+from reference import surfaces
+
+CLOSED = surfaces.tetrahedron().to_arrays()
+OPEN = surfaces.disk(5).to_arrays()
+QUICK = settings(max_examples=15, deadline=None, database=None, derandomize=True)
+
+
+def _arrays(mesh):
+    V, F = mesh
+    return np.array(V, dtype=float), np.array(F, dtype=np.int64)
+
+
+def test_segfault_is_reported_and_the_worker_restarts():
+    with Isolated("tests.misbehaving:SegfaultsOnBoundary", timeout=30) as impl:
+        assert impl.euler_characteristic(*_arrays(CLOSED)) == 2
+        with pytest.raises(ImplementationCrashed, match="SIGSEGV"):
+            impl.euler_characteristic(*_arrays(OPEN))
+        assert impl.euler_characteristic(*_arrays(CLOSED)) == 2      # restarted
+
+
+def test_abort_is_reported():
+    with Isolated("tests.misbehaving:AbortsAlways", timeout=30) as impl:
+        with pytest.raises(ImplementationCrashed, match="SIGABRT"):
+            impl.euler_characteristic(*_arrays(CLOSED))
+
+
+def test_hang_is_killed_after_the_time_limit():
+    with Isolated("tests.misbehaving:HangsOnBoundary", timeout=1.5) as impl:
+        with pytest.raises(ImplementationCrashed, match="did not return within 1.5 s"):
+            impl.euler_characteristic(*_arrays(OPEN))
+        assert impl.euler_characteristic(*_arrays(CLOSED)) == 2
+
+
+def test_property_run_reports_the_crash_with_a_shrunk_input_and_goes_on():
+    with Isolated("tests.misbehaving:SegfaultsOnBoundary", timeout=30) as impl:
+        r = run_property(PROPERTIES["D1.6"], impl, QUICK)
+        assert r.status == CRASHED and "SIGSEGV" in r.error
+        faces = r.example.triangulation.n_faces
+        assert r.example.expected.boundary_components >= 1
+        assert faces <= 40, f"crashing input not shrunk: {faces} faces"
+        # the same worker goes on to pass a property that only sees closed surfaces
+        r2 = run_property(PROPERTIES["X1.4"], impl, QUICK)
+        assert r2.status in (CRASHED, PASSED)
+        assert run_property(PROPERTIES["T1.1 / C1.2"], impl, QUICK).status == PASSED
