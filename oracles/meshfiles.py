@@ -1,0 +1,283 @@
+"""Reading triangle meshes from OBJ, OFF, PLY (ascii, binary) and STL (ascii, binary).
+
+Coordinates are parsed as float64, the numbers a library reading the same file
+sees (they are then exact dyadic rationals for the reference).  Every problem
+raises :class:`MeshFileError` naming the file, the line (or byte offset) and
+what is wrong; never a traceback for expected bad input.  Polygons with more
+than three corners are rejected rather than silently triangulated (a fan
+triangulation would change the mesh under test).  STL stores a triangle soup:
+vertices with bit-identical coordinates are merged, in order of first
+appearance.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from pathlib import Path
+
+from reference.errors import InputError
+
+
+class MeshFileError(InputError):
+    """A mesh file that cannot be read: which file, where, and why."""
+
+
+def read_mesh(path) -> tuple[list[list[float]], list[list[int]]]:
+    """(V, F) of a mesh file, by its extension (.obj, .off, .ply, .stl)."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise MeshFileError(f"{path}: cannot read: {e.strerror or e}") from None
+    readers = {".obj": _obj, ".off": _off, ".ply": _ply, ".stl": _stl}
+    reader = readers.get(path.suffix.lower())
+    if reader is None:
+        raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r} "
+                            f"(use one of {', '.join(readers)})")
+    V, F = reader(data, str(path))
+    _check(V, F, str(path))
+    return V, F
+
+
+def _text(data: bytes, name: str) -> list[str]:
+    try:
+        return data.decode("utf-8").splitlines()
+    except UnicodeDecodeError as e:
+        raise MeshFileError(f"{name}: not a text file (byte {e.start} is not UTF-8)") from None
+
+
+def _float(tok: str, name: str, where: str) -> float:
+    try:
+        x = float(tok)
+    except ValueError:
+        raise MeshFileError(f"{name}:{where}: {tok!r} is not a number") from None
+    if not math.isfinite(x):
+        raise MeshFileError(f"{name}:{where}: non-finite coordinate {tok!r}")
+    return x
+
+
+def _int(tok: str, name: str, where: str) -> int:
+    try:
+        return int(tok)
+    except ValueError:
+        raise MeshFileError(f"{name}:{where}: {tok!r} is not an integer index") from None
+
+
+def _triangle(corners: list[int], name: str, where: str) -> list[int]:
+    if len(corners) != 3:
+        raise MeshFileError(f"{name}:{where}: a face with {len(corners)} corners; "
+                            "only triangles are accepted")
+    return corners
+
+
+def _obj(data: bytes, name: str):
+    V, F = [], []
+    for n, line in enumerate(_text(data, name), 1):
+        parts = line.split("#", 1)[0].split()
+        if not parts:
+            continue
+        where = f"line {n}"
+        if parts[0] == "v":
+            if len(parts) < 4:
+                raise MeshFileError(f"{name}:{where}: a vertex needs 3 coordinates")
+            V.append([_float(t, name, where) for t in parts[1:4]])
+        elif parts[0] == "f":
+            corners = []
+            for t in parts[1:]:
+                i = _int(t.split("/")[0], name, where)
+                if i == 0:
+                    raise MeshFileError(f"{name}:{where}: OBJ indices start at 1, got 0")
+                corners.append(i - 1 if i > 0 else len(V) + i)    # negative: relative
+            F.append(_triangle(corners, name, where))
+    return V, F
+
+
+def _header_counts(tokens, name, where, k):
+    if len(tokens) < k:
+        raise MeshFileError(f"{name}:{where}: expected {k} counts, got {len(tokens)}")
+    return [_int(t, name, where) for t in tokens[:k]]
+
+
+def _off(data: bytes, name: str):
+    lines = [(n, l.split("#", 1)[0].split()) for n, l in enumerate(_text(data, name), 1)]
+    lines = [(n, p) for n, p in lines if p]
+    if not lines or not lines[0][1][0].endswith("OFF"):
+        raise MeshFileError(f"{name}:line 1: missing the OFF header")
+    n0, head = lines[0]
+    rest = lines[1:]
+    if len(head) > 1:                          # "OFF nv nf ne" on one line
+        rest = [(n0, head[1:])] + rest
+    if not rest:
+        raise MeshFileError(f"{name}: truncated after the header")
+    n, counts = rest[0]
+    nv, nf = _header_counts(counts, name, f"line {n}", 2)[:2]
+    body = rest[1:]
+    if len(body) < nv + nf:
+        raise MeshFileError(f"{name}: truncated: header promises {nv} vertices and {nf} faces, "
+                            f"file has {len(body)} data lines")
+    V = []
+    for n, p in body[:nv]:
+        if len(p) < 3:
+            raise MeshFileError(f"{name}:line {n}: a vertex needs 3 coordinates")
+        V.append([_float(t, name, f"line {n}") for t in p[:3]])
+    F = []
+    for n, p in body[nv:nv + nf]:
+        k = _int(p[0], name, f"line {n}")
+        if len(p) < k + 1:
+            raise MeshFileError(f"{name}:line {n}: face promises {k} corners, has {len(p) - 1}")
+        F.append(_triangle([_int(t, name, f"line {n}") for t in p[1:k + 1]], name, f"line {n}"))
+    return V, F
+
+
+_PLY_TYPES = {"char": "b", "int8": "b", "uchar": "B", "uint8": "B", "short": "h", "int16": "h",
+              "ushort": "H", "uint16": "H", "int": "i", "int32": "i", "uint": "I",
+              "uint32": "I", "float": "f", "float32": "f", "double": "d", "float64": "d"}
+
+
+def _ply(data: bytes, name: str):
+    end = data.find(b"end_header")
+    if not data.startswith(b"ply") or end < 0:
+        raise MeshFileError(f"{name}: not a PLY file (missing 'ply' or 'end_header')")
+    header = data[:end].decode("ascii", "replace").splitlines()
+    body_start = data.index(b"\n", end) + 1 if b"\n" in data[end:] else len(data)
+    fmt = None
+    elements = []                              # [name, count, [(prop, type, list types)]]
+    for n, line in enumerate(header, 1):
+        p = line.split()
+        if not p:
+            continue
+        if p[0] == "format":
+            fmt = p[1] if len(p) > 1 else None
+        elif p[0] == "element":
+            if len(p) != 3:
+                raise MeshFileError(f"{name}:line {n}: malformed element line")
+            elements.append([p[1], _int(p[2], name, f"line {n}"), []])
+        elif p[0] == "property":
+            if not elements:
+                raise MeshFileError(f"{name}:line {n}: property before any element")
+            if p[1] == "list":
+                if len(p) != 5 or p[2] not in _PLY_TYPES or p[3] not in _PLY_TYPES:
+                    raise MeshFileError(f"{name}:line {n}: malformed list property")
+                elements[-1][2].append((p[4], p[3], p[2]))
+            else:
+                if len(p) != 3 or p[1] not in _PLY_TYPES:
+                    raise MeshFileError(f"{name}:line {n}: unknown property type {line!r}")
+                elements[-1][2].append((p[2], p[1], None))
+    if fmt not in ("ascii", "binary_little_endian", "binary_big_endian"):
+        raise MeshFileError(f"{name}: unsupported PLY format {fmt!r}")
+    if fmt == "ascii":
+        tokens = iter(data[body_start:].decode("ascii", "replace").split())
+        def read(t, what):
+            try:
+                tok = next(tokens)
+            except StopIteration:
+                raise MeshFileError(f"{name}: truncated while reading {what}") from None
+            return float(_float(tok, name, what)) if _PLY_TYPES[t] in "fd" else _int(tok, name, what)
+    else:
+        order = "<" if fmt == "binary_little_endian" else ">"
+        pos = [body_start]
+        def read(t, what):
+            code = order + _PLY_TYPES[t]
+            size = struct.calcsize(code)
+            if pos[0] + size > len(data):
+                raise MeshFileError(f"{name}: truncated at byte {pos[0]} while reading {what}")
+            (x,) = struct.unpack_from(code, data, pos[0])
+            pos[0] += size
+            if isinstance(x, float) and not math.isfinite(x):
+                raise MeshFileError(f"{name}: non-finite value in {what}")
+            return x
+    V, F = [], []
+    for ename, count, props in elements:
+        for r in range(count):
+            what = f"{ename} {r}"
+            row = {}
+            for pname, t, list_t in props:
+                if list_t is None:
+                    row[pname] = read(t, what)
+                else:
+                    k = read(list_t, what)
+                    if not isinstance(k, int) or k < 0 or k > 1 << 20:
+                        raise MeshFileError(f"{name}: {what}: bad list length {k}")
+                    row[pname] = [read(t, what) for _ in range(k)]
+            if ename == "vertex":
+                try:
+                    V.append([float(row["x"]), float(row["y"]), float(row["z"])])
+                except KeyError as e:
+                    raise MeshFileError(f"{name}: vertex element lacks property {e}") from None
+            elif ename == "face":
+                idx = row.get("vertex_indices", row.get("vertex_index"))
+                if idx is None:
+                    raise MeshFileError(f"{name}: face element lacks vertex_indices")
+                F.append(_triangle([int(i) for i in idx], name, what))
+    return V, F
+
+
+def _stl(data: bytes, name: str):
+    if data[:5] == b"solid" and b"facet" in data[:1024]:
+        return _stl_ascii(data, name)
+    if len(data) < 84:
+        raise MeshFileError(f"{name}: truncated binary STL ({len(data)} bytes, header is 84)")
+    (n,) = struct.unpack_from("<I", data, 80)
+    if len(data) < 84 + 50 * n:
+        raise MeshFileError(f"{name}: truncated binary STL: {n} triangles need "
+                            f"{84 + 50 * n} bytes, file has {len(data)}")
+    soup = []
+    for t in range(n):
+        vals = struct.unpack_from("<12f", data, 84 + 50 * t)
+        corners = [vals[3:6], vals[6:9], vals[9:12]]
+        for c in corners:
+            if not all(math.isfinite(x) for x in c):
+                raise MeshFileError(f"{name}: triangle {t} has a non-finite coordinate")
+        soup.append(corners)
+    return _merge(soup)
+
+
+def _stl_ascii(data: bytes, name: str):
+    soup, current = [], []
+    for n, line in enumerate(_text(data, name), 1):
+        p = line.split()
+        if p[:1] == ["vertex"]:
+            if len(p) != 4:
+                raise MeshFileError(f"{name}:line {n}: a vertex needs 3 coordinates")
+            current.append(tuple(_float(t, name, f"line {n}") for t in p[1:]))
+        elif p[:1] == ["endloop"]:
+            _triangle(list(range(len(current))), name, f"line {n}")
+            soup.append(current)
+            current = []
+    if current:
+        raise MeshFileError(f"{name}: truncated inside a facet")
+    return _merge(soup)
+
+
+def _merge(soup):
+    index, V, F = {}, [], []
+    for tri in soup:
+        face = []
+        for c in tri:
+            key = tuple(c)
+            if key not in index:
+                index[key] = len(V)
+                V.append([float(x) for x in c])
+            face.append(index[key])
+        F.append(face)
+    return V, F
+
+
+def _check(V, F, name: str) -> None:
+    if not F:
+        raise MeshFileError(f"{name}: no faces")
+    for f, face in enumerate(F):
+        for i in face:
+            if not 0 <= i < len(V):
+                raise MeshFileError(f"{name}: face {f} uses vertex {i}, but there are "
+                                    f"{len(V)} vertices (index out of range)")
+
+
+def write_obj(path, V, F) -> None:
+    """Write (V, F) as OBJ with repr floats (round-trips exactly)."""
+    with open(path, "w", encoding="utf-8") as fh:
+        for p in V:
+            fh.write("v " + " ".join(repr(float(x)) for x in p) + "\n")
+        for f in F:
+            fh.write("f " + " ".join(str(int(i) + 1) for i in f) + "\n")
