@@ -16,7 +16,7 @@ from fractions import Fraction
 from typing import Sequence
 
 from .combinatorics import Triangulation
-from .errors import BadShape, DegenerateFace, TriangleInequalityViolated
+from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, rational, sqrt
 
 
@@ -30,6 +30,9 @@ def heron16(a: Fraction, b: Fraction, c: Fraction) -> Fraction:
 
 class PiecewiseFlatSurface:
     """A triangulation with exact squared edge lengths and face areas (D2.6).
+
+    Squared lengths are Fractions, or Surds where intrinsic flips of a surface
+    from R^3 made them irrational (see :mod:`reference.intrinsic`).
 
     Build from squared lengths (``PiecewiseFlatSurface(t, squared_lengths)``),
     from lengths (:meth:`from_lengths`, each squared exactly), or from a
@@ -49,27 +52,45 @@ class PiecewiseFlatSurface:
         t = triangulation
         if len(squared_lengths) != t.n_edges:
             raise BadShape(f"{len(squared_lengths)} squared lengths for {t.n_edges} edges")
-        sq = tuple(rational(x, where=f"squared length of edge {e}")
-                   for e, x in enumerate(squared_lengths))
+        sq = tuple(_squared_length(x, e) for e, x in enumerate(squared_lengths))
         for e, x in enumerate(sq):
             if x <= 0:
                 raise TriangleInequalityViolated(f"edge {e} has squared length {x} <= 0")
         self.triangulation = t
         self.squared_lengths = sq
-        if areas is None:
-            areas = []
-            for f in range(t.n_faces):
-                a, b, c = self.face_squared_lengths(f)
-                h = heron16(a, b, c)
-                if h <= 0:
-                    raise TriangleInequalityViolated(
-                        f"face {f} {t.faces[f]}: squared side lengths {a}, {b}, {c} violate the "
-                        f"strict triangle inequality (16 A^2 = {h})")
-                areas.append(sqrt(h) / 4)
-        elif len(areas) != t.n_faces:
+        if areas is not None and len(areas) != t.n_faces:
             raise BadShape(f"{len(areas)} areas for {t.n_faces} faces")
-        self.areas = tuple(a if isinstance(a, Surd) else Surd(a) for a in areas)
+        checked = []
+        for f in range(t.n_faces):
+            a, b, c = self.face_squared_lengths(f)
+            h = heron16(a, b, c)
+            if h <= 0:
+                raise TriangleInequalityViolated(
+                    f"face {f} {t.faces[f]}: squared side lengths {a}, {b}, {c} violate the "
+                    f"strict triangle inequality (16 A^2 = {h})")
+            if areas is None:
+                if isinstance(h, Surd):
+                    raise InputError(f"face {f}: irrational squared lengths need the face "
+                                     "areas given (their square root would be nested)")
+                checked.append(sqrt(h) / 4)
+            else:
+                A = areas[f] if isinstance(areas[f], Surd) else Surd(areas[f])
+                if A <= 0 or 16 * A * A != h:
+                    raise InputError(f"face {f}: area {A} does not match its squared side "
+                                     f"lengths (16 A^2 must equal {h})")
+                checked.append(A)
+        self.areas = tuple(checked)
         self._cots = None
+
+    @classmethod
+    def _trusted(cls, triangulation: Triangulation, squared_lengths, areas) -> "PiecewiseFlatSurface":
+        """Internal: from data valid by construction (operations such as flips)."""
+        out = object.__new__(cls)
+        out.triangulation = triangulation
+        out.squared_lengths = tuple(squared_lengths)
+        out.areas = tuple(areas)
+        out._cots = None
+        return out
 
     @classmethod
     def from_lengths(cls, triangulation: Triangulation, lengths: Sequence) -> "PiecewiseFlatSurface":
@@ -124,6 +145,24 @@ class PiecewiseFlatSurface:
         return f"PiecewiseFlatSurface(V={t.n_vertices}, E={t.n_edges}, F={t.n_faces})"
 
 
+def _squared_length(x, e: int):
+    """A Fraction, or a Surd when it is irrational (after intrinsic flips)."""
+    if isinstance(x, Surd):
+        return x.as_fraction() if x.is_rational() else x
+    return rational(x, where=f"squared length of edge {e}")
+
+
+def as_metric(surface) -> PiecewiseFlatSurface:
+    """The piecewise flat surface of ``surface`` (itself, or a polyhedral surface's metric)."""
+    if isinstance(surface, PiecewiseFlatSurface):
+        return surface
+    metric = getattr(surface, "metric", None)
+    if metric is None:
+        raise TypeError(f"expected a PiecewiseFlatSurface or a PolyhedralSurface, "
+                        f"got {type(surface).__name__}")
+    return metric()
+
+
 def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     """The intrinsic metric of a triangulation with exact points in R^n.
 
@@ -131,6 +170,9 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     holds in every dimension; a zero-area face raises :class:`DegenerateFace`.
     """
     t = triangulation
+    # points may come as floats: take every coordinate exactly first
+    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
+                    for x in p) for i, p in enumerate(points)]
     sq = []
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)

@@ -10,7 +10,13 @@ from reference.errors import InputError
 from reference.exact.angles import Angle, corner_angle, direction_angle, pi
 from reference.exact.surds import Surd, sqrt
 
-mpmath.mp.dps = 120
+
+
+@pytest.fixture(autouse=True)
+def _high_precision():
+    # other test modules may change mpmath's global precision in the same process
+    with mpmath.workdps(120):
+        yield
 
 
 def _cot(a, b, c):
