@@ -6,7 +6,12 @@ correctly rounded.  This is what every other implementation is compared with.
 
 from __future__ import annotations
 
+import numpy as np
+
+from reference import curvature, laplacian
 from reference.combinatorics import Triangulation
+from reference.exact.measures import surd_sum
+from reference.polyhedral import PolyhedralSurface
 
 
 class ReferenceImplementation:
@@ -16,6 +21,11 @@ class ReferenceImplementation:
     def _t(V, F) -> Triangulation:
         return Triangulation.from_faces(F, n_vertices=len(V))
 
+    @staticmethod
+    def _s(V, F) -> PolyhedralSurface:
+        return PolyhedralSurface.from_arrays(V, F)
+
+    # chapter 1
     def euler_characteristic(self, V, F) -> int:
         return self._t(V, F).euler_characteristic()
 
@@ -27,3 +37,33 @@ class ReferenceImplementation:
 
     def genus(self, V, F) -> int:
         return self._t(V, F).classify().genus
+
+    # chapter 2
+    def corner_angles(self, V, F):
+        return np.array([[float(a) for a in f] for f in curvature.corner_angles(self._s(V, F))])
+
+    def angle_defects(self, V, F):
+        s = self._s(V, F)
+        K = np.zeros(len(V))
+        for v, k in {**curvature.angle_defects(s), **curvature.turning_angles(s)}.items():
+            K[v] = float(k)
+        return K
+
+    def edge_mean_curvature(self, V, F):
+        s = self._s(V, F)
+        t = s.triangulation
+        return {tuple(sorted(t.edge_vertices(e))): float(h)
+                for e, h in curvature.mean_curvature(s).items()}
+
+    def area(self, V, F) -> float:
+        return float(surd_sum(self._s(V, F).metric().areas))
+
+    # chapter 3
+    def cotan_laplacian(self, V, F):
+        return laplacian.cotan_laplacian(self._s(V, F)).to_scipy()
+
+    def vertex_areas_barycentric(self, V, F):
+        return np.array([float(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))])
+
+    def vertex_areas_voronoi(self, V, F):
+        return np.array([float(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))])

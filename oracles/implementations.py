@@ -7,6 +7,8 @@ import importlib
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
 BUILTIN: dict[str, str] = {
     "reference": "oracles.exact_reference:ReferenceImplementation",
+    "libigl": "oracles.libigl:Libigl",
+    "pymeshlab": "oracles.pymeshlab:PyMeshLab",
 }
 
 

@@ -70,7 +70,7 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
 
 
 #: Modules whose import registers properties, one per chapter topic.
-PROPERTY_MODULES = ("topology",)
+PROPERTY_MODULES = ("topology", "curvature")
 
 
 def all_properties() -> list[Property]:

@@ -54,3 +54,35 @@ def regularity_predicates(t: Triangulation) -> None:
         assert t.twin(g) == h, f"D1.4: twin is not an involution at halfedge {h}"
         same = {t.tail(h), t.head(h)} == {t.tail(g), t.head(g)}
         assert same, f"D1.4: glued halfedges {h}, {g} have different endpoints"
+
+
+def intrinsic_flip_keeps_the_metric(surface, e: int) -> None:
+    """L2.8 / X2.5: an edge flips iff interior, two distinct faces and a strictly convex
+    unfolding; the flip keeps every vertex's angle sum and the total area exactly,
+    every face satisfies the strict triangle inequality, and flipping back restores
+    the squared lengths.
+    """
+    from reference.errors import NotFlippable
+    from reference.exact import corner_angle
+    from reference.intrinsic import flip, is_flippable
+    from reference.metric import heron16
+
+    def sums(m):
+        t = m.triangulation
+        return [sum((corner_angle(m.corner_cot(f, c)) for f, c in t.corners_around(v)), 0 * corner_angle(1))
+                for v in range(t.n_vertices)]
+
+    if not is_flippable(surface, e):
+        try:
+            flip(surface, e)
+        except NotFlippable:
+            return
+        raise AssertionError(f"L2.8: edge {e} is not flippable but flip() accepted it")
+    m = flip(surface, e)
+    assert sums(m) == sums(surface), f"L2.8: flipping edge {e} changed an angle sum"
+    assert m.total_area() == surface.total_area(), f"L2.8: flipping edge {e} changed the area"
+    for f in range(m.triangulation.n_faces):
+        assert heron16(*m.face_squared_lengths(f)) > 0, f"L2.8: face {f} degenerate after flip"
+    back = flip(m, e)
+    assert sorted(map(str, back.squared_lengths)) == sorted(map(str, surface.squared_lengths)), \
+        f"L2.8: flipping edge {e} twice did not restore the lengths"

@@ -639,3 +639,20 @@ def test_flip_accepts_a_polyhedral_surface():
     g = surfaces.grid(1, 1)
     assert flip(g, 2).squared_lengths == flip(g.metric(), 2).squared_lengths
     assert cot_sum(g, 0) == 1                          # boundary edge: cot of 45 degrees
+
+
+@given(st.sampled_from(["tetrahedron", "cube", "grid", "octahedron"]), st.integers(0, 1 << 16))
+def test_L2_8_structural_property_on_constructors(name, pick):
+    from properties.structure import intrinsic_flip_keeps_the_metric
+    s = {"tetrahedron": surfaces.tetrahedron, "cube": surfaces.cube, "octahedron": surfaces.octahedron,
+         "grid": lambda: surfaces.grid(2, 2)}[name]().metric()
+    intrinsic_flip_keeps_the_metric(s, pick % s.triangulation.n_edges)
+
+
+def test_X2_5_structural_property_on_the_regular_tetrahedron():
+    from properties.structure import intrinsic_flip_keeps_the_metric
+    from reference.intrinsic import regular_tetrahedron_flip
+    m = regular_tetrahedron_flip()
+    for e in range(m.triangulation.n_edges):
+        intrinsic_flip_keeps_the_metric(m, e)
+    assert not m.triangulation.is_strongly_regular()

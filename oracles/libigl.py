@@ -1,0 +1,217 @@
+"""libigl (the ``libigl`` Python bindings, ``import igl``) on the reference's conventions.
+
+Every method calls the libigl function that computes the quantity and applies
+only the documented change of convention (sign, boundary term, layout); the
+numbers compared are libigl's.  ``docs/conventions.md`` lists, for every
+method, what libigl returns, how it is mapped and the libigl source that
+defines it (libigl commit 678e1fff, the one pinned by the bindings 2.6.x).
+
+Option
+------
+``Libigl(boundary="reference")`` (the default, also what ``load_implementation("libigl")``
+builds) maps ``igl.gaussian_curvature`` to the reference's angle defect: libigl
+returns ``2 pi - angle sum`` at *every* vertex (gaussian_curvature.h: "for
+boundary vertices, this quantity is not so meaningful"), the reference wants
+the turning angle ``pi - angle sum`` at boundary vertices (R2.4), so pi is
+subtracted at the vertices ``igl.is_border_vertex`` marks.  ``boundary="library"``
+returns libigl's values unchanged.
+
+Bad input
+---------
+libigl does not check face indices: an index >= n or < 0 reads out of bounds
+(SIGSEGV in cotmatrix, gaussian_curvature, internal_angles, massmatrix,
+doublearea, euler_characteristic, boundary_loop_all), and ``boundary_loop_all``
+also segfaults on an F with 2 columns.  :func:`_arrays` therefore checks shapes
+and index ranges in Python before anything reaches libigl and raises
+``ValueError`` instead.
+
+>>> import numpy as np
+>>> V = np.array([[0., 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+>>> F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+>>> Libigl().euler_characteristic(V, F)
+2
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse
+
+import igl
+
+BOUNDARY_CONVENTIONS = ("reference", "library")
+
+
+def _arrays(V, F) -> tuple[np.ndarray, np.ndarray]:
+    """(V float64 C-contiguous n x 3, F int64 C-contiguous m x 3), checked so libigl cannot
+    read out of bounds (it segfaults on bad indices instead of raising)."""
+    V = np.ascontiguousarray(V, dtype=np.float64)
+    F = np.ascontiguousarray(F, dtype=np.int64)
+    if V.ndim != 2 or V.shape[1] != 3:
+        raise ValueError(f"V must be n x 3, got shape {V.shape}")
+    if F.ndim != 2 or F.shape[1] != 3:
+        raise ValueError(f"F must be m x 3, got shape {F.shape}")
+    if F.shape[0] == 0:
+        raise ValueError("F has no faces")
+    if F.min() < 0 or F.max() >= V.shape[0]:
+        raise ValueError(f"face indices must lie in [0, {V.shape[0]}), got [{F.min()}, {F.max()}]")
+    return V, F
+
+
+def _pad(x: np.ndarray, n: int) -> np.ndarray:
+    # libigl sizes per-vertex outputs of massmatrix / is_border_vertex by max(F) + 1, not by
+    # #V; vertices after the last referenced one are unreferenced (area 0, not on a boundary).
+    x = np.asarray(x).ravel()
+    if len(x) >= n:
+        return x[:n]
+    return np.concatenate([x, np.zeros(n - len(x), dtype=x.dtype)])
+
+
+class Libigl:
+    """libigl as an implementation of the protocol (``properties/protocol.py``)."""
+
+    name = "libigl"
+
+    def __init__(self, boundary: str = "reference"):
+        if boundary not in BOUNDARY_CONVENTIONS:
+            raise ValueError(f"boundary must be one of {BOUNDARY_CONVENTIONS}, got {boundary!r}")
+        self.boundary = boundary
+        if boundary != "reference":
+            self.name = f"libigl(boundary={boundary!r})"
+
+    def __repr__(self) -> str:
+        return f"Libigl(boundary={self.boundary!r})"
+
+    # --- chapter 1: topology ------------------------------------------------------------
+
+    def euler_characteristic(self, V, F) -> int:
+        """``igl.euler_characteristic(F)``: (max(F) + 1) - #unique edges + #F."""
+        _, F = _arrays(V, F)
+        return int(igl.euler_characteristic(F))
+
+    def boundary_loops(self, V, F) -> list[list[int]]:
+        """``igl.boundary_loop_all(F)``: every loop, walked along the faces' orientation.
+
+        On a non-orientable surface this walk breaks the boundary into pieces
+        (docs/conventions.md, finding L1): returned as libigl gives it.
+        """
+        _, F = _arrays(V, F)
+        return [[int(v) for v in loop] for loop in igl.boundary_loop_all(F)]
+
+    def is_orientable(self, V, F) -> bool:
+        """Orientable iff ``igl.bfs_orient`` finds an orientation.
+
+        libigl has no orientability predicate (``orientable_patches`` counts a
+        Möbius strip as one patch, its header says so; ``is_edge_manifold``
+        does not look at orientation).  ``bfs_orient`` flips faces breadth
+        first to agree with their neighbours; on an orientable surface the
+        result has every directed edge at most once, on a non-orientable one
+        some edge is necessarily used twice in the same direction.  The adapter
+        only checks bfs_orient's output for such a repeated directed edge.
+        """
+        _, F = _arrays(V, F)
+        FF, _ = igl.bfs_orient(F)
+        FF = np.asarray(FF, dtype=np.int64)
+        directed = np.concatenate([FF[:, [0, 1]], FF[:, [1, 2]], FF[:, [2, 0]]])
+        return len(np.unique(directed, axis=0)) == len(directed)
+
+    def genus(self, V, F) -> int:
+        """From libigl's chi and number of boundary loops k: (2 - chi - k) / 2 if orientable,
+        else the number of crosscaps 2 - chi - k (the reference's convention, README).
+
+        A disconnected mesh raises ValueError, like the reference's ``classify()``.
+        """
+        V, F = _arrays(V, F)
+        n_components, _ = igl.facet_components(F)
+        if int(n_components) > 1:
+            raise ValueError(f"{int(n_components)} components: genus needs a connected surface")
+        chi = self.euler_characteristic(V, F)
+        k = len(self.boundary_loops(V, F))
+        deficit = 2 - chi - k
+        if not self.is_orientable(V, F):
+            return deficit
+        if deficit % 2:
+            raise ValueError(f"libigl's counts chi = {chi}, k = {k} give an odd 2 - chi - k "
+                             "for an orientable surface")
+        return deficit // 2
+
+    # --- chapter 2: curvature -----------------------------------------------------------
+
+    def corner_angles(self, V, F) -> np.ndarray:
+        """``igl.internal_angles(V, F)``: column c is the angle at vertex F[f, c] (same layout
+        as the reference's corner c), computed as 2 atan(|u - w| / |u + w|) of unit vectors."""
+        V, F = _arrays(V, F)
+        return np.asarray(igl.internal_angles(V, F), dtype=np.float64)
+
+    def angle_defects(self, V, F) -> np.ndarray:
+        """``igl.gaussian_curvature(V, F)`` = 2 pi - angle sum at every vertex; with
+        boundary="reference" minus pi at libigl's border vertices (turning angle, R2.4)."""
+        V, F = _arrays(V, F)
+        K = np.asarray(igl.gaussian_curvature(V, F), dtype=np.float64).ravel()
+        if self.boundary == "reference":
+            border = _pad(np.asarray(igl.is_border_vertex(F), dtype=bool), len(V))
+            K = K - np.where(border, math.pi, 0.0)
+        return K
+
+    def edge_mean_curvature(self, V, F) -> dict[tuple[int, int], float]:
+        """H(e) = 1/2 theta(e) l(e) over interior edges, theta from libigl's face normals.
+
+        libigl has no dihedral angle of a triangle mesh (``igl.dihedral_angles``
+        takes tetrahedra).  The adapter uses libigl's own formula from
+        ``sharp_edges.cpp``: with unit face normals n_i, n_j (``igl.per_face_normals``)
+        and the unit direction e of the edge as it runs in face i
+        (``igl.unique_edge_map``'s directed edge), libigl's interior dihedral
+        angle is pi - atan2((n_i x n_j).e, n_i.n_j); the bending angle is
+        theta = atan2((n_i x n_j).e, n_i.n_j), in (-pi, pi], > 0 where convex
+        for faces oriented counterclockwise seen from outside.  l(e) is
+        ``igl.edge_lengths``.  Edges with one face (boundary) or more than two
+        (non-manifold) are left out.
+        """
+        V, F = _arrays(V, F)
+        m = len(F)
+        E, uE, EMAP, uEC, uEE = igl.unique_edge_map(F)
+        E = np.asarray(E)
+        N = np.asarray(igl.per_face_normals(V, F))
+        L = np.asarray(igl.edge_lengths(V, F))        # L[f, c]: edge opposite corner c
+        counts = np.diff(uEC)
+        out = {}
+        for u in np.flatnonzero(counts == 2):
+            ei, ej = uEE[uEC[u]], uEE[uEC[u] + 1]
+            fi, fj = ei % m, ej % m                   # E row f + c m lies in face f
+            ev = V[E[ei, 1]] - V[E[ei, 0]]
+            ev = ev / np.linalg.norm(ev)
+            theta = math.atan2(float(np.cross(N[fi], N[fj]) @ ev), float(N[fi] @ N[fj]))
+            length = float(L[fi, ei // m])
+            i, j = sorted((int(uE[u, 0]), int(uE[u, 1])))
+            out[(i, j)] = 0.5 * theta * length
+        return out
+
+    def area(self, V, F) -> float:
+        """``igl.doublearea(V, F)`` summed (math.fsum, correctly rounded) and halved."""
+        V, F = _arrays(V, F)
+        return math.fsum(np.asarray(igl.doublearea(V, F)).ravel()) / 2
+
+    # --- chapter 3: Laplacian and mass matrices ------------------------------------------
+
+    def cotan_laplacian(self, V, F) -> scipy.sparse.csr_matrix:
+        """``-igl.cotmatrix(V, F)``: libigl's L is negative semidefinite with off-diagonal
+        entries 1/2 (cot a + cot b) (cotmatrix_entries: "1/2*cotangents"), so only the sign
+        changes."""
+        V, F = _arrays(V, F)
+        return scipy.sparse.csr_matrix(-igl.cotmatrix(V, F))
+
+    def vertex_areas_barycentric(self, V, F) -> np.ndarray:
+        """Diagonal of ``igl.massmatrix(V, F, MASSMATRIX_TYPE_BARYCENTRIC)``: dblA / 6 per
+        corner."""
+        V, F = _arrays(V, F)
+        M = igl.massmatrix(V, F, igl.MASSMATRIX_TYPE_BARYCENTRIC)
+        return _pad(M.diagonal(), len(V)).astype(np.float64)
+
+    def vertex_areas_voronoi(self, V, F) -> np.ndarray:
+        """Diagonal of ``igl.massmatrix(V, F, MASSMATRIX_TYPE_VORONOI)``: Meyer et al.'s mixed
+        areas (circumcentric Voronoi; obtuse triangle: A/2 at the obtuse corner, A/4 else)."""
+        V, F = _arrays(V, F)
+        M = igl.massmatrix(V, F, igl.MASSMATRIX_TYPE_VORONOI)
+        return _pad(M.diagonal(), len(V)).astype(np.float64)

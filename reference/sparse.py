@@ -1,0 +1,221 @@
+"""A small exact sparse matrix: rows of exact entries (``Fraction`` or ``Surd``).
+
+Chapter 3's operators (graph Laplacians D3.1, the cotan Laplacian (3.3)) are
+sparse and their entries are exact numbers; this is the container they are
+returned in.  It stores a dict of rows, each a dict ``column -> value`` holding
+only the nonzero entries (zero is decided exactly, so an entry that cancels to
+0 disappears).  Arithmetic stays exact; :meth:`SparseMatrix.to_scipy` and
+:meth:`SparseMatrix.to_dense_floats` hand out *float views*, every entry
+correctly rounded (``float()`` of a ``Fraction`` or a ``Surd`` is).
+
+>>> from fractions import Fraction
+>>> L = SparseMatrix.from_entries((2, 2), [(0, 0, 1), (0, 1, -1), (1, 0, -1), (1, 1, 1)])
+>>> L[0, 1], L.shape, L.is_symmetric()
+(Fraction(-1, 1), (2, 2), True)
+>>> L.matvec([3, 5])
+[Fraction(-2, 1), Fraction(2, 1)]
+>>> L.quadratic_form([3, 5])       # f^T L f
+Fraction(4, 1)
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Iterable, Sequence
+
+from .errors import BadShape, IndexOutOfRange
+from .exact.rationals import rational
+from .exact.surds import Surd
+
+__all__ = ["SparseMatrix", "exact_number"]
+
+_ZERO = Fraction(0)
+
+
+def _normal(v):
+    """A rational Surd as a Fraction (so rational matrices stay Fraction matrices)."""
+    if isinstance(v, Surd) and v.is_rational():
+        return v.as_fraction()
+    return v
+
+
+def exact_number(x, where: str = ""):
+    """``x`` as an exact entry: a Surd stays a Surd, anything else becomes a Fraction.
+
+    Floats are taken exactly (dyadic rationals); NaN and infinities are rejected.
+
+    >>> exact_number(0.5), exact_number(3)
+    (Fraction(1, 2), Fraction(3, 1))
+    """
+    if isinstance(x, Surd):
+        return x.as_fraction() if x.is_rational() else x
+    return rational(x, where)
+
+
+class SparseMatrix:
+    """An exact sparse matrix: ``rows[i] = {j: value}`` with nonzero exact values.
+
+    Build with :meth:`from_entries` (duplicates are summed, exact zeros dropped)
+    or :meth:`from_rows`.  Entries are ``Fraction`` or ``Surd`` (a rational Surd
+    is stored as its Fraction); reading an absent entry gives ``Fraction(0)``.  Immutable by convention: operations
+    return new matrices or lists.
+    """
+
+    __slots__ = ("_shape", "_rows")
+
+    def __init__(self, shape: tuple[int, int], rows: dict | None = None):
+        n, m = shape
+        if n < 0 or m < 0:
+            raise BadShape(f"negative matrix shape {shape}")
+        self._shape = (int(n), int(m))
+        self._rows: dict[int, dict[int, object]] = {}
+        for i, row in (rows or {}).items():
+            clean = {j: _normal(v) for j, v in row.items() if v}
+            if clean:
+                self._rows[i] = clean
+
+    @classmethod
+    def from_entries(cls, shape: tuple[int, int], entries: Iterable) -> "SparseMatrix":
+        """From ``(i, j, value)`` triples; values at the same position are added exactly."""
+        n, m = shape
+        rows: dict[int, dict[int, object]] = {}
+        for i, j, v in entries:
+            if not (0 <= i < n and 0 <= j < m):
+                raise IndexOutOfRange(f"entry ({i}, {j}) outside a {n} x {m} matrix")
+            v = exact_number(v, f"entry ({i}, {j})")
+            row = rows.setdefault(i, {})
+            row[j] = row[j] + v if j in row else v
+        return cls((n, m), rows)
+
+    @classmethod
+    def from_rows(cls, shape: tuple[int, int], rows: dict) -> "SparseMatrix":
+        """From ``{i: {j: value}}`` (values already exact)."""
+        return cls(shape, rows)
+
+    @classmethod
+    def diagonal(cls, values: Sequence) -> "SparseMatrix":
+        """The diagonal matrix with the given exact values (e.g. a lumped mass matrix)."""
+        n = len(values)
+        return cls((n, n), {i: {i: exact_number(v)} for i, v in enumerate(values)})
+
+    # --- inspection -----------------------------------------------------------
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self._shape
+
+    def __getitem__(self, ij):
+        i, j = ij
+        n, m = self._shape
+        if not (0 <= i < n and 0 <= j < m):
+            raise IndexOutOfRange(f"entry ({i}, {j}) outside a {n} x {m} matrix")
+        return self._rows.get(i, {}).get(j, _ZERO)
+
+    def row(self, i: int) -> dict:
+        """Copy of the nonzero entries ``{j: value}`` of row ``i``."""
+        return dict(self._rows.get(i, {}))
+
+    def entries(self) -> list[tuple[int, int, object]]:
+        """The nonzero entries as sorted ``(i, j, value)`` triples."""
+        return [(i, j, v) for i in sorted(self._rows) for j, v in sorted(self._rows[i].items())]
+
+    @property
+    def nnz(self) -> int:
+        """Number of stored (nonzero) entries."""
+        return sum(len(r) for r in self._rows.values())
+
+    def is_symmetric(self) -> bool:
+        """Exact symmetry: square and ``A[i, j] == A[j, i]`` for every stored entry."""
+        n, m = self._shape
+        if n != m:
+            return False
+        for i, row in self._rows.items():
+            for j, v in row.items():
+                if self._rows.get(j, {}).get(i, _ZERO) != v:
+                    return False
+        return True
+
+    def __eq__(self, other):
+        if not isinstance(other, SparseMatrix):
+            return NotImplemented
+        return self._shape == other._shape and self.entries() == other.entries()
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        n, m = self._shape
+        return f"SparseMatrix({n} x {m}, {self.nnz} nonzeros)"
+
+    # --- exact products ----------------------------------------------------------
+
+    def matvec(self, x: Sequence) -> list:
+        """``A x`` exactly (a list; entries Fraction or Surd)."""
+        n, m = self._shape
+        if len(x) != m:
+            raise BadShape(f"vector of length {len(x)} for a {n} x {m} matrix")
+        out = []
+        for i in range(n):
+            acc = _ZERO
+            for j, v in self._rows.get(i, {}).items():
+                xj = x[j]
+                if xj:
+                    acc = acc + v * xj
+            out.append(_normal(acc))
+        return out
+
+    def quadratic_form(self, f: Sequence, g: Sequence | None = None):
+        """``f^T A f`` (or ``f^T A g``) exactly."""
+        g = f if g is None else g
+        n, m = self._shape
+        if len(f) != n or len(g) != m:
+            raise BadShape(f"vectors of lengths {len(f)}, {len(g)} for a {n} x {m} matrix")
+        acc = _ZERO
+        for i, row in self._rows.items():
+            fi = f[i]
+            if not fi:
+                continue
+            s = _ZERO
+            for j, v in row.items():
+                gj = g[j]
+                if gj:
+                    s = s + v * gj
+            if s:
+                acc = acc + fi * s
+        return _normal(acc)
+
+    def submatrix(self, rows: Sequence[int], cols: Sequence[int]) -> "SparseMatrix":
+        """The matrix restricted to ``rows`` x ``cols`` (renumbered in the given order)."""
+        ci = {c: k for k, c in enumerate(cols)}
+        out = {}
+        for a, i in enumerate(rows):
+            r = {ci[j]: v for j, v in self._rows.get(i, {}).items() if j in ci}
+            if r:
+                out[a] = r
+        return SparseMatrix((len(rows), len(cols)), out)
+
+    # --- float views -----------------------------------------------------------------
+
+    def to_dense_floats(self) -> list[list[float]]:
+        """Nested lists of floats, each entry correctly rounded."""
+        n, m = self._shape
+        out = [[0.0] * m for _ in range(n)]
+        for i, row in self._rows.items():
+            for j, v in row.items():
+                out[i][j] = float(v)
+        return out
+
+    def to_scipy(self):
+        """A ``scipy.sparse.csr_matrix`` of floats, each entry correctly rounded.
+
+        The exact matrix stays the reference; this is only a float view for
+        numerical code.  Structural nonzeros whose float is 0.0 (underflow) are
+        kept as explicit entries.
+        """
+        # export adapter: the only non-stdlib import, used only to hand out a float view
+        import scipy.sparse
+        rows, cols, vals = [], [], []
+        for i, j, v in self.entries():
+            rows.append(i)
+            cols.append(j)
+            vals.append(float(v))
+        return scipy.sparse.csr_matrix((vals, (rows, cols)), shape=self._shape, dtype=float)
