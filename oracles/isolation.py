@@ -17,7 +17,7 @@ import resource
 import signal
 import traceback
 
-from properties.protocol import METHODS
+from properties.protocol import METHODS, machine_epsilon
 
 
 class ImplementationCrashed(RuntimeError):
@@ -39,7 +39,7 @@ def _worker(spec: str, memory_bytes: int | None, conn) -> None:
     try:
         impl = load_implementation(spec)
         conn.send(("ready", sorted(m for m in METHODS if callable(getattr(impl, m, None))),
-                   getattr(impl, "name", spec)))
+                   (getattr(impl, "name", spec), machine_epsilon(impl))))
     except BaseException as e:  # noqa: BLE001  (report any import failure to the parent)
         conn.send(("error", f"{type(e).__name__}: {e}", None))
         return
@@ -88,7 +88,7 @@ class Isolated:
             from oracles.implementations import ImplementationNotFound
             raise ImplementationNotFound(f"{self.spec}: {payload}")
         self.methods = frozenset(payload)
-        self.name = name
+        self.name, self.machine_epsilon = name
 
     def _kill(self) -> None:
         if self._proc is not None and self._proc.is_alive():

@@ -167,6 +167,9 @@ def boundary_edge_angles(V, F) -> dict[int, float]:
 class PyMeshLab:
     """PyMeshLab as an implementation of the protocol (``properties/protocol.py``)."""
 
+    #: vcglib computes curvature and areas in float32: tolerances use its epsilon
+    machine_epsilon = 2.0 ** -23
+
     name = "pymeshlab"
 
     def __init__(self, boundary: str = "reference", genus: str = "reference"):

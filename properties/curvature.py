@@ -37,13 +37,13 @@ from reference.polyhedral import PolyhedralSurface
 
 from .registry import PropertyFailure, prop
 
-EPS = float(np.finfo(np.float64).eps)        # 2**-52
+from .protocol import eps  # noqa: E402  (the checked implementation's epsilon)
 C_ANGLE = 16.0                               # see the module docstring
 
 
 def gamma(n: int) -> float:
     """Higham's gamma_n = n eps / (1 - n eps): relative error bound of a sum of n floats."""
-    return n * EPS / (1 - n * EPS)
+    return n * eps() / (1 - n * eps())
 
 
 # --- examples -------------------------------------------------------------------------------------
@@ -366,9 +366,9 @@ def corner_tolerances(case: CurvatureCase, input_rounding: bool = False) -> np.n
     4 sqrt(3) eps (|x| / |edge|) (1 + 1/sin alpha) for points rounded to floats.
     """
     cond = 1 + _geometry(case)["inv_sin"]                  # 1 + 1/sin(alpha)
-    tol = C_ANGLE * EPS * cond
+    tol = C_ANGLE * eps() * cond
     if input_rounding:
-        tol = tol + 4 * math.sqrt(3) * EPS * _input_scale(case) * cond
+        tol = tol + 4 * math.sqrt(3) * eps() * _input_scale(case) * cond
     return tol
 
 
@@ -442,7 +442,7 @@ def turning_angles_and_gauss_bonnet_with_boundary(impl, case: CurvatureCase):
 def _check_total(pid, impl, case, K, tol):
     total = float(math.fsum(K))
     expected = 2 * math.pi * case.chi
-    bound = float(tol.sum()) + gamma(len(K)) * float(np.abs(K).sum()) + 2 * EPS * abs(expected)
+    bound = float(tol.sum()) + gamma(len(K)) * float(np.abs(K).sum()) + 2 * eps() * abs(expected)
     err = abs(total - expected)
     if not err <= bound:
         raise PropertyFailure(pid, impl, f"total curvature != 2 pi chi: {_units(err, bound)}",
@@ -570,7 +570,7 @@ def curvature_bounded_above_not_below(impl, example):
     # moves each of the n angles by <= 4 eps / sin; the float evaluation of the bound
     # itself is off by <= gamma_4 (2 pi + 2 n atan h).  Both are in `slack`.
     bound = 2 * math.pi - 2 * n * math.atan(h)
-    slack = tol_s + gamma(4) * (2 * math.pi + 2 * n * math.atan(h)) + 4 * n * EPS * (1 + h * h)
+    slack = tol_s + gamma(4) * (2 * math.pi + 2 * n * math.atan(h)) + 4 * n * eps() * (1 + h * h)
     if not Ks[0] <= bound + slack:
         raise PropertyFailure("R2.2", impl, f"folded star not as negative as it must be "
                               f"(K <= 2 pi - 2 n atan h = {bound:.6g})", mesh=star.mesh,
@@ -647,10 +647,10 @@ def edge_mean_curvature_tolerances(case: CurvatureCase) -> dict:
     kappa = face_condition(case)
     out = {}
     for key, (length, theta, f, g) in _geometry(case)["edges"].items():
-        delta = C_ANGLE * EPS * (1 + kappa[f] + kappa[g])
+        delta = C_ANGLE * eps() * (1 + kappa[f] + kappa[g])
         tol_theta = 2 * delta / max(abs(math.sin(theta)), math.sqrt(delta))
         H = theta * length / 2
-        out[key] = (tol_theta * length + abs(theta) * 2 * EPS * length) / 2 + EPS * abs(H)
+        out[key] = (tol_theta * length + abs(theta) * 2 * eps() * length) / 2 + eps() * abs(H)
     return out
 
 
@@ -821,7 +821,7 @@ def steiner_coefficients_match(impl, case: CurvatureCase):
     A = float(_call(impl, "area", case))
     cond = 1 + face_condition(case)
     areas = [float(a) for a in _geometry(case)["area"]]
-    bound_A = sum(C_ANGLE * EPS * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
+    bound_A = sum(C_ANGLE * eps() * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
     if not abs(A - float(A_ref)) <= bound_A:
         raise PropertyFailure("R2.5", impl, f"area off: {_units(abs(A - float(A_ref)), bound_A)}",
                               mesh=case.mesh, expected=float(A_ref), observed=A)

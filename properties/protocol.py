@@ -12,6 +12,8 @@ property that needs a method the implementation lacks is "not applicable".
 
 from __future__ import annotations
 
+import contextvars
+
 # name -> one-line contract; the single source of the protocol's method names.
 METHODS: dict[str, str] = {
     # chapter 1: topology
@@ -33,6 +35,24 @@ METHODS: dict[str, str] = {
     "vertex_areas_voronoi": "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, "
                             "obtuse-triangle rule)",
 }
+
+
+FLOAT64_EPSILON = 2.0 ** -52
+_epsilon = contextvars.ContextVar("ddg_machine_epsilon", default=FLOAT64_EPSILON)
+
+
+def machine_epsilon(impl) -> float:
+    """The implementation's declared ``machine_epsilon`` (float32: 2**-23), default float64.
+
+    Tolerances are derived from it: a library computing in float32 is held to
+    float32 bounds, not float64 ones.
+    """
+    return float(getattr(impl, "machine_epsilon", FLOAT64_EPSILON))
+
+
+def eps() -> float:
+    """Machine epsilon of the implementation whose property is being checked now."""
+    return _epsilon.get()
 
 
 def capabilities(impl) -> frozenset[str]:

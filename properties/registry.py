@@ -8,10 +8,11 @@ expected vs observed values.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-from .protocol import implementation_name
+from .protocol import _epsilon, implementation_name, machine_epsilon
 
 
 class PropertyFailure(AssertionError):
@@ -62,8 +63,18 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
     def register(check):
         if catalog_id in PROPERTIES:
             raise ValueError(f"property {catalog_id} registered twice")
+
+        @functools.wraps(check)
+        def checked(impl, example):
+            # tolerances inside the check read the implementation's own epsilon
+            token = _epsilon.set(machine_epsilon(impl))
+            try:
+                check(impl, example)
+            finally:
+                _epsilon.reset(token)
+
         PROPERTIES[catalog_id] = Property(
-            catalog_id, check.__name__, statement, frozenset(needs), strategy, check)
+            catalog_id, check.__name__, statement, frozenset(needs), strategy, checked)
         check.property_id = catalog_id
         return check
     return register

@@ -36,3 +36,19 @@ class OneBoundaryLoop(ReferenceImplementation):
     def boundary_loops(self, V, F):
         loops = super().boundary_loops(V, F)
         return [sum(loops, [])] if loops else []
+
+
+class Float32Defects(ReferenceImplementation):
+    """Correct angle defects, rounded to float32 (as a float32 library computes them)."""
+
+    name = "float32-defects"
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        K = super().angle_defects(V, F)
+        return (K.astype(np.float32) + np.float32(1e-7) * (K != 0)).astype(np.float64)
+
+
+class Float32DefectsDeclared(Float32Defects):
+    name = "float32-defects-declared"
+    machine_epsilon = 2.0 ** -23

@@ -106,3 +106,13 @@ def test_D1_4_a_flip_sequence_reaches_a_loop_and_a_double_edge():
                 nxt.append(w)
         frontier = nxt[:40]
     assert seen_loop
+
+
+def test_tolerances_follow_the_declared_machine_epsilon():
+    from tests.planted_bugs import Float32Defects, Float32DefectsDeclared
+    from hypothesis import Phase, settings
+    quick = settings(max_examples=5, phases=[Phase.generate], derandomize=True, database=None,
+                     deadline=None)        # no shrinking: the verdict is what is tested
+    # float32-accurate answers fail float64 bounds, and pass once float32 is declared
+    assert run_property(PROPERTIES["X2.1"], Float32Defects(), quick).status == FAILED
+    assert run_property(PROPERTIES["X2.1"], Float32DefectsDeclared(), quick).status == PASSED
