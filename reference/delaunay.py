@@ -1,0 +1,259 @@
+"""Intrinsic Delaunay triangulations (chapter 4), exact.
+
+Catalog rows implemented here:
+
+* D4.4 / P4.9 -- :func:`is_delaunay_edge`: the angle criterion
+  ``cot alpha + cot beta >= 0`` (alpha, beta the two angles opposite the edge;
+  equivalently ``alpha + beta <= pi``).  Boundary edges are Delaunay.
+  :func:`is_delaunay`: all edges are.
+* T4.7 / D4.4 -- :func:`in_circumcircle`: the empty-circle criterion, computed
+  independently of the angles by the exact in-circle determinant on the
+  unfolded pair of triangles (:func:`reference.intrinsic.unfold`, points scaled
+  by ``|ij|``, a similarity which does not change the sign).
+* D4.7 / L4.17 -- :func:`harmonic_index`: ``h(T) = sum_faces (a^2 + b^2 + c^2) / A``
+  (a, b, c side lengths, A area) ``= sum_faces 4 (cot + cot + cot)``.
+* A4.13 / T4.12 / L4.11 / C4.19 -- :func:`flip_to_delaunay`: the edge-flip
+  algorithm with a work queue; asserts that every non-Delaunay edge met is
+  flippable (L4.11) and that the harmonic index strictly decreases on each flip
+  (C4.19).
+* R4.7 -- :func:`delaunay_tessellation_edges`: edges of a Delaunay
+  triangulation with cotan weight exactly 0 are dropped.
+* D4.8 / R4.9 -- :func:`laplace_beltrami`: the cotan Laplacian of a Delaunay
+  triangulation of the surface (same vertex set).
+
+Conventions: halfedge ``h = 3 f + c`` runs from corner ``c`` to corner
+``c + 1`` of face ``f`` and is opposite corner ``c + 2``; squared lengths and
+areas are exact (``Fraction`` or :class:`~reference.exact.Surd`); every sign is
+decided exactly.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+from fractions import Fraction
+
+from .errors import DDGError, InputError
+from .intrinsic import _metric, _number, _sign, flip, is_flippable, unfold
+from .laplacian import cotan_laplacian, cotan_weights
+from .metric import PiecewiseFlatSurface
+
+__all__ = ["is_delaunay_edge", "in_circumcircle", "is_delaunay", "non_delaunay_edges",
+           "face_harmonic_index", "harmonic_index", "FlipRecord", "flip_to_delaunay",
+           "delaunay_tessellation_edges", "laplace_beltrami", "DelaunayError"]
+
+
+class DelaunayError(DDGError, RuntimeError):
+    """A statement of chapter 4 found violated at run time (L4.11 or C4.19):
+    signals a bug (or a misprint), never an input problem."""
+
+
+def _corner_cot(m: PiecewiseFlatSurface, h: int):
+    """cot of the corner opposite halfedge ``h``: ``(a + b - o) / (4 A)``, computed
+    locally (``PiecewiseFlatSurface.corner_cot`` computes all corners at once,
+    O(F) per new surface: too slow inside the flip loop)."""
+    f = h // 3
+    a, b, c = m.face_squared_lengths(f)
+    o = (a, b, c)[h % 3]
+    return _number((a + b + c - 2 * o) / (4 * _number(m.areas[f])))
+
+
+def _cot_sum(m: PiecewiseFlatSurface, e: int):
+    h, t = m.triangulation.edge_halfedges(e)
+    total = _corner_cot(m, h)
+    if t >= 0:
+        total = total + _corner_cot(m, t)
+    return _number(total)
+
+
+def is_delaunay_edge(surface, e: int) -> bool:
+    """D4.4 / P4.9: edge ``e`` is Delaunay iff ``cot alpha + cot beta >= 0``.
+
+    For a boundary edge: always True (D4.4 concerns interior edges only; note
+    that its single opposite angle may be obtuse).
+
+    >>> from reference import surfaces
+    >>> s = surfaces.grid(1, 1).metric()
+    >>> [is_delaunay_edge(s, e) for e in range(5)]
+    [True, True, True, True, True]
+    """
+    m = _metric(surface)
+    h, t = m.triangulation.edge_halfedges(e)
+    if t < 0:
+        return True
+    return _sign(_cot_sum(m, e)) >= 0
+
+
+def _incircle(a, b, c, d):
+    """The in-circle determinant of d against the circle through a, b, c: positive
+    iff d is inside when (a, b, c) is counterclockwise."""
+    rows = []
+    for p in (a, b, c):
+        x, y = p[0] - d[0], p[1] - d[1]
+        rows.append((x, y, x * x + y * y))
+    (a1, a2, a3), (b1, b2, b3), (c1, c2, c3) = rows
+    return a1 * (b2 * c3 - b3 * c2) - a2 * (b1 * c3 - b3 * c1) + a3 * (b1 * c2 - b2 * c1)
+
+
+def in_circumcircle(surface, e: int) -> int:
+    """T4.7: where the 4th vertex of the unfolded pair of ``e`` lies relative to the
+    circumcircle of the other triangle: ``+1`` inside, ``0`` on, ``-1`` outside.
+
+    Unfold the two triangles of ``e`` (``i = (0, 0)``, ``j = (e, 0)``, ``k``
+    above, ``l`` below, all scaled by ``|ij|``) and take the sign of the exact
+    in-circle determinant of ``l`` against the counterclockwise circle
+    ``(i, j, k)``.  The relation is symmetric (``k`` against ``(j, i, l)`` gives
+    the same sign).  Independent of the cotangents: ``e`` is Delaunay iff this
+    is ``<= 0``.  Boundary edge: ``-1`` (no 4th vertex, Delaunay by convention).
+    A degenerate unfolding where both sides lie in one face is still laid out
+    (two copies of the face) and handled alike.
+
+    >>> from reference import surfaces
+    >>> in_circumcircle(surfaces.grid(1, 1).metric(), 2)     # cocircular square
+    0
+    """
+    m = _metric(surface)
+    h, t = m.triangulation.edge_halfedges(e)
+    if t < 0:
+        return -1
+    i, j, k, l_ = unfold(m, e).scaled_points()
+    return _sign(_incircle(i, j, k, l_))
+
+
+def non_delaunay_edges(surface) -> list[int]:
+    """The edges failing the angle criterion (D4.4), in increasing order."""
+    m = _metric(surface)
+    return [e for e in range(m.triangulation.n_edges) if not is_delaunay_edge(m, e)]
+
+
+def is_delaunay(surface) -> bool:
+    """D4.4: a triangulation is Delaunay iff every edge is (P4.9: angle criterion)."""
+    return not non_delaunay_edges(surface)
+
+
+def face_harmonic_index(surface, f: int):
+    """D4.7: ``(a^2 + b^2 + c^2) / A`` of face ``f`` (squared side lengths over area)."""
+    m = _metric(surface)
+    a, b, c = m.face_squared_lengths(f)
+    return _number((a + b + c) / _number(m.areas[f]))
+
+
+def harmonic_index(surface):
+    """D4.7: ``h(T) = sum over faces (a^2 + b^2 + c^2) / A`` (exact).
+
+    By L4.17 each term equals ``4 (cot + cot + cot)`` of the face's angles, and by
+    L4.18 ``h(T) = 8 sum_i E(phi_i)`` over the hat functions; both are checked in
+    the tests, not used here.
+
+    >>> from reference import surfaces
+    >>> harmonic_index(surfaces.grid(1, 1))       # two right isosceles: (1 + 1 + 2) / (1/2) each
+    Fraction(16, 1)
+    """
+    m = _metric(surface)
+    total = Fraction(0)
+    for f in range(m.triangulation.n_faces):
+        total = total + face_harmonic_index(m, f)
+    return _number(total)
+
+
+@dataclass(frozen=True)
+class FlipRecord:
+    """One flip of :func:`flip_to_delaunay`: the edge id and h(T) before and after."""
+
+    edge: int
+    h_before: object
+    h_after: object
+
+
+def _edges_of_face(tri, f: int):
+    return [tri.edge_of(3 * f + c) for c in range(3)]
+
+
+def flip_to_delaunay(surface, max_flips: int | None = None):
+    """A4.13: flip non-Delaunay edges until none is left; returns ``(surface, log)``.
+
+    ``log`` is a list of :class:`FlipRecord` ``(edge, h_before, h_after)`` with
+    the harmonic index (D4.7) of the whole triangulation before and after each
+    flip; it is updated locally (two faces out, two in), exactly.
+
+    A work queue holds the edges to examine, initially all; after flipping
+    ``e`` the four other edges of its two faces are queued again (only they
+    change their opposite angles).  Every non-Delaunay edge is flippable (L4.11)
+    and the flipped edge is Delaunay; each flip strictly decreases h (C4.19).
+    Should any of these ever fail, :class:`DelaunayError` is raised, naming the
+    edge.  Terminates (T4.12); ``max_flips`` (optional) bounds the number of
+    flips and raises :class:`DelaunayError` if exceeded.
+
+    Cost: every flip rebuilds the triangulation (:meth:`Triangulation.flip`,
+    O(F)), which dominates on large surfaces.
+
+    >>> from reference import surfaces
+    >>> from reference.intrinsic import flip
+    >>> s = flip(surfaces.grid(2, 1).metric(), 2)
+    >>> d, log = flip_to_delaunay(s)
+    >>> is_delaunay(d), len(log)
+    (True, 0)
+    """
+    m = _metric(surface)
+    tri = m.triangulation
+    queue = deque(range(tri.n_edges))
+    queued = [True] * tri.n_edges
+    h_total = harmonic_index(m)
+    log = []
+    while queue:
+        e = queue.popleft()
+        queued[e] = False
+        if is_delaunay_edge(m, e):
+            continue
+        if max_flips is not None and len(log) >= max_flips:
+            raise DelaunayError(f"more than max_flips = {max_flips} flips needed")
+        if not is_flippable(m, e):
+            raise DelaunayError(f"L4.11 violated: edge {e} {m.triangulation.edge_vertices(e)} "
+                                "is not Delaunay but cannot be flipped")
+        h, t = m.triangulation.edge_halfedges(e)
+        f, g = h // 3, t // 3
+        old = face_harmonic_index(m, f) + face_harmonic_index(m, g)
+        m = flip(m, e)
+        new = face_harmonic_index(m, f) + face_harmonic_index(m, g)
+        if not is_delaunay_edge(m, e):
+            raise DelaunayError(f"L4.11 violated: the flipped edge {e} is not Delaunay")
+        if _sign(new - old) >= 0:
+            raise DelaunayError(f"C4.19 violated: flipping edge {e} did not decrease the "
+                                f"harmonic index ({old} -> {new} on its two faces)")
+        h_after = _number(h_total - old + new)
+        log.append(FlipRecord(e, h_total, h_after))
+        h_total = h_after
+        tri = m.triangulation
+        for x in _edges_of_face(tri, f) + _edges_of_face(tri, g):
+            if x != e and not queued[x]:
+                queued[x] = True
+                queue.append(x)
+    return m, log
+
+
+def delaunay_tessellation_edges(surface) -> set[int]:
+    """R4.7: the edges of the Delaunay tessellation, as edge ids of ``surface``.
+
+    ``surface`` must be a Delaunay triangulation (else :class:`InputError`; use
+    :func:`flip_to_delaunay` first).  Kept: every boundary edge, and every
+    interior edge with cotan weight ``!= 0`` (by P4.10 the weights are ``>= 0``;
+    weight 0 means the two triangles are inscribed in one circle, so the edge
+    only splits a cell of the tessellation).
+    """
+    m = _metric(surface)
+    bad = non_delaunay_edges(m)
+    if bad:
+        raise InputError(f"not a Delaunay triangulation: edges {bad[:10]} fail the angle "
+                         "criterion (use flip_to_delaunay first)")
+    tri = m.triangulation
+    return {e for e, w in cotan_weights(m).items()
+            if tri.is_boundary_edge(e) or _sign(w) != 0}
+
+
+def laplace_beltrami(surface):
+    """D4.8: the discrete Laplace-Beltrami operator, the cotan Laplacian
+    (:func:`reference.laplacian.cotan_laplacian`, exact
+    :class:`~reference.sparse.SparseMatrix`) of a Delaunay triangulation of the
+    surface reached by :func:`flip_to_delaunay`.  Same vertex set and order.
+    By R4.9 it does not depend on which Delaunay triangulation is reached."""
+    return cotan_laplacian(flip_to_delaunay(surface)[0])
