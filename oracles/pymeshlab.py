@@ -52,6 +52,8 @@ import math
 
 import numpy as np
 
+from .arrays import checked_arrays
+
 import pymeshlab
 
 BOUNDARY_CONVENTIONS = ("reference", "library")
@@ -63,16 +65,7 @@ class VertexOrderChanged(ValueError):
 
 
 def _arrays(V, F) -> tuple[np.ndarray, np.ndarray]:
-    V = np.ascontiguousarray(V, dtype=np.float64)
-    F = np.ascontiguousarray(F, dtype=np.int64)
-    if V.ndim != 2 or V.shape[1] != 3:
-        raise ValueError(f"V must be n x 3, got shape {V.shape}")
-    if F.ndim != 2 or F.shape[1] != 3:
-        raise ValueError(f"F must be m x 3, got shape {F.shape}")
-    if F.shape[0] == 0:
-        raise ValueError("F has no faces")
-    if F.min() < 0 or F.max() >= V.shape[0]:
-        raise ValueError(f"face indices must lie in [0, {V.shape[0]}), got [{F.min()}, {F.max()}]")
+    V, F = checked_arrays(V, F)
     if V.shape[0] >= 2 ** 31:
         raise ValueError("PyMeshLab takes 32-bit face indices")
     if not np.isfinite(V).all():

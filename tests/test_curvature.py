@@ -12,6 +12,8 @@ from fractions import Fraction
 
 import mpmath
 import numpy as np
+
+from oracles.exact_reference import ReferenceImplementation
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 
@@ -526,32 +528,10 @@ def test_degenerate_face_raises_naming_the_face():
 # --- properties: the exact reference passes, planted bugs are caught ------------------------------
 
 
-class ExactCurvature:
+class ExactCurvature(ReferenceImplementation):
     """The exact reference's chapter-2 functions as an implementation (correctly rounded floats)."""
 
     name = "exact-curvature"
-
-    @staticmethod
-    def _s(V, F):
-        return PolyhedralSurface.from_arrays(V, F)
-
-    def corner_angles(self, V, F):
-        return np.array([[float(a) for a in f] for f in C.corner_angles(self._s(V, F))])
-
-    def angle_defects(self, V, F):
-        s = self._s(V, F)
-        K = np.zeros(len(V))
-        for v, k in {**C.angle_defects(s), **C.turning_angles(s)}.items():
-            K[v] = float(k)
-        return K
-
-    def edge_mean_curvature(self, V, F):
-        s = self._s(V, F)
-        t = s.triangulation
-        return {tuple(sorted(t.edge_vertices(e))): float(h) for e, h in C.mean_curvature(s).items()}
-
-    def area(self, V, F):
-        return float(surd_sum(self._s(V, F).metric().areas))
 
 
 class FloatCurvature:
