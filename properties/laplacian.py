@@ -1,0 +1,817 @@
+"""Chapter 3 properties: Laplacians, Dirichlet energy and area, on any implementation.
+
+Every property takes an implementation providing ``cotan_laplacian(V, F)`` (and,
+for L3.7, ``vertex_areas_voronoi`` / ``vertex_areas_barycentric``), V float64
+n x 3 and F int m x 3, in the reference's conventions: ``(L f)(i) = sum_j nu(ij)
+(f(i) - f(j))``, positive semidefinite, ``nu = 1/2 (cot a + cot b)``, boundary
+``1/2 cot a`` (see ``properties/protocol.py``).  The truth comes from the exact
+reference (``reference.laplacian``, ``reference.area``) evaluated on the very
+floats the implementation received (every float is a dyadic rational, taken
+exactly), or from how the example was built.
+
+Tolerances are derived, never a bare constant.  A stable floating point
+cotangent of a corner is the exact cotangent of a triangle whose side lengths
+(or coordinates) are perturbed relatively by a few units of ``EPS``.  A
+relative change ``delta`` of one side ``a`` moves an angle by at most
+``delta a^2 / (2A) <= delta rho_T`` with ``rho_T = l_max^2 / (2 A_T)`` (the
+aspect ratio: large for needles), and ``d cot / d alpha = -(1 + cot^2)`` (large
+near a zero or straight angle).  So the corner bound is
+
+    beta_c = K_COT * EPS * (1 + cot_c^2) * rho_T,     K_COT = 32
+
+(3 sides x at most 8 rounded operations each, plus the quotient, rounded up).
+An entry of L sums ``k`` halves of cotangents: its bound ``B_ij`` is the sum of
+the ``beta_c / 2`` plus ``k * EPS * sum |cot_c| / 2`` for the summation.  Every
+derived quantity (``f^T L f``, ``L x``, eigenvalues, solves) propagates ``B``
+and its own rounding (``gamma_k = k EPS / (1 - k EPS)`` times the sum of the
+magnitudes of the summed terms).  Each check reports the observed error in
+units of its bound; :data:`ERROR_RATIOS` keeps the largest ratio seen per ID.
+A naive Heron formula loses accuracy on needles faster than this model
+(``EPS rho^2``) and is reported as a failure there: that is a real loss.
+
+Strategies build meshes from a few small integers (grid sizes, jitters in
+sixteenths, ring radii) so that failures shrink to meshes of a few faces.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from hypothesis import strategies as st
+
+from reference import surfaces
+from reference.area import area_gradient
+from reference.combinatorics import Triangulation
+from reference.dirichlet import directional_derivative
+from reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
+                                 vertex_areas_barycentric, vertex_areas_voronoi,
+                                 weight_sign_by_angles)
+from reference.polyhedral import PolyhedralSurface
+
+from .registry import PropertyFailure, prop
+
+EPS = float(np.finfo(np.float64).eps)   # 2**-52, unit roundoff is EPS / 2
+K_COT = 32
+
+#: catalog ID -> largest observed error / bound over all checks run in this process
+ERROR_RATIOS: dict[str, float] = {}
+
+
+def gamma(k: int) -> float:
+    """Higham's gamma_k = k EPS / (1 - k EPS): bound on the relative error of k roundings."""
+    return k * EPS / (1 - k * EPS)
+
+
+def _record(pid: str, err, bound) -> float:
+    err = np.asarray(err, dtype=float)
+    bound = np.asarray(bound, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
+    ratio = float(np.max(r)) if r.size else 0.0
+    ERROR_RATIOS[pid] = max(ERROR_RATIOS.get(pid, 0.0), ratio)
+    return ratio
+
+
+# --- examples -----------------------------------------------------------------------------
+
+
+def _dyadic(x) -> Fraction:
+    """The exact value of the float nearest to x (what an implementation will see)."""
+    return Fraction(float(x))
+
+
+@dataclass(frozen=True)
+class MeshCase:
+    """A mesh with exact dyadic positions (so its float arrays are exact) and how it was built.
+
+    ``boundary``: vertices that a Dirichlet-type property fixes (drawn); ``values``:
+    a drawn function on the vertices (dyadic), ``directions``: drawn test
+    directions in R^3.
+    """
+
+    positions: tuple
+    faces: tuple
+    recipe: str
+    boundary: tuple = ()
+    values: tuple = ()
+    second: tuple = ()
+
+    @property
+    def n(self) -> int:
+        return len(self.positions)
+
+    def arrays(self):
+        V = np.array([[float(x) for x in p] for p in self.positions], dtype=np.float64)
+        return V.reshape(-1, 3), np.array(self.faces, dtype=np.int64).reshape(-1, 3)
+
+    @property
+    def mesh(self):
+        return ([[float(x) for x in p] for p in self.positions], [list(f) for f in self.faces])
+
+    def surface(self) -> PolyhedralSurface:
+        return PolyhedralSurface.from_arrays(self.positions, self.faces)
+
+    def __repr__(self) -> str:
+        return f"MeshCase({self.recipe}; V={self.n}, F={len(self.faces)}, faces={list(self.faces)})"
+
+
+def _case(positions, faces, recipe) -> MeshCase:
+    pts = tuple(tuple(_dyadic(x) for x in (tuple(p) + (0,) * (3 - len(p)))) for p in positions)
+    return MeshCase(pts, tuple(tuple(int(v) for v in f) for f in faces), recipe)
+
+
+def _orientation_ok(positions, faces) -> bool:
+    """Every face has positive area in the xy-projection (exact): a valid planar layout."""
+    for a, b, c in faces:
+        (ax, ay), (bx, by), (cx, cy) = (positions[v][:2] for v in (a, b, c))
+        if (bx - ax) * (cy - ay) - (by - ay) * (cx - ax) <= 0:
+            return False
+    return True
+
+
+@st.composite
+def single_triangles(draw):
+    """One triangle in R^3 from small integers: needles (long base, low apex), obtuse
+    (apex beyond the base), right, skew.  Shrinks to (0,0,0), (1/4,0,0), (0,1/16,0)."""
+    L = draw(st.integers(1, 16))
+    a = draw(st.integers(-16, 32))
+    h = draw(st.integers(1, 16))
+    z = draw(st.integers(-8, 8))
+    pts = [(0, 0, 0), (Fraction(L, 4), 0, 0), (Fraction(a, 4), Fraction(h, 16), Fraction(z, 16))]
+    return _case(pts, [(0, 1, 2)], f"triangle L={L}/4 apex=({a}/4, {h}/16, {z}/16)")
+
+
+@st.composite
+def planar_meshes(draw, heights: bool = False, min_size: int = 1, max_size: int = 3,
+                  max_m: int | None = None):
+    """An m x n grid (min_size <= n <= max_size, min_size <= m <= max_m or max_size) in z = 0, each square split along a drawn diagonal, every
+    vertex moved by at most 3/16 in x and y (faces stay positively oriented: a move
+    below 1/5 cannot collapse a right triangle of legs 1).  ``heights``: z drawn in
+    eighths (a jittered grid in R^3)."""
+    if not 1 <= min_size <= max_size:
+        raise ValueError(f"need 1 <= min_size <= max_size, got {min_size}, {max_size}")
+    m = draw(st.integers(min_size, max_size if max_m is None else max_m))
+    n = draw(st.integers(min_size, max_size))
+    nv = (m + 1) * (n + 1)
+    jit = draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)), min_size=nv, max_size=nv))
+    zs = draw(st.lists(st.integers(-4, 4), min_size=nv, max_size=nv)) if heights else [0] * nv
+    flips = draw(st.lists(st.booleans(), min_size=m * n, max_size=m * n))
+    pts = []
+    for i in range(m + 1):
+        for j in range(n + 1):
+            dx, dy = jit[i * (n + 1) + j]
+            pts.append((i + Fraction(dx, 16), j + Fraction(dy, 16), Fraction(zs[i * (n + 1) + j], 8)))
+    faces = []
+    for i in range(m):
+        for j in range(n):
+            a, b = i * (n + 1) + j, (i + 1) * (n + 1) + j
+            if flips[i * n + j]:
+                faces += [(a, b, a + 1), (b, b + 1, a + 1)]
+            else:
+                faces += [(a, b, b + 1), (a, b + 1, a + 1)]
+    kind = "jittered grid" if heights else "planar grid"
+    return _case(pts, faces, f"{kind} {m}x{n}")
+
+
+def jittered_grids():
+    """Grids with drawn heights: simplicial disks in R^3."""
+    return planar_meshes(heights=True)
+
+
+_H = Fraction(7, 8)      # ~ sqrt(3)/2: the lattice triangles have angles 59.5 and 60.3 degrees
+
+
+@st.composite
+def acute_meshes(draw, max_components: int = 1, heights: bool = True):
+    """Triangular lattices (angles ~60 degrees) moved by at most 1/32 per coordinate:
+    every angle stays below 70 degrees, so every cotan weight is positive (boundary
+    ones too).  ``max_components`` > 1 draws a disjoint union of such patches."""
+    k = draw(st.integers(1, max_components))
+    pts, faces = [], []
+    for comp in range(k):
+        rows = draw(st.integers(1, 3))
+        cols = draw(st.integers(1, 3))
+        nv = (rows + 1) * (cols + 1)
+        jit = draw(st.lists(st.tuples(st.integers(-1, 1), st.integers(-1, 1),
+                                      st.integers(-1, 1) if heights else st.just(0)),
+                            min_size=nv, max_size=nv))
+        base = len(pts)
+        for j in range(rows + 1):
+            for i in range(cols + 1):
+                dx, dy, dz = jit[j * (cols + 1) + i]
+                pts.append((10 * comp + i + Fraction(j, 2) + Fraction(dx, 32),
+                            j * _H + Fraction(dy, 32), Fraction(dz, 32)))
+
+        def vid(i, j, base=base, cols=cols):
+            return base + j * (cols + 1) + i
+
+        for j in range(rows):
+            for i in range(cols):
+                faces += [(vid(i, j), vid(i + 1, j), vid(i, j + 1)),
+                          (vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1))]
+    return _case(pts, faces, f"acute lattice, {k} component(s)")
+
+
+@st.composite
+def obtuse_fans(draw):
+    """A star of k = 3..7 ring points at drawn radii 1..3 around a centre moved off the
+    middle: obtuse and needle triangles, negative cotan weights (E3.12, R3.3)."""
+    k = draw(st.integers(3, 7))
+    radii = draw(st.lists(st.integers(1, 3), min_size=k, max_size=k))
+    cx, cy = draw(st.integers(-12, 12)), draw(st.integers(-12, 12))
+    zs = draw(st.lists(st.integers(-2, 2), min_size=k + 1, max_size=k + 1))
+    ring = []
+    for t in range(k):           # directions rounded to 1/64: exact dyadic points
+        ang = 2 * math.pi * t / k
+        ring.append((radii[t] * Fraction(round(math.cos(ang) * 64), 64),
+                     radii[t] * Fraction(round(math.sin(ang) * 64), 64)))
+    faces = [(0, 1 + t, 1 + (t + 1) % k) for t in range(k)]
+    centre = (Fraction(cx, 16), Fraction(cy, 16))
+    if not _orientation_ok([centre] + ring, faces):
+        centre = (Fraction(0), Fraction(0))
+    pts = [(centre[0], centre[1], Fraction(zs[0], 8))] + \
+          [(x, y, Fraction(z, 8)) for (x, y), z in zip(ring, zs[1:])]
+    return _case(pts, faces, f"fan k={k} radii={radii} centre=({cx}/16, {cy}/16)")
+
+
+@st.composite
+def obtuse_quads(draw):
+    """Two triangles on a diagonal of length L, apexes at heights h1, h2 (sixteenths):
+    low apexes make the opposite angles sum to more than pi (a negative weight)."""
+    L = draw(st.integers(1, 8))
+    x1, x2 = draw(st.integers(0, 4 * L)), draw(st.integers(0, 4 * L))
+    h1, h2 = draw(st.integers(1, 16)), draw(st.integers(1, 16))
+    z = draw(st.integers(-4, 4))
+    pts = [(0, 0, 0), (L, 0, 0), (Fraction(x1, 4), Fraction(h1, 16), Fraction(z, 16)),
+           (Fraction(x2, 4), -Fraction(h2, 16), 0)]
+    return _case(pts, [(0, 1, 2), (1, 0, 3)], f"quad L={L} apexes ({x1}/4,{h1}/16), ({x2}/4,-{h2}/16)")
+
+
+def obtuse_meshes():
+    """Meshes with obtuse and needle triangles (negative cotan weights are common)."""
+    return st.one_of(obtuse_quads(), obtuse_fans(), single_triangles())
+
+
+_CLOSED = {"tetrahedron": surfaces.tetrahedron, "octahedron": surfaces.octahedron,
+           "icosahedron": surfaces.icosahedron}
+
+
+@st.composite
+def closed_meshes(draw):
+    """Tetrahedron, octahedron or icosahedron, maybe 1-to-4 subdivided (midpoints), every
+    vertex moved by at most 2/64 per coordinate."""
+    name = draw(st.sampled_from(sorted(_CLOSED)))
+    s = _CLOSED[name]()
+    t, pts = s.triangulation, [tuple(p) for p in s.positions]
+    sub = draw(st.booleans())
+    if sub and name != "icosahedron":
+        t, mids = t.subdivide_1to4()
+        pts += [tuple((x + y) / 2 for x, y in zip(pts[i], pts[j])) for i, j in mids]
+    jit = draw(st.lists(st.tuples(*[st.integers(-2, 2)] * 3), min_size=len(pts), max_size=len(pts)))
+    pts = [tuple(_dyadic(x) + Fraction(d, 64) for x, d in zip(p, dj)) for p, dj in zip(pts, jit)]
+    return _case(pts, t.faces, f"{name}{' 1-to-4' if sub else ''}, jittered")
+
+
+def any_meshes():
+    """Every kind above; shrinks towards a single triangle."""
+    return st.one_of(single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
+                     acute_meshes(), closed_meshes())
+
+
+def _values(n: int):
+    return st.lists(st.integers(-8, 8).map(lambda k: Fraction(k, 8)), min_size=n, max_size=n)
+
+
+def with_functions(meshes):
+    """A mesh with two drawn vertex functions (eighths): ``values`` and ``second``."""
+    @st.composite
+    def build(draw):
+        c = draw(meshes)
+        f = draw(_values(c.n))
+        g = draw(_values(c.n))
+        return MeshCase(c.positions, c.faces, c.recipe, c.boundary, tuple(f), tuple(g))
+    return build()
+
+
+def with_boundary(meshes, mesh_boundary: bool = False):
+    """A mesh with a nonempty drawn boundary set V0 (or its boundary vertices) and
+    values on all vertices (only those on V0 are used)."""
+    @st.composite
+    def build(draw):
+        c = draw(meshes)
+        t = Triangulation.from_faces(c.faces, n_vertices=c.n)
+        if mesh_boundary:
+            V0 = [v for v in range(c.n) if t.is_boundary_vertex(v)]
+        else:
+            picks = draw(st.lists(st.booleans(), min_size=c.n, max_size=c.n))
+            V0 = [v for v in range(c.n) if picks[v]]
+        comps = [sorted({v for f in comp for v in t.faces[f]}) for comp in t.components()]
+        for comp in comps:                      # every component meets V0
+            if not any(v in V0 for v in comp):
+                V0.append(comp[draw(st.integers(0, len(comp) - 1))])
+        f = draw(_values(c.n))
+        g = draw(_values(c.n))
+        return MeshCase(c.positions, c.faces, c.recipe, tuple(sorted(V0)), tuple(f), tuple(g))
+    return build()
+
+
+@dataclass(frozen=True)
+class GraphCase:
+    """A weighted graph (edges ``(i, j, nu)``, several between two vertices allowed) with a
+    boundary set V0 (nonempty, meeting every component) and values."""
+
+    n: int
+    edges: tuple
+    boundary: tuple
+    values: tuple
+
+
+@st.composite
+def weighted_graphs(draw, positive: bool = True, max_vertices: int = 7, connected: bool = True):
+    """Graphs from a drawn spanning tree plus extra edges (repeats allowed), weights
+    p/q with small p, q (``positive``: p >= 1, else any sign), a nonempty V0."""
+    n = draw(st.integers(2, max_vertices))
+    w = st.builds(Fraction, st.integers(1 if positive else -4, 6), st.integers(1, 4))
+    edges = []
+    for v in range(1, n):
+        if connected or draw(st.booleans()):
+            edges.append((draw(st.integers(0, v - 1)), v, draw(w)))
+    extra = draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1), w), max_size=n))
+    edges += [e for e in extra if e[0] != e[1]]
+    picks = draw(st.lists(st.booleans(), min_size=n, max_size=n))
+    V0 = {v for v in range(n) if picks[v]}
+    # every component meets V0
+    parent = list(range(n))
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    for i, j, _ in edges:
+        parent[find(i)] = find(j)
+    roots = {}
+    for v in range(n):
+        roots.setdefault(find(v), []).append(v)
+    for comp in roots.values():
+        if not V0 & set(comp):
+            V0.add(comp[0])
+    vals = draw(st.lists(st.integers(-9, 9).map(Fraction), min_size=n, max_size=n))
+    return GraphCase(n, tuple(edges), tuple(sorted(V0)), tuple(vals))
+
+
+# --- the exact reference on a case, and the error model --------------------------------------------
+
+
+class Exact:
+    """The exact reference on the floats of a case, with float views and entry bounds."""
+
+    def __init__(self, case: MeshCase):
+        self.case = case
+        self.surface = case.surface()
+        self.metric = self.surface.metric()
+        t = self.triangulation = self.surface.triangulation
+        n = t.n_vertices
+        self.L = cotan_laplacian(self.surface)
+        self.Lf = np.array(self.L.to_dense_floats(), dtype=float).reshape(n, n)
+        B = np.zeros((n, n))
+        S = np.zeros((n, n))
+        cnt = np.zeros((n, n))
+        self.cot = np.zeros((t.n_faces, 3))
+        self.rho = np.zeros(t.n_faces)
+        for f in range(t.n_faces):
+            a = float(self.metric.area(f))
+            self.rho[f] = float(max(self.metric.face_squared_lengths(f))) / (2 * a)
+            for c in range(3):
+                self.cot[f, c] = float(self.metric.corner_cot(f, c))
+        self.beta = K_COT * EPS * (1 + self.cot ** 2) * self.rho[:, None]
+        for e in range(t.n_edges):
+            i, j = t.edge_vertices(e)
+            if i == j:
+                continue
+            for h in t.edge_halfedges(e):
+                if h < 0:
+                    continue
+                f, c = h // 3, (h + 2) % 3
+                b, m = self.beta[f, c] / 2, abs(self.cot[f, c]) / 2
+                for x, y in ((i, j), (j, i), (i, i), (j, j)):
+                    B[x, y] += b
+                    S[x, y] += m
+                    cnt[x, y] += 1
+        self.B = B + cnt * EPS * S
+        self.adjacent = cnt > 0
+
+    @property
+    def n(self) -> int:
+        return self.triangulation.n_vertices
+
+    def components(self) -> list[list[int]]:
+        t = self.triangulation
+        return [sorted({v for f in comp for v in t.faces[f]}) for comp in t.components()]
+
+    def residual_bound(self, A, u):
+        """Per row: sum_j (B_ij + gamma_{3n} |A_ij|) |u_j| (u: n or n x k): how far A u may be
+        from the exact L u through the entry errors and a backward-stable evaluation or solve."""
+        absu = np.abs(u)
+        return (self.B + gamma(3 * self.n + 3) * np.abs(A)) @ absu
+
+
+def _dense(impl, case: MeshCase, pid: str):
+    V, F = case.arrays()
+    M = impl.cotan_laplacian(V, F)
+    A = M.toarray() if hasattr(M, "toarray") else np.asarray(M, dtype=float)
+    A = np.asarray(A, dtype=float)
+    if A.shape != (case.n, case.n):
+        raise PropertyFailure(pid, impl, "cotan_laplacian has the wrong shape", mesh=case.mesh,
+                              expected=(case.n, case.n), observed=A.shape)
+    if not np.all(np.isfinite(A)):
+        raise PropertyFailure(pid, impl, "cotan_laplacian has non-finite entries", mesh=case.mesh)
+    return A
+
+
+def _fail(pid, impl, case, message, **kw):
+    raise PropertyFailure(pid, impl, message, mesh=case.mesh, **kw)
+
+
+def _worst(err, bound):
+    r = np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
+    idx = np.unravel_index(int(np.argmax(r)), r.shape)
+    return idx, float(r[idx])
+
+
+# --- properties ------------------------------------------------------------------------------------
+
+
+@prop("D3.1", "cotan_laplacian is a weighted graph Laplacian on the mesh edges: symmetric, zero "
+      "row sums, supported on edges, entries = the exact cotan weights (3.3) within the derived bound",
+      needs={"cotan_laplacian"}, strategy=any_meshes)
+def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase):
+    A = _dense(impl, case, "D3.1")
+    X = Exact(case)
+    n = X.n
+    off = ~X.adjacent & ~np.eye(n, dtype=bool)
+    if np.any(A[off] != 0):
+        i, j = np.argwhere(off & (A != 0))[0]
+        _fail("D3.1", impl, case, "nonzero entry between vertices that share no edge",
+              element=(int(i), int(j)), expected=0.0, observed=float(A[i, j]))
+    (i, j), r = _worst(np.abs(A - A.T), X.B + X.B.T)
+    if r > 1:
+        _fail("D3.1", impl, case, f"not symmetric ({r:.3g} x the bound)", element=(i, j),
+              expected=float(A[j, i]), observed=float(A[i, j]))
+    rows = np.abs(A.sum(axis=1))
+    rb = X.B.sum(axis=1) + gamma(n) * np.abs(A).sum(axis=1)
+    (i,), r = _worst(rows, rb)
+    if r > 1:
+        _fail("D3.1", impl, case, f"row sum is not 0 ({r:.3g} x the bound): constants are not "
+              "in the kernel", element=f"row {i}", expected=0.0, observed=float(A[i].sum()))
+    err = np.abs(A - X.Lf)
+    _record("D3.1", err, X.B)
+    (i, j), r = _worst(err, X.B)
+    if r > 1:
+        _fail("D3.1", impl, case, f"entry differs from the exact cotan Laplacian by {r:.3g} x "
+              f"the bound {X.B[i, j]:.3g}", element=(i, j), expected=float(X.Lf[i, j]),
+              observed=float(A[i, j]))
+
+
+@prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "
+      "linear interpolant (computed exactly from per-face gradients)",
+      needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes()))
+def energy_of_the_interpolant(impl, case: MeshCase):
+    A = _dense(impl, case, "T3.6")
+    X = Exact(case)
+    f = np.array([float(x) for x in case.values])
+    q = float(f @ (A @ f)) / 2
+    exact = float(dirichlet_energy_pl(X.surface, list(case.values)))
+    af = np.abs(f)
+    bound = 0.5 * af @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ af + EPS * abs(exact)
+    err = abs(q - exact)
+    r = _record("T3.6", err, bound)
+    if r > 1:
+        _fail("T3.6", impl, case, f"f^T L f / 2 differs from the gradient energy by {r:.3g} x the "
+              f"bound {bound:.3g}", element=f"f = {[str(x) for x in case.values]}",
+              expected=exact, observed=q)
+
+
+@prop("T3.1 / R3.2", "grad E = L f: phi . (L f) equals the exact derivative at t = 0 of "
+      "E(f + t phi), E the piecewise linear Dirichlet energy",
+      needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes()))
+def gradient_of_the_energy(impl, case: MeshCase):
+    A = _dense(impl, case, "T3.1 / R3.2")
+    X = Exact(case)
+    f, phi = list(case.values), list(case.second)
+    exact = float(directional_derivative(lambda g: dirichlet_energy_pl(X.surface, g), f, phi))
+    ff, pf = np.array([float(x) for x in f]), np.array([float(x) for x in phi])
+    got = float(pf @ (A @ ff))
+    bound = np.abs(pf) @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ np.abs(ff) + EPS * abs(exact)
+    r = _record("T3.1 / R3.2", abs(got - exact), bound)
+    if r > 1:
+        _fail("T3.1 / R3.2", impl, case, f"phi . (L f) is not dE(f + t phi)/dt at 0 ({r:.3g} x "
+              "the bound)", expected=exact, observed=got)
+
+
+def _eig_tol(X: Exact, A) -> float:
+    """Weyl: |lambda(A) - lambda(L)| <= ||A - L||_2 <= ||B||_F; eigvalsh adds ~ n EPS ||A||_F."""
+    return float(np.linalg.norm(X.B) + gamma(4 * X.n) * np.linalg.norm(A))
+
+
+@prop("R3.3", "with negative cotan weights, L is still positive semidefinite and L restricted to "
+      "the vertices off a nonempty V0 is positive definite (the Dirichlet problem is uniquely solvable)",
+      needs={"cotan_laplacian"}, strategy=lambda: with_boundary(obtuse_meshes()))
+def negative_weights_keep_the_energy_positive(impl, case: MeshCase):
+    A = _dense(impl, case, "R3.3")
+    X = Exact(case)
+    tol = _eig_tol(X, A)
+    lam = float(np.linalg.eigvalsh((A + A.T) / 2)[0])
+    _record("R3.3", max(-lam, 0.0), tol)
+    if lam < -tol:
+        _fail("R3.3", impl, case, "L has a negative eigenvalue: the Dirichlet energy is not "
+              "positive semidefinite", expected=f">= {-tol:.3g}", observed=lam)
+    I = [v for v in range(X.n) if v not in set(case.boundary)]
+    if I:
+        AII = A[np.ix_(I, I)]
+        lam_i = float(np.linalg.eigvalsh((AII + AII.T) / 2)[0])
+        if lam_i <= tol:
+            _fail("R3.3", impl, case, "L restricted to the vertices off V0 is not positive "
+                  f"definite: the Dirichlet problem is not uniquely solvable (V0 = {list(case.boundary)})",
+                  expected=f"> {tol:.3g}", observed=lam_i)
+
+
+@prop("C3.3", "Liouville: on a mesh of c components with positive weights, L has exactly c "
+      "eigenvalues within the bound of 0 and kills each component's indicator",
+      needs={"cotan_laplacian"}, strategy=lambda: acute_meshes(max_components=3))
+def harmonic_functions_are_locally_constant(impl, case: MeshCase):
+    A = _dense(impl, case, "C3.3")
+    X = Exact(case)
+    tol = _eig_tol(X, A)
+    comps = X.components()
+    lam = np.linalg.eigvalsh((A + A.T) / 2)
+    small = int(np.sum(np.abs(lam) <= tol))
+    _record("C3.3", np.abs(lam[:len(comps)]), tol)
+    for comp in comps:
+        ind = np.zeros(X.n)
+        ind[comp] = 1
+        res = np.abs(A @ ind)
+        (i,), r = _worst(res, X.residual_bound(A, ind))
+        if r > 1:
+            _fail("C3.3", impl, case, f"the indicator of a component is not harmonic ({r:.3g} x "
+                  "the bound)", element=f"vertex {i}", expected=0.0, observed=float((A @ ind)[i]))
+    if small != len(comps):
+        _fail("C3.3", impl, case, "kernel dimension differs from the number of components",
+              expected=len(comps), observed=f"{small} eigenvalues within {tol:.3g} of 0: "
+              f"{lam[:len(comps) + 1].tolist()}")
+
+
+def _solve(A, V0, c):
+    """The Dirichlet solution with the implementation's matrix (dense LU)."""
+    n = A.shape[0]
+    I = [v for v in range(n) if v not in set(V0)]
+    u = np.array(c, dtype=float).copy()
+    if I:
+        B0 = list(V0)
+        u[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, B0)] @ u[B0])
+    return u, I
+
+
+@prop("T3.2", "maximum principle: with positive weights, the solution of the Dirichlet problem "
+      "(the implementation's L) takes its max and min on V0, within the propagated bound",
+      needs={"cotan_laplacian"}, strategy=lambda: with_boundary(acute_meshes()))
+def maximum_principle(impl, case: MeshCase):
+    A = _dense(impl, case, "T3.2")
+    X = Exact(case)
+    V0 = list(case.boundary)
+    c = np.array([float(x) for x in case.values])
+    u, I = _solve(A, V0, c)
+    if not I:
+        return
+    # L_exact,II (u - u*) = r with |r| <= residual bound; ||L_II^-1||_inf from the computed inverse
+    inv_norm = float(np.abs(np.linalg.inv(A[np.ix_(I, I)])).sum(axis=1).max())
+    tol = 2 * inv_norm * float(X.residual_bound(A, u)[I].max())
+    hi, lo = float(c[V0].max()), float(c[V0].min())
+    excess = max(float(u[I].max()) - hi, lo - float(u[I].min()), 0.0)
+    r = _record("T3.2", excess, tol)
+    if r > 1:
+        i = I[int(np.argmax(np.maximum(u[I] - hi, lo - u[I])))]
+        _fail("T3.2", impl, case, "a harmonic function leaves [min, max] of its boundary values",
+              element=f"vertex {i}, V0 = {V0}", expected=f"in [{lo}, {hi}] +- {tol:.3g}",
+              observed=float(u[i]))
+
+
+@prop("C3.4 / T3.5", "the Dirichlet solution with the implementation's L is the minimiser of the "
+      "exact piecewise linear energy: its exact gradient vanishes off V0 and E(u + phi) >= E(u)",
+      needs={"cotan_laplacian"},
+      strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
+def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
+    A = _dense(impl, case, "C3.4 / T3.5")
+    X = Exact(case)
+    V0 = list(case.boundary)
+    c = np.array([float(x) for x in case.values])
+    u, I = _solve(A, V0, c)
+    if not I:
+        return
+    ue = [Fraction(float(x)) for x in u]
+    rb = 4 * X.residual_bound(A, u)
+    errs, bounds = [], []
+    for i in I:
+        e = [Fraction(0)] * X.n
+        e[i] = Fraction(1)
+        g = float(dirichlet_inner_product_pl(X.surface, ue, e))     # dE/du(i), exact
+        errs.append(abs(g))
+        bounds.append(rb[i])
+        if abs(g) > rb[i]:
+            _fail("C3.4 / T3.5", impl, case, "the solution is not a critical point of the energy",
+                  element=f"vertex {i}, V0 = {V0}", expected=f"0 +- {rb[i]:.3g}", observed=g)
+    _record("C3.4 / T3.5", errs, bounds)
+    phi = [Fraction(0) if v in set(V0) else x for v, x in enumerate(case.second)]
+    gain = float(dirichlet_energy_pl(X.surface, [a + b for a, b in zip(ue, phi)])
+                 - dirichlet_energy_pl(X.surface, ue))
+    slack = float(sum(abs(float(p)) * b for p, b in zip(phi, rb)))
+    if gain < -slack:
+        _fail("C3.4 / T3.5", impl, case, "a perturbation vanishing on V0 lowers the energy",
+              element=f"phi = {[str(x) for x in phi]}", expected=f">= {-slack:.3g}", observed=gain)
+
+
+@prop("P3.10", "positive weights, u harmonic at i => u(i) in the convex hull of its neighbours: "
+      "no direction d has d.u(i) > max_j d.u(j) beyond the bound",
+      needs={"cotan_laplacian"}, strategy=lambda: with_functions(acute_meshes()))
+def harmonic_value_in_convex_hull(impl, case: MeshCase):
+    A = _dense(impl, case, "P3.10")
+    X = Exact(case)
+    vals = np.array([float(x) for x in case.values])
+    sec = np.array([float(x) for x in case.second])
+    U = np.stack([vals, sec, vals * sec], axis=1)             # a map to R^3
+    dirs = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, -1, 1]], dtype=float)
+    dirs = np.vstack([dirs, -dirs])
+    worst = 0.0
+    for i in range(X.n):
+        nb = [j for j in range(X.n) if j != i and X.adjacent[i, j]]
+        if not nb or A[i, i] == 0:
+            continue
+        ui = -(A[i, nb] @ U[nb]) / A[i, i]
+        # |u(i) - exact| per coordinate: entry errors and rounding, divided by the pivot
+        err = ((X.B[i, nb] + gamma(X.n + 2) * np.abs(A[i, nb])) @ np.abs(U[nb])
+               + X.B[i, i] * np.abs(ui)) / abs(A[i, i])
+        for d in dirs:
+            excess = float(d @ ui - np.max(U[nb] @ d))
+            tol = float(np.abs(d) @ err) + gamma(4) * float(np.abs(d) @ np.abs(ui))
+            worst = max(worst, excess / tol if tol > 0 else (np.inf if excess > 0 else 0))
+            if excess > tol:
+                _fail("P3.10", impl, case, "the value harmonic at a vertex lies outside the convex "
+                      "hull of its neighbours' values", element=f"vertex {i}, direction {d.tolist()}",
+                      expected=f"<= {float(np.max(U[nb] @ d))} + {tol:.3g}", observed=float(d @ ui))
+    ERROR_RATIOS["P3.10"] = max(ERROR_RATIOS.get("P3.10", 0.0), max(worst, 0.0))
+
+
+@prop("E3.12", "nu(ij) >= 0 iff alpha_ij + alpha_ji <= pi: the sign of each off-diagonal entry "
+      "agrees with the exact angle sum (edges whose weight is within the bound of 0 are undecided "
+      "and must be, when the angle sum is exactly pi)",
+      needs={"cotan_laplacian"}, strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
+def weight_sign_by_opposite_angles(impl, case: MeshCase):
+    A = _dense(impl, case, "E3.12")
+    X = Exact(case)
+    t = X.triangulation
+    ERROR_RATIOS.setdefault("E3.12", 0.0)
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        s = weight_sign_by_angles(X.surface, e)
+        w, b = -float(A[i, j]), float(X.B[i, j])
+        if s == 0:
+            _record("E3.12", abs(w), b)                   # an exactly zero weight
+        if s == 0 and abs(w) > b:
+            _fail("E3.12", impl, case, "the opposite angles sum to pi exactly but the weight is "
+                  "not 0 within the bound", element=(i, j), expected=f"0 +- {b:.3g}", observed=w)
+        if s != 0 and abs(w) > b and (w > 0) != (s > 0):
+            _fail("E3.12", impl, case, "the weight's sign contradicts the opposite angle sum",
+                  element=(i, j), expected="positive (angle sum < pi)" if s > 0 else
+                  "negative (angle sum > pi)", observed=w)
+
+
+@prop("L3.8", "on one triangle, (L V)(i) equals the area gradient 1/2 n x (v_k - v_j) computed "
+      "directly (no cotangent)", needs={"cotan_laplacian"}, strategy=single_triangles)
+def area_gradient_of_a_triangle(impl, case: MeshCase):
+    _area_gradient_check("L3.8", impl, case)
+
+
+def _area_gradient_check(pid, impl, case):
+    A = _dense(impl, case, pid)
+    X = Exact(case)
+    P = np.array([[float(x) for x in p] for p in case.positions])
+    got = A @ P
+    exact = np.array([[float(x) for x in g] for g in area_gradient(X.surface)])
+    bound = X.residual_bound(A, P) + EPS * np.abs(exact)
+    err = np.abs(got - exact)
+    _record(pid, err, bound)
+    (i, k), r = _worst(err, bound)
+    if r > 1:
+        planar = all(p[2] == case.positions[0][2] for p in case.positions)
+        what = " (linear precision fails: a planar interior vertex)" if planar and \
+            not X.triangulation.is_boundary_vertex(i) else ""
+        _fail(pid, impl, case, f"(L V)(i) is not the area gradient ({r:.3g} x the bound){what}",
+              element=f"vertex {i}, coordinate {k}", expected=exact[i].tolist(),
+              observed=got[i].tolist())
+
+
+@prop("T3.9", "area as Dirichlet energy: sum_k x_k^T L x_k / 2 = A(S) and L V = grad A (so L V = 0 "
+      "at interior vertices of a planar mesh: linear precision)",
+      needs={"cotan_laplacian"},
+      strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes()))
+def area_as_dirichlet_energy(impl, case: MeshCase):
+    A = _dense(impl, case, "T3.9")
+    X = Exact(case)
+    P = np.array([[float(x) for x in p] for p in case.positions])
+    energy = float(sum(P[:, k] @ A @ P[:, k] for k in range(3))) / 2
+    area = float(X.metric.total_area())
+    aP = np.abs(P)
+    bound = 0.5 * sum(aP[:, k] @ (X.B + gamma(2 * X.n + 6) * np.abs(A)) @ aP[:, k]
+                      for k in range(3)) + EPS * area
+    r = _record("T3.9", abs(energy - area), bound)
+    if r > 1:
+        _fail("T3.9", impl, case, f"sum_k E(x_k) is not the area ({r:.3g} x the bound)",
+              expected=area, observed=energy)
+    _area_gradient_check("T3.9", impl, case)
+
+
+@prop("A3.6", "one minimal surface step (solve L_S x = 0 off the boundary with the "
+      "implementation's L) does not increase the area, within the propagated bound",
+      needs={"cotan_laplacian"},
+      strategy=lambda: with_boundary(st.one_of(jittered_grids(), obtuse_fans()), mesh_boundary=True))
+def minimal_surface_step_decreases_area(impl, case: MeshCase):
+    A = _dense(impl, case, "A3.6")
+    X = Exact(case)
+    V0 = list(case.boundary)
+    I = [v for v in range(X.n) if v not in set(V0)]
+    if not I:
+        return
+    P = np.array([[float(x) for x in p] for p in case.positions])
+    U = P.copy()
+    AII = A[np.ix_(I, I)]
+    U[I] = np.linalg.solve(AII, -A[np.ix_(I, V0)] @ P[V0])
+    before = float(X.metric.total_area())
+    new = PolyhedralSurface(X.triangulation, [[Fraction(float(x)) for x in p] for p in U])
+    try:
+        after = float(new.metric().total_area())
+    except ValueError:                       # a face collapsed: area of the others, exactly
+        after = float(sum(_face_areas(new), Fraction(0)))
+    # E_S(u) - E_S(u*) = 1/2 r^T L_II^-1 r <= |r|^2 / (2 lambda_min), r the exact residual
+    lam = float(np.linalg.eigvalsh((AII + AII.T) / 2)[0])
+    r = X.residual_bound(A, U)[I]
+    tol = (float(np.sum(r ** 2)) / lam if lam > 0 else np.inf) + 4 * EPS * before
+    ratio = _record("A3.6", max(after - before, 0.0), tol)
+    if ratio > 1:
+        _fail("A3.6", impl, case, "the area increased in one minimal surface step",
+              expected=f"<= {before} + {tol:.3g}", observed=after)
+
+
+def _face_areas(surface):
+    from reference.exact import sqrt
+    p = surface.positions
+    for a, b, c in surface.triangulation.faces:
+        u = [y - x for x, y in zip(p[a], p[b])]
+        v = [y - x for x, y in zip(p[a], p[c])]
+        uv = sum(x * y for x, y in zip(u, v))
+        yield sqrt(sum(x * x for x in u) * sum(y * y for y in v) - uv * uv) / 2
+
+
+@prop("L3.7", "mass matrices: mixed Voronoi areas (the circumcentric split of L3.7 on non-obtuse "
+      "faces) and barycentric areas agree with the exact ones and sum to the total area",
+      needs={"vertex_areas_voronoi"},
+      strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes(), jittered_grids(), closed_meshes()))
+def vertex_areas_sum_to_the_area(impl, case: MeshCase):
+    X = Exact(case)
+    V, F = case.arrays()
+    t, m = X.triangulation, X.metric
+    n = X.n
+    area = float(m.total_area())
+    vb = np.zeros(n)        # bound of the Voronoi area of each vertex
+    bb = np.zeros(n)        # of the barycentric one
+    for f, face in enumerate(t.faces):
+        a = float(m.area(f))
+        l0, l1, l2 = (float(x) for x in m.face_squared_lengths(f))
+        adj = ((l0, l2, 2, 1), (l0, l1, 2, 0), (l1, l2, 0, 1))    # sides at corner, their opposite corners
+        for c in range(3):
+            la, lb, ca, cb = adj[c]
+            # either rule may be taken near a right angle; they agree there, so bound both
+            vor = (la * X.beta[f, ca] + lb * X.beta[f, cb]
+                   + 8 * EPS * (la * abs(X.cot[f, ca]) + lb * abs(X.cot[f, cb]))) / 8
+            vb[face[c]] += vor + K_COT * EPS * X.rho[f] * a
+            bb[face[c]] += K_COT * EPS * X.rho[f] * a / 3
+    checks = [("vertex_areas_voronoi", vertex_areas_voronoi, vb)]
+    if callable(getattr(impl, "vertex_areas_barycentric", None)):
+        checks.append(("vertex_areas_barycentric", vertex_areas_barycentric, bb))
+    for name, ref, bound in checks:
+        got = np.asarray(getattr(impl, name)(V, F), dtype=float).reshape(-1)
+        if got.shape != (n,):
+            _fail("L3.7", impl, case, f"{name} has the wrong shape", expected=(n,), observed=got.shape)
+        exact = np.array([float(x) for x in ref(X.surface)])
+        err = np.abs(got - exact)
+        _record("L3.7", err, bound)
+        (i,), r = _worst(err, bound)
+        if r > 1:
+            _fail("L3.7", impl, case, f"{name} differs from the exact area ({r:.3g} x the bound)",
+                  element=f"vertex {i}", expected=float(exact[i]), observed=float(got[i]))
+        total_bound = float(bound.sum()) + gamma(n) * float(np.abs(got).sum())
+        if abs(float(got.sum()) - area) > total_bound:
+            _fail("L3.7", impl, case, f"{name} does not sum to the total area",
+                  expected=area, observed=float(got.sum()))
