@@ -11,7 +11,9 @@ exactly), or from how the example was built.
 
 Tolerances are derived, never a bare constant.  A stable floating point
 cotangent of a corner is the exact cotangent of a triangle whose side lengths
-(or coordinates) are perturbed relatively by a few units of ``EPS``.  A
+(or coordinates) are perturbed relatively by a few units of ``EPS``, the
+checked implementation's declared machine epsilon (:func:`properties.protocol.eps`:
+2**-52 for float64 unless the implementation declares e.g. float32).  A
 relative change ``delta`` of one side ``a`` moves an angle by at most
 ``delta a^2 / (2A) <= delta rho_T`` with ``rho_T = l_max^2 / (2 A_T)`` (the
 aspect ratio: large for needles), and ``d cot / d alpha = -(1 + cot^2)`` (large
@@ -51,9 +53,9 @@ from reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet
                                  weight_sign_by_angles)
 from reference.polyhedral import PolyhedralSurface
 
+from .protocol import eps
 from .registry import PropertyFailure, prop
 
-EPS = float(np.finfo(np.float64).eps)   # 2**-52, unit roundoff is EPS / 2
 K_COT = 32
 
 #: catalog ID -> largest observed error / bound over all checks run in this process
@@ -61,8 +63,8 @@ ERROR_RATIOS: dict[str, float] = {}
 
 
 def gamma(k: int) -> float:
-    """Higham's gamma_k = k EPS / (1 - k EPS): bound on the relative error of k roundings."""
-    return k * EPS / (1 - k * EPS)
+    """Higham's gamma_k = k EPS / (1 - k EPS), EPS = eps(): bound on the relative error of k roundings."""
+    return k * eps() / (1 - k * eps())
 
 
 def _record(pid: str, err, bound) -> float:
@@ -387,7 +389,7 @@ class Exact:
             self.rho[f] = float(max(self.metric.face_squared_lengths(f))) / (2 * a)
             for c in range(3):
                 self.cot[f, c] = float(self.metric.corner_cot(f, c))
-        self.beta = K_COT * EPS * (1 + self.cot ** 2) * self.rho[:, None]
+        self.beta = K_COT * eps() * (1 + self.cot ** 2) * self.rho[:, None]
         for e in range(t.n_edges):
             i, j = t.edge_vertices(e)
             if i == j:
@@ -401,7 +403,7 @@ class Exact:
                     B[x, y] += b
                     S[x, y] += m
                     cnt[x, y] += 1
-        self.B = B + cnt * EPS * S
+        self.B = B + cnt * eps() * S
         self.adjacent = cnt > 0
 
     @property
@@ -486,7 +488,7 @@ def energy_of_the_interpolant(impl, case: MeshCase):
     q = float(f @ (A @ f)) / 2
     exact = float(dirichlet_energy_pl(X.surface, list(case.values)))
     af = np.abs(f)
-    bound = 0.5 * af @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ af + EPS * abs(exact)
+    bound = 0.5 * af @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ af + eps() * abs(exact)
     err = abs(q - exact)
     r = _record("T3.6", err, bound)
     if r > 1:
@@ -505,7 +507,7 @@ def gradient_of_the_energy(impl, case: MeshCase):
     exact = float(directional_derivative(lambda g: dirichlet_energy_pl(X.surface, g), f, phi))
     ff, pf = np.array([float(x) for x in f]), np.array([float(x) for x in phi])
     got = float(pf @ (A @ ff))
-    bound = np.abs(pf) @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ np.abs(ff) + EPS * abs(exact)
+    bound = np.abs(pf) @ (X.B + gamma(2 * X.n + 2) * np.abs(A)) @ np.abs(ff) + eps() * abs(exact)
     r = _record("T3.1 / R3.2", abs(got - exact), bound)
     if r > 1:
         _fail("T3.1 / R3.2", impl, case, f"phi . (L f) is not dE(f + t phi)/dt at 0 ({r:.3g} x "
@@ -513,7 +515,7 @@ def gradient_of_the_energy(impl, case: MeshCase):
 
 
 def _eig_tol(X: Exact, A) -> float:
-    """Weyl: |lambda(A) - lambda(L)| <= ||A - L||_2 <= ||B||_F; eigvalsh adds ~ n EPS ||A||_F."""
+    """Weyl: |lambda(A) - lambda(L)| <= ||A - L||_2 <= ||B||_F; eigvalsh adds ~ n eps() ||A||_F."""
     return float(np.linalg.norm(X.B) + gamma(4 * X.n) * np.linalg.norm(A))
 
 
@@ -700,7 +702,7 @@ def _area_gradient_check(pid, impl, case):
     P = np.array([[float(x) for x in p] for p in case.positions])
     got = A @ P
     exact = np.array([[float(x) for x in g] for g in area_gradient(X.surface)])
-    bound = X.residual_bound(A, P) + EPS * np.abs(exact)
+    bound = X.residual_bound(A, P) + eps() * np.abs(exact)
     err = np.abs(got - exact)
     _record(pid, err, bound)
     (i, k), r = _worst(err, bound)
@@ -725,7 +727,7 @@ def area_as_dirichlet_energy(impl, case: MeshCase):
     area = float(X.metric.total_area())
     aP = np.abs(P)
     bound = 0.5 * sum(aP[:, k] @ (X.B + gamma(2 * X.n + 6) * np.abs(A)) @ aP[:, k]
-                      for k in range(3)) + EPS * area
+                      for k in range(3)) + eps() * area
     r = _record("T3.9", abs(energy - area), bound)
     if r > 1:
         _fail("T3.9", impl, case, f"sum_k E(x_k) is not the area ({r:.3g} x the bound)",
@@ -757,7 +759,7 @@ def minimal_surface_step_decreases_area(impl, case: MeshCase):
     # E_S(u) - E_S(u*) = 1/2 r^T L_II^-1 r <= |r|^2 / (2 lambda_min), r the exact residual
     lam = float(np.linalg.eigvalsh((AII + AII.T) / 2)[0])
     r = X.residual_bound(A, U)[I]
-    tol = (float(np.sum(r ** 2)) / lam if lam > 0 else np.inf) + 4 * EPS * before
+    tol = (float(np.sum(r ** 2)) / lam if lam > 0 else np.inf) + 4 * eps() * before
     ratio = _record("A3.6", max(after - before, 0.0), tol)
     if ratio > 1:
         _fail("A3.6", impl, case, "the area increased in one minimal surface step",
@@ -794,9 +796,9 @@ def vertex_areas_sum_to_the_area(impl, case: MeshCase):
             la, lb, ca, cb = adj[c]
             # either rule may be taken near a right angle; they agree there, so bound both
             vor = (la * X.beta[f, ca] + lb * X.beta[f, cb]
-                   + 8 * EPS * (la * abs(X.cot[f, ca]) + lb * abs(X.cot[f, cb]))) / 8
-            vb[face[c]] += vor + K_COT * EPS * X.rho[f] * a
-            bb[face[c]] += K_COT * EPS * X.rho[f] * a / 3
+                   + 8 * eps() * (la * abs(X.cot[f, ca]) + lb * abs(X.cot[f, cb]))) / 8
+            vb[face[c]] += vor + K_COT * eps() * X.rho[f] * a
+            bb[face[c]] += K_COT * eps() * X.rho[f] * a / 3
     checks = [("vertex_areas_voronoi", vertex_areas_voronoi, vb)]
     if callable(getattr(impl, "vertex_areas_barycentric", None)):
         checks.append(("vertex_areas_barycentric", vertex_areas_barycentric, bb))

@@ -31,7 +31,7 @@ from .exact import Surd, sqrt
 from .laplacian import cotan_laplacian, cotan_weighted_edges, metric_of_surface
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
-from .sparse import _normal
+from .sparse import _normal, exact_sum
 
 __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",
            "heron_partial_derivatives", "area_length_derivatives", "area_gradient_cotan",
@@ -220,11 +220,9 @@ def area_as_dirichlet_energy(surface: PolyhedralSurface):
     """
     s = _positions(surface)
     p = s.positions
-    acc = _ZERO
-    for i, j, w in cotan_weighted_edges(s):
-        if i != j:
-            acc = acc + w * _dot(_sub(p[i], p[j]), _sub(p[i], p[j]))
-    return _normal(acc / 2)
+    terms = [w * _dot(_sub(p[i], p[j]), _sub(p[i], p[j]))
+             for i, j, w in cotan_weighted_edges(s) if i != j]
+    return _normal(exact_sum(terms) / 2)
 
 
 def area_gradient(surface: PolyhedralSurface) -> list[tuple]:

@@ -39,7 +39,7 @@ from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .metric import PiecewiseFlatSurface, as_metric
 from .polyhedral import PolyhedralSurface
-from .sparse import SparseMatrix, _normal, exact_number
+from .sparse import SparseMatrix, _normal, exact_number, exact_sum
 
 __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weighted_edges",
            "cotan_laplacian", "dirichlet_energy_pl", "dirichlet_inner_product_pl",
@@ -94,12 +94,12 @@ def dirichlet_energy(weights, f: Sequence):
     """
     if isinstance(weights, SparseMatrix):
         return _normal(weights.quadratic_form(list(f)) / 2)
-    acc = _ZERO
+    terms = []
     for i, j, w in weights:
         d = f[i] - f[j]
         if d:
-            acc = acc + exact_number(w) * d * d
-    return _normal(acc / 2)
+            terms.append(exact_number(w) * d * d)
+    return _normal(exact_sum(terms) / 2)
 
 
 # --- (3.3): cotan weights and the cotan Laplacian ---------------------------------------
@@ -235,7 +235,7 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
     t = _triangulation(surface)
     if len(f) != t.n_vertices or len(g) != t.n_vertices:
         raise BadShape(f"functions of lengths {len(f)}, {len(g)} on {t.n_vertices} vertices")
-    acc = _ZERO
+    terms = []
     for face, (a, b, c) in enumerate(t.faces):
         u, v, (uu, uv, vv) = _face_gram(surface, face)
         det = uu * vv - uv * uv
@@ -251,8 +251,8 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
             dg1, dg2 = g[b] - g[a], g[c] - g[a]
             dot = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
         if dot:
-            acc = acc + area * dot
-    return _normal(acc)
+            terms.append(area * dot)
+    return exact_sum(terms)
 
 
 def dirichlet_energy_pl(surface, f: Sequence):

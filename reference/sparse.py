@@ -27,7 +27,7 @@ from .errors import BadShape, IndexOutOfRange
 from .exact.rationals import rational
 from .exact.surds import Surd
 
-__all__ = ["SparseMatrix", "exact_number"]
+__all__ = ["SparseMatrix", "exact_number", "exact_sum"]
 
 _ZERO = Fraction(0)
 
@@ -37,6 +37,25 @@ def _normal(v):
     if isinstance(v, Surd) and v.is_rational():
         return v.as_fraction()
     return v
+
+
+def exact_sum(values) -> object:
+    """The exact sum of Fractions and Surds, added as a balanced tree.
+
+    Adding Surds with different radicands merges their bases; adding n of them
+    one by one re-merges an ever larger base (cubic in n), pairwise it stays
+    near quadratic.  Returns a Fraction when the sum is rational.
+
+    >>> from reference.exact import sqrt
+    >>> exact_sum([sqrt(2), sqrt(3), -sqrt(2), Fraction(1, 2)])
+    Surd('1/2 + sqrt(3)')
+    >>> exact_sum([])
+    Fraction(0, 1)
+    """
+    xs = [x for x in values if x]
+    while len(xs) > 1:
+        xs = [xs[i] + xs[i + 1] if i + 1 < len(xs) else xs[i] for i in range(0, len(xs), 2)]
+    return _normal(xs[0]) if xs else _ZERO
 
 
 def exact_number(x, where: str = ""):
@@ -153,15 +172,8 @@ class SparseMatrix:
         n, m = self._shape
         if len(x) != m:
             raise BadShape(f"vector of length {len(x)} for a {n} x {m} matrix")
-        out = []
-        for i in range(n):
-            acc = _ZERO
-            for j, v in self._rows.get(i, {}).items():
-                xj = x[j]
-                if xj:
-                    acc = acc + v * xj
-            out.append(_normal(acc))
-        return out
+        return [exact_sum(v * x[j] for j, v in self._rows.get(i, {}).items() if x[j])
+                for i in range(n)]
 
     def quadratic_form(self, f: Sequence, g: Sequence | None = None):
         """``f^T A f`` (or ``f^T A g``) exactly."""
@@ -169,19 +181,15 @@ class SparseMatrix:
         n, m = self._shape
         if len(f) != n or len(g) != m:
             raise BadShape(f"vectors of lengths {len(f)}, {len(g)} for a {n} x {m} matrix")
-        acc = _ZERO
+        terms = []
         for i, row in self._rows.items():
             fi = f[i]
             if not fi:
                 continue
-            s = _ZERO
-            for j, v in row.items():
-                gj = g[j]
-                if gj:
-                    s = s + v * gj
+            s = exact_sum(v * g[j] for j, v in row.items() if g[j])
             if s:
-                acc = acc + fi * s
-        return _normal(acc)
+                terms.append(fi * s)
+        return exact_sum(terms)
 
     def submatrix(self, rows: Sequence[int], cols: Sequence[int]) -> "SparseMatrix":
         """The matrix restricted to ``rows`` x ``cols`` (renumbered in the given order)."""

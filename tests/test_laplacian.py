@@ -481,6 +481,13 @@ def test_exact_cotan_laplacian_of_1280_float_faces():
     assert lam[0] >= -s.n_vertices * eps * np.abs(lam).max()          # positive semidefinite
 
 
+def test_T3_6_exactly_on_a_320_face_float_mesh():
+    s = float_icosphere(levels=2)
+    rng = random.Random(3)
+    f = [Fraction(rng.randint(-9, 9), 8) for _ in range(s.n_vertices)]
+    assert dirichlet_energy(cotan_laplacian(s), f) == dirichlet_energy_pl(s, f)
+
+
 # --- properties: pass on the reference, catch planted bugs ---------------------------------------
 
 
