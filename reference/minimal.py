@@ -50,14 +50,16 @@ from typing import Sequence
 
 from .errors import InputError
 from .exact import Surd
-from .dirichlet import separates, solve_dirichlet
+from .delaunay import flip_to_delaunay, is_delaunay, laplace_beltrami
+from .dirichlet import neighbour_convex_combination, separates, solve_dirichlet
 from .laplacian import cotan_laplacian, metric_of_surface
 from .polyhedral import PolyhedralSurface
 from .sparse import _normal
 
 __all__ = ["minimal_surface_step", "area_decrease_certificate", "AreaDecrease",
            "area_enclosure", "minimal_surface_iteration", "MinimalSurfaceRun",
-           "figure_3_7_star"]
+           "figure_3_7_star", "is_minimal_wide", "is_minimal_narrow",
+           "delaunay_neighbour_hull", "delaunay_minimal_surface_step"]
 
 _ZERO = Fraction(0)
 
@@ -182,7 +184,8 @@ class AreaDecrease:
         return self.faces_ok and self.energy_ok
 
 
-def area_decrease_certificate(surface: PolyhedralSurface, new_positions) -> AreaDecrease:
+def area_decrease_certificate(surface: PolyhedralSurface, new_positions, *,
+                              domain=None) -> AreaDecrease:
     """Decide the chain ``A(f(S)) <= E_S(f) <= A(S)`` for a step S -> f(S) (A3.6).
 
     Works for any ``new_positions`` (the last link fails for a non-minimising
@@ -193,12 +196,21 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions) -> Area
     not move has ``E_T = A(T)`` exactly (T3.9 on one face), and ``f = id`` has
     ``E_S(f) = A(S)``; any other tie (a face mapped by a similarity) falls back
     to exact Surd arithmetic past ``PRECISION_CAP`` bits.
+
+    ``domain`` (A4.23): another triangulation of the same metric, a
+    :class:`~reference.metric.PiecewiseFlatSurface` (e.g. the intrinsic Delaunay
+    one); E is then the Dirichlet energy on ``domain`` and the new surface has
+    the combinatorics of ``domain``.  The shortcut "unmoved face: E_T = A(T)"
+    holds only on the surface's own triangulation, so every face is decided.
     """
-    m = metric_of_surface(surface)
+    own = domain is None
+    m = metric_of_surface(surface) if own else metric_of_surface(domain)
     t = m.triangulation
     old = surface.positions
     new = [tuple(p) for p in new_positions]
     moved = [tuple(p) != tuple(q) for p, q in zip(old, new)]
+    if not own:
+        moved = [True] * len(new)
     cots = [tuple(m.corner_cot(f, k) for k in range(3)) for f in range(t.n_faces)]
     before = m.total_area()
     faces_ok = True
@@ -227,8 +239,8 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions) -> Area
         if f not in energies:                             # unmoved: E_T = A(T) exactly
             energies[f] = _iv(m.areas[f], 64)
     energy = (sum(e[0] for e in energies.values()), sum(e[1] for e in energies.values()))
-    strict = any(moved)
-    if not strict:
+    strict = any(tuple(p) != tuple(q) for p, q in zip(old, new))
+    if own and not strict:
         energy_ok = True                                   # E_S(id) = A(S), T3.9
     else:
         energy_ok = None
@@ -355,3 +367,80 @@ def figure_3_7_star(spike: int = 3, shoulder: int = 2, lift: int = 1):
     new = minimal_surface_step(s)
     ok = separates((0, 0, -1), new[0], [new[j] for j in range(1, 6)])
     return s, new, ok
+
+
+# --- Simplicial minimal surfaces (II): section 4.5 -------------------------------------------------
+
+
+def _harmonic_off(L, surface: PolyhedralSurface, fixed) -> bool:
+    dim = len(surface.positions[0])
+    free = [v for v in range(surface.triangulation.n_vertices) if v not in set(fixed)]
+    for k in range(dim):
+        lap = L.matvec([p[k] for p in surface.positions])
+        if any(lap[v] for v in free):
+            return False
+    return True
+
+
+def is_minimal_wide(surface: PolyhedralSurface, fixed: Sequence[int] | None = None) -> bool:
+    """D4.9, wide sense: ``Lap f = 0`` off ``fixed`` (default: the boundary),
+    with Lap the discrete Laplace-Beltrami operator of the surface's metric (D4.8,
+    the cotan Laplacian of its intrinsic Delaunay triangulation).  Exact.
+
+    Only in the narrow sense is the surface a critical point of the area (R4.10):
+    a planar non-Delaunay mesh is minimal in the wide sense (linear precision of
+    the Delaunay triangulation of the same flat region), not in the narrow one.
+    """
+    fixed = _boundary_vertices(surface) if fixed is None else list(fixed)
+    return _harmonic_off(laplace_beltrami(surface), surface, fixed)
+
+
+def is_minimal_narrow(surface: PolyhedralSurface, fixed: Sequence[int] | None = None) -> bool:
+    """D4.9, narrow sense: the triangulation is Delaunay and ``Lap f = 0`` off
+    ``fixed``; then Lap is the cotan Laplacian of the surface itself.  Exact."""
+    if not is_delaunay(surface):
+        return False
+    fixed = _boundary_vertices(surface) if fixed is None else list(fixed)
+    return _harmonic_off(cotan_laplacian(surface), surface, fixed)
+
+
+def delaunay_neighbour_hull(surface: PolyhedralSurface, i: int) -> dict[int, object]:
+    """R4.10: ``{j: lambda_j}``, the convex combination ``f(i) = sum lambda_j f(j)``
+    over the neighbours j of i in the Delaunay tessellation, when f is harmonic
+    at i for the Laplace-Beltrami operator.
+
+    The weights are ``nu(ij) / sum nu`` of the Laplace-Beltrami operator, so
+    every lambda_j >= 0 (P4.10) and the j with lambda_j > 0 are exactly the
+    tessellation neighbours (R4.7); exact.  Whether f is harmonic at i is for the
+    caller to check (:func:`is_minimal_wide`).
+    """
+    return {j: w for j, w in neighbour_convex_combination(laplace_beltrami(surface), i).items()
+            if w}
+
+
+def delaunay_minimal_surface_step(surface: PolyhedralSurface, fixed: Sequence[int] | None = None,
+                                  *, term_limit: int | None = None):
+    """A4.23, one step: ``(T~, f~)`` with T~ an intrinsic Delaunay triangulation
+    of the surface's metric (A4.13) and f~ the positions with ``Lap_(S,T~) f~ = 0``
+    off ``fixed`` (default: the boundary), exact.  The new simplicial surface is
+    ``f~`` on the combinatorics of T~ (which may be non-regular).
+
+    The area does not increase (the notes state the algorithm; the proof is a
+    chain, decided by :func:`area_decrease_certificate` with ``domain=`` the
+    Delaunay metric):
+
+        A(f~(T~)) <= E_T~(f~) <= E_T~(f) <= 1/2 sum nu~ l~^2 = A(S)
+
+    per face area <= energy; f~ minimises E_T~ (T3.5); the Delaunay weights nu~
+    are >= 0 (P4.10) and each chord |f(i) - f(j)| is at most the intrinsic length
+    l~ of the edge ij of T~ (a path on S); the last equality is T3.9 (E2) on the
+    metric of T~.
+
+    Returns ``(delaunay_metric, new_positions)``.
+    """
+    if not isinstance(surface, PolyhedralSurface):
+        raise InputError("a minimal surface step moves vertices: pass a PolyhedralSurface")
+    fixed = _boundary_vertices(surface) if fixed is None else list(fixed)
+    delaunay, _ = flip_to_delaunay(metric_of_surface(surface))
+    values = {v: surface.positions[v] for v in fixed}
+    return delaunay, solve_dirichlet(cotan_laplacian(delaunay), values, term_limit=term_limit)
