@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference import curvature, laplacian
+from reference import curvature, delaunay, laplacian
 from reference.combinatorics import Triangulation
 from reference.exact.measures import surd_sum
 from reference.polyhedral import PolyhedralSurface
@@ -67,3 +67,20 @@ class ReferenceImplementation:
 
     def vertex_areas_voronoi(self, V, F):
         return np.array([float(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))])
+
+    # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + (c+1) % 3)
+    def is_locally_delaunay(self, V, F):
+        m = self._s(V, F).metric()
+        t = m.triangulation
+        return np.array([[delaunay.is_delaunay_edge(m, t.edge_of(3 * f + (c + 1) % 3))
+                          for c in range(3)] for f in range(t.n_faces)], dtype=bool)
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        return delaunay.laplace_beltrami(self._s(V, F)).to_scipy()
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        d, _ = delaunay.flip_to_delaunay(self._s(V, F).metric())
+        t = d.triangulation
+        l2 = [[float(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
+              for f in range(t.n_faces)]
+        return np.array(t.faces, dtype=np.int64), np.array(l2, dtype=float)

@@ -204,3 +204,29 @@ class Libigl:
         V, F = _arrays(V, F)
         M = igl.massmatrix(V, F, igl.MASSMATRIX_TYPE_VORONOI)
         return _pad(M.diagonal(), len(V)).astype(np.float64)
+
+    # chapter 4: intrinsic Delaunay.  libigl's per-face layouts already put in column c
+    # the edge opposite corner c (edge_lengths.h: columns [1,2], [2,0], [0,1]).
+    def is_locally_delaunay(self, V, F) -> np.ndarray:
+        """``igl.is_intrinsic_delaunay(igl.edge_lengths(V, F), F)``: per face, columns "23 31
+        12" (opposite corners 0, 1, 2); boundary edges True; an undirected vertex pair
+        shared by more than two faces is "by definition not Delaunay"
+        (is_intrinsic_delaunay.cpp), unchanged here.  Its test is cot a + cot b >= 0 with
+        cot from Fisher et al.'s half-angle tangent."""
+        V, F = _arrays(V, F)
+        return np.asarray(igl.is_intrinsic_delaunay(igl.edge_lengths(V, F), F), dtype=bool)
+
+    def intrinsic_delaunay_laplacian(self, V, F) -> scipy.sparse.csr_matrix:
+        """``-L`` of ``L, l, F2 = igl.intrinsic_delaunay_cotmatrix(V, F)`` (edge_lengths,
+        intrinsic_delaunay_triangulation, cotmatrix_intrinsic: the same sign and 1/2 as
+        cotmatrix)."""
+        V, F = _arrays(V, F)
+        L, _, _ = igl.intrinsic_delaunay_cotmatrix(V, F)
+        return scipy.sparse.csr_matrix(-L)
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        """``(F2, l**2)`` of ``igl.intrinsic_delaunay_triangulation(igl.edge_lengths(V, F), F)``:
+        libigl returns plain lengths; the protocol wants squared ones."""
+        V, F = _arrays(V, F)
+        l, F2, *_ = igl.intrinsic_delaunay_triangulation(igl.edge_lengths(V, F), F)
+        return np.asarray(F2, dtype=np.int64), np.asarray(l, dtype=float) ** 2

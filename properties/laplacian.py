@@ -146,6 +146,20 @@ def single_triangles(draw):
     return _case(pts, [(0, 1, 2)], f"triangle L={L}/4 apex=({a}/4, {h}/16, {z}/16)")
 
 
+def grid_faces(m: int, n: int, flips) -> list[tuple[int, int, int]]:
+    """Faces of the (m+1) x (n+1) vertex grid (vertex i (n+1) + j), square (i, j) split
+    along the diagonal chosen by ``flips[i n + j]``; every face positively oriented."""
+    faces = []
+    for i in range(m):
+        for j in range(n):
+            a, b = i * (n + 1) + j, (i + 1) * (n + 1) + j
+            if flips[i * n + j]:
+                faces += [(a, b, a + 1), (b, b + 1, a + 1)]
+            else:
+                faces += [(a, b, b + 1), (a, b + 1, a + 1)]
+    return faces
+
+
 @st.composite
 def planar_meshes(draw, heights: bool = False, min_size: int = 1, max_size: int = 3,
                   max_m: int | None = None):
@@ -166,14 +180,7 @@ def planar_meshes(draw, heights: bool = False, min_size: int = 1, max_size: int 
         for j in range(n + 1):
             dx, dy = jit[i * (n + 1) + j]
             pts.append((i + Fraction(dx, 16), j + Fraction(dy, 16), Fraction(zs[i * (n + 1) + j], 8)))
-    faces = []
-    for i in range(m):
-        for j in range(n):
-            a, b = i * (n + 1) + j, (i + 1) * (n + 1) + j
-            if flips[i * n + j]:
-                faces += [(a, b, a + 1), (b, b + 1, a + 1)]
-            else:
-                faces += [(a, b, b + 1), (a, b + 1, a + 1)]
+    faces = grid_faces(m, n, flips)
     kind = "jittered grid" if heights else "planar grid"
     return _case(pts, faces, f"{kind} {m}x{n}")
 
@@ -368,6 +375,50 @@ def weighted_graphs(draw, positive: bool = True, max_vertices: int = 7, connecte
 # --- the exact reference on a case, and the error model --------------------------------------------
 
 
+@dataclass
+class EntryBounds:
+    """Float views of the exact cotan corners of a metric and the entry bounds ``B`` of its
+    Laplacian (module docstring); ``amplification[f]`` scales the length perturbation
+    of face f (1 for lengths computed from coordinates; more after float flips, see
+    :mod:`properties.delaunay`)."""
+
+    cot: np.ndarray
+    rho: np.ndarray
+    beta: np.ndarray
+    B: np.ndarray
+    adjacent: np.ndarray
+
+
+def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
+    t = metric.triangulation
+    B = np.zeros((n, n))
+    S = np.zeros((n, n))
+    cnt = np.zeros((n, n))
+    cot = np.zeros((t.n_faces, 3))
+    rho = np.zeros(t.n_faces)
+    for f in range(t.n_faces):
+        a = float(metric.area(f))
+        rho[f] = float(max(metric.face_squared_lengths(f))) / (2 * a)
+        for c in range(3):
+            cot[f, c] = float(metric.corner_cot(f, c))
+    amp = np.ones(t.n_faces) if amplification is None else np.asarray(amplification, float)
+    beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        if i == j:
+            continue
+        for h in t.edge_halfedges(e):
+            if h < 0:
+                continue
+            f, c = h // 3, (h + 2) % 3
+            b, m = beta[f, c] / 2, abs(cot[f, c]) / 2
+            for x, y in ((i, j), (j, i), (i, i), (j, j)):
+                B[x, y] += b
+                S[x, y] += m
+                cnt[x, y] += 1
+    return EntryBounds(cot, rho, beta, B + cnt * eps() * S, cnt > 0)
+
+
 class Exact:
     """The exact reference on the floats of a case, with float views and entry bounds."""
 
@@ -379,32 +430,8 @@ class Exact:
         n = t.n_vertices
         self.L = cotan_laplacian(self.surface)
         self.Lf = np.array(self.L.to_dense_floats(), dtype=float).reshape(n, n)
-        B = np.zeros((n, n))
-        S = np.zeros((n, n))
-        cnt = np.zeros((n, n))
-        self.cot = np.zeros((t.n_faces, 3))
-        self.rho = np.zeros(t.n_faces)
-        for f in range(t.n_faces):
-            a = float(self.metric.area(f))
-            self.rho[f] = float(max(self.metric.face_squared_lengths(f))) / (2 * a)
-            for c in range(3):
-                self.cot[f, c] = float(self.metric.corner_cot(f, c))
-        self.beta = K_COT * eps() * (1 + self.cot ** 2) * self.rho[:, None]
-        for e in range(t.n_edges):
-            i, j = t.edge_vertices(e)
-            if i == j:
-                continue
-            for h in t.edge_halfedges(e):
-                if h < 0:
-                    continue
-                f, c = h // 3, (h + 2) % 3
-                b, m = self.beta[f, c] / 2, abs(self.cot[f, c]) / 2
-                for x, y in ((i, j), (j, i), (i, i), (j, j)):
-                    B[x, y] += b
-                    S[x, y] += m
-                    cnt[x, y] += 1
-        self.B = B + cnt * eps() * S
-        self.adjacent = cnt > 0
+        b = entry_bounds(self.metric, n)
+        self.cot, self.rho, self.beta, self.B, self.adjacent = b.cot, b.rho, b.beta, b.B, b.adjacent
 
     @property
     def n(self) -> int:

@@ -34,6 +34,16 @@ METHODS: dict[str, str] = {
     "vertex_areas_barycentric": "(n,) float array: one third of the area of each incident face",
     "vertex_areas_voronoi": "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, "
                             "obtuse-triangle rule)",
+    # chapter 4: intrinsic Delaunay (per-face layouts: column c is the edge opposite corner c)
+    "is_locally_delaunay": "(m, 3) bool array: the edge opposite corner c of face f is Delaunay "
+                           "in the mesh's own metric, cot a + cot b >= 0; boundary edges True (D4.4)",
+    "intrinsic_delaunay_laplacian": "(n, n) scipy.sparse: the cotan Laplacian (sign as "
+                                    "cotan_laplacian) of an intrinsic Delaunay triangulation of "
+                                    "the mesh's metric, same vertices: Laplace-Beltrami (D4.8)",
+    "intrinsic_delaunay_triangulation": "(F2, l2): (m, 3) int faces on the same vertices and "
+                                        "(m, 3) float squared lengths, l2[f, c] the edge opposite "
+                                        "corner c, of an intrinsic Delaunay triangulation of the "
+                                        "same metric (A4.13); F2 may have loops and multi-edges",
 }
 
 

@@ -81,7 +81,7 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
 
 
 #: Modules whose import registers properties, one per chapter topic.
-PROPERTY_MODULES = ("topology", "curvature", "laplacian")
+PROPERTY_MODULES = ("topology", "curvature", "laplacian", "delaunay")
 
 
 def all_properties() -> list[Property]:

@@ -52,3 +52,41 @@ class Float32Defects(ReferenceImplementation):
 class Float32DefectsDeclared(Float32Defects):
     name = "float32-defects-declared"
     machine_epsilon = 2.0 ** -23
+
+
+# --- chapter 4: intrinsic Delaunay -----------------------------------------------------------
+
+class NoFlips(ReferenceImplementation):
+    """Returns the cotan Laplacian of the input triangulation: forgets to flip."""
+
+    name = "delaunay-without-flips"
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        return self.cotan_laplacian(V, F)
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        l2 = np.stack([((V[F[:, (c + 1) % 3]] - V[F[:, (c + 2) % 3]]) ** 2).sum(1)
+                       for c in range(3)], axis=1)
+        return F, l2
+
+
+class OneSidedDelaunayTest(ReferenceImplementation):
+    """Tests only the angle in one of the two triangles: cot a >= 0 instead of cot a + cot b >= 0."""
+
+    name = "one-sided-delaunay-test"
+
+    def is_locally_delaunay(self, V, F):
+        import numpy as np
+        ang = self.corner_angles(V, F)
+        return np.cos(ang) >= 0
+
+
+class LaplaceBeltramiWithoutHalf(ReferenceImplementation):
+    """The Laplace-Beltrami weights cot a + cot b, without the 1/2."""
+
+    name = "laplace-beltrami-without-half"
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        return 2 * super().intrinsic_delaunay_laplacian(V, F)

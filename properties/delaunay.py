@@ -1,0 +1,506 @@
+"""Chapter 4 properties: intrinsic Delaunay triangulations and the Laplace-Beltrami operator.
+
+Protocol methods used (``properties/protocol.py``): ``cotan_laplacian``,
+``corner_angles``, ``is_locally_delaunay`` (per face and corner: is the edge
+opposite the corner locally Delaunay), ``intrinsic_delaunay_laplacian`` (the
+cotan Laplacian of an intrinsic Delaunay triangulation of the mesh's metric,
+reference sign: positive semidefinite) and ``intrinsic_delaunay_triangulation``
+(faces and squared lengths, ``l2[f, c]`` the edge opposite corner c).
+
+The truth is the exact reference on the very floats the implementation received
+(:class:`properties.laplacian.Exact`) and its exact flip algorithm
+(:func:`reference.delaunay.flip_to_delaunay`).
+
+Error model, derived and stated.  For the input triangulation: the corner bound
+``beta = K_COT eps (1 + cot^2) rho`` of :mod:`properties.laplacian`.  A float
+implementation that flips edges computes each new squared diagonal from the
+five squared lengths and two areas of its quadrilateral, in the reference's
+notation ``b + c - (e+b-a)(e+c-d)/(2e) + 8 A1 A2 / e``; to first order its
+relative error is at most ``cond = M / new`` times (the largest relative error
+of its inputs + a few roundings), with M the sum of the magnitudes of the terms.
+Replaying the reference's flip log gives each face of the Delaunay
+triangulation an amplification ``1 + sum of those chains`` that multiplies its
+corner bounds (:func:`flip_amplification`).  The implementation's own flip
+path may differ from the reference's at ties; there the two paths cross
+cocircular configurations, where the operator is continuous, so the model
+stays first-order right.  Each check reports its error in units of the bound.
+
+Exact ties (a cot sum exactly 0: the four points cocircular) accept either
+answer; near ties (the exact value within the bound of 0) answered the other
+way are not failures, since rounding decides them.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+from hypothesis import strategies as st
+
+from reference.curvature import corner_angles
+from reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
+from reference.intrinsic import flip
+from reference.laplacian import cotan_laplacian
+from reference.polyhedral import PolyhedralSurface
+
+from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _worst,
+                        any_meshes, closed_meshes, entry_bounds, gamma, grid_faces, jittered_grids,
+                        obtuse_fans, planar_meshes)
+from .protocol import eps
+from .registry import PropertyFailure, prop
+
+
+# --- the exact Delaunay operator on a case, with its error model ---------------------------------
+
+
+def _magnitude(m, e: int) -> float:
+    """cond = M / new of the closed flip formula for edge ``e`` of metric ``m`` (module doc)."""
+    t = m.triangulation
+    h, tw = t.edge_halfedges(e)
+    f, g = h // 3, tw // 3
+    Lf, Lg = m.face_squared_lengths(f), m.face_squared_lengths(g)
+    e2 = float(Lf[h % 3])
+    a, b = float(Lf[(h + 1) % 3]), float(Lf[(h + 2) % 3])
+    c, d = float(Lg[(tw + 1) % 3]), float(Lg[(tw + 2) % 3])
+    A1, A2 = float(m.areas[f]), float(m.areas[g])
+    M = b + c + abs((e2 + b - a) * (e2 + c - d)) / (2 * e2) + 8 * A1 * A2 / e2
+    return M, (f, g)
+
+
+def flip_amplification(metric, log):
+    """Replay a flip log of :func:`flip_to_delaunay`; return ``(delaunay, amplification)``
+    with ``amplification[f]`` the factor of face f's length perturbation (module doc)."""
+    m = metric
+    rel = [0.0] * m.triangulation.n_edges        # relative error of each squared length, in eps
+    for rec in log:
+        e = rec.edge
+        M, (f, g) = _magnitude(m, e)
+        t = m.triangulation
+        inputs = {t.edge_of(3 * x + c) for x in (f, g) for c in range(3)}
+        m = flip(m, e)
+        rel[e] = M / float(m.squared_lengths[e]) * (max(rel[x] for x in inputs) + 4)
+    t = m.triangulation
+    amp = [1 + max(rel[t.edge_of(3 * f + c)] for c in range(3)) for f in range(t.n_faces)]
+    return m, amp
+
+
+class DelaunayExact:
+    """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds."""
+
+    def __init__(self, case: MeshCase):
+        self.X = X = Exact(case)
+        self.delaunay, self.log = flip_to_delaunay(X.metric)
+        d, self.amplification = flip_amplification(X.metric, self.log)
+        assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
+        n = X.n
+        self.L = cotan_laplacian(self.delaunay)
+        self.Lf = np.array(self.L.to_dense_floats(), dtype=float).reshape(n, n)
+        self.bounds = entry_bounds(self.delaunay, n, self.amplification)
+        self.B = self.bounds.B
+        # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
+        # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, E4)
+        t = self.delaunay.triangulation
+        self.interior_pairs = np.zeros((n, n), dtype=bool)
+        boundary = np.zeros((n, n), dtype=bool)
+        for e in range(t.n_edges):
+            i, j = t.edge_vertices(e)
+            mask = boundary if t.is_boundary_edge(e) else self.interior_pairs
+            mask[i, j] = mask[j, i] = True
+        self.interior_pairs &= ~boundary
+
+
+def _matrix(impl, case: MeshCase, pid: str, method: str):
+    M = getattr(impl, method)(*case.arrays())
+    A = np.asarray(M.toarray() if hasattr(M, "toarray") else M, dtype=float)
+    if A.shape != (case.n, case.n):
+        _fail(pid, impl, case, f"{method} has the wrong shape", expected=(case.n, case.n),
+              observed=A.shape)
+    if not np.all(np.isfinite(A)):
+        _fail(pid, impl, case, f"{method} has non-finite entries")
+    return A
+
+
+def _compare(pid, impl, case, A, exact, B, what):
+    err = np.abs(A - exact)
+    _record(pid, err, B)
+    (i, j), r = _worst(err, B)
+    if r > 1:
+        _fail(pid, impl, case, f"{what} entry differs from the exact value by {r:.3g} x the "
+              f"bound {B[i, j]:.3g}", element=(int(i), int(j)), expected=float(exact[i, j]),
+              observed=float(A[i, j]))
+
+
+# --- strategies --------------------------------------------------------------------------------
+
+
+@st.composite
+def flipped_meshes(draw):
+    """A closed jittered polyhedron (or a grid in R^3) with up to 12 drawn combinatorial
+    flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
+    flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
+    from reference.errors import InputError
+    case = draw(st.one_of(closed_meshes(), jittered_grids()))
+    t = case.surface().triangulation
+    picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=12))
+    for k in picks:
+        e = k % t.n_edges
+        if t.is_boundary_edge(e):
+            continue
+        u = t.flip(e)
+        if not u.is_strongly_regular():
+            continue
+        try:
+            PolyhedralSurface(u, case.positions).metric()
+        except InputError:                          # a degenerate (collinear) new face
+            continue
+        t = u
+    return MeshCase(case.positions, tuple(t.faces), f"{case.recipe}, {len(picks)} flips drawn")
+
+
+def delaunay_meshes():
+    """Meshes that are often not Delaunay: obtuse fans, jittered grids (in the plane and
+    in R^3), closed jittered polyhedra, and those with random flips; shrinks towards a
+    single triangle."""
+    return st.one_of(any_meshes(), flipped_meshes())
+
+
+@st.composite
+def two_triangulations(draw):
+    """One jittered planar point grid, triangulated twice (each square's diagonal drawn
+    twice): two triangulations of the same flat metric with the same vertex set."""
+    c = draw(planar_meshes(min_size=1, max_size=3))
+    rows = [p for p in c.positions]
+    m = round(float(max(p[0] for p in rows)))
+    n = round(float(max(p[1] for p in rows)))
+    flips = draw(st.lists(st.booleans(), min_size=m * n, max_size=m * n))
+    other = MeshCase(c.positions, tuple(tuple(f) for f in grid_faces(m, n, flips)),
+                     c.recipe + " retriangulated")
+    return c, other
+
+
+def x42_tetrahedron():
+    """X4.2: a flat tetrahedron whose Delaunay triangulation has a vertex of valence 1."""
+    return st.just(_case([(0, 0, 0), (10, 0, 0), (0, 1, 0), (1, Fraction(1, 3), Fraction(1, 10))],
+                         [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)], "X4.2 tetrahedron"))
+
+
+def _interior_meshes():
+    """Meshes with interior vertices and boundary: grids in R^3 and fans."""
+    return st.one_of(jittered_grids(), obtuse_fans())
+
+
+# --- properties --------------------------------------------------------------------------------
+
+
+@prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
+      "cot a + cot b >= 0 on every edge (boundary edges are Delaunay); exact ties accept both",
+      needs={"is_locally_delaunay"}, strategy=delaunay_meshes)
+def locally_delaunay_edges(impl, case: MeshCase):
+    pid = "D4.4 / T4.7 / P4.9"
+    X = Exact(case)
+    t = X.triangulation
+    got = np.asarray(impl.is_locally_delaunay(*case.arrays()))
+    if got.shape != (t.n_faces, 3):
+        _fail(pid, impl, case, "is_locally_delaunay has the wrong shape",
+              expected=(t.n_faces, 3), observed=got.shape)
+    for f in range(t.n_faces):
+        for c in range(3):
+            h = 3 * f + (c + 1) % 3                 # the halfedge opposite corner c
+            e = t.edge_of(h)
+            want = is_delaunay_edge(X.metric, e)
+            if bool(got[f, c]) == want:
+                continue
+            hs = [x for x in t.edge_halfedges(e) if x >= 0]
+            s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
+            bound = sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
+            if abs(s) <= bound:
+                continue                            # an (exact or near) tie: rounding decides
+            _fail(pid, impl, case, f"edge {t.edge_vertices(e)} opposite corner {c} of face {f} "
+                  f"is {'' if want else 'not '}Delaunay (cot sum {s:.6g}, the bound {bound:.3g})",
+                  element=(f, c), expected=want, observed=bool(got[f, c]))
+
+
+@prop("P4.10", "the interior-edge cotan weights of the implementation's cotan_laplacian are all "
+      ">= 0 iff the triangulation is Delaunay: each weight's sign agrees with the exact one "
+      "(weights within the bound of 0 are ties)",
+      needs={"cotan_laplacian"}, strategy=delaunay_meshes)
+def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
+    A = _dense(impl, case, "P4.10")
+    X = Exact(case)
+    n = X.n
+    off = X.adjacent & ~np.eye(n, dtype=bool)
+    W, exact = -A, -X.Lf                            # weights: minus the off-diagonal entries
+    clear_neg = off & (exact < -X.B)
+    if np.any(clear_neg):                           # not Delaunay: some weight must be negative
+        i, j = np.argwhere(clear_neg)[0]
+        if W[i, j] >= 0:
+            _fail("P4.10", impl, case, "a non-Delaunay edge has a nonnegative weight",
+                  element=(int(i), int(j)), expected=float(exact[i, j]), observed=float(W[i, j]))
+    low = off & (W < -X.B) & (exact >= 0)
+    if np.any(low):
+        i, j = np.argwhere(low)[0]
+        _fail("P4.10", impl, case, "a Delaunay edge has a negative weight beyond the bound",
+              element=(int(i), int(j)), expected=float(exact[i, j]), observed=float(W[i, j]))
+
+
+@prop("D4.8 / R4.9", "intrinsic_delaunay_laplacian is the exact Laplace-Beltrami operator "
+      "(cotan Laplacian of the intrinsic Delaunay triangulation) within the derived bound; its "
+      "weights on interior edges are >= 0", needs={"intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
+def laplace_beltrami_operator(impl, case: MeshCase):
+    pid = "D4.8 / R4.9"
+    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    D = DelaunayExact(case)
+    neg = D.interior_pairs & (A > D.B)              # a weight -A_ij clearly below 0
+    if np.any(neg):
+        i, j = np.argwhere(neg)[0]
+        _fail(pid, impl, case, "negative weight in the Laplace-Beltrami operator",
+              element=(int(i), int(j)), expected=float(D.Lf[i, j]), observed=float(A[i, j]))
+    _compare(pid, impl, case, A, D.Lf, D.B, "Laplace-Beltrami")
+
+
+@prop("T4.5", "two triangulations of one planar point set (one flat metric) give the same "
+      "intrinsic Delaunay Laplacian: the Delaunay tessellation is unique",
+      needs={"intrinsic_delaunay_laplacian"}, strategy=two_triangulations)
+def unique_delaunay_operator(impl, pair):
+    c1, c2 = pair
+    A1 = _matrix(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
+    A2 = _matrix(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
+    B = DelaunayExact(c1).B + DelaunayExact(c2).B
+    err = np.abs(A1 - A2)
+    _record("T4.5", err, B)
+    (i, j), r = _worst(err, B)
+    if r > 1:
+        raise PropertyFailure("T4.5", impl, f"the operators of two triangulations of one point "
+                              f"set differ by {r:.3g} x the bound", mesh=(c1.mesh, c2.mesh[1]),
+                              element=(int(i), int(j)), expected=float(A1[i, j]),
+                              observed=float(A2[i, j]))
+
+
+@prop("T4.21", "L_T - L_Delaunay is positive semidefinite: the Delaunay triangulation minimises "
+      "the Dirichlet energy of every function (Weyl bound from both entry bounds)",
+      needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
+def delaunay_minimises_the_energy(impl, case: MeshCase):
+    L = _dense(impl, case, "T4.21")
+    D = _matrix(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
+    De = DelaunayExact(case)
+    M = (L - D + (L - D).T) / 2
+    lam = float(np.linalg.eigvalsh(M)[0])
+    tol = float(np.linalg.norm(De.X.B) + np.linalg.norm(De.B)
+                + gamma(4 * De.X.n) * (np.linalg.norm(L) + np.linalg.norm(D)))
+    _record("T4.21", max(-lam, 0.0), tol)
+    if lam < -tol:
+        _fail("T4.21", impl, case, f"L_T - L_Delaunay has the eigenvalue {lam:.6g} < -{tol:.3g}",
+              expected=">= 0", observed=lam)
+
+
+@prop("X4.2", "on the X4.2 tetrahedron (its Delaunay triangulation has a vertex of valence 1, a "
+      "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
+      needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
+def valence_one_vertex(impl, case: MeshCase):
+    A = _matrix(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
+    D = DelaunayExact(case)
+    if D.delaunay.triangulation.is_regular():
+        raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
+    _compare("X4.2", impl, case, A, D.Lf, D.B, "Laplace-Beltrami")
+
+
+@prop("L4.18", "h(T) = 8 sum_i E(phi_i) = 4 trace(L): the diagonal of cotan_laplacian sums to a "
+      "quarter of the exact harmonic index", needs={"cotan_laplacian"}, strategy=delaunay_meshes)
+def harmonic_index_is_the_trace(impl, case: MeshCase):
+    A = _dense(impl, case, "L4.18")
+    X = Exact(case)
+    exact = float(harmonic_index(X.metric))
+    got = 4 * float(np.trace(A))
+    bound = 4 * float(np.trace(X.B)) + gamma(X.n) * abs(got)
+    r = _record("L4.18", abs(got - exact), bound)
+    if r > 1:
+        _fail("L4.18", impl, case, f"4 trace(L) is not h(T) ({r:.3g} x the bound)",
+              expected=exact, observed=got)
+
+
+@prop("D4.7 / L4.17", "h(T) = sum (a^2 + b^2 + c^2) / A = 4 sum cot: from the implementation's "
+      "corner angles", needs={"corner_angles"}, strategy=delaunay_meshes)
+def harmonic_index_from_angles(impl, case: MeshCase):
+    X = Exact(case)
+    ang = np.asarray(impl.corner_angles(*case.arrays()), dtype=float)
+    got = float(4 * np.sum(1 / np.tan(ang)))
+    exact = float(harmonic_index(X.metric))
+    bound = 4 * float(np.sum(X.beta)) + gamma(ang.size) * 4 * float(np.sum(np.abs(X.cot)))
+    r = _record("D4.7 / L4.17", abs(got - exact), bound)
+    if r > 1:
+        _fail("D4.7 / L4.17", impl, case, f"4 sum cot(angles) is not h(T) ({r:.3g} x the bound)",
+              expected=exact, observed=got)
+
+
+def _triangulation_result(impl, case: MeshCase, pid: str):
+    """The implementation's (F2, l2) with shape checks and the triangle inequality."""
+    out = impl.intrinsic_delaunay_triangulation(*case.arrays())
+    F2, l2 = (np.asarray(x) for x in out)
+    m = len(case.faces)
+    if F2.shape != (m, 3) or l2.shape != (m, 3):
+        _fail(pid, impl, case, "intrinsic_delaunay_triangulation: wrong shapes",
+              expected=((m, 3), (m, 3)), observed=(F2.shape, l2.shape))
+    if F2.min() < 0 or F2.max() >= case.n or not np.all(np.isfinite(l2)) or np.any(l2 <= 0):
+        _fail(pid, impl, case, "intrinsic_delaunay_triangulation: bad indices or lengths")
+    return F2.astype(int), l2.astype(float)
+
+
+def _angles_from_squared_lengths(l2):
+    """Corner angles (law of cosines in atan2 form, stable) and doubled areas per face."""
+    a = np.sqrt(l2)
+    out = np.zeros_like(l2)
+    s = (a[:, 0] + a[:, 1] + a[:, 2]) / 2
+    area = np.sqrt(np.maximum(s * (s - a[:, 0]) * (s - a[:, 1]) * (s - a[:, 2]), 0))
+    for c in range(3):
+        o, p, q = l2[:, c], l2[:, (c + 1) % 3], l2[:, (c + 2) % 3]
+        out[:, c] = np.arctan2(4 * area, p + q - o)
+    return out, area
+
+
+@prop("A4.13", "intrinsic_delaunay_triangulation returns a triangulation of the same metric "
+      "(every vertex's angle sum and the total area unchanged) whose edges are all Delaunay",
+      needs={"intrinsic_delaunay_triangulation"}, strategy=delaunay_meshes)
+def flip_algorithm_result(impl, case: MeshCase):
+    pid = "A4.13"
+    F2, l2 = _triangulation_result(impl, case, pid)
+    D = DelaunayExact(case)
+    amp = max(D.amplification)
+    ang, area = _angles_from_squared_lengths(l2)
+    rho = l2.max(axis=1) / (2 * np.maximum(area, np.finfo(float).tiny))
+    cot = 1 / np.tan(ang)
+    beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
+    # angle sums: each corner angle moves by at most K_COT eps rho amp (module doc)
+    sums = np.zeros(case.n)
+    tol = np.zeros(case.n)
+    np.add.at(sums, F2.ravel(), ang.ravel())
+    np.add.at(tol, F2.ravel(), (K_COT * eps() * rho * amp)[:, None].repeat(3, 1).ravel())
+    exact = np.zeros(case.n)
+    np.add.at(exact, np.asarray(case.faces).ravel(),
+              np.array([[float(x) for x in face] for face in corner_angles(D.X.surface)]).ravel())
+    tol += np.array([K_COT * eps() * sum(D.X.rho[f] for f, face in enumerate(case.faces)
+                                          if v in face) for v in range(case.n)])
+    (v,), r = _worst(np.abs(sums - exact), tol)
+    _record(pid, np.abs(sums - exact), tol)
+    if r > 1:
+        _fail(pid, impl, case, f"the angle sum at vertex {v} changed ({r:.3g} x the bound): the "
+              "metric is not kept", element=v, expected=float(exact[v]), observed=float(sums[v]))
+    total, want = float(area.sum()), float(D.X.metric.total_area())
+    if abs(total - want) > K_COT * eps() * amp * float(np.sum(area * rho)) + gamma(len(area)) * total:
+        _fail(pid, impl, case, "the total area changed", expected=want, observed=total)
+    # Delaunay: pair the two corners opposite each unordered vertex pair used exactly twice
+    opposite: dict[tuple[int, int], list[tuple[int, int]]] = {}
+    for f, (i, j, k) in enumerate(F2):
+        for c, (x, y) in enumerate(((j, k), (k, i), (i, j))):
+            if x != y:
+                opposite.setdefault((min(x, y), max(x, y)), []).append((f, c))
+    for pair, corners in opposite.items():
+        if len(corners) != 2:
+            continue                                # boundary, or a multi-edge: ambiguous
+        s = sum(cot[f, c] for f, c in corners)
+        if s < -sum(beta[f, c] for f, c in corners) - 2 * eps() * abs(s):
+            _fail(pid, impl, case, f"edge {pair} of the result is not Delaunay (cot sum {s:.6g})",
+                  element=pair, expected=">= 0", observed=float(s))
+
+
+@prop("C4.19", "the harmonic index never increases under Delaunay flips: h of the "
+      "implementation's Delaunay triangulation <= h of the input, strictly when the reference "
+      "had to flip", needs={"intrinsic_delaunay_triangulation"}, strategy=delaunay_meshes)
+def harmonic_index_decreases(impl, case: MeshCase):
+    F2, l2 = _triangulation_result(impl, case, "C4.19")
+    D = DelaunayExact(case)
+    ang, _ = _angles_from_squared_lengths(l2)
+    h = float(4 * np.sum(1 / np.tan(ang)))
+    before = float(harmonic_index(D.X.metric))
+    after = float(D.log[-1].h_after) if D.log else before
+    bound = 4 * float(np.sum(D.bounds.beta)) + gamma(l2.size) * abs(h)
+    r = _record("C4.19", max(h - before, 0.0), bound)
+    if r > 1:
+        _fail("C4.19", impl, case, f"h increased from {before:.6g} to {h:.6g}",
+              expected=f"<= {before}", observed=h)
+    if after < before - 2 * bound and h >= before:
+        _fail("C4.19", impl, case, "the input is clearly not Delaunay, yet h did not decrease",
+              expected=after, observed=h)
+
+
+@prop("L4.20 / C4.13", "h(T) >= l(T)^2 / A (A the total area, l(T) the longest edge) on the "
+      "implementation's Delaunay triangulation", needs={"intrinsic_delaunay_triangulation"},
+      strategy=delaunay_meshes)
+def harmonic_index_bounds_the_longest_edge(impl, case: MeshCase):
+    F2, l2 = _triangulation_result(impl, case, "L4.20 / C4.13")
+    ang, area = _angles_from_squared_lengths(l2)
+    h = float(4 * np.sum(1 / np.tan(ang)))
+    lhs, A = float(l2.max()), float(area.sum())
+    D = DelaunayExact(case)
+    bound = (4 * float(np.sum(D.bounds.beta)) + gamma(l2.size) * abs(h)) * A + gamma(8) * lhs
+    if lhs - h * A > bound:
+        _fail("L4.20 / C4.13", impl, case, "the longest edge exceeds sqrt(h A)",
+              expected=f"l^2 <= {h * A}", observed=lhs)
+
+
+def _interior(case: MeshCase) -> np.ndarray:
+    from reference.combinatorics import Triangulation
+    t = Triangulation.from_faces(case.faces, n_vertices=case.n)
+    return np.array([not t.is_boundary_vertex(v) for v in range(case.n)])
+
+
+@prop("D4.9 / R4.10", "a flat mesh is minimal in the wide sense (Laplace-Beltrami of the "
+      "coordinates = 0 at interior vertices) and every interior vertex is a convex combination "
+      "of its Delaunay neighbours", needs={"intrinsic_delaunay_laplacian"},
+      strategy=lambda: planar_meshes(min_size=2))
+def flat_meshes_are_minimal(impl, case: MeshCase):
+    pid = "D4.9 / R4.10"
+    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    D = DelaunayExact(case)
+    V, _ = case.arrays()
+    inner = _interior(case)
+    got = A @ V
+    bound = (D.B + gamma(3 * D.X.n) * np.abs(A)) @ np.abs(V)
+    err = np.where(inner[:, None], np.abs(got), 0)
+    (v, k), r = _worst(err, bound)
+    _record(pid, err, bound)
+    if r > 1:
+        _fail(pid, impl, case, f"(L x)({v}) is not 0 at an interior vertex ({r:.3g} x the bound)",
+              element=(int(v), int(k)), expected=0.0, observed=float(got[v, k]))
+    off = ~np.eye(D.X.n, dtype=bool) & inner[:, None]
+    neg = off & (A > D.B)
+    if np.any(neg):
+        i, j = np.argwhere(neg)[0]
+        _fail(pid, impl, case, "a negative convex weight: the vertex may leave the hull of its "
+              "Delaunay neighbours", element=(int(i), int(j)), expected=float(D.Lf[i, j]),
+              observed=float(A[i, j]))
+
+
+@prop("A4.23", "one minimal-surface step with the intrinsic Laplace-Beltrami operator (boundary "
+      "fixed) does not increase the Dirichlet energy above the area: E(x~) <= E(x) <= A(S)",
+      needs={"intrinsic_delaunay_laplacian"}, strategy=_interior_meshes)
+def delaunay_minimal_surface_step(impl, case: MeshCase):
+    pid = "A4.23"
+    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    D = DelaunayExact(case)
+    V, _ = case.arrays()
+    inner = _interior(case)
+    if not inner.any():
+        return
+    I, Bd = np.flatnonzero(inner), np.flatnonzero(~inner)
+    new = V.copy()
+    new[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, Bd)] @ V[Bd])
+    area = float(D.X.metric.total_area())
+
+    def energy(P):
+        return 0.5 * float(sum(P[:, k] @ A @ P[:, k] for k in range(3)))
+
+    def slack(P):
+        aP = np.abs(P)
+        return 0.5 * float(sum(aP[:, k] @ (D.B + gamma(2 * D.X.n + 6) * np.abs(A)) @ aP[:, k]
+                               for k in range(3)))
+
+    e_old, e_new = energy(V), energy(new)
+    tol_old = slack(V) + eps() * area
+    r = _record(pid, max(e_old - area, 0.0), tol_old)
+    if r > 1:
+        _fail(pid, impl, case, f"E(x) = {e_old:.9g} exceeds the area {area:.9g} ({r:.3g} x the "
+              "bound): a negative Delaunay weight or a wrong factor", expected=f"<= {area}",
+              observed=e_old)
+    if e_new > e_old + slack(new) + slack(V):
+        _fail(pid, impl, case, "the harmonic step increased the energy", expected=f"<= {e_old}",
+              observed=e_new)

@@ -1,0 +1,85 @@
+"""Chapter 4 properties: the reference passes them, planted bugs are caught and shrink."""
+
+from fractions import Fraction
+
+import pytest
+
+from oracles.exact_reference import ReferenceImplementation
+from properties import laplacian as props
+from properties.delaunay import flip_amplification
+from properties.profiles import profile
+from properties.registry import PROPERTIES, all_properties
+from properties.runner import FAILED, PASSED, run_property
+from reference import surfaces
+from reference.delaunay import flip_to_delaunay, is_delaunay
+from reference.intrinsic import flip
+from reference.laplacian import cotan_weights
+from reference.polyhedral import PolyhedralSurface
+
+from tests.planted_bugs import LaplaceBeltramiWithoutHalf, NoFlips, OneSidedDelaunayTest
+
+all_properties()
+CHAPTER4 = sorted(p for p in PROPERTIES if p[1] == "4" or "4." in p)
+
+
+def test_every_chapter4_property_is_registered():
+    assert {"D4.4 / T4.7 / P4.9", "P4.10", "D4.8 / R4.9", "T4.5", "T4.21", "X4.2", "L4.18",
+            "D4.7 / L4.17", "A4.13", "C4.19", "L4.20 / C4.13", "D4.9 / R4.10",
+            "A4.23"} <= set(CHAPTER4)
+
+
+@pytest.mark.parametrize("pid", CHAPTER4)
+def test_reference_passes_chapter4_property(pid):
+    props.ERROR_RATIOS.pop(pid, None)
+    r = run_property(PROPERTIES[pid], ReferenceImplementation(), profile("default"))
+    assert r.status == PASSED, r.failure or r.error
+    assert r.examples > 0
+    # correctly rounded float views stay far inside every derived bound
+    assert props.ERROR_RATIOS.get(pid, 0.0) < 0.05
+
+
+def _caught(pid, impl, max_faces):
+    r = run_property(PROPERTIES[pid], impl, profile("ci"))
+    assert r.status == FAILED, f"{impl.name} was not caught by {pid}"
+    assert r.failure.property_id == pid
+    mesh = r.failure.mesh
+    F = mesh[1]
+    assert len(F) <= max_faces, f"counterexample did not shrink: {len(F)} faces"
+    return r
+
+
+def test_forgetting_to_flip_is_caught_on_a_few_faces():
+    _caught("D4.8 / R4.9", NoFlips(), 4)
+    _caught("A4.13", NoFlips(), 4)
+    _caught("T4.5", NoFlips(), 8)
+
+
+def test_a_one_sided_delaunay_test_is_caught():
+    r = _caught("D4.4 / T4.7 / P4.9", OneSidedDelaunayTest(), 4)
+    assert r.failure.expected is True and r.failure.observed is False
+
+
+def test_laplace_beltrami_without_half_is_caught_on_one_triangle():
+    r = _caught("D4.8 / R4.9", LaplaceBeltramiWithoutHalf(), 1)
+    assert abs(r.failure.observed) == pytest.approx(2 * abs(r.failure.expected), rel=1e-12)
+    _caught("A4.23", LaplaceBeltramiWithoutHalf(), 8)       # E(x) = 2 A > A
+
+
+def test_E4_boundary_weight_of_a_delaunay_triangle_is_negative():
+    s = PolyhedralSurface.from_arrays([(0, 0), (4, 0), (2, 1)], [(0, 1, 2)])
+    assert is_delaunay(s)
+    t = s.triangulation
+    long_edge = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {0, 1})
+    assert cotan_weights(s)[long_edge] == Fraction(-3, 8)
+
+
+def test_flip_amplification_replays_the_log():
+    m = surfaces.grid(3, 3).metric()
+    for e in (5, 9, 14):
+        if not m.triangulation.is_boundary_edge(e):
+            m = flip(m, e)
+    d, log = flip_to_delaunay(m)
+    replayed, amp = flip_amplification(m, log)
+    assert replayed.squared_lengths == d.squared_lengths
+    assert len(amp) == d.triangulation.n_faces and min(amp) >= 1
+    assert (max(amp) > 1) == bool(log)                      # only flipped faces are amplified
