@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import importlib
+import os
+import sys
 
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
 BUILTIN: dict[str, str] = {
@@ -26,6 +28,9 @@ def load_implementation(spec: str):
     if not sep or not module or not qual:
         raise ImplementationNotFound(
             f"unknown implementation {spec!r}: use one of {', '.join(BUILTIN)} or module:object")
+    if spec not in BUILTIN and os.getcwd() not in sys.path:
+        # like `python -m` and pytest: the user's own modules resolve from where they run
+        sys.path.insert(0, os.getcwd())
     try:
         obj = importlib.import_module(module)
         for part in qual.split("."):
