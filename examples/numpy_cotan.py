@@ -3,7 +3,8 @@
     ddg-oracle check --impl examples.numpy_cotan:NumpyCotan
     pytest --ddg-impl examples.numpy_cotan:NumpyCotan
 
-The planted variants below are the bugs people write; the tests show that each is
+The planted variants below are the bugs people write (sign, boundary factor, wrong
+corner, an absolute threshold that breaks on small meshes); the tests show that each is
 caught, with a counterexample that shrinks to a triangle or two.
 """
 
@@ -13,7 +14,7 @@ import scipy.sparse as sp
 
 class NumpyCotan:
     name = "numpy-cotan"
-    sign, boundary_half, swap = 1.0, True, False
+    sign, boundary_half, swap, guard = 1.0, True, False, 0.0
 
     def cotan_laplacian(self, V, F):
         V, F = np.asarray(V, float), np.asarray(F)
@@ -23,7 +24,8 @@ class NumpyCotan:
             u, v = V[i] - V[k], V[j] - V[k]
             if self.swap:                        # bug: the angle at i instead of at k
                 u, v = V[k] - V[i], V[j] - V[i]
-            cot = (u * v).sum(1) / np.linalg.norm(np.cross(u, v), axis=1)
+            # bug when guard > 0: a "safe" division with an absolute threshold
+            cot = (u * v).sum(1) / np.maximum(np.linalg.norm(np.cross(u, v), axis=1), self.guard)
             rows += [i, j]
             cols += [j, i]
             vals += [cot / 2, cot / 2]
@@ -47,3 +49,7 @@ class BoundaryWithoutHalf(NumpyCotan):
 
 class WrongCorner(NumpyCotan):
     name, swap = "numpy-cotan-wrong-corner", True
+
+
+class AbsoluteThreshold(NumpyCotan):
+    name, guard = "numpy-cotan-absolute-threshold", 1e-12

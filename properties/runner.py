@@ -50,7 +50,9 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None)
         return Result(p.id, p.name, name, NOT_APPLICABLE)
     state = {"n": 0, "last": None}
 
-    @settings
+    # one failure per property, the shrunk one: several distinct failures would come
+    # back as an ExceptionGroup and read as a crash
+    @Settings(settings, report_multiple_bugs=False)
     @given(p.strategy())
     def run(example):
         # Hypothesis replays the shrunk example last, so "last" is minimal.

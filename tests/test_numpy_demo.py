@@ -7,7 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from examples.numpy_cotan import BoundaryWithoutHalf, NumpyCotan, SignError, WrongCorner
+from examples.numpy_cotan import (AbsoluteThreshold, BoundaryWithoutHalf, NumpyCotan, SignError,
+                                  WrongCorner)
 from properties import check_implementation
 from properties.profiles import profile
 from properties.registry import PROPERTIES
@@ -26,6 +27,7 @@ def test_the_obvious_numpy_implementation_passes_in_one_line():
     (SignError, ["D3.1", "T3.6", "L4.18"]),
     (BoundaryWithoutHalf, ["D3.1", "T3.9"]),
     (WrongCorner, ["D3.1", "E3.12"]),
+    (AbsoluteThreshold, ["D3.1"]),                          # on a mesh scaled by 2**-64
 ])
 def test_each_planted_bug_is_caught_with_a_counterexample_of_a_few_faces(bug, pids):
     for pid in pids:
