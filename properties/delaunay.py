@@ -46,6 +46,7 @@ from reference.polyhedral import PolyhedralSurface
 from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _worst,
                         any_meshes, closed_meshes, entry_bounds, gamma, grid_faces, jittered_grids,
                         obtuse_fans, planar_meshes)
+from .metrics import polycube_surfaces
 from .protocol import eps
 from .registry import PropertyFailure, prop
 
@@ -139,7 +140,8 @@ def flipped_meshes(draw):
     flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
     flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
     from reference.errors import InputError
-    case = draw(st.one_of(closed_meshes(), jittered_grids()))
+    case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
+        lambda s: _case(s.positions, s.triangulation.faces, "polycube"))))
     t = case.surface().triangulation
     picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=12))
     for k in picks:

@@ -25,6 +25,7 @@ from reference.errors import InputError
 from reference.exact import corner_angle
 from reference.intrinsic import cot_sum, flip, is_flippable
 from reference.laplacian import cotan_laplacian, cotan_weights
+from properties.metrics import flat_torus
 from reference.metric import PiecewiseFlatSurface, metric_of
 
 SETTINGS = settings(max_examples=40, deadline=None, database=None,
@@ -35,33 +36,6 @@ vec = st.tuples(st.fractions(-3, 3, max_denominator=3), st.fractions(-3, 3, max_
 
 
 # --- helpers ----------------------------------------------------------------------------
-
-
-def flat_torus(m, n, u=(1, 0), v=(0, 1)):
-    """The flat torus R^2 / (m u Z + n v Z), an m x n grid of parallelograms split by
-    diagonals; exact rational squared lengths and areas."""
-    u = tuple(Fraction(x) for x in u)
-    v = tuple(Fraction(x) for x in v)
-
-    def vid(i, j):
-        return (i % m) * n + (j % n)
-
-    faces, pts = [], []
-    for i in range(m):
-        for j in range(n):
-            faces += [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1)),
-                      (vid(i, j), vid(i + 1, j + 1), vid(i, j + 1))]
-            pts += [((i, j), (i + 1, j), (i + 1, j + 1)), ((i, j), (i + 1, j + 1), (i, j + 1))]
-    t = Triangulation.from_faces(faces, m * n)
-    sq = [None] * t.n_edges
-    for f, p in enumerate(pts):
-        for c in range(3):
-            (a, b), (x, y) = p[c], p[(c + 1) % 3]
-            dx, dy = x - a, y - b
-            w = (dx * u[0] + dy * v[0], dx * u[1] + dy * v[1])
-            sq[t.edge_of(3 * f + c)] = w[0] ** 2 + w[1] ** 2
-    area = abs(u[0] * v[1] - u[1] * v[0]) / 2
-    return PiecewiseFlatSurface(t, sq, [area] * t.n_faces)
 
 
 def random_flips(m, rng, k):

@@ -1,0 +1,140 @@
+"""Rational-metric surfaces: every squared length and every face area is rational, so every
+chapter-4 quantity (flips, cotangents, harmonic index, Laplace-Beltrami) is exact Fraction
+arithmetic on them, and cocircular ties are everywhere.
+
+* :func:`flat_torus` / :func:`flat_tori`: R^2 modulo a rational lattice, an m x n grid of
+  parallelograms split by diagonals (a piecewise flat surface, not embedded).
+* :func:`polycube` / :func:`polycube_surfaces`: the boundary of a union of unit cubes in
+  a 3 x (2g + 1) slab with g holes, every unit square split along a drawn diagonal: an
+  embedded surface of genus g with integer vertices (usable by any implementation).
+* :func:`randomly_flipped`: a metric after drawn intrinsic flips (non-Delaunay, and in
+  time non-regular: loops, double edges).
+
+Strategies draw small integers and build the surface, so failures shrink.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from hypothesis import strategies as st
+
+from reference.combinatorics import Triangulation
+from reference.intrinsic import flip, is_flippable
+from reference.metric import PiecewiseFlatSurface
+from reference.polyhedral import PolyhedralSurface
+
+__all__ = ["flat_torus", "flat_tori", "polycube", "polycube_surfaces", "randomly_flipped"]
+
+
+def flat_torus(m: int, n: int, u=(1, 0), v=(0, 1)) -> PiecewiseFlatSurface:
+    """The flat torus R^2 / (m u Z + n v Z), an m x n grid (m, n >= 3, so the grid is a
+    regular triangulation) of parallelograms spanned by u, v split by diagonals; exact
+    rational squared lengths and areas |u x v| / 2."""
+    u = tuple(Fraction(x) for x in u)
+    v = tuple(Fraction(x) for x in v)
+    area = abs(u[0] * v[1] - u[1] * v[0]) / 2
+    if area == 0 or m < 3 or n < 3:
+        raise ValueError(f"need independent u, v and m, n >= 3; got {u}, {v}, {m} x {n}")
+
+    def vid(i, j):
+        return (i % m) * n + (j % n)
+
+    faces, corners = [], []
+    for i in range(m):
+        for j in range(n):
+            faces += [(vid(i, j), vid(i + 1, j), vid(i + 1, j + 1)),
+                      (vid(i, j), vid(i + 1, j + 1), vid(i, j + 1))]
+            corners += [((i, j), (i + 1, j), (i + 1, j + 1)), ((i, j), (i + 1, j + 1), (i, j + 1))]
+    t = Triangulation.from_faces(faces, m * n)
+    sq = [None] * t.n_edges
+    for f, p in enumerate(corners):
+        for c in range(3):
+            (a, b), (x, y) = p[c], p[(c + 1) % 3]
+            dx, dy = x - a, y - b
+            w = (dx * u[0] + dy * v[0], dx * u[1] + dy * v[1])
+            sq[t.edge_of(3 * f + c)] = w[0] ** 2 + w[1] ** 2
+    return PiecewiseFlatSurface(t, sq, [area] * t.n_faces)
+
+
+_vec = st.tuples(st.integers(-2, 3), st.integers(-2, 3))
+
+
+@st.composite
+def flat_tori(draw, max_size: int = 4):
+    """A flat torus from a drawn rational lattice (integer vectors over a drawn
+    denominator) and grid size; shrinks to the square 3 x 3 torus."""
+    m, n = draw(st.integers(3, max_size)), draw(st.integers(3, max_size))
+    d = draw(st.integers(1, 3))
+    u = draw(_vec.filter(lambda w: w != (0, 0)))
+    v = draw(_vec.filter(lambda w: u[0] * w[1] - u[1] * w[0] != 0))
+    return flat_torus(m, n, (Fraction(u[0], d), Fraction(u[1], d)),
+                      (Fraction(v[0], d), Fraction(v[1], d)))
+
+
+_FACES = (  # the unit square of each cube face, outward counterclockwise: (axis, side, corners)
+    (0, 0, ((0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0))),
+    (0, 1, ((1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1))),
+    (1, 0, ((0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1))),
+    (1, 1, ((0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0))),
+    (2, 0, ((0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0))),
+    (2, 1, ((0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1))),
+)
+
+
+def polycube(genus: int, diagonals=()) -> PolyhedralSurface:
+    """The boundary of the cubes ``[x, x+1] x [y, y+1] x [0, 1]`` for 0 <= x <= 2g,
+    0 <= y <= 2, except the holes (2i + 1, 1): a closed embedded surface of genus g with
+    integer vertices (g = 0: the 1 x 3 x 1 block, x = 0 only).
+
+    Every unit square is split along one of its diagonals, ``diagonals[k]`` (bool,
+    cycled; default False) for the k-th square; all faces are right isosceles
+    triangles of area 1/2, and each square's diagonal is exactly cocircular (weight 0).
+    """
+    if genus < 0:
+        raise ValueError(f"genus must be >= 0, got {genus}")
+    width = 2 * genus + 1 if genus else 1
+    cells = {(x, y) for x in range(width) for y in range(3)} - {(2 * i + 1, 1) for i in range(genus)}
+    index: dict[tuple, int] = {}
+    faces = []
+    k = 0
+    for (x, y) in sorted(cells):
+        for axis, side, quad in _FACES:
+            step = [0, 0, 0]
+            step[axis] = 1 if side else -1
+            if (x + step[0], y + step[1]) in cells and step[2] == 0:
+                continue                              # shared with a neighbouring cube
+            ids = []
+            for p in quad:
+                key = (x + p[0], y + p[1], p[2])
+                ids.append(index.setdefault(key, len(index)))
+            a, b, c, d = ids
+            flipped = bool(diagonals[k % len(diagonals)]) if diagonals else False
+            k += 1
+            faces += [(a, b, c), (a, c, d)] if not flipped else [(a, b, d), (b, c, d)]
+    positions = sorted(index, key=index.get)
+    return PolyhedralSurface.from_arrays(positions, faces)
+
+
+@st.composite
+def polycube_surfaces(draw, max_genus: int = 2):
+    """A :func:`polycube` of drawn genus with drawn diagonals; shrinks to the genus-0 block."""
+    g = draw(st.integers(0, max_genus))
+    diagonals = draw(st.lists(st.booleans(), min_size=1, max_size=64))
+    return polycube(g, diagonals)
+
+
+def randomly_flipped(metrics, max_flips: int = 40):
+    """``metrics`` (a strategy of piecewise flat surfaces) after up to ``max_flips`` drawn
+    intrinsic flips (L2.8; non-flippable draws are skipped): still rational, usually not
+    Delaunay, and after enough flips not regular."""
+    @st.composite
+    def build(draw):
+        m = draw(metrics)
+        picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=max_flips))
+        for k in picks:
+            e = k % m.triangulation.n_edges
+            if is_flippable(m, e):
+                m = flip(m, e)
+        return m
+    return build()

@@ -1,0 +1,56 @@
+"""Rational-metric strategies: flat tori, polycube surfaces, random intrinsic flips."""
+
+from fractions import Fraction
+
+from hypothesis import given, settings
+
+from properties.metrics import flat_tori, polycube, polycube_surfaces, randomly_flipped
+from reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay, laplace_beltrami
+from reference.exact import Surd
+from reference.laplacian import cotan_weights
+
+
+def _rational(x):
+    return isinstance(x, Fraction) or (isinstance(x, Surd) and x.is_rational())
+
+
+@settings(max_examples=20, deadline=None)
+@given(polycube_surfaces(max_genus=3))
+def test_polycubes_have_the_genus_they_are_built_with_and_rational_metrics(s):
+    t = s.triangulation
+    c = t.classify()
+    assert c.orientable and c.boundary_components == 0
+    assert t.euler_characteristic() == 2 - 2 * c.genus
+    m = s.metric()
+    assert all(a == Fraction(1, 2) for a in m.areas)               # right isosceles halves
+    assert all(x in (1, 2) for x in m.squared_lengths)
+    assert is_delaunay(m)                                           # every square is cocircular
+    assert sorted(set(cotan_weights(m).values())) == [0, Fraction(1, 2)]
+
+
+def test_polycube_genus_sequence():
+    assert [polycube(g).triangulation.classify().genus for g in range(4)] == [0, 1, 2, 3]
+
+
+@settings(max_examples=15, deadline=None)
+@given(randomly_flipped(flat_tori(), max_flips=30))
+def test_flipped_flat_tori_stay_rational_and_flat(m):
+    assert all(_rational(x) for x in m.squared_lengths) and all(_rational(a) for a in m.areas)
+    d, log = flip_to_delaunay(m)
+    assert is_delaunay(d) and all(_rational(x) for x in d.squared_lengths)
+    assert all(r.h_after < r.h_before for r in log)                 # C4.19 on every flip
+    assert _rational(harmonic_index(d))
+    L = laplace_beltrami(m)
+    n = m.triangulation.n_vertices
+    assert all(_rational(L[i, j]) for i in range(n) for j in range(n))
+
+
+@settings(max_examples=8, deadline=None)
+@given(randomly_flipped(polycube_surfaces(max_genus=1).map(lambda s: s.metric()), max_flips=30))
+def test_flipped_polycubes_return_to_the_same_operator(m):
+    d, _ = flip_to_delaunay(m)
+    assert is_delaunay(d)
+    # R4.9: one Laplace-Beltrami operator, whatever triangulation the metric came in
+    t = m.triangulation
+    g = polycube(1 if t.n_vertices == 32 else 0)
+    assert laplace_beltrami(m) == laplace_beltrami(g.metric())
