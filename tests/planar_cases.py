@@ -107,5 +107,19 @@ def is_convex_ccw(pts) -> bool:
     return all(orientation(pts[i - 1], pts[i], pts[(i + 1) % 4]) > 0 for i in range(4))
 
 
-integer_quadrilaterals = st.lists(st.tuples(small, small), min_size=4, max_size=4).filter(
-    is_convex_ccw)
+def counterclockwise(pts) -> list:
+    """The points sorted counterclockwise around the lowest one (exact comparisons)."""
+    low = min(pts, key=lambda p: (p[1], p[0]))
+    rest = [p for p in pts if p != low]
+    for i in range(len(rest)):            # insertion sort by the orientation around low
+        j = i
+        while j > 0 and orientation(low, rest[j - 1], rest[j]) < 0:
+            rest[j - 1], rest[j] = rest[j], rest[j - 1]
+            j -= 1
+    return [low] + rest
+
+
+#: strictly convex counterclockwise quadrilaterals with small integer vertices (any
+#: four points in convex position, put in counterclockwise order)
+integer_quadrilaterals = st.lists(st.tuples(small, small), min_size=4, max_size=4,
+                                  unique=True).map(counterclockwise).filter(is_convex_ccw)

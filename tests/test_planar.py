@@ -370,6 +370,20 @@ def test_T4_2_precise_statement(pts, c, rho):
     assert same == (not inversion_obstructions(pts, c))
 
 
+@given(st.integers(3, 4), st.lists(st.tuples(st.integers(-2, 5), st.integers(1, 4)), min_size=1,
+                                   max_size=3, unique=True),
+       st.tuples(st.fractions(-8, 8, max_denominator=2), st.fractions(-8, 8, max_denominator=2)))
+def test_T4_2_precise_statement_with_points_on_a_hull_line(k, above, c):
+    """As above, with k >= 3 points on the hull line y = 0 (the "supporting line" case)."""
+    pts = [(i, 0) for i in range(k)] + above
+    assume(c not in [tuple(Fraction(x) for x in p) for p in pts])
+    image = _images(pts, c, 1)
+    same = delaunay_tessellation(pts) == delaunay_tessellation(image)
+    obstructions = inversion_obstructions(pts, c)
+    assert same == (not obstructions)
+    assert (("supporting line", frozenset(range(k))) in obstructions) == (c[1] > 0)
+
+
 def _changes(pts, c):
     d, d_image = delaunay_tessellation(pts), delaunay_tessellation(inversion(pts, c))
     return sorted(sorted(x) for x in d), sorted(sorted(x) for x in d_image)
