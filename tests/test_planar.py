@@ -23,7 +23,7 @@ from reference.errors import (BadInversion, BadQuadrilateral, BadShape, Collinea
                               InputError, RepeatedPoint, TooFewPoints)
 from reference.exact import sqrt
 from reference.laplacian import cotan_laplacian, dirichlet_energy, dirichlet_energy_pl
-from reference.planar import (all_triangulations, angle_criterion, as_point_set, cell_boundary,
+from reference.planar import (all_triangulations, angle_criterion, cell_boundary,
                               cells_avoiding, circle_position, circumcircle,
                               delaunay_tessellation, delaunay_triangulation,
                               empty_disk_violations, in_circle, inversion,
