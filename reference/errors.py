@@ -86,6 +86,35 @@ class TriangleInequalityViolated(InputError):
     """Edge lengths of a face violate the strict triangle inequality."""
 
 
+# --- planar point sets and quadrilaterals (chapter 4) ---------------------------
+
+
+class PointSetError(InputError):
+    """A planar point set that has no triangulation with all its points as vertices."""
+
+
+class TooFewPoints(PointSetError):
+    """Fewer than three points: no triangle at all."""
+
+
+class RepeatedPoint(PointSetError):
+    """Two input points coincide (the message names both indices)."""
+
+
+class CollinearPoints(PointSetError):
+    """All points lie on one line: the convex hull has no interior."""
+
+
+class BadQuadrilateral(InputError):
+    """Four points that do not form the quadrilateral a statement needs (the
+    message names the condition: convex, counterclockwise, or P2 and P4 on
+    opposite sides of the diagonal P1 P3)."""
+
+
+class BadInversion(InputError):
+    """An inversion whose centre is one of the points, or whose squared radius is not positive."""
+
+
 # --- guards of the exact arithmetic ------------------------------------------
 
 

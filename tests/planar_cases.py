@@ -1,0 +1,125 @@
+"""Hypothesis strategies of planar point sets and quadrilaterals (chapter 4 tests).
+
+Everything is drawn as small integers and built from them, so failures shrink
+to a few points: free points in a small box, cocircular subsets (integer points
+on the circle of radius 5 and rational points on the unit circle, from
+Pythagorean triples), collinear subsets (arithmetic progressions), and an
+optional common denominator for rational (non-integer) coordinates.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from hypothesis import strategies as st
+
+from reference.planar import orientation
+
+#: the 12 integer points on the circle x^2 + y^2 = 25 (from 3^2 + 4^2 = 5^2)
+CIRCLE5 = ((5, 0), (4, 3), (3, 4), (0, 5), (-3, 4), (-4, 3),
+           (-5, 0), (-4, -3), (-3, -4), (0, -5), (3, -4), (4, -3))
+
+
+def unit_circle_point(m: int, n: int) -> tuple[Fraction, Fraction]:
+    """The rational point ((m^2 - n^2), 2 m n) / (m^2 + n^2) of the unit circle."""
+    d = m * m + n * n
+    return Fraction(m * m - n * n, d), Fraction(2 * m * n, d)
+
+
+def spans_plane(points) -> bool:
+    """At least 3 distinct points, not all on one line (exact)."""
+    pts = list(points)
+    if len(pts) < 3 or len(set(pts)) < len(pts):
+        return False
+    return any(orientation(pts[0], pts[1], c) for c in pts[2:])
+
+
+small = st.integers(-6, 6)
+
+
+def _completed(pts: list, extra) -> list:
+    """``pts`` plus as few of the three non-collinear points ``extra`` as make it span
+    the plane (so a drawn set is never rejected)."""
+    for p in extra:
+        if spans_plane(pts):
+            break
+        if p not in pts:
+            pts.append(p)
+    return pts
+
+
+@st.composite
+def integer_point_sets(draw, max_points: int = 8, bound: int = 6):
+    """Distinct integer points, not all collinear; often with a cocircular subset
+    (a translate of part of :data:`CIRCLE5`) and a collinear one."""
+    pts: list = []
+    if draw(st.booleans()):
+        cx, cy = draw(st.integers(-2, 2)), draw(st.integers(-2, 2))
+        arc = draw(st.lists(st.sampled_from(CIRCLE5), min_size=3, max_size=6, unique=True))
+        pts += [(cx + x, cy + y) for x, y in arc]
+    if draw(st.booleans()):
+        a = (draw(st.integers(-bound, bound)), draw(st.integers(-bound, bound)))
+        d = draw(st.sampled_from([(1, 0), (0, 1), (1, 1), (1, -1), (2, 1), (1, 2)]))
+        k = draw(st.integers(3, 4))
+        pts += [(a[0] + i * d[0], a[1] + i * d[1]) for i in range(k)]
+    coord = st.integers(-bound, bound)
+    pts += draw(st.lists(st.tuples(coord, coord), min_size=0, max_size=max_points))
+    pts = list(dict.fromkeys(pts))[:max_points]
+    return _completed(pts, [(bound + 1, bound + 2), (-bound - 1, bound + 3), (0, -bound - 1)])
+
+
+@st.composite
+def rational_point_sets(draw, max_points: int = 8):
+    """:func:`integer_point_sets` divided by a common denominator in 1..3, sometimes
+    with rational points of the unit circle added (scaled by 5)."""
+    pts = [tuple(Fraction(x) for x in p) for p in draw(integer_point_sets(max_points))]
+    den = draw(st.integers(1, 3))
+    pts = [(x / den, y / den) for x, y in pts]
+    if draw(st.booleans()):
+        pairs = draw(st.lists(st.tuples(st.integers(1, 4), st.integers(1, 4)), min_size=1,
+                              max_size=3))
+        for m, n in pairs:
+            x, y = unit_circle_point(m, n)
+            pts.append((5 * x, 5 * y))
+    pts = list(dict.fromkeys(pts))[:max_points]
+    return _completed(pts, [(Fraction(7), Fraction(8)), (Fraction(-7), Fraction(9)),
+                            (Fraction(0), Fraction(-7))])
+
+
+@st.composite
+def parameter_quadrilaterals(draw):
+    """Q(r1, r2, r3, r4, theta) with rational r_i and a rational direction
+    (cos theta, sin theta) from a Pythagorean triple: ``X = 0``,
+    ``P1 = r1 (1, 0)``, ``P2 = r2 (c, s)``, ``P3 = -r3 (1, 0)``, ``P4 = -r4 (c, s)``.
+    Returns ``(points, (r1, r2, r3, r4), (c, s))``."""
+    r = [Fraction(draw(st.integers(1, 12)), draw(st.integers(1, 3))) for _ in range(4)]
+    m = draw(st.integers(1, 5))
+    n = draw(st.integers(-5, 5).filter(lambda k: k != 0))
+    c, s = unit_circle_point(m, n)
+    if s < 0:                                  # n < 0: the opposite direction
+        c, s = -c, -s
+    r1, r2, r3, r4 = r
+    pts = [(r1, Fraction(0)), (r2 * c, r2 * s), (-r3, Fraction(0)), (-r4 * c, -r4 * s)]
+    return pts, tuple(r), (c, s)
+
+
+def is_convex_ccw(pts) -> bool:
+    return all(orientation(pts[i - 1], pts[i], pts[(i + 1) % 4]) > 0 for i in range(4))
+
+
+def counterclockwise(pts) -> list:
+    """The points sorted counterclockwise around the lowest one (exact comparisons)."""
+    low = min(pts, key=lambda p: (p[1], p[0]))
+    rest = [p for p in pts if p != low]
+    for i in range(len(rest)):            # insertion sort by the orientation around low
+        j = i
+        while j > 0 and orientation(low, rest[j - 1], rest[j]) < 0:
+            rest[j - 1], rest[j] = rest[j], rest[j - 1]
+            j -= 1
+    return [low] + rest
+
+
+#: strictly convex counterclockwise quadrilaterals with small integer vertices (any
+#: four points in convex position, put in counterclockwise order)
+integer_quadrilaterals = st.lists(st.tuples(small, small), min_size=4, max_size=4,
+                                  unique=True).map(counterclockwise).filter(is_convex_ccw)
