@@ -84,3 +84,8 @@ class ReferenceImplementation:
         l2 = [[float(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
               for f in range(t.n_faces)]
         return np.array(t.faces, dtype=np.int64), np.array(l2, dtype=float)
+
+    def planar_delaunay(self, P):
+        from reference.planar import delaunay_triangulation
+        return np.array(delaunay_triangulation([tuple(p) for p in np.asarray(P, float)])
+                        .triangulation.faces, dtype=np.int64)

@@ -11,6 +11,7 @@ BUILTIN: dict[str, str] = {
     "reference": "oracles.exact_reference:ReferenceImplementation",
     "libigl": "oracles.libigl:Libigl",
     "pymeshlab": "oracles.pymeshlab:PyMeshLab",
+    "scipy": "oracles.scipy_spatial:ScipySpatial",
 }
 
 

@@ -506,3 +506,163 @@ def delaunay_minimal_surface_step(impl, case: MeshCase):
     if e_new > e_old + slack(new) + slack(V):
         _fail(pid, impl, case, "the harmonic step increased the energy", expected=f"<= {e_old}",
               observed=e_new)
+
+
+# --- planar Delaunay (T4.1, D4.1) and Rippa's lemma (L4.14) -------------------------------------
+
+
+def _near_tie(pid, impl, mesh, message, **kw):
+    """A disagreement that rounding decides (exact tie or within the float bound): not an
+    error of the implementation.  TIE: reported as a tie disagreement once the runner has
+    that category; until then accepted."""
+    return
+
+
+def _planar_points():
+    from .planar_points import rational_point_sets
+    return rational_point_sets().map(lambda pts: tuple((Fraction(float(x)), Fraction(float(y)))
+                                                       for x, y in pts))
+
+
+def _planar_result(impl, pts, pid):
+    P = np.array([[float(x), float(y)] for x, y in pts], dtype=np.float64)
+    T = np.asarray(impl.planar_delaunay(P))
+    mesh = ([[float(x), float(y), 0.0] for x, y in pts], T.tolist() if T.ndim == 2 else [])
+    if T.ndim != 2 or T.shape[1:] != (3,) or T.size == 0 or T.min() < 0 or T.max() >= len(pts):
+        raise PropertyFailure(pid, impl, "planar_delaunay: not an (m, 3) array of point indices",
+                              mesh=mesh, observed=getattr(T, "shape", None))
+    return [tuple(int(v) for v in t) for t in T], mesh
+
+
+def _merged_cells(pts, triangles):
+    """Triangles joined across shared edges whose four points are exactly cocircular: the
+    cells of the tessellation the triangulation refines (R4.7), as frozensets."""
+    from reference.planar import in_circle, orientation
+    parent = list(range(len(triangles)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    by_edge: dict = {}
+    for k, t in enumerate(triangles):
+        for c in range(3):
+            by_edge.setdefault(frozenset((t[c], t[(c + 1) % 3])), []).append(k)
+    for ks in by_edge.values():
+        if len(ks) == 2:
+            a, b = (triangles[k] for k in ks)
+            x, y, z = a if orientation(*(pts[v] for v in a)) > 0 else a[::-1]
+            (d,) = set(b) - set(a)
+            if in_circle(pts[x], pts[y], pts[z], pts[d]) == 0:
+                parent[find(ks[0])] = find(ks[1])
+    cells: dict = {}
+    for k, t in enumerate(triangles):
+        cells.setdefault(find(k), set()).update(t)
+    return frozenset(frozenset(c) for c in cells.values())
+
+
+def _incircle_bound(a, b, c, d) -> tuple[float, float]:
+    """(exact in-circle determinant of the exact points, as float; the bound on the error
+    of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
+    the permanent of the lifted 3 x 3 matrix, rounded up to 16 eps."""
+    rows = [(p[0] - d[0], p[1] - d[1]) for p in (a, b, c)]
+    lifts = [x * x + y * y for x, y in rows]
+    (ax, ay), (bx, by), (cx, cy) = rows
+    det = (lifts[0] * (bx * cy - cx * by) - lifts[1] * (ax * cy - cx * ay)
+           + lifts[2] * (ax * by - bx * ay))
+    perm = (lifts[0] * (abs(bx * cy) + abs(cx * by)) + lifts[1] * (abs(ax * cy) + abs(cx * ay))
+            + lifts[2] * (abs(ax * by) + abs(bx * ay)))
+    return float(det), 16 * eps() * float(perm)
+
+
+def _real_violations(pts, tris):
+    """Empty-disk violations of the triangles beyond the float in-circle bound, and the
+    number within it (near ties, which rounding decides)."""
+    from reference.planar import empty_disk_violations, orientation
+    real, ties = [], 0
+    for cell, v, why in empty_disk_violations(pts, [frozenset(t) for t in tris]):
+        t = sorted(cell)
+        a, b, c = (pts[i] for i in t)
+        if orientation(a, b, c) < 0:
+            a, b = b, a
+        det, bound = _incircle_bound(a, b, c, pts[v])
+        if abs(det) <= bound:
+            ties += 1
+        else:
+            real.append((t, v, why, det, bound))
+    return real, ties
+
+
+@prop("D4.1", "every triangle of planar_delaunay is non-degenerate and its circumdisk holds no "
+      "other point in its interior (exact in-circle test on the float points)",
+      needs={"planar_delaunay"}, strategy=_planar_points)
+def empty_disk_property(impl, pts):
+    from reference.planar import empty_disk_violations, orientation
+    tris, mesh = _planar_result(impl, pts, "D4.1")
+    for k, t in enumerate(tris):
+        if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) == 0:
+            raise PropertyFailure("D4.1", impl, f"degenerate triangle {k}: {t}", mesh=mesh,
+                                  element=k)
+    real, ties = _real_violations(pts, tris)
+    if real:
+        t, v, why, det, bound = real[0]
+        raise PropertyFailure("D4.1", impl, f"point {v} violates the empty disk of triangle "
+                              f"{t} ({why}; in-circle determinant {det:.3g}, float bound "
+                              f"{bound:.3g})", mesh=mesh, element=t)
+    if ties:
+        _near_tie("D4.1", impl, mesh, f"{ties} empty-disk violation(s) within the float "
+                  "in-circle bound: nearly cocircular points split the other way")
+
+
+@prop("T4.1", "planar_delaunay is the unique Delaunay tessellation of the points once "
+      "cocircular triangles are merged (compared with the exact flip algorithm's)",
+      needs={"planar_delaunay"}, strategy=_planar_points)
+def unique_planar_tessellation(impl, pts):
+    from reference.planar import delaunay_tessellation
+    tris, mesh = _planar_result(impl, pts, "T4.1")
+    got, want = _merged_cells(pts, tris), delaunay_tessellation(pts)
+    if got != want:
+        extra = sorted(sorted(c) for c in got - want)
+        missing = sorted(sorted(c) for c in want - got)
+        real, _ = _real_violations(pts, tris)
+        if not real:                                # differs only across near-cocircular edges
+            _near_tie("T4.1", impl, mesh, "the tessellation differs only where points are "
+                      "cocircular within the float in-circle bound", expected=missing,
+                      observed=extra)
+            return
+        raise PropertyFailure("T4.1", impl, "not the Delaunay tessellation", mesh=mesh,
+                              expected=missing, observed=extra)
+
+
+def _quads():
+    from .planar_points import integer_quadrilaterals
+    values = st.lists(st.integers(-4, 4), min_size=4, max_size=4)
+    return st.tuples(integer_quadrilaterals, values)
+
+
+@prop("L4.14", "Rippa: 1/2 u^T (L13 - L24) u from the implementation's cotan Laplacians of the "
+      "two triangulations of a convex quadrilateral equals the exact right side of (4.2); its "
+      "sign is that of r1 r3 - r2 r4 (L4.15, C4.16) unless within the bound",
+      needs={"cotan_laplacian"}, strategy=_quads)
+def rippa_energy_difference(impl, quad_u):
+    from reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
+    pts, u = quad_u
+    exact = float(rippa_right_side(pts, u))
+    V = [(x, y, 0) for x, y in pts]
+    c13, c24 = _case(V, TRIANGLES_13, "quad 13"), _case(V, TRIANGLES_24, "quad 24")
+    A13, A24 = _dense(impl, c13, "L4.14"), _dense(impl, c24, "L4.14")
+    f = np.array(u, dtype=float)
+    got = 0.5 * float(f @ (A13 - A24) @ f)
+    af = np.abs(f)
+    X13, X24 = Exact(c13), Exact(c24)
+    bound = 0.5 * float(af @ (X13.B + X24.B + gamma(12) * (np.abs(A13) + np.abs(A24))) @ af)
+    r = _record("L4.14", abs(got - exact), bound)
+    if r > 1:
+        _fail("L4.14", impl, c13, f"E(u13) - E(u24) = {got:.9g}, Rippa's formula gives "
+              f"{exact:.9g} ({r:.3g} x the bound)", expected=exact, observed=got)
+    s = circularity(pts)
+    if exact != 0 and abs(got) > bound and (got > 0) != (s > 0):
+        _fail("L4.14", impl, c13, "the energy difference has the wrong sign for the "
+              "quadrilateral's circularity (L4.15)", expected=s, observed=got)

@@ -44,6 +44,8 @@ METHODS: dict[str, str] = {
                                         "(m, 3) float squared lengths, l2[f, c] the edge opposite "
                                         "corner c, of an intrinsic Delaunay triangulation of the "
                                         "same metric (A4.13); F2 may have loops and multi-edges",
+    "planar_delaunay": "planar_delaunay(P): (m, 3) int array, a Delaunay triangulation of the "
+                       "planar points P ((n, 2) float64), every point a vertex (T4.1, D4.1)",
 }
 
 

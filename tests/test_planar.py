@@ -32,7 +32,7 @@ from reference.planar import (all_triangulations, angle_criterion, cell_boundary
                               planar_triangulation, tessellation_edges, triangulation_key,
                               voronoi_edges, voronoi_vertices)
 from reference.sparse import SparseMatrix, is_positive_semidefinite, negative_direction
-from tests.planar_cases import (integer_point_sets, rational_point_sets, spans_plane,
+from properties.planar_points import (integer_point_sets, rational_point_sets, spans_plane,
                                 unit_circle_point)
 
 rationals = st.fractions(-4, 4, max_denominator=4)

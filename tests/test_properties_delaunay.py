@@ -83,3 +83,22 @@ def test_flip_amplification_replays_the_log():
     assert replayed.squared_lengths == d.squared_lengths
     assert len(amp) == d.triangulation.n_faces and min(amp) >= 1
     assert (max(amp) > 1) == bool(log)                      # only flipped faces are amplified
+
+
+def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points():
+    """Finding S1 (docs/findings.md): Qhull merges nearly coplanar lifted facets and 'Qt'
+    re-triangulates them, giving a triangle whose circumdisk strictly holds another point,
+    by far more than a float in-circle evaluation could err."""
+    from oracles.scipy_spatial import ScipySpatial
+    from properties.delaunay import _incircle_bound, empty_disk_property
+    from properties.registry import PropertyFailure
+    third = Fraction(1, 3)
+    P = [(2 * third, -third), (1, -2 * third), (4 * third, -1), (5 * third, -4 * third),
+         (0, 0), (-third, 0)]
+    pts = tuple((Fraction(float(x)), Fraction(float(y))) for x, y in P)   # what scipy sees
+    with pytest.raises(PropertyFailure, match="violates the empty disk"):
+        empty_disk_property(ScipySpatial(), pts)
+    # the reference's own planar Delaunay passes on the same floats
+    empty_disk_property(ReferenceImplementation(), pts)
+    det, bound = _incircle_bound(pts[0], pts[1], pts[2], pts[4])
+    assert abs(det) > 1e9 * bound                              # no rounding tie

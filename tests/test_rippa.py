@@ -20,7 +20,7 @@ from reference.planar import angle_criterion, circle_position
 from reference.polyhedral import PolyhedralSurface
 from reference.rippa import (TRIANGLES_13, TRIANGLES_24, circularity, energy_difference,
                              is_affine_on, quadrilateral, rippa_right_side)
-from tests.planar_cases import integer_quadrilaterals, parameter_quadrilaterals, unit_circle_point
+from properties.planar_points import integer_quadrilaterals, parameter_quadrilaterals, unit_circle_point
 
 values = st.lists(st.integers(-4, 4), min_size=4, max_size=4)
 

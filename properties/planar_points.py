@@ -1,4 +1,4 @@
-"""Hypothesis strategies of planar point sets and quadrilaterals (chapter 4 tests).
+"""Hypothesis strategies of planar point sets and quadrilaterals (chapter 4 properties and tests).
 
 Everything is drawn as small integers and built from them, so failures shrink
 to a few points: free points in a small box, cocircular subsets (integer points
