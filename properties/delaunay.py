@@ -599,7 +599,7 @@ def _real_violations(pts, tris):
       "other point in its interior (exact in-circle test on the float points)",
       needs={"planar_delaunay"}, strategy=_planar_points)
 def empty_disk_property(impl, pts):
-    from reference.planar import empty_disk_violations, orientation
+    from reference.planar import orientation
     tris, mesh = _planar_result(impl, pts, "D4.1")
     for k, t in enumerate(tris):
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) == 0:

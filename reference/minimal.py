@@ -54,7 +54,6 @@ from .delaunay import flip_to_delaunay, is_delaunay, laplace_beltrami
 from .dirichlet import neighbour_convex_combination, separates, solve_dirichlet
 from .laplacian import cotan_laplacian, metric_of_surface
 from .polyhedral import PolyhedralSurface
-from .sparse import _normal
 
 __all__ = ["minimal_surface_step", "area_decrease_certificate", "AreaDecrease",
            "area_enclosure", "minimal_surface_iteration", "MinimalSurfaceRun",

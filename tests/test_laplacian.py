@@ -12,10 +12,11 @@ from hypothesis import given, strategies as st
 
 from properties import laplacian as props
 from properties.laplacian import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
-                                  planar_meshes, single_triangles, weighted_graphs, with_functions)
+                                  planar_meshes, weighted_graphs, with_functions)
 from properties.profiles import profile
+from tests.property_checks import assert_caught, assert_passes_well_inside
 from properties.registry import PROPERTIES
-from properties.runner import FAILED, PASSED, run_property
+from properties.runner import PASSED, run_property
 from reference import surfaces
 from reference.area import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,
                             area_gradient_cotan, area_gradient_cross, area_gradient_direct,
@@ -493,37 +494,25 @@ def test_T3_6_exactly_on_a_320_face_float_mesh():
 
 @pytest.mark.parametrize("pid", CHAPTER3)
 def test_reference_passes_chapter3_property(pid):
-    props.ERROR_RATIOS.pop(pid, None)
-    r = run_property(PROPERTIES[pid], ExactViews(), profile("default"))
-    assert r.status == PASSED, r.failure or r.error
-    assert r.examples > 0
-    # the exact float view is correctly rounded: far inside every derived bound
-    assert props.ERROR_RATIOS.get(pid, 0.0) < 0.05
+    assert_passes_well_inside(pid, ExactViews())
 
 
-def _caught(pid, impl, max_faces):
-    r = run_property(PROPERTIES[pid], impl, profile("ci"))
-    assert r.status == FAILED, f"{impl.name} was not caught by {pid}"
-    assert r.failure.property_id == pid
-    V, F = r.failure.mesh
-    assert len(F) <= max_faces, f"counterexample did not shrink: {len(F)} faces"
-    return r
 
 
 def test_planted_sign_error_is_caught_on_one_triangle():
-    r = _caught("T3.6", SignError(), 1)
+    r = assert_caught("T3.6", SignError(), 1)
     assert r.failure.expected * r.failure.observed < 0     # the energy came out negative
-    _caught("R3.3", SignError(), 2)
+    assert_caught("R3.3", SignError(), 2)
 
 
 def test_planted_missing_half_on_boundary_edges_is_caught_on_one_triangle():
-    r = _caught("D3.1", BoundaryWithoutHalf(), 1)
+    r = assert_caught("D3.1", BoundaryWithoutHalf(), 1)
     assert abs(r.failure.observed) > abs(r.failure.expected)
 
 
 def test_planted_cotangent_of_the_wrong_corner_is_caught_on_one_triangle():
-    _caught("T3.6", CotOfWrongCorner(), 1)
-    _caught("E3.12", CotOfWrongCorner(), 2)
+    assert_caught("T3.6", CotOfWrongCorner(), 1)
+    assert_caught("E3.12", CotOfWrongCorner(), 2)
 
 
 def test_a_float_implementation_stays_well_inside_the_bounds():

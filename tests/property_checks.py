@@ -1,0 +1,28 @@
+"""Shared assertions of the property tests: an implementation passes a property well inside
+its bounds, or a planted bug is caught with a shrunk counterexample."""
+
+from properties import laplacian as props
+from properties.profiles import profile
+from properties.registry import PROPERTIES
+from properties.runner import FAILED, PASSED, run_property
+
+
+def assert_passes_well_inside(pid, impl, ratio=0.05):
+    """``impl`` passes ``pid`` on the default profile and its largest observed error stays
+    below ``ratio`` of the derived bound (correctly rounded float views of exact values)."""
+    props.ERROR_RATIOS.pop(pid, None)
+    r = run_property(PROPERTIES[pid], impl, profile("default"))
+    assert r.status == PASSED, r.failure or r.error
+    assert r.examples > 0
+    assert props.ERROR_RATIOS.get(pid, 0.0) < ratio
+    return r
+
+
+def assert_caught(pid, impl, max_faces):
+    """``impl`` fails ``pid`` on the ci profile with a counterexample of <= max_faces faces."""
+    r = run_property(PROPERTIES[pid], impl, profile("ci"))
+    assert r.status == FAILED, f"{impl.name} was not caught by {pid}"
+    assert r.failure.property_id == pid
+    F = r.failure.mesh[1]
+    assert len(F) <= max_faces, f"counterexample did not shrink: {len(F)} faces"
+    return r
