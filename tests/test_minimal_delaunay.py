@@ -7,7 +7,6 @@ from hypothesis import given, settings
 from reference import surfaces
 from reference.delaunay import is_delaunay
 from reference.dirichlet import neighbour_convex_combination
-from reference.intrinsic import flip
 from reference.laplacian import cotan_laplacian
 from reference.minimal import (area_decrease_certificate, area_enclosure,
                                delaunay_minimal_surface_step, delaunay_neighbour_hull,
