@@ -39,7 +39,7 @@ def test_forgetting_to_flip_is_caught_on_a_few_faces():
     assert_caught("T4.5", NoFlips(), 8)
 
 
-def test_a_one_sided_delaunay_test_isassert_caught():
+def test_a_one_sided_delaunay_test_is_caught():
     r = assert_caught("D4.4 / T4.7 / P4.9", OneSidedDelaunayTest(), 4)
     assert r.failure.expected is True and r.failure.observed is False
 
