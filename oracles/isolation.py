@@ -6,13 +6,22 @@ A segfault, an abort or a hang of third-party code must not stop a check run.
 sent to a persistent worker process and waited for at most ``timeout``
 seconds.  If the worker dies or overruns, it is killed, restarted for the next
 call, and the call raises :class:`ImplementationCrashed` saying how (signal,
-exit code, time limit).  Hypothesis treats that exception like any failure, so
-the input that crashes the library is shrunk before it is reported.
+exit code, time limit, memory limit).  Hypothesis treats that exception like
+any failure, so the input that crashes the library is shrunk before it is
+reported.
+
+Memory: the worker's address space is capped with ``RLIMIT_AS`` (``memory``
+bytes; default ``DDG_MEMORY_LIMIT`` from the environment, e.g. ``4G``,
+``512M`` or ``none``, else 8 GiB).  An allocation beyond it fails inside the
+worker (``MemoryError``, or a crash of a library that does not check its
+allocations) and is reported as a crash naming the limit; the worker is
+restarted, and the run goes on.
 """
 
 from __future__ import annotations
 
 import multiprocessing as mp
+import os
 import resource
 import signal
 import traceback
@@ -30,6 +39,39 @@ class ImplementationCrashed(RuntimeError):
 
 class ImplementationError(RuntimeError):
     """The implementation raised a Python exception (its traceback is in the message)."""
+
+
+MEMORY_ENV = "DDG_MEMORY_LIMIT"
+DEFAULT_MEMORY = 8 << 30
+_UNITS = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
+
+
+def memory_limit(spec: str | None = None) -> int | None:
+    """Bytes of address space for a worker: ``spec`` (or ``$DDG_MEMORY_LIMIT``) such as
+    ``"4G"``, ``"512M"``, ``"1073741824"``, or ``"none"``; 8 GiB when unset.
+
+    >>> memory_limit("4G"), memory_limit("none"), memory_limit("")
+    (4294967296, None, 8589934592)
+    """
+    raw = (os.environ.get(MEMORY_ENV, "") if spec is None else spec).strip().upper()
+    if not raw:
+        return DEFAULT_MEMORY
+    if raw == "NONE":
+        return None
+    unit = raw[-1] if raw[-1] in _UNITS else ""
+    try:
+        n = float(raw[:-1] if unit else raw) * _UNITS[unit]
+    except ValueError:
+        n = -1
+    if not n > 0:
+        from reference.errors import InputError
+        raise InputError(f"memory limit {raw!r}: use a positive size such as 4G, 512M or "
+                         f"1073741824 bytes, or none (from {MEMORY_ENV} or Isolated(memory=...))")
+    return int(n)
+
+
+def _size(n: int) -> str:
+    return f"{n / (1 << 30):g} GiB" if n >= 1 << 30 else f"{n / (1 << 20):g} MiB"
 
 
 def _worker(spec: str, memory_bytes: int | None, conn) -> None:
@@ -50,6 +92,9 @@ def _worker(spec: str, memory_bytes: int | None, conn) -> None:
             return
         try:
             conn.send(("ok", getattr(impl, method)(*args), None))
+        except MemoryError as e:
+            conn.send(("memory", "".join(traceback.format_exception_only(type(e), e)).strip(),
+                       None))
         except BaseException as e:  # noqa: BLE001
             conn.send(("raised", "".join(traceback.format_exception_only(type(e), e)).strip(),
                        None))
@@ -59,11 +104,14 @@ class Isolated:
     """Proxy of an implementation living in a worker process.
 
     ``timeout`` is per call, in seconds; ``memory`` caps the worker's address
-    space in bytes (None: no cap).  Use as a context manager or call
+    space in bytes (None: no cap; default :func:`memory_limit`, i.e.
+    ``$DDG_MEMORY_LIMIT`` or 8 GiB).  Use as a context manager or call
     :meth:`close`.
     """
 
-    def __init__(self, spec: str, timeout: float = 60.0, memory: int | None = 8 << 30):
+    def __init__(self, spec: str, timeout: float = 60.0, memory: int | None | str = "env"):
+        if memory == "env":
+            memory = memory_limit()
         self.spec, self.timeout, self.memory = spec, timeout, memory
         self._ctx = mp.get_context("spawn")     # no fork of a parent holding threads
         self._proc = None
@@ -71,6 +119,8 @@ class Isolated:
         self._start()
 
     def _start(self) -> None:
+        if self._conn is not None:
+            self._conn.close()
         parent, child = self._ctx.Pipe()
         self._proc = self._ctx.Process(target=_worker, args=(self.spec, self.memory, child),
                                        daemon=True)
@@ -115,17 +165,36 @@ class Isolated:
             how = self._how_it_died()
             self._start()
             raise ImplementationCrashed(self.name, method, how) from None
-        if not self._conn.poll(self.timeout):
+        try:
+            done = self._conn.poll(self.timeout)
+        except BaseException:
+            # interrupted while waiting (Ctrl-C, the time limit of a property
+            # example): the worker still owes an answer, so it cannot be reused
+            self._kill()
+            self._proc = None
+            raise
+        if not done:
             self._kill()
             self._start()
             raise ImplementationCrashed(self.name, method,
-                                        f"did not return within {self.timeout:g} s (killed)")
+                                        f"did not return within {self.timeout:g} s (killed); "
+                                        "raise the limit with Isolated(timeout=...) or "
+                                        "ddg-oracle check --timeout SECONDS")
         try:
             status, payload, _ = self._conn.recv()
         except EOFError:
             how = self._how_it_died()
             self._start()
             raise ImplementationCrashed(self.name, method, how) from None
+        if status == "memory":
+            # a failed allocation may leave a library's state half-built: fresh worker
+            self._kill()
+            self._start()
+            raise ImplementationCrashed(
+                self.name, method,
+                f"ran out of memory under the limit of {_size(self.memory)} address space "
+                f"({payload}); raise it with {MEMORY_ENV}=SIZE or Isolated(memory=...)"
+                if self.memory else f"ran out of memory ({payload})")
         if status == "raised":
             raise ImplementationError(f"{self.name}.{method} raised {payload}")
         return payload

@@ -6,8 +6,18 @@ raises :class:`MeshFileError` naming the file, the line (or byte offset) and
 what is wrong; never a traceback for expected bad input.  Polygons with more
 than three corners are rejected rather than silently triangulated (a fan
 triangulation would change the mesh under test).  STL stores a triangle soup:
-vertices with bit-identical coordinates are merged, in order of first
-appearance.
+vertices with equal coordinates are merged (so -0.0 and 0.0 are one vertex),
+in order of first appearance.  A binary STL whose 80-byte header happens to
+start with ``solid`` is recognised by its size (84 + 50 x triangles).
+
+What a reader checks is the file: syntax, counts, truncation, finite numbers,
+integer indices in range, triangles only, at least one face.  What it does not
+check is the mesh: repeated vertices in a face, non-manifold edges or
+vertices, unreferenced vertices and zero-area faces come through, and the
+reference rejects them (``PolyhedralSurface.from_arrays`` raises the typed
+error naming the face or vertex).  Every error is a :class:`MeshFileError`
+(an :class:`~reference.errors.InputError`); the readers are fuzzed with random
+and mutated files (tests/test_fuzz_readers.py).
 """
 
 from __future__ import annotations
@@ -42,7 +52,7 @@ def read_mesh(path) -> tuple[list[list[float]], list[list[int]]]:
 
 def _text(data: bytes, name: str) -> list[str]:
     try:
-        return data.decode("utf-8").splitlines()
+        return data.decode("utf-8-sig").splitlines()     # -sig: drop a byte order mark
     except UnicodeDecodeError as e:
         raise MeshFileError(f"{name}: not a text file (byte {e.start} is not UTF-8)") from None
 
@@ -88,15 +98,25 @@ def _obj(data: bytes, name: str):
                 i = _int(t.split("/")[0], name, where)
                 if i == 0:
                     raise MeshFileError(f"{name}:{where}: OBJ indices start at 1, got 0")
+                if i < -len(V):
+                    raise MeshFileError(f"{name}:{where}: relative index {i} points before the "
+                                        f"first vertex ({len(V)} vertices so far)")
                 corners.append(i - 1 if i > 0 else len(V) + i)    # negative: relative
             F.append(_triangle(corners, name, where))
     return V, F
 
 
+def _count(tok: str, name: str, where: str) -> int:
+    n = _int(tok, name, where)
+    if n < 0:
+        raise MeshFileError(f"{name}:{where}: negative count {n}")
+    return n
+
+
 def _header_counts(tokens, name, where, k):
     if len(tokens) < k:
         raise MeshFileError(f"{name}:{where}: expected {k} counts, got {len(tokens)}")
-    return [_int(t, name, where) for t in tokens[:k]]
+    return [_count(t, name, where) for t in tokens[:k]]
 
 
 def _off(data: bytes, name: str):
@@ -123,7 +143,7 @@ def _off(data: bytes, name: str):
         V.append([_float(t, name, f"line {n}") for t in p[:3]])
     F = []
     for n, p in body[nv:nv + nf]:
-        k = _int(p[0], name, f"line {n}")
+        k = _count(p[0], name, f"line {n}")
         if len(p) < k + 1:
             raise MeshFileError(f"{name}:line {n}: face promises {k} corners, has {len(p) - 1}")
         F.append(_triangle([_int(t, name, f"line {n}") for t in p[1:k + 1]], name, f"line {n}"))
@@ -152,10 +172,16 @@ def _ply(data: bytes, name: str):
         elif p[0] == "element":
             if len(p) != 3:
                 raise MeshFileError(f"{name}:line {n}: malformed element line")
-            elements.append([p[1], _int(p[2], name, f"line {n}"), []])
+            count = _count(p[2], name, f"line {n}")
+            if count > len(data):       # every row takes at least one byte or token
+                raise MeshFileError(f"{name}:line {n}: {count} {p[1]} rows cannot fit in "
+                                    f"a file of {len(data)} bytes (truncated?)")
+            elements.append([p[1], count, []])
         elif p[0] == "property":
             if not elements:
                 raise MeshFileError(f"{name}:line {n}: property before any element")
+            if len(p) < 3:
+                raise MeshFileError(f"{name}:line {n}: malformed property line {line!r}")
             if p[1] == "list":
                 if len(p) != 5 or p[2] not in _PLY_TYPES or p[3] not in _PLY_TYPES:
                     raise MeshFileError(f"{name}:line {n}: malformed list property")
@@ -166,6 +192,23 @@ def _ply(data: bytes, name: str):
                 elements[-1][2].append((p[2], p[1], None))
     if fmt not in ("ascii", "binary_little_endian", "binary_big_endian"):
         raise MeshFileError(f"{name}: unsupported PLY format {fmt!r}")
+    for ename, count, props in elements:
+        kinds = {pname: (t, list_t) for pname, t, list_t in props}
+        if ename == "vertex" and count:
+            for axis in "xyz":
+                if axis not in kinds:
+                    raise MeshFileError(f"{name}: vertex element lacks property '{axis}'")
+                if kinds[axis][1] is not None:
+                    raise MeshFileError(f"{name}: vertex property '{axis}' is a list, "
+                                        "expected a number")
+        if ename == "face" and count:
+            idx = kinds.get("vertex_indices", kinds.get("vertex_index"))
+            if idx is None:
+                raise MeshFileError(f"{name}: face element lacks vertex_indices")
+            if idx[1] is None or _PLY_TYPES[idx[0]] in "fd":
+                raise MeshFileError(f"{name}: face vertex_indices must be a list of integers, "
+                                    f"declared as {'list ' + idx[1] + ' ' if idx[1] else ''}"
+                                    f"{idx[0]}")
     if fmt == "ascii":
         tokens = iter(data[body_start:].decode("ascii", "replace").split())
         def read(t, what):
@@ -201,20 +244,16 @@ def _ply(data: bytes, name: str):
                         raise MeshFileError(f"{name}: {what}: bad list length {k}")
                     row[pname] = [read(t, what) for _ in range(k)]
             if ename == "vertex":
-                try:
-                    V.append([float(row["x"]), float(row["y"]), float(row["z"])])
-                except KeyError as e:
-                    raise MeshFileError(f"{name}: vertex element lacks property {e}") from None
-            elif ename == "face":
+                V.append([float(row["x"]), float(row["y"]), float(row["z"])])
+            elif ename == "face":      # properties checked against the header above
                 idx = row.get("vertex_indices", row.get("vertex_index"))
-                if idx is None:
-                    raise MeshFileError(f"{name}: face element lacks vertex_indices")
-                F.append(_triangle([int(i) for i in idx], name, what))
+                F.append(_triangle(idx, name, what))
     return V, F
 
 
 def _stl(data: bytes, name: str):
-    if data[:5] == b"solid" and b"facet" in data[:1024]:
+    binary_size = len(data) >= 84 and len(data) == 84 + 50 * struct.unpack_from("<I", data, 80)[0]
+    if data[:5] == b"solid" and b"facet" in data[:1024] and not binary_size:
         return _stl_ascii(data, name)
     if len(data) < 84:
         raise MeshFileError(f"{name}: truncated binary STL ({len(data)} bytes, header is 84)")

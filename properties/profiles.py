@@ -1,25 +1,126 @@
-"""Hypothesis settings profiles: ``default`` (fast), ``ci`` (derandomized, more
-examples) and ``thorough``.  Select one with pytest's ``--hypothesis-profile``,
+"""Hypothesis settings profiles, the example database, and the time limit per example.
+
+Profiles: ``default`` (fast), ``ci`` (derandomized, more examples) and
+``thorough``.  Select one with pytest's ``--hypothesis-profile``,
 ``ddg-oracle check --profile``, or ``settings.load_profile(name)``.
+
+Example database (where Hypothesis saves every failing example and from which
+it replays them first on the next run): chosen by the environment variable
+``DDG_HYPOTHESIS_DATABASE`` when this module is imported, or later by
+:func:`use_database`:
+
+- unset: Hypothesis's default, the directory ``.hypothesis/examples``;
+- ``redis://host:port[/db]`` (or ``rediss://``, ``unix://``): a Redis server
+  shared by a team's CI machines (Hypothesis's ``RedisExampleDatabase``;
+  needs ``pip install 'ddg-oracle[redis]'``).  The client reconnects with
+  backoff, so a restart of the server (with persistence) loses nothing;
+- ``none``: no database;
+- anything else: a directory.
+
+Hypothesis forbids a database together with ``derandomize``.  So ``ci`` is
+derandomized and database-free (two runs test the same examples) unless a
+database is chosen; then ``ci`` saves and replays through it, and a fixed seed
+keeps its runs reproducible: ``pytest --hypothesis-seed 0`` or
+``ddg-oracle check --seed 0``.
+
+Time limit: every property example runs under :func:`example_time_limit`
+(``DDG_EXAMPLE_TIME_LIMIT`` seconds, default 120, ``0`` for none).  An example
+that overruns raises :class:`~reference.errors.TimeLimitExceeded` saying what
+to change; Hypothesis then shrinks and reports it like any failure.  (Hypothesis's
+own ``deadline`` stays off: it only measures after the example has returned,
+so it cannot stop one that never returns.)
 """
 
 from __future__ import annotations
 
+import os
+import signal
+import threading
+import time
+from contextlib import contextmanager
+
 from hypothesis import HealthCheck, settings
+from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
+
+from reference.errors import InputError, TimeLimitExceeded
 
 PROFILES = ("default", "ci", "thorough")
+DATABASE_ENV = "DDG_HYPOTHESIS_DATABASE"
+TIME_LIMIT_ENV = "DDG_EXAMPLE_TIME_LIMIT"
+#: Seconds per property example when ``DDG_EXAMPLE_TIME_LIMIT`` is unset: far
+#: above any example of the shipped profiles (well under a second each), and
+#: above ``ddg-oracle check --timeout`` (60 s per isolated call), which reports
+#: a hanging library more precisely.
+DEFAULT_TIME_LIMIT = 120.0
 
 # Mesh strategies build structure from a few small integers; building is not
 # instant, so the too_slow and data_too_large checks only add noise.
 _quiet = [HealthCheck.too_slow, HealthCheck.data_too_large]
 
-settings.register_profile(
-    "default", max_examples=25, deadline=None, suppress_health_check=_quiet)
-settings.register_profile(
-    "ci", max_examples=60, deadline=None, derandomize=True, database=None,
-    suppress_health_check=_quiet, print_blob=True)
-settings.register_profile(
-    "thorough", max_examples=1000, deadline=None, suppress_health_check=_quiet)
+_DEFAULT_DATABASE = object()      # "let Hypothesis choose" (its local directory)
+
+
+def database_from(spec: str | None):
+    """The example database a ``DDG_HYPOTHESIS_DATABASE`` value names (see module doc).
+
+    Returns an ``ExampleDatabase``, None for ``"none"``, or a private marker
+    for "Hypothesis's default" when ``spec`` is None or empty.
+
+    >>> database_from("none") is None
+    True
+    """
+    if spec is None or not spec.strip():
+        return _DEFAULT_DATABASE
+    spec = spec.strip()
+    if spec.lower() == "none":
+        return None
+    if spec.startswith(("redis://", "rediss://", "unix://")):
+        try:
+            import redis
+            from hypothesis.extra.redis import RedisExampleDatabase
+            from redis.backoff import ExponentialBackoff
+            from redis.retry import Retry
+        except ImportError:
+            raise InputError(f"{DATABASE_ENV}={spec} needs the redis package: "
+                             "pip install 'ddg-oracle[redis]'") from None
+        # Retries with backoff (about 5 s in all) ride out a server restart;
+        # the pooled connections it broke are reopened on the next command.
+        client = redis.Redis.from_url(
+            spec, socket_connect_timeout=5, socket_timeout=30,
+            retry=Retry(ExponentialBackoff(cap=1.0, base=0.05), 8),
+            retry_on_error=[redis.ConnectionError, redis.TimeoutError])
+        return RedisExampleDatabase(client)
+    return DirectoryBasedExampleDatabase(spec)
+
+
+def _register(database) -> None:
+    db = {} if database is _DEFAULT_DATABASE else {"database": database}
+    settings.register_profile(
+        "default", max_examples=25, deadline=None, suppress_health_check=_quiet, **db)
+    if db and database is not None:
+        # derandomize excludes a database: reproducible through a fixed seed instead
+        ci = {"derandomize": False, "database": database}
+    else:
+        ci = {"derandomize": True, "database": None}
+    settings.register_profile(
+        "ci", max_examples=60, deadline=None, suppress_health_check=_quiet, print_blob=True,
+        **ci)
+    settings.register_profile(
+        "thorough", max_examples=1000, deadline=None, suppress_health_check=_quiet, **db)
+
+
+def use_database(spec: str | None) -> ExampleDatabase | None:
+    """Re-register every profile with the database ``spec`` names; returns it.
+
+    For a command-line option such as ``--database redis://host:6379``: call
+    it before :func:`profile` (or ``settings.load_profile``) picks a profile.
+    """
+    db = database_from(spec)
+    _register(db)
+    return None if db is _DEFAULT_DATABASE else db
+
+
+_register(database_from(os.environ.get(DATABASE_ENV)))
 
 
 def profile(name: str) -> settings:
@@ -27,3 +128,65 @@ def profile(name: str) -> settings:
     if name not in PROFILES:
         raise ValueError(f"unknown Hypothesis profile {name!r}; choose one of {', '.join(PROFILES)}")
     return settings.get_profile(name)
+
+
+# --- time limit per property example ------------------------------------------
+
+
+def time_limit_seconds() -> float | None:
+    """Seconds per property example from ``DDG_EXAMPLE_TIME_LIMIT`` (None: no limit)."""
+    raw = os.environ.get(TIME_LIMIT_ENV, "").strip()
+    if not raw:
+        return DEFAULT_TIME_LIMIT
+    try:
+        seconds = float(raw)
+    except ValueError:
+        raise InputError(f"{TIME_LIMIT_ENV}={raw!r} is not a number of seconds "
+                         "(use e.g. 300, or 0 for no limit)") from None
+    if seconds != seconds or seconds < 0:
+        raise InputError(f"{TIME_LIMIT_ENV}={raw!r} must be >= 0 seconds (0: no limit)")
+    return seconds or None
+
+
+@contextmanager
+def example_time_limit(what: str, seconds: float | None = -1.0):
+    """Raise :class:`~reference.errors.TimeLimitExceeded` if the block runs over ``seconds``.
+
+    ``what`` names the property and implementation in the message; ``seconds``
+    defaults to :func:`time_limit_seconds`, None means no limit.  Uses
+    SIGALRM, so it only acts in the main thread on Unix (elsewhere, and inside
+    an outer timer that fires sooner, the block runs without it).
+
+    >>> with example_time_limit("[D1.6] demo", seconds=5):
+    ...     1 + 1
+    2
+    """
+    if seconds is not None and seconds < 0:
+        seconds = time_limit_seconds()
+    if (not seconds or not hasattr(signal, "setitimer")
+            or threading.current_thread() is not threading.main_thread()):
+        yield
+        return
+    outer = signal.getitimer(signal.ITIMER_REAL)
+    if outer[0] and outer[0] <= seconds:     # someone else's timer fires first: leave it
+        yield
+        return
+
+    def overrun(signum, frame):
+        raise TimeLimitExceeded(
+            f"{what}: one example ran longer than the time limit of {seconds:g} s per "
+            f"property example. If it is just slow, raise the limit with the environment "
+            f"variable {TIME_LIMIT_ENV}=SECONDS (0: no limit); otherwise the exact "
+            f"reference or the implementation does not finish on this input")
+
+    previous = signal.signal(signal.SIGALRM, overrun)
+    start = time.monotonic()
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        if outer[0]:                         # give an outer timer what it has left
+            left = outer[0] - (time.monotonic() - start)
+            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-3), outer[1])

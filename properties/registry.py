@@ -12,6 +12,7 @@ import functools
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from .profiles import example_time_limit
 from .protocol import _epsilon, implementation_name, machine_epsilon
 
 
@@ -69,7 +70,8 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
             # tolerances inside the check read the implementation's own epsilon
             token = _epsilon.set(machine_epsilon(impl))
             try:
-                check(impl, example)
+                with example_time_limit(f"[{catalog_id}] {implementation_name(impl)}"):
+                    check(impl, example)
             finally:
                 _epsilon.reset(token)
 

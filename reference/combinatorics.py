@@ -128,7 +128,8 @@ def _parse_faces(faces, n_vertices, allow_repeats: bool):
     """Validate a face list; returns (tuple of int triples, n_vertices).
 
     Checks, in this order over the whole list: emptiness, row shape, integer
-    entries, negative entries, range, repeated vertices (unless allowed).
+    entries, negative entries, range, repeated vertices (unless allowed), and
+    a vertex count above the number of corners (so an unused vertex exists).
     """
     if hasattr(faces, "tolist"):          # numpy arrays, without importing numpy
         faces = faces.tolist()
@@ -149,6 +150,10 @@ def _parse_faces(faces, n_vertices, allow_repeats: bool):
             raise BadShape(f"face {i}: expected a row of 3 vertex indices, got {_short(row)}")
     for i, row in enumerate(rows):
         for c, x in enumerate(row):
+            if isinstance(x, Sequence) and not isinstance(x, (str, bytes)):
+                # a 3-d array or a nested list: a shape problem, not a bad index
+                raise BadShape(f"face {i}, corner {c}: expected a vertex index, got the "
+                               f"sequence {_short(x)}; faces must be an m x 3 array")
             if not _is_int(x):
                 raise NonIntegerIndex(f"face {i}, corner {c}: vertex index {_short(x)} "
                                       f"({type(x).__name__}) is not an integer")
@@ -179,6 +184,14 @@ def _parse_faces(faces, n_vertices, allow_repeats: bool):
             if a == b or b == c or a == c:
                 v = b if b in (a, c) else a
                 raise RepeatedVertexInFace(f"face {i} = ({a}, {b}, {c}) repeats vertex {v}")
+    if n > 3 * len(out):
+        # More vertices than corners: some vertex is unused.  Say so now, before
+        # per-vertex tables of length n are built (a stray index such as 10**12
+        # would otherwise exhaust memory instead of raising).
+        used = {x for row in out for x in row}
+        v = next(v for v in range(len(used) + 1) if v not in used)
+        raise UnreferencedVertex(f"vertex {v} is used by no face (n_vertices = {n}, "
+                                 f"but {len(out)} faces use only {len(used)} vertices)")
     return tuple(out), n
 
 
@@ -309,7 +322,9 @@ class Triangulation:
         inconsistently oriented input).  Edges are numbered by first occurrence.
         Validation order: EmptyMesh, BadShape, NonIntegerIndex, NegativeIndex,
         IndexOutOfRange, RepeatedVertexInFace, NonManifoldEdge, NonManifoldVertex,
-        UnreferencedVertex (``n_vertices`` defaults to the largest index + 1).
+        UnreferencedVertex (``n_vertices`` defaults to the largest index + 1; a
+        vertex count above 3 x the number of faces is reported as
+        UnreferencedVertex at once, before any table of that length is built).
 
         >>> Triangulation.from_faces([[0, 1, 2], [0, 1, 3]]).reversed_gluing(0)
         True

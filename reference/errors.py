@@ -129,6 +129,15 @@ class TermLimitExceeded(ExactArithmeticLimit):
     """A square-root number would have more terms than ``exact.term_limit``."""
 
 
+class TimeLimitExceeded(ExactArithmeticLimit):
+    """One property example ran longer than its time limit.
+
+    Raised by the guard of ``properties.profiles.example_time_limit`` (the
+    reference itself never reads a clock); the message names the property and
+    the setting to change (``DDG_EXAMPLE_TIME_LIMIT``).
+    """
+
+
 class Undecidable(ExactArithmeticLimit):
     """An angle comparison that exact arithmetic cannot settle and enclosures
     did not separate up to the precision limit."""

@@ -50,6 +50,15 @@ class PiecewiseFlatSurface:
 
     def __init__(self, triangulation: Triangulation, squared_lengths: Sequence, areas=None):
         t = triangulation
+        if not isinstance(t, Triangulation):
+            raise InputError(f"expected a Triangulation, got {type(t).__name__} "
+                             "(build one with Triangulation.from_faces)")
+        if hasattr(squared_lengths, "tolist"):      # numpy arrays, without importing numpy
+            squared_lengths = squared_lengths.tolist()
+        if (isinstance(squared_lengths, (str, bytes))
+                or not isinstance(squared_lengths, Sequence)):
+            raise BadShape(f"squared lengths must be a sequence, one per edge, got "
+                           f"{type(squared_lengths).__name__}")
         if len(squared_lengths) != t.n_edges:
             raise BadShape(f"{len(squared_lengths)} squared lengths for {t.n_edges} edges")
         sq = tuple(_squared_length(x, e) for e, x in enumerate(squared_lengths))
@@ -95,7 +104,14 @@ class PiecewiseFlatSurface:
     @classmethod
     def from_lengths(cls, triangulation: Triangulation, lengths: Sequence) -> "PiecewiseFlatSurface":
         """From edge lengths (ints, Fractions, floats: squared exactly)."""
+        if hasattr(lengths, "tolist"):
+            lengths = lengths.tolist()
+        if isinstance(lengths, (str, bytes)) or not isinstance(lengths, Sequence):
+            raise BadShape(f"lengths must be a sequence, one per edge, got {type(lengths).__name__}")
         ls = [rational(x, where=f"length of edge {e}") for e, x in enumerate(lengths)]
+        for e, x in enumerate(ls):
+            if x <= 0:      # squaring would hide the sign of a negative length
+                raise TriangleInequalityViolated(f"edge {e} has length {x} <= 0")
         return cls(triangulation, [x * x for x in ls])
 
     # -- per element ----------------------------------------------------------------
@@ -178,6 +194,13 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)
         sq.append(sum((x - y) ** 2 for x, y in zip(points[i], points[j])))
+    for e, x in enumerate(sq):
+        # checked before the areas: a zero edge makes its faces zero-area, and
+        # "coincident vertices" says more than "collinear"
+        if x == 0:
+            i, j = t.edge_vertices(e)
+            raise DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "
+                                 "(coincident vertices); its faces have zero area")
     areas = []
     for f, (i, j, k) in enumerate(t.faces):
         u = [y - x for x, y in zip(points[i], points[j])]
@@ -188,9 +211,4 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
             raise DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
                                  "(zero area)")
         areas.append(sqrt(four_a2) / 2)
-    for e, x in enumerate(sq):
-        if x == 0:
-            i, j = t.edge_vertices(e)
-            raise DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "
-                                 "(coincident vertices)")
     return PiecewiseFlatSurface(t, sq, areas)

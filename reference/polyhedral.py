@@ -12,7 +12,7 @@ from fractions import Fraction
 from typing import Iterable, Sequence
 
 from .combinatorics import Triangulation
-from .errors import BadShape, EmptyMesh, IndexOutOfRange, UnreferencedVertex
+from .errors import BadShape, EmptyMesh, IndexOutOfRange, InputError, UnreferencedVertex
 from .exact.rationals import rational
 from .metric import PiecewiseFlatSurface, metric_of
 
@@ -29,6 +29,9 @@ class PolyhedralSurface:
     __slots__ = ("triangulation", "positions", "_metric")
 
     def __init__(self, triangulation: Triangulation, positions: Iterable[Sequence]):
+        if not isinstance(triangulation, Triangulation):
+            raise InputError(f"expected a Triangulation, got {type(triangulation).__name__} "
+                             "(use PolyhedralSurface.from_arrays(V, F) for a face list)")
         rows = tuple(_point(p, i) for i, p in enumerate(_rows(positions)))
         if not rows:
             raise EmptyMesh("no vertex positions")
@@ -53,8 +56,15 @@ class PolyhedralSurface:
         """Build from a (n_vertices x dim) position array and an (n_faces x 3) face array.
 
         Accepts nested sequences or numpy arrays; every vertex must be used by a face.
+        Errors (all :class:`~reference.errors.InputError`) name the face, corner,
+        vertex or coordinate: EmptyMesh, BadShape, NonIntegerIndex, NegativeIndex,
+        IndexOutOfRange, RepeatedVertexInFace, NonManifoldEdge, NonManifoldVertex,
+        UnreferencedVertex, NotANumber, NonFiniteValue.  Zero-area faces are valid
+        here; the metric (and every quantity built on it) raises DegenerateFace.
         """
         rows = _rows(V)
+        if not rows:
+            raise EmptyMesh("no vertex positions (V is empty)")
         return cls(Triangulation.from_faces(F, n_vertices=len(rows)), rows)
 
     @property
@@ -99,7 +109,7 @@ def _rows(array) -> list:
     try:
         return list(array)
     except TypeError:
-        raise BadShape(f"positions must be a sequence of points, got {type(array).__name__}")
+        raise BadShape(f"positions must be a sequence of points, got {type(array).__name__}") from None
 
 
 def _point(p, i: int) -> tuple[Fraction, ...]:
@@ -108,7 +118,7 @@ def _point(p, i: int) -> tuple[Fraction, ...]:
     try:
         coords = list(p)
     except TypeError:
-        raise BadShape(f"vertex {i}: a point must be a sequence of coordinates, got {p!r}")
+        raise BadShape(f"vertex {i}: a point must be a sequence of coordinates, got {p!r}") from None
     if len(coords) < 2:
         raise BadShape(f"vertex {i} has {len(coords)} coordinate(s); need at least 2")
     return tuple(rational(x, where=f"vertex {i}, coordinate {j}") for j, x in enumerate(coords))

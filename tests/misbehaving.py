@@ -38,3 +38,19 @@ class HangsOnBoundary(ReferenceImplementation):
         while _has_boundary(F):
             pass
         return super().euler_characteristic(V, F)
+
+
+class AllocatesOnBoundary(ReferenceImplementation):
+    """Asks for 2 GiB of address space on meshes with boundary.
+
+    ``numpy.empty`` maps the memory without touching it, so without a limit the
+    call would succeed cheaply; under a smaller ``Isolated(memory=...)`` the
+    allocation itself fails.
+    """
+    name = "allocates-on-boundary"
+
+    def euler_characteristic(self, V, F):
+        if _has_boundary(F):
+            import numpy as np
+            np.empty(2 << 30, dtype=np.uint8)
+        return super().euler_characteristic(V, F)

@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
-from oracles.isolation import ImplementationCrashed, Isolated
+from oracles.isolation import ImplementationCrashed, Isolated, memory_limit
 from properties import PROPERTIES
 from properties.runner import CRASHED, PASSED, run_property
 from reference import surfaces
+from reference.errors import InputError
 
 CLOSED = surfaces.tetrahedron().to_arrays()
 OPEN = surfaces.disk(5).to_arrays()
@@ -51,3 +52,31 @@ def test_property_run_reports_the_crash_with_a_shrunk_input_and_goes_on():
         r2 = run_property(PROPERTIES["X1.4"], impl, QUICK)
         assert r2.status in (CRASHED, PASSED)
         assert run_property(PROPERTIES["T1.1 / C1.2"], impl, QUICK).status == PASSED
+
+
+def test_memory_limit_is_reported_and_the_worker_restarts():
+    # 1 GiB of address space: the worker needs ~170 MiB, the call asks for 2 GiB more
+    with Isolated("tests.misbehaving:AllocatesOnBoundary", timeout=30, memory=1 << 30) as impl:
+        assert impl.euler_characteristic(*_arrays(CLOSED)) == 2
+        with pytest.raises(ImplementationCrashed,
+                           match=r"ran out of memory under the limit of 1 GiB .*DDG_MEMORY_LIMIT"):
+            impl.euler_characteristic(*_arrays(OPEN))
+        assert impl.euler_characteristic(*_arrays(CLOSED)) == 2      # restarted
+
+
+def test_property_run_reports_memory_exhaustion_with_its_input_and_goes_on():
+    with Isolated("tests.misbehaving:AllocatesOnBoundary", timeout=30, memory=1 << 30) as impl:
+        r = run_property(PROPERTIES["D1.6"], impl, QUICK)
+        assert r.status == CRASHED and "ran out of memory" in r.error
+        assert r.example.expected.boundary_components >= 1            # the input that did it
+        assert run_property(PROPERTIES["T1.1 / C1.2"], impl, QUICK).status == PASSED
+
+
+def test_memory_limit_setting(monkeypatch):
+    assert memory_limit("512M") == 512 << 20 and memory_limit("none") is None
+    monkeypatch.setenv("DDG_MEMORY_LIMIT", "2G")
+    assert memory_limit() == 2 << 30
+    with pytest.raises(InputError, match="positive size such as 4G"):
+        memory_limit("lots")
+    with pytest.raises(InputError, match="DDG_MEMORY_LIMIT"):
+        memory_limit("-1G")

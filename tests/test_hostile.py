@@ -1,0 +1,261 @@
+"""Hostile input: every kind of bad mesh gets one typed error naming the problem and where.
+
+The corpus and the decisions (what is an error, what is valid) are in
+tests/hostile.py.  Guards: the square-root term limit and the time limit per
+property example, each with a message saying what to change.
+"""
+
+import time
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import Phase, settings
+
+from oracles.arrays import checked_arrays
+from oracles.exact_reference import ReferenceImplementation
+from oracles.meshfiles import MeshFileError, read_mesh
+from properties import PROPERTIES
+from properties.profiles import TIME_LIMIT_ENV, example_time_limit, time_limit_seconds
+from properties.runner import CRASHED, run_property
+from reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
+from reference.curvature import (angle_defects, dihedral_angles, gauss_bonnet_holds,
+                                 mean_curvature)
+from reference.errors import (DegenerateFace, InputError, TermLimitExceeded,
+                              TimeLimitExceeded)
+from reference.exact import limits, sqrt
+from reference.laplacian import cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi
+from tests.hostile import (ARRAY_CASES, FILE_CASES, ICO_F, ICO_V, LENGTH_CASES,
+                           MESH_FILE_CASES, TET_F, TET_V, TRIANGULATION_CASES, valid_files, write)
+
+
+def _ids(case):
+    return case.name
+
+
+def _says(err, words):
+    message = str(err).lower()
+    missing = [w for w in words if w.lower() not in message]
+    assert not missing, f"message {str(err)!r} lacks {missing}"
+
+
+# --- arrays: the reference ------------------------------------------------------------
+
+@pytest.mark.parametrize("case", [c for c in ARRAY_CASES if c.error], ids=_ids)
+def test_reference_rejects_bad_arrays_with_a_typed_error(case):
+    with pytest.raises(InputError) as err:
+        PolyhedralSurface.from_arrays(case.V, case.F)
+    assert type(err.value) is case.error, f"{type(err.value).__name__}: {err.value}"
+    _says(err.value, case.words)
+
+
+@pytest.mark.parametrize("case", [c for c in ARRAY_CASES if c.geometry_error], ids=_ids)
+def test_degenerate_geometry_is_valid_input_but_quantities_raise(case):
+    s = PolyhedralSurface.from_arrays(case.V, case.F)
+    assert s.triangulation.euler_characteristic() == 2        # combinatorics still answers
+    for quantity in (angle_defects, cotan_laplacian, vertex_areas_barycentric,
+                     vertex_areas_voronoi, mean_curvature):
+        with pytest.raises(case.geometry_error) as err:
+            quantity(s)
+        _says(err.value, case.geometry_words)
+    # the exact reference as an implementation says the same through its float interface
+    with pytest.raises(DegenerateFace):
+        ReferenceImplementation().cotan_laplacian(np.array(case.V, float), np.array(case.F))
+
+
+def test_inconsistent_orientation_is_valid_but_signed_quantities_name_the_edge():
+    bad = PolyhedralSurface.from_arrays(TET_V, [[0, 1, 2]] + TET_F[1:])
+    good = PolyhedralSurface.from_arrays(TET_V, TET_F)
+    # orientability belongs to the surface, not to the orientation the faces were given in
+    assert bad.triangulation.is_orientable() and bad.triangulation.reversed_gluing(0)
+    # intrinsic quantities do not see orientation
+    assert angle_defects(bad) == angle_defects(good)
+    assert cotan_laplacian(bad) == cotan_laplacian(good)
+    for signed in (dihedral_angles, mean_curvature):
+        with pytest.raises(InputError, match=r"edge \d+ .*oriented inconsistently"):
+            signed(bad)
+
+
+@pytest.mark.parametrize("mesh, scale", [
+    ((TET_V, TET_F), 1e300), ((TET_V, TET_F), 1e-300),
+    # powers of two keep the float products exact, so the scaled icosahedron is similar
+    ((ICO_V, ICO_F), 2.0 ** 997), ((ICO_V, ICO_F), 2.0 ** -997)])
+def test_huge_and_tiny_coordinates_are_computed_exactly(mesh, scale):
+    V, F = mesh
+    unit = PolyhedralSurface.from_arrays(V, F)
+    scaled = PolyhedralSurface.from_arrays([[x * scale for x in p] for p in V], F)
+    s = Fraction(scale)
+    assert scaled.positions == tuple(tuple(x * s for x in p) for p in unit.positions)
+    # angles and cotan weights are scale invariant, areas scale by s^2: exactly
+    assert angle_defects(scaled) == angle_defects(unit)
+    assert cotan_laplacian(scaled) == cotan_laplacian(unit)
+    assert scaled.metric().total_area() == s * s * unit.metric().total_area()
+    assert vertex_areas_voronoi(scaled) == [s * s * a for a in vertex_areas_voronoi(unit)]
+
+
+def test_huge_and_ordinary_coordinates_mixed_keep_gauss_bonnet_exact():
+    V = [list(p) for p in TET_V]
+    V[3] = [1e-300, 1e300, 1.0]            # a needle: angles near 0 and pi, exactly
+    assert gauss_bonnet_holds(PolyhedralSurface.from_arrays(V, TET_F))
+
+
+# --- arrays: the adapters' check ---------------------------------------------------
+
+@pytest.mark.parametrize("case", ARRAY_CASES, ids=_ids)
+def test_adapter_array_check_on_the_same_corpus(case):
+    if case.adapter_error is None:
+        # mesh-level problems go through to the library, as float64 / int64 n x 3 arrays
+        V, F = checked_arrays(case.V, case.F)
+        assert V.dtype == np.float64 and F.dtype == np.int64
+        assert V.shape[1] == 3 and F.shape[1] == 3 and F.min() >= 0 and F.max() < len(V)
+        assert np.isfinite(V).all()
+        return
+    with pytest.raises(InputError) as err:
+        checked_arrays(case.V, case.F)
+    assert type(err.value) is case.adapter_error, f"{type(err.value).__name__}: {err.value}"
+    _says(err.value, case.adapter_words)
+    assert isinstance(err.value, ValueError)       # what adapters and their callers catch
+
+
+# --- face lists and lengths -------------------------------------------------------
+
+@pytest.mark.parametrize("case", TRIANGULATION_CASES, ids=_ids)
+def test_triangulation_rejects_bad_face_lists(case):
+    with pytest.raises(InputError) as err:
+        Triangulation.from_faces(case.faces, n_vertices=case.n_vertices)
+    assert type(err.value) is case.error
+    _says(err.value, case.words)
+
+
+@pytest.mark.parametrize("case", LENGTH_CASES, ids=_ids)
+def test_piecewise_flat_surface_rejects_bad_lengths(case):
+    t = Triangulation.from_faces(case.faces)
+    build = PiecewiseFlatSurface if case.squared else PiecewiseFlatSurface.from_lengths
+    with pytest.raises(InputError) as err:
+        build(t, case.values)
+    assert type(err.value) is case.error, f"{type(err.value).__name__}: {err.value}"
+    _says(err.value, case.words)
+
+
+def test_piecewise_flat_surface_needs_a_triangulation():
+    with pytest.raises(InputError, match="expected a Triangulation, got list"):
+        PiecewiseFlatSurface([[0, 1, 2]], [1, 1, 1])
+    with pytest.raises(InputError, match="expected a Triangulation, got list"):
+        PolyhedralSurface([[0, 1, 2]], TET_V[:3])
+
+
+@pytest.mark.parametrize("length", [1e300, 1e-300])
+def test_huge_and_tiny_lengths_are_exact(length):
+    t = Triangulation.from_faces([[0, 1, 2]])
+    s = PiecewiseFlatSurface.from_lengths(t, [length] * 3)
+    assert s.area(0) == Fraction(length) ** 2 * sqrt(3) / 4
+    assert s.corner_cot(0, 0) == 1 / sqrt(3)
+
+
+# --- files -----------------------------------------------------------------------
+
+@pytest.mark.parametrize("case", FILE_CASES, ids=_ids)
+def test_malformed_files_give_one_mesh_file_error(tmp_path, case):
+    path = write(case, tmp_path)
+    with pytest.raises(MeshFileError) as err:
+        read_mesh(path)
+    assert type(err.value) is MeshFileError and isinstance(err.value, InputError)
+    message = str(err.value)
+    assert message.startswith(str(path)) and "\n" not in message     # names the file, one line
+    _says(message, case.words)
+
+
+@pytest.mark.parametrize("case", MESH_FILE_CASES, ids=_ids)
+def test_well_formed_files_of_bad_meshes_are_rejected_by_the_reference(tmp_path, case):
+    V, F = read_mesh(write(case, tmp_path))      # the file itself is fine
+    with pytest.raises(InputError) as err:
+        PolyhedralSurface.from_arrays(V, F)
+    assert type(err.value) is case.error
+    _says(err.value, case.words)
+
+
+@pytest.mark.parametrize("variant", sorted(valid_files()))
+def test_every_valid_variant_reads_back_the_icosahedron(tmp_path, variant):
+    name, content = valid_files()[variant]
+    p = tmp_path / name
+    p.write_bytes(content)
+    V, F = read_mesh(p)
+    if name.endswith(".stl"):               # float32 soup, merged back in order of appearance
+        assert len(V) == len(ICO_V) and len(F) == len(ICO_F)
+        assert PolyhedralSurface.from_arrays(V, F).triangulation.euler_characteristic() == 2
+    else:
+        assert (V, F) == (ICO_V, ICO_F)
+
+
+def test_missing_file_and_directory(tmp_path):
+    with pytest.raises(MeshFileError, match="cannot read"):
+        read_mesh(tmp_path / "absent.obj")
+    (tmp_path / "d.obj").mkdir()
+    with pytest.raises(MeshFileError, match="cannot read"):
+        read_mesh(tmp_path / "d.obj")
+
+
+# --- guards ------------------------------------------------------------------------
+
+def test_term_limit_says_which_limit_and_how_to_raise_it():
+    primes = [2, 3, 5, 7, 11, 13]
+    with limits(term_limit=4):
+        with pytest.raises(TermLimitExceeded) as err:
+            sum((sqrt(p) for p in primes), start=sqrt(1))
+    _says(err.value, ("5 terms", "term limit 4", "reference.exact.limits(term_limit="))
+    with limits(term_limit=8):                     # raised as the message says: fine
+        assert sum((sqrt(p) for p in primes), start=sqrt(1)).n_terms == 7
+
+
+def test_term_limit_reached_inside_a_reference_quantity():
+    # a float mesh: one square root per face area, summed into many terms
+    V = [[x + 0.1 * i * (k + 1) for k, x in enumerate(p)] for i, p in enumerate(ICO_V)]
+    s = PolyhedralSurface.from_arrays(V, ICO_F)
+    with limits(term_limit=3):
+        with pytest.raises(TermLimitExceeded) as err:
+            s.metric().total_area()
+    _says(err.value, ("term limit 3", "limits(term_limit="))
+    assert s.metric().total_area() > 0                      # default limit: fine
+
+
+def test_time_limit_per_example_names_the_property_and_the_setting():
+    with pytest.raises(TimeLimitExceeded) as err:
+        with example_time_limit("[D1.6] demo", seconds=0.05):
+            while True:
+                pass
+    _says(err.value, ("[D1.6] demo", "time limit of 0.05 s", f"{TIME_LIMIT_ENV}=SECONDS"))
+
+
+def test_time_limit_setting(monkeypatch):
+    monkeypatch.delenv(TIME_LIMIT_ENV, raising=False)
+    assert time_limit_seconds() == 120
+    monkeypatch.setenv(TIME_LIMIT_ENV, "0")
+    assert time_limit_seconds() is None
+    monkeypatch.setenv(TIME_LIMIT_ENV, "2.5")
+    assert time_limit_seconds() == 2.5
+    monkeypatch.setenv(TIME_LIMIT_ENV, "soon")
+    with pytest.raises(InputError, match=f"{TIME_LIMIT_ENV}='soon' is not a number"):
+        time_limit_seconds()
+
+
+class _SlowOnLargeMeshes(ReferenceImplementation):
+    name = "slow-on-large-meshes"
+
+    def euler_characteristic(self, V, F):
+        if len(F) > 12:
+            time.sleep(30)                 # cut short by the time limit
+        return super().euler_characteristic(V, F)
+
+
+def test_property_run_reports_an_overrunning_example_and_goes_on(monkeypatch):
+    monkeypatch.setenv(TIME_LIMIT_ENV, "0.2")
+    quick = settings(max_examples=10, deadline=None, database=None, derandomize=True,
+                     phases=[Phase.generate])       # no shrinking: each try costs 0.2 s
+    r = run_property(PROPERTIES["D1.6"], _SlowOnLargeMeshes(), quick)
+    assert r.status == CRASHED
+    _says(r.error, ("TimeLimitExceeded", "[D1.6] slow-on-large-meshes", "0.2 s",
+                    TIME_LIMIT_ENV))
+    assert r.example.triangulation.n_faces > 12                    # the input that overran
+    monkeypatch.setenv(TIME_LIMIT_ENV, "0")
+    fine = run_property(PROPERTIES["X1.4"], ReferenceImplementation(), quick)
+    assert fine.status != CRASHED
