@@ -60,6 +60,10 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None)
         state["last"] = example
         p.check(impl, example)
 
+    # each (property, implementation) its own database key and derandomized seed: Hypothesis
+    # derives both from the test function, the same `run` for every property (as its pytest
+    # plugin does for parametrized tests)
+    run._hypothesis_internal_add_digest = f"{p.id}|{name}".encode()
     if seed is not None:
         run = hypothesis_seed(seed)(run)
     t0 = time.perf_counter()
