@@ -185,8 +185,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
         uv = sum(x * y for x, y in zip(u, v))
         four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
         if four_a2 == 0:
-            raise DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
-                                 "(zero area)")
+            raise degenerate_face(t, f)
         areas.append(sqrt(four_a2) / 2)
     for e, x in enumerate(sq):
         if x == 0:
@@ -194,3 +193,9 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
             raise DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "
                                  "(coincident vertices)")
     return PiecewiseFlatSurface(t, sq, areas)
+
+
+def degenerate_face(t: Triangulation, f: int) -> DegenerateFace:
+    """The error for face f of points in R^n with zero area (collinear vertices)."""
+    return DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
+                          "(zero area)")
