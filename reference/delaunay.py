@@ -31,12 +31,12 @@ from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass
-from fractions import Fraction
 
 from .errors import DDGError, InputError
 from .intrinsic import IntrinsicTriangulation, _metric, _number, _obstruction, _sign, unfold
 from .laplacian import cotan_laplacian, cotan_weights
 from .metric import PiecewiseFlatSurface
+from .sparse import exact_sum
 
 __all__ = ["is_delaunay_edge", "in_circumcircle", "is_delaunay", "non_delaunay_edges",
            "face_harmonic_index", "harmonic_index", "FlipRecord", "flip_to_delaunay",
@@ -150,10 +150,8 @@ def harmonic_index(surface):
     Fraction(16, 1)
     """
     m = _metric(surface)
-    total = Fraction(0)
-    for f in range(m.triangulation.n_faces):
-        total = total + face_harmonic_index(m, f)
-    return _number(total)
+    # a balanced sum: one term per face, each with its own square root on surfaces from R^3
+    return _number(exact_sum(face_harmonic_index(m, f) for f in range(m.triangulation.n_faces)))
 
 
 @dataclass(frozen=True)
