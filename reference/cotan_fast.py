@@ -5,7 +5,7 @@ the cotan Laplacian (D3.2): exact squared lengths and Surd face areas
 (:class:`~reference.metric.PiecewiseFlatSurface`), one cotangent per corner,
 weights added edge by edge.  This module computes the *same* exact values
 (``==`` on every entry, tested with Hypothesis and on a 1,280-face float
-icosphere) about 20 times faster, standard library only.
+icosphere) about 10 to 15 times faster, standard library only.
 :func:`reference.laplacian.cotan_laplacian` dispatches here whenever it
 applies (:func:`applies`).
 
@@ -23,20 +23,27 @@ How, exactly at every step:
    From squared side lengths (a piecewise flat surface with rational lengths)
    the same with ``N = a + b - o`` and ``G = 16 area^2`` (Heron, :func:`heron16`).
 2. *One square root per face.*  ``G = c^2 m`` with ``m`` free of squares of the
-   primes below 100 -- the radicand :func:`reference.exact.sqrt` gives -- and
-   ``m = s M``: ``s`` the product of the primes below 100 dividing ``m``,
-   ``M`` free of them.  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``: the
-   three corners of a face share one denominator.
+   primes below 100 -- the radicand :func:`reference.exact.sqrt` gives for the
+   face -- and ``m = s M``: ``s`` the product of the primes below 100 dividing
+   ``m``, ``M`` free of them.  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``:
+   the three corners of a face share one denominator.  (When the denominator
+   ``D`` is not a power of two, the known square ``D^4`` is divided out of
+   ``G`` first, as ``sqrt`` would: it may hold squares of primes above 100.)
 3. *Canonical Surds without re-merging.*  An entry is a sum over a few faces
    of ``q_f sqrt(m_f)``.  A :class:`~reference.exact.Surd` needs a base of
    pairwise coprime non-squares whose subset products are the radicands.  When
    the large parts ``M`` of the faces around a vertex are pairwise coprime
-   (checked exactly: one gcd per face against the product of the others, the
-   rare failure falls back to Surd addition), the base is read off the
-   factors: group the primes below 100 and the large parts by the set of
-   radicands they divide, one base element per group -- the coarsest coprime
-   base, the one Surd addition computes.  Every pair of faces sharing an edge
-   shares a vertex, so the vertex checks cover the edge weights too.
+   (checked exactly, one gcd per face against the product of the previous
+   ones; an edge weight checks its two radicands with one gcd), the base is
+   read off the factors: group the primes below 100 and the large parts by the
+   set of radicands they divide, one base element per group -- the coarsest
+   coprime base, the one Surd addition computes.  Every pair of faces sharing
+   an edge shares a vertex, so the vertex checks cover the edge weights too.
+   When two large parts share a prime (a few vertices of a float mesh), the
+   factors are refined by gcd splitting as Surd addition does (:func:`_refined`).
+
+The cost left is mostly gcds of 200-bit integers (reducing Fractions, checking
+coprimality), about ten per face: see docs/performance.md.
 
 No float is used anywhere; a sign is never needed (zero is decided by the
 canonical form: an entry is zero iff no term is left).
@@ -46,6 +53,7 @@ from __future__ import annotations
 
 import gc
 from contextlib import contextmanager
+from functools import lru_cache
 from fractions import Fraction
 from math import gcd, isqrt, lcm, prod
 from operator import mul
@@ -58,7 +66,8 @@ from .sparse import SparseMatrix, _normal
 __all__ = ["applies", "face_cotangents", "cotan_weights_fast", "cotan_laplacian_fast"]
 
 _ZERO = Fraction(0)
-_ODD_PRIMES = tuple(p for p, _ in _SMALL_SQUARES if p != 2)    # the odd primes below 100
+_PRIMES = tuple(p for p, _ in _SMALL_SQUARES)                   # the primes below 100
+_ODD_PRIMES = _PRIMES[1:]
 _ODD_PRIMORIAL = prod(_ODD_PRIMES)
 
 
@@ -142,54 +151,68 @@ def _gram_from_lengths(m: PiecewiseFlatSurface):
 
 
 def _split_root(G: int):
-    """``(c, small, M)`` with ``G = c^2 * prod(small) * M``: ``small`` the primes below
+    """``(c, s, M)`` with ``G = c^2 * s * M``: ``s`` the product of the primes below
     100 dividing G an odd number of times, ``M`` free of primes below 100 and not a
-    square (``M = 1`` when G / prod(small) is a square)."""
+    square (``M = 1`` when G / s is a square)."""
     v = (G & -G).bit_length() - 1             # the power of 2, at once
     G >>= v
     c = 1 << (v >> 1)
-    odd = [2] if v & 1 else []
+    s = 2 if v & 1 else 1
     g = gcd(G, _ODD_PRIMORIAL)                # the odd primes below 100 dividing G
     if g != 1:
-        for p in _ODD_PRIMES:
-            if g % p == 0:
-                G //= p
-                v = 1
-                while G % p == 0:
+        if gcd(G // g, g) == 1:               # each divides G once (4 faces in 5)
+            G //= g
+            s *= g
+        else:
+            for p in _ODD_PRIMES:
+                if g % p == 0:
                     G //= p
-                    v += 1
-                if v > 1:
-                    c *= p ** (v >> 1)
-                if v & 1:
-                    odd.append(p)
-                g //= p
-                if g == 1:
-                    break
-    r = isqrt(G)
-    if r * r == G:                            # includes G == 1
-        return c * r, tuple(odd), 1
-    return c, tuple(odd), G
+                    v = 1
+                    while G % p == 0:
+                        G //= p
+                        v += 1
+                    if v > 1:
+                        c *= p ** (v >> 1)
+                    if v & 1:
+                        s *= p
+                    g //= p
+                    if g == 1:
+                        break
+    if G & 7 == 1:                            # an odd square is 1 mod 8: else no square
+        r = isqrt(G)
+        if r * r == G:                        # includes G == 1
+            return c * r, s, 1
+    return c, s, G
+
+
+@lru_cache(maxsize=4096)
+def _small_primes(s: int) -> tuple:
+    """The primes below 100 of a product of distinct ones."""
+    return tuple(p for p in _PRIMES if s % p == 0)
 
 
 class _Faces:
     """Per face: radicand ``m`` (1 if rational), denominator ``2 c m`` shared by its
     three half-cotangents (``N_c / (2 c m) * sqrt(m)``), numerators ``(N0, N1, N2)``;
-    per radicand its factors ``(small primes, large part M, product of the small)``."""
+    per radicand its factors ``(s, M)``: the product of its primes below 100, the rest."""
 
     __slots__ = ("rad", "den", "num", "parts")
 
     def __init__(self, gram):
         self.rad, self.den, self.num = [], [], []
-        self.parts = parts = {1: ((), 1, 1)}
+        self.parts = {1: (1, 1)}
+        rad, den, num = self.rad.append, self.den.append, self.num.append
         roots = {}                                  # equal G on many faces (regular meshes)
-        for n0, n1, n2, G, S in gram:
-            hit = roots.get((G, S))
+        for x in gram:
+            n0, n1, n2, G, S = x
+            key = (G, S) if S & (S - 1) else G      # S matters only if not a power of 2
+            hit = roots.get(key)
             if hit is None:
-                hit = roots[(G, S)] = self._root(G, S)
-            m, den, k = hit
-            self.rad.append(m)
-            self.den.append(den)
-            self.num.append((n0 * k, n1 * k, n2 * k) if k != 1 else (n0, n1, n2))
+                hit = roots[key] = self._root(G, S)
+            rad(hit[0])
+            den(hit[1])
+            k = hit[2]
+            num((n0 * k, n1 * k, n2 * k) if k != 1 else x)    # x[:3] are the numerators
 
     def _root(self, G: int, S: int):
         """``(m, 2 c m S', k)`` with ``sqrt(G) = (c S' / k) sqrt(m)``, m the radicand
@@ -202,11 +225,30 @@ class _Faces:
             g = gcd(G, S * S)
             n, k = G // g, S * S // g
             G, scale = n * k, S
-        c, small, M = _split_root(G)
-        s = prod(small)
+        c, s, M = _split_root(G)
         m = s * M
-        self.parts.setdefault(m, (small, M, s))
+        self.parts.setdefault(m, (s, M))
         return m, 2 * c * m * scale, k
+
+    def edge_value(self, h: int, t: int, sign: int = 1, checked: bool = False):
+        """``sign`` times the weight of the edge of halfedges ``h``, ``t`` as an exact
+        value (:func:`_value` of :meth:`edge_terms`, the common case inlined: two
+        faces with coprime radicands, which are then their own base)."""
+        rad, num = self.rad, self.num
+        f = h // 3
+        m1, n1 = rad[f], num[f][(h + 2) % 3]
+        if t >= 0 and n1:
+            g = t // 3
+            m2, n2 = rad[g], num[g][(t + 2) % 3]
+            if n2 and m1 != m2 and m1 != 1 and m2 != 1 and (
+                    gcd(self.parts[m1][0], self.parts[m2][0]) == 1 if checked
+                    else gcd(m1, m2) == 1):
+                if sign < 0:
+                    n1, n2 = -n1, -n2
+                return _make((m1, m2) if m1 < m2 else (m2, m1),
+                             {m1: _fraction(n1, self.den[f]), m2: _fraction(n2, self.den[g])},
+                             prune=False)
+        return _value(self.edge_terms(h, t, sign), self.parts, checked)
 
     def edge_terms(self, h: int, t: int, sign: int = 1) -> dict:
         """``{m: q}``: ``sign`` times the half-cotangents opposite halfedge ``h`` and its
@@ -296,8 +338,8 @@ def _value(terms: dict, parts, checked: bool = False):
         return q if m == 1 else _make((m,), terms, prune=False)
     if len(terms) == 2:                 # an edge: two faces, the common case
         m1, m2 = terms
-        p1, p2 = parts[m1], parts[m2]
-        if gcd(p1[2], p2[2]) == 1 and (checked or gcd(p1[1], p2[1]) == 1):
+        (s1, M1), (s2, M2) = parts[m1], parts[m2]
+        if gcd(s1, s2) == 1 and (checked or gcd(M1, M2) == 1):
             # coprime radicands are their own base (1, the rational part, is none)
             base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
             return _make(base, terms, prune=False)
@@ -307,8 +349,8 @@ def _value(terms: dict, parts, checked: bool = False):
     pattern: dict[int, int] = {}
     bit = 1
     for m in terms:
-        small, M, _ = parts[m]
-        for x in small:
+        s, M = parts[m]
+        for x in _small_primes(s):
             pattern[x] = pattern.get(x, 0) | bit
         if M != 1:
             pattern[M] = pattern.get(M, 0) | bit
@@ -325,8 +367,8 @@ def _refined(terms: dict, parts):
     rewrite the terms over that base (a square factor may move into a coefficient)."""
     factors = set()
     for m in terms:
-        small, M, _ = parts[m]
-        factors.update(small)
+        s, M = parts[m]
+        factors.update(_small_primes(s))
         if M != 1:
             factors.add(M)
     base = _refine(list(factors))
@@ -364,7 +406,7 @@ def face_cotangents(surface) -> list[tuple]:
     (Fraction(1, 1), Fraction(0, 1), Fraction(1, 1))
     """
     fc = _Faces(_gram(surface))
-    return [tuple(_value({m: _fraction(2 * n, d)}, fc.parts) if n else _ZERO for n in ns)
+    return [tuple(_value({m: _fraction(2 * n, d)}, fc.parts) if n else _ZERO for n in ns[:3])
             for m, d, ns in zip(fc.rad, fc.den, fc.num)]
 
 
@@ -384,8 +426,7 @@ def cotan_weights_fast(surface) -> dict:
     t = surface.triangulation
     with _collector_paused():
         fc = _Faces(_gram(surface))
-        return {e: _value(fc.edge_terms(*t.edge_halfedges(e)), fc.parts)
-                for e in range(t.n_edges)}
+        return {e: fc.edge_value(*t.edge_halfedges(e)) for e in range(t.n_edges)}
 
 
 def cotan_laplacian_fast(surface) -> SparseMatrix:
@@ -425,7 +466,7 @@ def _laplacian(surface) -> SparseMatrix:
             acc[0], acc[1] = acc[0] * d + N * acc[1], acc[1] * d
 
     for f, (a, b, c) in enumerate(t.faces):
-        n0, n1, n2 = num[f]
+        n0, n1, n2 = num[f][:3]
         m, d = rad[f], den[f]
         if a != b and b != c and a != c:
             # corner a: halfedges a->b (opposite corner 2) and c->a (opposite corner 1)
@@ -452,11 +493,8 @@ def _laplacian(surface) -> SparseMatrix:
         i, j = t.tail(h), t.head(h)
         if i == j:
             continue
-        terms = fc.edge_terms(h, tw, -1)
-        if not terms:
-            continue
-        w = _value(terms, parts, checked=clean[i] or clean[j])  # both faces are at i and j
-        if not w:               # equal radicands in two spellings (a square above 100)
+        w = fc.edge_value(h, tw, -1, clean[i] or clean[j])  # both faces are at i and j
+        if not w:               # zero, or equal radicands in two spellings cancelled
             continue
         ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
         if j in ri:                                  # another edge between i and j

@@ -152,7 +152,7 @@ def cotan_laplacian(surface) -> SparseMatrix:
     surface, or a piecewise flat one with rational squared lengths, this
     returns the equal matrix computed by
     :func:`reference.cotan_fast.cotan_laplacian_fast` (integer arithmetic,
-    ~20x faster on float meshes; equality tested entry by entry).
+    ~10x faster on float meshes; equality tested entry by entry).
 
     >>> from reference import surfaces
     >>> L = cotan_laplacian(surfaces.tetrahedron())

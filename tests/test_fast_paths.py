@@ -13,19 +13,18 @@ No timings here (they live in benchmarks/).
 """
 
 import random
-from collections import deque
 from fractions import Fraction
 
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from benchmarks.peers import flip_to_delaunay_immutable
 from properties.laplacian import any_meshes, closed_meshes
 from reference import cotan_fast, surfaces
 from reference.combinatorics import Triangulation
 from reference.cotan_fast import (applies, cotan_laplacian_fast, cotan_weights_fast,
                                   face_cotangents)
-from reference.delaunay import (DelaunayError, face_harmonic_index, flip_to_delaunay,
-                                harmonic_index, is_delaunay, is_delaunay_edge)
+from reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
 from reference.errors import DegenerateFace, NotFlippable
 from reference.exact import sqrt
 from reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
@@ -213,31 +212,6 @@ def test_in_place_flips_equal_immutable_flips(name, picks):
     if e is not None:                          # flip() takes it too, and leaves it alone
         assert_same_surface(flip(w, e), flip(m, e))
         assert_same_surface(w.surface(), m)
-
-
-def flip_to_delaunay_immutable(m):
-    """A4.13 as before issue 7: the same queue, immutable flips (O(F) each)."""
-    queue = deque(range(m.triangulation.n_edges))
-    queued = [True] * m.triangulation.n_edges
-    h_total, log = harmonic_index(m), []
-    while queue:
-        e = queue.popleft()
-        queued[e] = False
-        if is_delaunay_edge(m, e):
-            continue
-        assert is_flippable(m, e)
-        h, t = m.triangulation.edge_halfedges(e)
-        f, g = h // 3, t // 3
-        old = face_harmonic_index(m, f) + face_harmonic_index(m, g)
-        m = flip(m, e)
-        new = face_harmonic_index(m, f) + face_harmonic_index(m, g)
-        log.append((e, h_total, h_total - old + new))
-        h_total = h_total - old + new
-        for x in (m.triangulation.edge_of(3 * y + c) for y in (f, g) for c in range(3)):
-            if x != e and not queued[x]:
-                queued[x] = True
-                queue.append(x)
-    return m, log
 
 
 @settings(max_examples=10, deadline=None)
