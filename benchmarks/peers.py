@@ -28,16 +28,21 @@ from reference.delaunay import face_harmonic_index, harmonic_index, is_delaunay_
 from reference.intrinsic import flip, is_flippable
 
 
-def _weights(V, F, number):
+def _faces(V, F, number):
+    """Per face ``(a, b, c, uu, vv, uv)``: the Gram entries of ``u = B - A``,
+    ``v = C - A`` with the coordinates converted by ``number``."""
     P = [tuple(number(x) for x in p) for p in V]
-    w = {}
     for a, b, c in F:
         A, B, C = P[a], P[b], P[c]
         u = [y - x for x, y in zip(A, B)]
         v = [y - x for x, y in zip(A, C)]
-        uu = sum(x * x for x in u)
-        vv = sum(x * x for x in v)
-        uv = sum(x * y for x, y in zip(u, v))
+        yield (a, b, c, sum(x * x for x in u), sum(x * x for x in v),
+               sum(x * y for x, y in zip(u, v)))
+
+
+def _weights(V, F, number):
+    w = {}
+    for a, b, c, uu, vv, uv in _faces(V, F, number):
         G = uu * vv - uv * uv
         for (i, j), N in (((a, b), vv - uv), ((b, c), uv), ((c, a), uu - uv)):
             w.setdefault((i, j) if i < j else (j, i), []).append((N / (2 * G), G))
@@ -56,15 +61,8 @@ def weights_gmpy2(V, F):
 def weights_sympy(V, F):
     import sympy
     sympy.core.cache.clear_cache()     # else a repeated run reuses every square root
-    P = [tuple(sympy.Rational(x) for x in p) for p in V]
     w = {}
-    for a, b, c in F:
-        A, B, C = P[a], P[b], P[c]
-        u = [y - x for x, y in zip(A, B)]
-        v = [y - x for x, y in zip(A, C)]
-        uu = sum(x * x for x in u)
-        vv = sum(x * x for x in v)
-        uv = sum(x * y for x, y in zip(u, v))
+    for a, b, c, uu, vv, uv in _faces(V, F, sympy.Rational):
         root = sympy.sqrt(uu * vv - uv * uv)
         for (i, j), N in (((a, b), vv - uv), ((b, c), uv), ((c, a), uu - uv)):
             key = (i, j) if i < j else (j, i)

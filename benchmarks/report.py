@@ -219,28 +219,30 @@ def write(results: dict) -> None:
             series.setdefault(r["peer"], []).append((r["faces"], r["seconds"]))
         if _plot(PLOTS / "flips.png", series, "Flip algorithm to Delaunay, flat torus"):
             out += ["![time vs faces](perf/flips.png)", ""]
-    if "r3" in results:
-        res = results["r3"]
-        out += [R3, _meta(res), "| surface | faces | flips | seconds | max terms | h terms |",
-                "|---|---|---|---|---|---|"]
-        out += [f"| {r['surface']} | {r['faces']:,} | {r['flips']} | {r['seconds']:.2f} | "
-                f"{r['max_terms']} | {r['max_terms_h']} |" for r in res["rows"]]
-        out.append("")
-    if "suite" in results:
-        res = results["suite"]
-        out += [SUITE, _meta(res), "| command | wall seconds | exit | last line |",
-                "|---|---|---|---|"]
-        out += [f"| {r['command']} | {r['wall']:.0f} | {r['exit']} | {r['summary']} |"
-                for r in res["rows"]]
-        out.append("")
-    if "hypothesis" in results:
-        res = results["hypothesis"]
-        out += [HYPOTHESIS, _meta(res), "| implementation | status | examples | CPU seconds | "
-                "examples/s |", "|---|---|---|---|---|"]
-        out += [f"| {r['implementation']} | {r['status']} | {r['examples']} | "
-                f"{r['seconds']:.2f} | {_rate(r['examples_per_s'])} |" for r in res["rows"]]
-        out.append("")
+    for key, text, columns in _TABLES:
+        if key in results:
+            res = results[key]
+            out += [text, _meta(res), "| " + " | ".join(c for c, _ in columns) + " |",
+                    "|" + "---|" * len(columns)]
+            out += ["| " + " | ".join(f(r) for _, f in columns) + " |" for r in res["rows"]]
+            out.append("")
     DOC.write_text("\n".join(out).rstrip() + "\n")
+
+
+_TABLES = [
+    ("r3", R3, [("surface", lambda r: r["surface"]), ("faces", lambda r: f"{r['faces']:,}"),
+                ("flips", lambda r: str(r["flips"])), ("seconds", lambda r: f"{r['seconds']:.2f}"),
+                ("max terms", lambda r: str(r["max_terms"])),
+                ("h terms", lambda r: str(r["max_terms_h"]))]),
+    ("suite", SUITE, [("command", lambda r: r["command"]),
+                      ("wall seconds", lambda r: f"{r['wall']:.0f}"),
+                      ("exit", lambda r: str(r["exit"])), ("last line", lambda r: r["summary"])]),
+    ("hypothesis", HYPOTHESIS, [("implementation", lambda r: r["implementation"]),
+                                ("status", lambda r: r["status"]),
+                                ("examples", lambda r: str(r["examples"])),
+                                ("CPU seconds", lambda r: f"{r['seconds']:.2f}"),
+                                ("examples/s", lambda r: _rate(r["examples_per_s"]))]),
+]
 
 
 def _targets(results: dict) -> list[str]:
