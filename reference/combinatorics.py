@@ -686,22 +686,10 @@ class Triangulation:
         h, t = self._edges[e]
         if t < 0:
             raise NotFlippable(f"edge {e} is a boundary edge")
-        f, g = h // 3, t // 3
-        if f == g:
-            raise NotFlippable(f"edge {e} has face {f} on both sides")
+        if h // 3 == t // 3:
+            raise NotFlippable(f"edge {e} has face {h // 3} on both sides")
         b = _Builder(self)
-        if self._rev[h]:
-            b.reverse_faces({g})
-            t = b.twin[h]
-        i = b.faces[f][h % 3]
-        j = b.faces[f][(h + 1) % 3]
-        k = b.faces[f][(h + 2) % 3]
-        l_ = b.faces[g][(t + 2) % 3]
-        b.move({_prev(t): 3 * f + 1, _next(h): 3 * f + 2,
-                _prev(h): 3 * g + 1, _next(t): 3 * g + 2})
-        b.set_face(f, (k, l_, j))
-        b.set_face(g, (l_, k, i))
-        b.glue(3 * f, 3 * g, False, e)
+        b.flip(e)
         return b.build()
 
     def split_edge(self, e: int) -> tuple["Triangulation", int]:
@@ -954,7 +942,14 @@ def _split_gluings(tri: Triangulation, first, second):
 
 
 class _Builder:
-    """Mutable copy of a triangulation for local surgery (flip, split, reversal)."""
+    """Mutable copy of a triangulation for local surgery (flip, split, reversal).
+
+    It also reads like a :class:`Triangulation` (``tail``, ``head``,
+    ``edge_halfedges``, ...), so that a long sequence of flips can run on one
+    builder, O(1) each, and be frozen once with :meth:`build`
+    (:class:`reference.intrinsic.IntrinsicTriangulation`); ``Triangulation.flip``
+    is one :meth:`flip` on a fresh copy, so both give identical triangulations.
+    """
 
     def __init__(self, tri: Triangulation):
         # Plain list copies (C speed); faces stay tuples and only the few faces an
@@ -1055,7 +1050,29 @@ class _Builder:
         self.glue(xn, 3 * N + 2, False)           # the new edge m -- k
         return x, 3 * N, moved
 
-    def build(self) -> Triangulation:
+    def flip(self, e: int) -> None:
+        """:meth:`Triangulation.flip` in place (``e`` a valid interior edge with two
+        distinct faces; the caller checks).  O(1)."""
+        h = self.first[e]
+        t = self.twin[h]
+        f, g = h // 3, t // 3
+        if self.rev[h]:
+            self.reverse_faces({g})
+            t = self.twin[h]
+        i, j, k = self.faces[f][h % 3], self.faces[f][(h + 1) % 3], self.faces[f][(h + 2) % 3]
+        l_ = self.faces[g][(t + 2) % 3]
+        self.move({_prev(t): 3 * f + 1, _next(h): 3 * f + 2,
+                   _prev(h): 3 * g + 1, _next(t): 3 * g + 2})
+        self.set_face(f, (k, l_, j))
+        self.set_face(g, (l_, k, i))
+        self.glue(3 * f, 3 * g, False, e)
+        # settle vertex corners after every flip, as a fresh build would: the
+        # corner a vertex's star starts from then does not depend on how many
+        # flips ran on this builder
+        self.settle_vertices()
+
+    def settle_vertices(self) -> None:
+        """Point every vertex that lost its corner to its first corner in a touched face."""
         faces, vcorner = self.faces, self.vcorner
         vcorner += [-1] * (self.n - len(vcorner))
         # Only vertices of touched faces can have lost the corner vcorner points to.
@@ -1067,6 +1084,52 @@ class _Builder:
             k = vcorner[v]
             if k < 0 or faces[k // 3][k % 3] != v:
                 vcorner[v] = fresh[v]          # every operation keeps v in a touched face
+        self.touched.clear()
+        self.old_vertices.clear()
+
+    # --- reading like a Triangulation (for long flip sequences) -------------------------
+
+    @property
+    def n_vertices(self) -> int:
+        return self.n
+
+    @property
+    def n_faces(self) -> int:
+        return len(self.faces)
+
+    @property
+    def n_edges(self) -> int:
+        return len(self.first)
+
+    def tail(self, h: int) -> int:
+        return self.faces[h // 3][h % 3]
+
+    def head(self, h: int) -> int:
+        return self.faces[h // 3][(h + 1) % 3]
+
+    next = staticmethod(_next)
+    prev = staticmethod(_prev)
+
+    def reversed_gluing(self, h: int) -> bool:
+        return self.rev[h]
+
+    def edge_of(self, h: int) -> int:
+        return self.eid[h]
+
+    def edge_halfedges(self, e: int) -> tuple[int, int]:
+        h = self.first[e]
+        return h, self.twin[h]
+
+    def edge_vertices(self, e: int) -> tuple[int, int]:
+        h = self.first[e]
+        return self.tail(h), self.head(h)
+
+    def is_boundary_edge(self, e: int) -> bool:
+        return self.twin[self.first[e]] < 0
+
+    def build(self) -> Triangulation:
+        self.settle_vertices()
+        faces, vcorner = self.faces, self.vcorner
         out = object.__new__(Triangulation)
         out._faces = tuple(faces)
         out._n = self.n

@@ -66,13 +66,13 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 
-from .combinatorics import Triangulation, _index
+from .combinatorics import Triangulation, _Builder, _index
 from .errors import InputError, NotFlippable, TermLimitExceeded
 from .exact import Surd
 from .metric import PiecewiseFlatSurface
 
-__all__ = ["Unfolding", "unfold", "is_flippable", "flip", "cot_sum",
-           "regular_tetrahedron_flip"]
+__all__ = ["Unfolding", "unfold", "is_flippable", "flip", "IntrinsicTriangulation",
+           "cot_sum", "regular_tetrahedron_flip"]
 
 
 def _number(x):
@@ -83,7 +83,7 @@ def _number(x):
 
 
 def _metric(surface) -> PiecewiseFlatSurface:
-    if isinstance(surface, PiecewiseFlatSurface):
+    if isinstance(surface, (PiecewiseFlatSurface, IntrinsicTriangulation)):
         return surface
     metric = getattr(surface, "metric", None)
     if callable(metric):                       # a PolyhedralSurface
@@ -290,24 +290,113 @@ def flip(surface, e: int) -> PiecewiseFlatSurface:
     (((2, 3, 1), (3, 2, 0)), Fraction(3, 1), (Surd('1/4*sqrt(3)'), Surd('1/4*sqrt(3)')))
     """
     m = _metric(surface)
-    u, reason = _obstruction(m, e)
-    if reason is not None:
-        raise NotFlippable(reason)
+    if isinstance(m, IntrinsicTriangulation):
+        m = m.surface()                  # flip() never changes its argument
+    u = _flippable_unfolding(m, e)
     e = u.edge
-    try:
-        new_sq = u.new_squared_length
-        at_i, at_j = u.new_area_at_i, u.new_area_at_j
-    except TermLimitExceeded as err:
-        raise TermLimitExceeded(f"flip of edge {e}: {err}") from None
+    new_sq, at_i, at_j = _flipped_data(u)
     tri = m.triangulation.flip(e)
     f, g = u.faces
     sq = list(m.squared_lengths)
     sq[e] = new_sq
     areas = list(m.areas)
-    areas[f] = Surd(at_j)        # f = (k, l, j)
-    areas[g] = Surd(at_i)        # g = (l, k, i)
+    areas[f] = at_j        # f = (k, l, j)
+    areas[g] = at_i        # g = (l, k, i)
     # valid by construction: no re-validation of every edge (most of a flip's cost)
     return PiecewiseFlatSurface._trusted(tri, sq, areas)
+
+
+def _flippable_unfolding(m, e: int) -> Unfolding:
+    """The unfolding of ``e``, or :class:`NotFlippable` saying why not."""
+    u, reason = _obstruction(m, e)
+    if reason is not None:
+        raise NotFlippable(reason)
+    return u
+
+
+def _flipped_data(u: Unfolding):
+    """``(|kl|^2, area(l, k, i), area(k, l, j))`` of a flippable unfolding (exact)."""
+    try:
+        return u.new_squared_length, Surd(u.new_area_at_i), Surd(u.new_area_at_j)
+    except TermLimitExceeded as err:
+        raise TermLimitExceeded(f"flip of edge {u.edge}: {err}") from None
+
+
+class IntrinsicTriangulation:
+    """A piecewise flat surface that is flipped in place: O(1) per flip (L2.8).
+
+    :func:`flip` returns a new immutable surface and so copies O(F) data per
+    flip; long flip sequences (:func:`reference.delaunay.flip_to_delaunay`,
+    random flips on large meshes) run here instead and freeze the result once
+    with :meth:`surface`.  Each :meth:`flip` is exactly :func:`flip` (same
+    checks, errors, closed formulas, face and edge numbering), so
+    ``IntrinsicTriangulation(s)`` flipped at ``e1, e2, ...`` then frozen equals
+    ``flip(flip(s, e1), e2) ...``.
+
+    It reads like a :class:`~reference.metric.PiecewiseFlatSurface` where the
+    edge-local functions need it (``squared_length``, ``face_squared_lengths``,
+    ``areas``, and ``triangulation`` with ``tail``, ``head``, ``edge_halfedges``
+    ...), so :func:`unfold`, :func:`is_flippable`,
+    :func:`reference.delaunay.is_delaunay_edge` and
+    :func:`reference.delaunay.face_harmonic_index` accept it.  Its
+    ``triangulation`` is a live view that changes with every flip.
+
+    >>> from reference import surfaces
+    >>> s = surfaces.grid(1, 1).metric()
+    >>> w = IntrinsicTriangulation(s)
+    >>> w.flip(2); w.flip(2)
+    >>> w.surface().squared_lengths == s.squared_lengths
+    True
+    """
+
+    __slots__ = ("triangulation", "squared_lengths", "areas")
+
+    def __init__(self, surface):
+        m = _metric(surface)
+        if isinstance(m, IntrinsicTriangulation):
+            m = m.surface()
+        self.triangulation = _Builder(m.triangulation)
+        self.squared_lengths = list(m.squared_lengths)
+        self.areas = list(m.areas)
+
+    def squared_length(self, h: int):
+        """Squared length of the edge of halfedge h."""
+        return self.squared_lengths[self.triangulation.eid[h]]
+
+    def face_squared_lengths(self, f: int):
+        """Squared lengths of halfedges 3f, 3f+1, 3f+2 (opposite corners 2, 0, 1)."""
+        eid, sq = self.triangulation.eid, self.squared_lengths
+        return sq[eid[3 * f]], sq[eid[3 * f + 1]], sq[eid[3 * f + 2]]
+
+    def area(self, f: int):
+        return self.areas[f]
+
+    def is_flippable(self, e: int) -> bool:
+        """L2.8, exactly as :func:`is_flippable`."""
+        return _obstruction(self, e)[1] is None
+
+    def flip(self, e: int) -> None:
+        """Flip edge ``e`` in place, exactly as :func:`flip` (same errors)."""
+        self.flip_unfolded(_flippable_unfolding(self, e))
+
+    def flip_unfolded(self, u: Unfolding) -> None:
+        """Flip the edge of ``u``, an unfolding of this surface already found
+        flippable (saves unfolding twice in :func:`~reference.delaunay.flip_to_delaunay`)."""
+        new_sq, at_i, at_j = _flipped_data(u)
+        self.triangulation.flip(u.edge)
+        f, g = u.faces
+        self.squared_lengths[u.edge] = new_sq
+        self.areas[f] = at_j
+        self.areas[g] = at_i
+
+    def surface(self) -> PiecewiseFlatSurface:
+        """The current surface, frozen (O(F))."""
+        return PiecewiseFlatSurface._trusted(self.triangulation.build(), self.squared_lengths,
+                                             self.areas)
+
+    def __repr__(self) -> str:
+        t = self.triangulation
+        return f"IntrinsicTriangulation(V={t.n_vertices}, E={t.n_edges}, F={t.n_faces})"
 
 
 def cot_sum(surface, e: int):

@@ -35,6 +35,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Iterable, Sequence
 
+from . import cotan_fast
 from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .metric import PiecewiseFlatSurface, as_metric
@@ -42,7 +43,8 @@ from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix, _normal, exact_number, exact_sum
 
 __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weighted_edges",
-           "cotan_laplacian", "dirichlet_energy_pl", "dirichlet_inner_product_pl",
+           "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
+           "dirichlet_inner_product_pl",
            "gradient_pl", "vertex_areas_barycentric", "vertex_areas_voronoi",
            "opposite_angle_sum", "weight_sign_by_angles", "cotan_weight_by_sines",
            "metric_of_surface"]
@@ -146,10 +148,30 @@ def cotan_laplacian(surface) -> SparseMatrix:
     ``cotmatrix``); entry (i, j), i != j, is minus the sum of the cotan weights
     of all edges between i and j; loops contribute nothing.
 
+    The definition is :func:`cotan_laplacian_from_weights`.  For a polyhedral
+    surface, or a piecewise flat one with rational squared lengths, this
+    returns the equal matrix computed by
+    :func:`reference.cotan_fast.cotan_laplacian_fast` (integer arithmetic,
+    ~10x faster on float meshes; equality tested entry by entry).
+
     >>> from reference import surfaces
     >>> L = cotan_laplacian(surfaces.tetrahedron())
     >>> L.is_symmetric(), sum(L.matvec([1, 1, 1, 1])) == 0
     (True, True)
+    """
+    if cotan_fast.applies(surface):
+        return cotan_fast.cotan_laplacian_fast(surface)
+    return cotan_laplacian_from_weights(surface)
+
+
+def cotan_laplacian_from_weights(surface) -> SparseMatrix:
+    """Definition 3.2 as written: the cotan weights (:func:`cotan_weights`) added
+    edge by edge into the matrix.  The definition :func:`cotan_laplacian` is
+    tested against; it accepts every surface (irrational squared lengths too).
+
+    >>> from reference import surfaces
+    >>> cotan_laplacian_from_weights(surfaces.grid(1, 1))[0, 1]
+    Fraction(-1, 2)
     """
     m = metric_of_surface(surface)
     t = m.triangulation

@@ -208,7 +208,20 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
         uv = sum(x * y for x, y in zip(u, v))
         four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
         if four_a2 == 0:
-            raise DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
-                                 "(zero area)")
+            raise degenerate_face(t, f)
         areas.append(sqrt(four_a2) / 2)
     return PiecewiseFlatSurface(t, sq, areas)
+
+
+def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:
+    """The error for face f of points in R^n with zero area: two coincident vertices
+    (named by the edge between them, when ``positions`` are given) or three collinear ones."""
+    if positions is not None:
+        for c in range(3):
+            e = t.edge_of(3 * f + c)
+            i, j = t.edge_vertices(e)
+            if positions[i] == positions[j]:
+                return DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "
+                                      "(coincident vertices); its faces have zero area")
+    return DegenerateFace(f"degenerate face {f} {t.faces[f]}: its vertices are collinear "
+                          "(zero area)")

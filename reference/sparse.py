@@ -108,6 +108,14 @@ class SparseMatrix:
         return cls((n, m), rows)
 
     @classmethod
+    def _trusted(cls, shape: tuple[int, int], rows: dict) -> "SparseMatrix":
+        """Internal: from rows of nonzero entries, rational ones already Fractions."""
+        self = object.__new__(cls)
+        self._shape = shape
+        self._rows = rows
+        return self
+
+    @classmethod
     def from_rows(cls, shape: tuple[int, int], rows: dict) -> "SparseMatrix":
         """From ``{i: {j: value}}`` (values already exact)."""
         return cls(shape, rows)

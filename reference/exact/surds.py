@@ -126,19 +126,23 @@ def _strip_small_squares(m):
     return c, m
 
 
-def _refine(elements):
+def _refine(elements, coprime=()):
     """Coprime refinement: sorted tuple of pairwise coprime non-squares > 1.
 
     Every input element (> 1) is a product of powers of the output elements.
     Uses gcd splitting only: the product of the work list and the output
-    strictly decreases at every split, so the loop terminates.
+    strictly decreases at every split, so the loop terminates.  ``coprime``:
+    elements already pairwise coprime (a base), taken as they are, so that
+    merging a few elements into a base of n costs O(n) gcds, not O(n^2).
 
     >>> _refine([6, 10])
     (2, 3, 5)
     >>> _refine([12, 18])
     (2, 3)
+    >>> _refine([10], coprime=(3, 7, 22))
+    (2, 3, 5, 7, 11)
     """
-    out = []
+    out = list(coprime)
     work = [n for n in elements if n > 1]
     while work:
         n = work.pop()
@@ -393,7 +397,7 @@ def _common(a, b):
             return bb, a._terms, b._terms, False
     elif all(x in ba for x in bb):
         return ba, a._terms, b._terms, False
-    base = _refine(ba + bb)
+    base = _refine(bb, coprime=ba) if len(ba) >= len(bb) else _refine(ba, coprime=bb)
     ta, tb = a._terms, b._terms
     if not all(x in base for x in ba):
         ta = _reexpress(ta, base)

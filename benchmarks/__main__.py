@@ -1,0 +1,47 @@
+"""``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from . import cotan, flips, report, suite
+from .common import Mode, load_results, machine, save_results, say
+
+GROUPS = {
+    "cotan": cotan.run,
+    "flips": flips.run,
+    "r3": flips.run_r3,
+    "hypothesis": suite.run_hypothesis,
+    "suite": suite.run_suite,
+}
+DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m benchmarks", description=__doc__)
+    p.add_argument("groups", nargs="*", choices=[[], *GROUPS], metavar="GROUP",
+                   help=f"any of {', '.join(GROUPS)} (default: {' '.join(DEFAULT)})")
+    p.add_argument("--quick", action="store_true", help="smaller meshes, fewer runs (< 1 min)")
+    p.add_argument("--all", action="store_true", help="every group, the suite timings too")
+    p.add_argument("--runs", type=int, default=None, help="at most this many runs per timing")
+    p.add_argument("--no-write", action="store_true",
+                   help="print only; leave docs/performance.md and docs/perf/ alone")
+    args = p.parse_args(argv)
+    groups = list(GROUPS) if args.all else (args.groups or DEFAULT)
+    mode = Mode.of(args.quick, args.runs)
+    results = load_results()
+    for g in groups:
+        say(f"{g} ({'quick' if mode.quick else 'default'})")
+        res = GROUPS[g](mode)
+        res["meta"] = {**machine(), "quick": mode.quick}
+        results[g] = res
+    if not args.no_write:
+        save_results(results)
+        report.write(results)
+        say(f"wrote {report.DOC.relative_to(report.ROOT)} and docs/perf/")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

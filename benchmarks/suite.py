@@ -1,0 +1,60 @@
+"""Hypothesis throughput of a reference-vs-libigl property (issue 7, item 5), and the
+wall time of the test suite and of ``ddg-oracle check`` on 2 workers (item 4)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+
+from .common import ROOT, Mode, say
+
+PROPERTY = "D3.1"        # cotan_laplacian equals the exact cotan weights, within the bound
+
+
+def run_hypothesis(mode: Mode) -> dict:
+    from hypothesis import settings
+
+    import properties.profiles  # noqa: F401  (registers the profiles)
+    from oracles.exact_reference import ReferenceImplementation
+    from oracles.libigl import Libigl
+    from properties.registry import PROPERTIES
+    from properties.runner import run_property
+
+    n = 25 if mode.quick else 200
+    s = settings(settings.get_profile("ci"), max_examples=n)
+    rows = []
+    for impl in (Libigl(), ReferenceImplementation()):
+        t0, c0 = time.perf_counter(), time.process_time()
+        r = run_property(PROPERTIES[PROPERTY], impl, s, seed=0)
+        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+        rows.append({"property": PROPERTY, "implementation": r.implementation,
+                     "status": r.status, "examples": r.examples, "seconds": cpu,
+                     "wall": wall, "examples_per_s": r.examples / cpu if cpu else None})
+        say(f"  hypothesis {PROPERTY} {r.implementation:12} {r.status} {r.examples} examples "
+            f"{cpu:.2f} s")
+    return {"rows": rows}
+
+
+COMMANDS = [
+    ("test suite, default profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
+                                     "-p", "no:cacheprovider", "reference", "tests"], {}),
+    ("test suite, ci profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
+                                "-p", "no:cacheprovider", "reference", "tests"], {"CI": "true"}),
+    ("ddg-oracle check (default)", [sys.executable, "-m", "oracles.cli", "check"], {}),
+]
+
+
+def run_suite(mode: Mode) -> dict:
+    """One run each (minutes): wall time, exit status."""
+    rows = []
+    for label, cmd, env in COMMANDS:
+        t0 = time.perf_counter()
+        p = subprocess.run(cmd, cwd=ROOT, env={**os.environ, **env}, capture_output=True,
+                           text=True)
+        wall = time.perf_counter() - t0
+        last = (p.stdout.strip().splitlines() or [""])[-1]
+        rows.append({"command": label, "wall": wall, "exit": p.returncode, "summary": last})
+        say(f"  suite {label:30} {wall:8.1f} s exit {p.returncode}: {last}")
+    return {"rows": rows}
