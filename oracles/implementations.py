@@ -1,9 +1,17 @@
-"""Finding implementations by name: built-in adapters or ``module:object``."""
+"""Finding implementations by name: built-in adapters or ``module:object``.
+
+A spec may carry keyword options in parentheses, passed to the class:
+``"libigl(boundary=library)"``, ``"pymeshlab(boundary=library, genus=library)"``,
+``"mypkg.mod:Impl(scale=2)"`` (values are Python literals, or bare words taken
+as strings).
+"""
 
 from __future__ import annotations
 
+import ast
 import importlib
 import os
+import re
 import sys
 
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
@@ -14,17 +22,58 @@ BUILTIN: dict[str, str] = {
     "scipy": "oracles.scipy_spatial:ScipySpatial",
 }
 
+#: Adapter options that select a library's own convention instead of the
+#: reference's, each with the finding that documents the difference
+#: (docs/findings.md, docs/conventions.md).  ``ddg-oracle check
+#: --expect-conventions`` reports a failure of such a spec as "convention" when
+#: the same spec without the option passes the same example.
+DOCUMENTED_CONVENTIONS: dict[str, dict[tuple[str, str], str]] = {
+    "libigl": {("boundary", "library"): "L2 (gaussian_curvature: 2 pi - angle sum at "
+                                        "boundary vertices)"},
+    "pymeshlab": {("boundary", "library"): "P2 (boundary term 2 pi - angle sum - phi)",
+                  ("genus", "library"): "P1 (genus of a non-orientable mesh is floor(h / 2))"},
+}
+
+_OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
+
 
 class ImplementationNotFound(ValueError):
     """An --impl argument that names nothing importable."""
 
 
-def load_implementation(spec: str):
-    """An implementation object from a built-in name or ``module:object``.
+def parse_spec(spec: str) -> tuple[str, dict]:
+    """(name or module:object, keyword options) of a spec.
 
-    A class is instantiated without arguments; any other object is used as is.
+    >>> parse_spec("libigl(boundary=library)")
+    ('libigl', {'boundary': 'library'})
+    >>> parse_spec("pkg.mod:Impl(scale=2, name='x')")
+    ('pkg.mod:Impl', {'scale': 2, 'name': 'x'})
     """
-    target = BUILTIN.get(spec, spec)
+    m = _OPTIONS.match(spec)
+    if not m:
+        return spec.strip(), {}
+    base, body = m.group(1), m.group(2).strip()
+    options = {}
+    for part in filter(None, (p.strip() for p in body.split(","))):
+        key, eq, value = part.partition("=")
+        key, value = key.strip(), value.strip()
+        if not eq or not key.isidentifier():
+            raise ImplementationNotFound(f"bad option {part!r} in {spec!r}: use key=value")
+        try:
+            options[key] = ast.literal_eval(value)
+        except (ValueError, SyntaxError):
+            options[key] = value
+    return base, options
+
+
+def load_implementation(spec: str):
+    """An implementation object from a built-in name or ``module:object``, with options.
+
+    A class is instantiated with the spec's options (none: no arguments); any
+    other object is used as is (and takes no options).
+    """
+    base, options = parse_spec(spec)
+    target = BUILTIN.get(base, base)
     module, sep, qual = target.partition(":")
     if not sep or not module or not qual:
         raise ImplementationNotFound(
@@ -40,7 +89,30 @@ def load_implementation(spec: str):
         raise ImplementationNotFound(f"cannot import {module!r} for {spec!r}: {e}") from None
     except AttributeError:
         raise ImplementationNotFound(f"{module!r} has no {qual!r} (from {spec!r})") from None
-    return obj() if isinstance(obj, type) else obj
+    if not isinstance(obj, type):
+        if options:
+            raise ImplementationNotFound(f"{spec!r}: options need a class, {qual!r} is not one")
+        return obj
+    try:
+        return obj(**options)
+    except (TypeError, ValueError) as e:
+        raise ImplementationNotFound(f"{spec!r}: {e}") from None
+
+
+def convention_counterpart(spec: str) -> tuple[str, str] | None:
+    """(spec with reference conventions, the findings it differs by) when every option
+    of ``spec`` selects a documented library convention, else None.
+
+    >>> convention_counterpart("pymeshlab(genus=library)")
+    ('pymeshlab', 'P1 (genus of a non-orientable mesh is floor(h / 2))')
+    >>> convention_counterpart("libigl") is None
+    True
+    """
+    base, options = parse_spec(spec)
+    documented = DOCUMENTED_CONVENTIONS.get(base, {})
+    if not options or not all((k, v) in documented for k, v in options.items()):
+        return None
+    return base, "; ".join(documented[(k, v)] for k, v in options.items())
 
 
 def available() -> list[str]:

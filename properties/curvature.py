@@ -35,7 +35,7 @@ from reference import surfaces
 from reference.combinatorics import Triangulation
 from reference.polyhedral import PolyhedralSurface
 
-from .registry import PropertyFailure, prop
+from .registry import PropertyFailure, TieDisagreement, prop
 
 from .protocol import eps  # noqa: E402  (the checked implementation's epsilon)
 C_ANGLE = 16.0                               # see the module docstring
@@ -421,7 +421,7 @@ def angle_defects_match_reference(impl, case: CurvatureCase):
         if not err <= tol[v]:
             raise PropertyFailure("D2.2", impl, f"angle defect off: {_units(err, tol[v])}",
                                   mesh=case.mesh, element=f"vertex {v}", expected=k,
-                                  observed=float(K[v]))
+                                  observed=float(K[v]), bound=tol[v])
 
 
 @prop("R2.4", "boundary vertices get the turning angle pi - angle sum; interior K plus turning "
@@ -436,7 +436,7 @@ def turning_angles_and_gauss_bonnet_with_boundary(impl, case: CurvatureCase):
         if not err <= tol[v]:
             raise PropertyFailure("R2.4", impl, f"turning angle off: {_units(err, tol[v])}",
                                   mesh=case.mesh, element=f"boundary vertex {v}", expected=k,
-                                  observed=float(K[v]))
+                                  observed=float(K[v]), bound=tol[v])
 
 
 def _check_total(pid, impl, case, K, tol):
@@ -447,7 +447,7 @@ def _check_total(pid, impl, case, K, tol):
     if not err <= bound:
         raise PropertyFailure(pid, impl, f"total curvature != 2 pi chi: {_units(err, bound)}",
                               mesh=case.mesh, element=f"chi = {case.chi}", expected=expected,
-                              observed=total)
+                              observed=total, bound=bound)
 
 
 @prop("T2.6", "Gauss-Bonnet: the angle defects of a closed surface sum to 2 pi chi, within the "
@@ -472,7 +472,7 @@ def cube_angle_defects(impl, example):
         if not err <= tol[v]:
             raise PropertyFailure("X2.1", impl, f"cube vertex defect != pi/2: {_units(err, tol[v])}",
                                   mesh=case.mesh, element=f"vertex {v}", expected=math.pi / 2,
-                                  observed=float(K[v]))
+                                  observed=float(K[v]), bound=tol[v])
     _check_total("X2.1", impl, case, K, tol)
 
 
@@ -492,7 +492,7 @@ def angle_defects_are_invariant(impl, example):
         if not err <= bound:
             raise PropertyFailure("T2.5", impl, f"K changed under a rigid motion: {_units(err, bound)}",
                                   mesh=other.mesh, element=f"vertex {v} (now {w})",
-                                  expected=float(K1[v]), observed=float(K2[w]))
+                                  expected=float(K1[v]), observed=float(K2[w]), bound=bound)
 
 
 @st.composite
@@ -538,7 +538,7 @@ def pushing_a_vertex_in_keeps_the_metric(impl, example):
         bound = ct1[f, c] + ct2[f, c]
         raise PropertyFailure("X2.3", impl, f"corner angle changed: {_units(e, bound)}",
                               mesh=pushed.mesh, element=f"face {f}, corner {c}",
-                              expected=float(A1[f, c]), observed=float(A2[f, c]))
+                              expected=float(A1[f, c]), observed=float(A2[f, c]), bound=bound)
     K1, K2 = _defects(impl, case, "X2.3"), _defects(impl, pushed, "X2.3")
     tol = vertex_tolerances(case, ct1) + vertex_tolerances(pushed, ct2)
     bad = np.abs(K1 - K2) - tol
@@ -546,7 +546,7 @@ def pushing_a_vertex_in_keeps_the_metric(impl, example):
         w = int(np.argmax(bad))
         raise PropertyFailure("X2.3", impl, f"K changed: {_units(abs(K1[w] - K2[w]), tol[w])}",
                               mesh=pushed.mesh, element=f"vertex {w}", expected=float(K1[w]),
-                              observed=float(K2[w]))
+                              observed=float(K2[w]), bound=tol[w])
 
 
 @prop("R2.2", "K < 2 pi everywhere; a folded star of n neighbours at heights +-h has "
@@ -601,7 +601,11 @@ def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
         rel = {1: ">", 0: "=", -1: "<"}[want]
         raise PropertyFailure("L2.4", impl, f"{star.kind} star needs K {rel} 0 "
                               f"(float bound {tol:.3g})", mesh=star.mesh, element="vertex 0",
-                              expected=exact, observed=K)
+                              expected=exact, observed=K, bound=tol)
+    if want == 0 and K != 0:                # exactly flat; the float K calls it curved
+        raise TieDisagreement("L2.4", impl, "exactly flat vertex (K = 0) given a nonzero K "
+                              "within the float bound", mesh=star.mesh, element="vertex 0",
+                              expected=0.0, observed=K, bound=tol)
 
 
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "
@@ -623,7 +627,7 @@ def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
         raise PropertyFailure("D2.6", impl,
                               f"corner angle off: {_units(abs(A[f, c] - expected[f, c]), tol[f, c])}",
                               mesh=case.mesh, element=f"face {f}, corner {c}",
-                              expected=float(expected[f, c]), observed=float(A[f, c]))
+                              expected=float(expected[f, c]), observed=float(A[f, c]), bound=tol[f, c])
 
 
 # --- mean curvature (D2.3, T2.7, R2.5) ------------------------------------------------------------
@@ -654,6 +658,14 @@ def edge_mean_curvature_tolerances(case: CurvatureCase) -> dict:
     return out
 
 
+def area_tolerance(case: CurvatureCase) -> float:
+    """Bound on |computed total area - exact area|: each face area from float points is off by
+    at most C_ANGLE eps A_f (1 + kappa_f), the sum adds gamma_m sum A_f."""
+    cond = 1 + face_condition(case)
+    areas = [float(a) for a in _geometry(case)["area"]]
+    return sum(C_ANGLE * eps() * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
+
+
 def _edge_dict(impl, case, pid):
     raw = _call(impl, "edge_mean_curvature", case)
     out = {}
@@ -679,7 +691,7 @@ def edge_mean_curvature_matches_reference(impl, case: CurvatureCase):
             length, theta, _, _ = _geometry(case)["edges"][key]
             raise PropertyFailure("D2.3", impl, f"H(e) off: {_units(err, tol[key])}", mesh=case.mesh,
                                   element=f"edge {key}, theta ~ {theta:.6g}, l ~ {length:.6g}",
-                                  expected=h, observed=H[key])
+                                  expected=h, observed=H[key], bound=tol[key])
 
 
 def support_function_integral(points, n_theta: int = 256) -> tuple[float, float]:
@@ -810,7 +822,7 @@ def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
     if not err <= bound:
         raise PropertyFailure("T2.7", impl, f"H(S) != integral of the support function: "
                               f"{_units(err, bound)}", mesh=case.mesh, expected=value,
-                              observed=total)
+                              observed=total, bound=bound)
 
 
 @prop("R2.5", "Steiner coefficients of a closed surface: area, 2 H(S) and K(S) = 2 pi chi agree "
@@ -819,12 +831,10 @@ def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
 def steiner_coefficients_match(impl, case: CurvatureCase):
     A_ref, twoH_ref, _ = ref.steiner_coefficients(case.surface)
     A = float(_call(impl, "area", case))
-    cond = 1 + face_condition(case)
-    areas = [float(a) for a in _geometry(case)["area"]]
-    bound_A = sum(C_ANGLE * eps() * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
+    bound_A = area_tolerance(case)
     if not abs(A - float(A_ref)) <= bound_A:
         raise PropertyFailure("R2.5", impl, f"area off: {_units(abs(A - float(A_ref)), bound_A)}",
-                              mesh=case.mesh, expected=float(A_ref), observed=A)
+                              mesh=case.mesh, expected=float(A_ref), observed=A, bound=bound_A)
     H = _edge_dict(impl, case, "R2.5")
     tol = edge_mean_curvature_tolerances(case)
     twoH = 2 * math.fsum(H.values())
@@ -832,6 +842,6 @@ def steiner_coefficients_match(impl, case: CurvatureCase):
     if not abs(twoH - float(twoH_ref)) <= bound_H:
         err = abs(twoH - float(twoH_ref))
         raise PropertyFailure("R2.5", impl, f"2 H(S) off: {_units(err, bound_H)}",
-                              mesh=case.mesh, expected=float(twoH_ref), observed=twoH)
+                              mesh=case.mesh, expected=float(twoH_ref), observed=twoH, bound=bound_H)
     K = _defects(impl, case, "R2.5")
     _check_total("R2.5", impl, case, K, vertex_tolerances(case, corner_tolerances(case)))

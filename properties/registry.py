@@ -3,12 +3,20 @@
 A :class:`Property` couples a Hypothesis strategy of examples with a check
 ``check(impl, example)`` that raises :class:`PropertyFailure` naming the catalog
 ID, the implementation, the (shrunk) mesh, the offending element and the
-expected vs observed values.
+expected vs observed values (and, where the property derived one, the error
+bound the observed error is measured against).
+
+A property that compares a *decision* (a sign, a predicate) raises
+:class:`TieDisagreement` instead when the exact reference decides an exact tie
+(a cotan weight exactly 0, an exactly flat vertex) and the implementation
+decides it the other way by no more than its own rounding: the runner reports
+that separately from a real error and lets the run go on.
 """
 
 from __future__ import annotations
 
 import functools
+import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -17,10 +25,17 @@ from .protocol import _epsilon, implementation_name, machine_epsilon
 
 
 class PropertyFailure(AssertionError):
-    """A property does not hold for an implementation on an example."""
+    """A property does not hold for an implementation on an example.
+
+    ``bound`` is the derived bound on |observed - expected| the property
+    tested against, when it compares a number; :attr:`error` and
+    :attr:`error_in_bounds` are then filled in.
+    """
+
+    kind = ""                           # prefix of the message (see TieDisagreement)
 
     def __init__(self, property_id: str, impl, message: str, *, mesh=None,
-                 element=None, expected=None, observed=None):
+                 element=None, expected=None, observed=None, bound=None):
         self.property_id = property_id
         self.implementation = implementation_name(impl)
         self.message = message
@@ -28,19 +43,66 @@ class PropertyFailure(AssertionError):
         self.element = element
         self.expected = expected
         self.observed = observed
+        self.bound = None if bound is None else float(bound)
         super().__init__(str(self))
 
+    def __reduce__(self):
+        # picklable (worker processes send failures back): rebuilt from the fields,
+        # not from Exception.args
+        return _restore, (type(self), self.__dict__.copy())
+
+    @property
+    def error(self) -> float | None:
+        """|observed - expected| when both are real numbers, else None."""
+        if _is_real(self.expected) and _is_real(self.observed):
+            return abs(float(self.observed) - float(self.expected))
+        return None
+
+    @property
+    def error_in_bounds(self) -> float | None:
+        """:attr:`error` / :attr:`bound`, when both are known (inf for a zero bound)."""
+        err = self.error
+        if err is None or self.bound is None:
+            return None
+        if self.bound > 0:
+            return err / self.bound
+        return float("inf") if err > 0 else 0.0
+
     def __str__(self) -> str:
-        lines = [f"[{self.property_id}] {self.implementation}: {self.message}"]
+        lines = [f"[{self.property_id}] {self.implementation}: {self.kind}{self.message}"]
         if self.element is not None:
             lines.append(f"  at: {self.element}")
         if self.expected is not None or self.observed is not None:
             lines.append(f"  expected: {self.expected!r}")
             lines.append(f"  observed: {self.observed!r}")
+        ratio = self.error_in_bounds
+        if ratio is not None:
+            lines.append(f"  error: {self.error:.3g} = {ratio:.3g} x the derived bound "
+                         f"{self.bound:.3g}")
         if self.mesh is not None:
             V, F = self.mesh
             lines.append(f"  mesh: {len(V)} vertices, {len(F)} faces; F = {F}")
         return "\n".join(lines)
+
+
+class TieDisagreement(PropertyFailure):
+    """The exact reference decides an exact tie; the implementation decides it otherwise,
+    within its own rounding (``bound``).  Not an error of the implementation: floats
+    cannot see exact ties.  Raise it only after every element was checked for a real
+    failure, so a tie never hides one."""
+
+    kind = "tie disagreement: "
+
+
+def _is_real(x) -> bool:
+    return isinstance(x, numbers.Real) and not isinstance(x, bool)
+
+
+def _restore(cls, state):
+    f = cls.__new__(cls)
+    f.__dict__.update(state)
+    AssertionError.__init__(f, str(f))
+    return f
 
 
 @dataclass(frozen=True)

@@ -4,21 +4,45 @@
 runs every applicable property under a Hypothesis profile and raises an
 ``AssertionError`` listing each failure (ID, shrunk mesh, element, expected vs
 observed).  The CLI uses :func:`run_properties` and prints the results instead.
+
+A :class:`Result` has one of these statuses:
+
+* ``passed``: every example held;
+* ``FAILED``: a :class:`~properties.registry.PropertyFailure` on the shrunk example;
+* ``tie disagreement``: no failure, but on some example the exact reference
+  decided an exact tie the implementation decided otherwise within its rounding
+  (:class:`~properties.registry.TieDisagreement`); the smallest such example is kept;
+* ``convention``: a failure that disappears when the implementation's documented
+  convention is mapped onto the reference's (``counterpart``, see
+  :func:`run_property`): expected, not an error;
+* ``crashed``: the implementation raised, died or hung on the (shrunk) example;
+* ``undecided``: the exact reference hit one of its guards (a term limit, a
+  precision limit; the per-example time limit counts as a hang:
+  :class:`reference.errors.ExactArithmeticLimit`) before deciding; the message
+  says which limit to raise;
+* ``not applicable``: the implementation lacks a method the property needs.
+
+Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
 """
 
 from __future__ import annotations
 
 import time
 import traceback
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
+from reference.errors import ExactArithmeticLimit, TimeLimitExceeded
+
 from .profiles import profile as named_profile
 from .protocol import capabilities, implementation_name
-from .registry import Property, PropertyFailure, all_properties
+from .registry import Property, PropertyFailure, TieDisagreement, all_properties
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
+TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
+#: every status, in the order of the summary counts
+STATUSES = (PASSED, FAILED, TIE, CONVENTION, CRASHED, UNDECIDED, NOT_APPLICABLE)
 
 
 @dataclass
@@ -29,26 +53,104 @@ class Result:
     status: str
     examples: int = 0
     seconds: float = 0.0
-    failure: PropertyFailure | None = None
-    error: str | None = None          # traceback of a crash of the implementation
-    example: object = None            # the shrunk example of a failure or crash
+    failure: PropertyFailure | None = None   # the failure (or tie) on the shrunk example
+    error: str | None = None          # the exception of a crash of the implementation
+    example: object = None            # the shrunk example (in this process only; not pickled)
+    mesh: tuple | None = None         # (V, F) nested lists of the failing or crashing input
+    ties: int = 0                     # examples on which a tie was decided differently
+    note: str | None = None           # why: not applicable, or which convention explains it
+    source: str = "generated"         # "generated" (Hypothesis) or the name of a mesh file
+    also: list = field(default_factory=list)   # other distinct failures Hypothesis reported
 
     @property
     def ok(self) -> bool:
-        return self.status in (PASSED, NOT_APPLICABLE)
+        return self.status not in (FAILED, CRASHED)
 
     def summary(self) -> str:
+        """The table cell."""
         if self.status == PASSED:
-            return f"passed ({self.examples} examples)"
+            return f"passed ({self.examples} example{'s' if self.examples != 1 else ''})"
+        if self.status == TIE:
+            return f"tie disagreement ({self.ties}/{self.examples})"
         return self.status
 
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        state["example"] = None       # examples hold exact surfaces: not worth sending
+        return state
 
-def run_property(p: Property, impl, settings: Settings, seed: int | None = None) -> Result:
-    """Run one property on one implementation; never raises for a failing impl."""
+
+def example_mesh(example):
+    """(V, F) as nested lists of a property example (``.mesh``, or ``.vertices`` and
+    ``.faces``; the first such part of a tuple), or None."""
+    if isinstance(example, tuple):
+        for part in example:
+            m = example_mesh(part)
+            if m is not None:
+                return m
+        return None
+    mesh = getattr(example, "mesh", None)
+    if isinstance(mesh, tuple) and len(mesh) == 2:
+        return mesh
+    if hasattr(example, "vertices") and hasattr(example, "faces"):
+        return (example.vertices, example.faces)
+    return None
+
+
+def _flatten(e: BaseException) -> list[BaseException]:
+    if isinstance(e, BaseExceptionGroup):
+        return [x for sub in e.exceptions for x in _flatten(sub)]
+    return [e]
+
+
+def _crash_text(e: BaseException) -> str:
+    return "".join(traceback.format_exception_only(type(e), e)).strip()
+
+
+def _size(mesh) -> int:
+    return len(mesh[1]) if mesh is not None else 1 << 30
+
+
+def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dict:
+    """Status and details from what the run raised (several if Hypothesis found several)."""
+    failures = [e for e in errors if isinstance(e, PropertyFailure)
+                and not isinstance(e, TieDisagreement)]
+    # an example over its time limit counts as a hang of the implementation (a failure),
+    # not as undecided: the reference's own guards are term and precision limits
+    limits = [e for e in errors if isinstance(e, ExactArithmeticLimit)
+              and not isinstance(e, TimeLimitExceeded)]
+    crashes = [e for e in errors if not isinstance(e, PropertyFailure) and e not in limits]
+    ties = [e for e in errors if isinstance(e, TieDisagreement)]
+    if failures:
+        f = failures[0]
+        return dict(status=FAILED, failure=f, mesh=f.mesh or example_mesh(state["last"]),
+                    also=[str(e) for e in failures[1:]] + [_crash_text(e) for e in crashes])
+    if crashes:
+        return dict(status=CRASHED, error=_crash_text(crashes[0]),
+                    mesh=example_mesh(state["last"]), also=[_crash_text(e) for e in crashes[1:]])
+    if limits:
+        return dict(status=UNDECIDED, error=_crash_text(limits[0]),
+                    mesh=example_mesh(state["last"]))
+    if ties or state["tie"] is not None:
+        t = ties[0] if ties else state["tie"][0]
+        return dict(status=TIE, failure=t, mesh=t.mesh or example_mesh(state["tie"][1]))
+    return dict(status=PASSED)
+
+
+def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
+                 counterpart=None, convention: str | None = None) -> Result:
+    """Run one property on one implementation; never raises for a failing impl.
+
+    ``counterpart``: the same library with its documented conventions mapped
+    onto the reference's (e.g. ``Libigl()`` for ``Libigl(boundary="library")``).
+    If ``impl`` fails and the counterpart passes the same (shrunk) example, the
+    result is ``convention`` and ``note`` says which (``convention``).
+    """
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
-        return Result(p.id, p.name, name, NOT_APPLICABLE)
-    state = {"n": 0, "last": None}
+        missing = sorted(p.needs - capabilities(impl))
+        return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
+    state = {"n": 0, "last": None, "ties": 0, "tie": None}
 
     # one failure per property, the shrunk one: several distinct failures would come
     # back as an ExceptionGroup and read as a crash
@@ -58,7 +160,13 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None)
         # Hypothesis replays the shrunk example last, so "last" is minimal.
         state["n"] += 1
         state["last"] = example
-        p.check(impl, example)
+        try:
+            p.check(impl, example)
+        except TieDisagreement as t:
+            # not an error: keep going (a tie never hides a failure), keep the smallest
+            state["ties"] += 1
+            if state["tie"] is None or _size(t.mesh) < _size(state["tie"][0].mesh):
+                state["tie"] = (t, example)
 
     # each (property, implementation) its own database key and derandomized seed: Hypothesis
     # derives both from the test function, the same `run` for every property (as its pytest
@@ -69,14 +177,59 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None)
     t0 = time.perf_counter()
     try:
         run()
-    except PropertyFailure as f:
-        return Result(p.id, p.name, name, FAILED, state["n"], time.perf_counter() - t0,
-                      failure=f, example=state["last"])
-    except Exception as e:  # the implementation itself raised: a crash on this input
-        tb = "".join(traceback.format_exception_only(type(e), e)).strip()
-        return Result(p.id, p.name, name, CRASHED, state["n"], time.perf_counter() - t0,
-                      error=tb, example=state["last"])
-    return Result(p.id, p.name, name, PASSED, state["n"], time.perf_counter() - t0)
+        errors = []
+    except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
+        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+            raise
+        errors = _flatten(e)
+    out = _outcome(p, impl, errors, state)
+    r = Result(p.id, p.name, name, examples=state["n"], seconds=time.perf_counter() - t0,
+               ties=state["ties"], example=state["last"], **out)
+    if r.status == FAILED and counterpart is not None:
+        _explain_by_convention(r, p, counterpart, convention)
+    return r
+
+
+def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
+    """Re-check the shrunk example with the reference-convention counterpart."""
+    try:
+        p.check(counterpart, r.example)
+    except TieDisagreement:
+        pass
+    except BaseException as e:  # noqa: BLE001
+        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+            raise
+        return
+    r.status = CONVENTION
+    r.note = (f"documented convention {convention or ''}: "
+              f"{implementation_name(counterpart)} passes the same example").replace("  ", " ")
+
+
+def run_on_example(p: Property, impl, example, source: str, counterpart=None,
+                   convention: str | None = None) -> Result:
+    """One property on one given example (e.g. built from a mesh file), no Hypothesis;
+    ``counterpart`` and ``convention`` as in :func:`run_property`."""
+    name = implementation_name(impl)
+    if not p.applies_to(capabilities(impl)):
+        missing = sorted(p.needs - capabilities(impl))
+        return Result(p.id, p.name, name, NOT_APPLICABLE, source=source,
+                      note=f"lacks {', '.join(missing)}")
+    state = {"n": 1, "last": example, "ties": 0, "tie": None}
+    t0 = time.perf_counter()
+    try:
+        p.check(impl, example)
+        errors = []
+    except BaseException as e:  # noqa: BLE001
+        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+            raise
+        errors = [e]
+        state["ties"] = int(isinstance(e, TieDisagreement))
+    out = _outcome(p, impl, errors, state)
+    r = Result(p.id, p.name, name, examples=1, seconds=time.perf_counter() - t0,
+               ties=state["ties"], example=example, source=source, **out)
+    if r.status == FAILED and counterpart is not None:
+        _explain_by_convention(r, p, counterpart, convention)
+    return r
 
 
 def run_properties(impl, profile: str = "default", only=None, seed: int | None = None,
@@ -111,12 +264,22 @@ def check_implementation(impl, profile: str = "default", only=None,
 
 
 def describe(r: Result) -> str:
-    """A failure or crash, as a user reads it."""
+    """A failure, crash, tie or convention, as a user reads it."""
     if r.failure is not None:
-        return str(r.failure)
-    head = f"[{r.property_id}] {r.implementation}: {r.status}"
-    if r.error:
-        head += f"\n  {r.error}"
-    if r.example is not None:
-        head += f"\n  input: {r.example!r}"
-    return head
+        text = str(r.failure)
+    else:
+        text = f"[{r.property_id}] {r.implementation}: {r.status}"
+        if r.error:
+            text += f"\n  {r.error}"
+        if r.mesh is not None:
+            V, F = r.mesh
+            text += f"\n  mesh: {len(V)} vertices, {len(F)} faces; F = {F}"
+        elif r.example is not None:
+            text += f"\n  input: {r.example!r}"
+    if r.source != "generated":
+        text += f"\n  on: {r.source}"
+    if r.note and r.status in (CONVENTION,):
+        text += f"\n  {r.note}"
+    for other in r.also:
+        text += "\n  also: " + other.replace("\n", "\n  ")
+    return text

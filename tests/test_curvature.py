@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 from properties import PROPERTIES, triangulated_surfaces
 from properties import curvature as P
 from properties.profiles import profile
-from properties.runner import FAILED, PASSED, run_property
+from properties.runner import FAILED, PASSED, TIE, run_property
 from reference import curvature as C
 from reference import surfaces
 from reference.combinatorics import Triangulation
@@ -639,7 +639,9 @@ def test_chapter2_property_passes(impl, pid):
     # the exact reference (correctly rounded) and a plain float64 implementation both
     # stay within the derived bounds
     r = run_property(PROPERTIES[pid], impl, QUICK)
-    assert r.status == PASSED, r.failure or r.error
+    # floats cannot see an exactly flat vertex: a tiny K there is a tie disagreement, not an error
+    allowed = (PASSED,) if isinstance(impl, ExactCurvature) else (PASSED, TIE)
+    assert r.status in allowed, r.failure or r.error
     assert r.examples > 0
 
 

@@ -1,0 +1,481 @@
+"""One given mesh: which properties apply to it, and every quantity reference vs implementation.
+
+``ddg-oracle check --mesh FILE`` runs the properties that make sense on a
+single fixed mesh (agreement with the exact reference: Euler characteristic,
+classification, angle defects, turning angles, Gauss-Bonnet, corner angles,
+mean curvature, Steiner coefficients, cotan Laplacian, mass matrices, the sign
+of each cotan weight) on that mesh; ``ddg-oracle compare MESH`` prints, per
+protocol method, the largest error of each implementation in units of the
+derived bound, and where.  Both take the same mesh arguments:
+
+* a path to an OBJ, OFF, PLY or STL file (:func:`oracles.meshfiles.read_mesh`);
+* ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
+  package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them.
+
+The reference needs every vertex to lie in a face: unreferenced vertices are
+removed (the remaining ones renumbered in order) with a note.  A mesh the
+reference cannot take (non-manifold, a zero-area face, ...) raises the
+reference's typed error; named files are then a usage error (exit 2), sample
+meshes are skipped with a note.
+
+The dense checks of chapter 3 (n x n matrices) run up to :data:`DENSE_LIMIT`
+vertices; larger meshes report them as not applicable.
+"""
+
+from __future__ import annotations
+
+import math
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from reference.errors import InputError
+
+from .meshfiles import MeshFileError, read_mesh
+
+SAMPLE_PREFIX = "pymeshlab:"
+MESH_SUFFIXES = (".obj", ".off", ".ply", ".stl")
+#: largest vertex count for the properties and comparisons that build dense n x n matrices
+DENSE_LIMIT = 2500
+#: largest face count for an exact total area: a float mesh's face areas are square roots
+#: of distinct rationals, and their exact sum has a term per face (R2.5 beyond it is not
+#: applicable; compare then sums the correctly rounded face areas and widens the bound)
+EXACT_SUM_LIMIT = 400
+
+
+# --- mesh arguments -------------------------------------------------------------------------------
+
+
+def sample_mesh_dir() -> Path:
+    """``pymeshlab/tests/sample_meshes`` of the installed PyMeshLab (InputError if absent)."""
+    try:
+        import pymeshlab
+    except ImportError:
+        raise InputError("pymeshlab: sample meshes need the pymeshlab package") from None
+    d = Path(pymeshlab.__file__).parent / "tests" / "sample_meshes"
+    if not d.is_dir():
+        raise InputError(f"pymeshlab: no sample meshes in this installation ({d})")
+    return d
+
+
+def sample_meshes() -> list[Path]:
+    """Every mesh file PyMeshLab ships (sorted by path)."""
+    d = sample_mesh_dir()
+    return sorted(p for p in d.rglob("*") if p.suffix.lower() in MESH_SUFFIXES)
+
+
+def resolve(args: list[str]) -> list[tuple[str, Path, bool]]:
+    """(display name, path, strict) per mesh argument; strict: a named file, whose problems
+    are errors, vs a sample mesh found by ``pymeshlab:``, which is skipped with a note."""
+    out = []
+    for a in args:
+        if a.startswith(SAMPLE_PREFIX):
+            name = a[len(SAMPLE_PREFIX):]
+            d = sample_mesh_dir()
+            if not name:
+                out += [(f"{SAMPLE_PREFIX}{p.relative_to(d)}", p, False) for p in sample_meshes()]
+                continue
+            p = d / name
+            if not p.is_file():
+                names = ", ".join(str(q.relative_to(d)) for q in sample_meshes())
+                raise MeshFileError(f"{a}: no such sample mesh (PyMeshLab ships {names})")
+            out.append((a, p, True))
+        else:
+            out.append((a, Path(a), True))
+    return out
+
+
+@dataclass
+class MeshInput:
+    """A mesh as read, with unreferenced vertices removed (``note`` says so)."""
+
+    name: str
+    V: list
+    F: list
+    note: str | None = None
+
+
+def load(name: str, path: Path) -> MeshInput:
+    """Read and validate for the reference (typed InputError naming the problem)."""
+    V, F = read_mesh(path)
+    used = sorted({i for f in F for i in f})
+    note = None
+    if len(used) < len(V):
+        new = {v: k for k, v in enumerate(used)}
+        note = (f"{len(V) - len(used)} unreferenced vertices removed (first: "
+                f"{next(v for v in range(len(V)) if v not in new)}); the rest renumbered in order")
+        V = [V[v] for v in used]
+        F = [[new[i] for i in f] for f in F]
+    try:
+        from reference.polyhedral import PolyhedralSurface
+        PolyhedralSurface.from_arrays(V, F).metric()      # manifold, no zero-area face
+    except InputError as e:
+        raise type(e)(f"{name}: {e}") from None
+    return MeshInput(name, V, F, note)
+
+
+def load_all(args: list[str], warn=None) -> list[MeshInput]:
+    """Every mesh the arguments name; named files raise, skipped samples go to ``warn``."""
+    meshes = []
+    for name, path, strict in resolve(args):
+        try:
+            meshes.append(load(name, path))
+        except InputError as e:
+            if strict:
+                raise
+            if warn is not None:
+                warn(f"skipped {name}: {e}".replace(f"{name}: {name}: ", f"{name}: "))
+            continue
+        if meshes[-1].note and warn is not None:
+            warn(f"{name}: {meshes[-1].note}")
+    return meshes
+
+
+# --- property examples built from one mesh --------------------------------------------------------
+
+
+@dataclass
+class MeshExamples:
+    """The example objects the properties take, built once from one mesh (their exact
+    values are cached on them, so several properties and implementations share them)."""
+
+    mesh: MeshInput
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    def _get(self, key, build):
+        if key not in self._cache:
+            self._cache[key] = build()
+        return self._cache[key]
+
+    @property
+    def surface(self):
+        from reference.polyhedral import PolyhedralSurface
+        return self._get("surface", lambda: PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F))
+
+    @property
+    def facts(self) -> dict:
+        def build():
+            t = self.surface.triangulation
+            return dict(n=t.n_vertices, faces=t.n_faces, chi=t.euler_characteristic(),
+                        boundary=len(t.boundary_loops()), orientable=t.is_orientable(),
+                        components=len(t.components()))
+        return self._get("facts", build)
+
+    def surface_case(self):
+        from reference.combinatorics import Classification
+        from properties.strategies import SurfaceCase
+
+        def build():
+            t, f = self.surface.triangulation, self.facts
+            cls = t.classify() if f["components"] == 1 else \
+                Classification(f["orientable"], -1, f["boundary"], f["chi"])
+            return SurfaceCase(t, self.surface.positions, cls, self.mesh.name)
+        return self._get("surface_case", build)
+
+    def curvature_case(self):
+        from properties.curvature import CurvatureCase
+        return self._get("curvature_case", lambda: CurvatureCase(
+            self.surface, self.facts["chi"], self.mesh.name))
+
+    def mesh_case(self):
+        from properties.laplacian import MeshCase
+        return self._get("mesh_case", lambda: MeshCase(
+            self.surface.positions, tuple(tuple(f) for f in self.mesh.F), self.mesh.name))
+
+    def example(self, kind: str):
+        return {"surface": self.surface_case, "curvature": self.curvature_case,
+                "mesh": self.mesh_case}[kind]()
+
+
+def _closed(f):
+    return None if f["boundary"] == 0 else "the mesh has a boundary"
+
+
+def _connected(f):
+    return None if f["components"] == 1 else f"{f['components']} components"
+
+
+def _dense(f):
+    return None if f["n"] <= DENSE_LIMIT else f"{f['n']} vertices > {DENSE_LIMIT} (dense n x n check)"
+
+
+def _all(*conds):
+    def check(f):
+        for c in conds:
+            why = c(f)
+            if why:
+                return why
+        return None
+    return check
+
+
+def _has_boundary(f):
+    return None if f["boundary"] else "the mesh is closed"
+
+
+def _orientable(f):
+    return None if f["orientable"] else "the mesh is not orientable"
+
+
+def _exact_sum(f):
+    return None if f["faces"] <= EXACT_SUM_LIMIT else \
+        f"{f['faces']} faces > {EXACT_SUM_LIMIT} (exact total area: one square root per face)"
+
+
+#: catalog ID -> (example kind, why not applicable to a mesh with these facts or None)
+FILE_PROPERTIES: dict[str, tuple[str, object]] = {
+    "D1.6": ("surface", lambda f: None),
+    "T1.1 / C1.2": ("surface", _all(_closed, _connected)),
+    "R1.6": ("surface", _all(_orientable, _connected)),
+    "D2.2": ("curvature", lambda f: None),
+    "R2.4": ("curvature", _has_boundary),
+    "T2.6": ("curvature", _closed),
+    "D2.6": ("curvature", lambda f: None),
+    "D2.3": ("curvature", _orientable),
+    "R2.5": ("curvature", _all(_closed, _orientable, _exact_sum)),
+    "D3.1": ("mesh", _dense),
+    "T3.9": ("mesh", _dense),
+    "E3.12": ("mesh", _dense),
+    "L3.7": ("mesh", _dense),
+}
+
+
+def run_mesh_properties(examples: MeshExamples, impl, only=None, counterpart=None,
+                        convention=None) -> list:
+    """Every property of :data:`FILE_PROPERTIES` (or ``only`` those IDs) on one mesh."""
+    from properties.registry import all_properties
+    from properties.runner import NOT_APPLICABLE, Result, run_on_example
+    from properties.protocol import implementation_name
+
+    results = []
+    for p in all_properties():
+        if p.id not in FILE_PROPERTIES or (only is not None and p.id not in only):
+            continue
+        kind, why_not = FILE_PROPERTIES[p.id]
+        why = why_not(examples.facts)
+        if why:
+            results.append(Result(p.id, p.name, implementation_name(impl), NOT_APPLICABLE,
+                                  source=examples.mesh.name, note=why))
+            continue
+        results.append(run_on_example(p, impl, examples.example(kind), examples.mesh.name,
+                                      counterpart=counterpart, convention=convention))
+    return results
+
+
+# --- compare: every quantity, reference vs implementation -----------------------------------------
+
+
+@dataclass
+class Comparison:
+    """One quantity of one implementation on one mesh."""
+
+    quantity: str
+    implementation: str
+    status: str                      # "agrees", "DIFFERS", "crashed", "not applicable", "skipped"
+    worst: float | None = None       # largest error / bound (None: exact quantity or none)
+    error: float | None = None       # the error there
+    bound: float | None = None
+    where: str | None = None
+    expected: object = None
+    observed: object = None
+    over: int = 0                    # elements whose error exceeds the bound
+    elements: int = 0
+    note: str | None = None
+
+
+@contextmanager
+def _epsilon_of(impl):
+    from properties.protocol import _epsilon, machine_epsilon
+    token = _epsilon.set(machine_epsilon(impl))
+    try:
+        yield
+    finally:
+        _epsilon.reset(token)
+
+
+def _worst(err: np.ndarray, bound: np.ndarray):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
+    k = tuple(int(x) for x in np.unravel_index(int(np.argmax(r)), r.shape))
+    return k, float(r[k]), int(np.sum(r > 1))
+
+
+def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
+    got = np.asarray(got, dtype=np.float64)
+    want = np.asarray(want, dtype=np.float64)
+    if got.shape != want.shape:
+        return Comparison(quantity, name, "DIFFERS", note=f"shape {got.shape}, expected {want.shape}")
+    bad = ~np.isfinite(got)
+    if bad.any():
+        k = tuple(int(x) for x in np.argwhere(bad)[0])
+        return Comparison(quantity, name, "DIFFERS", where=where_of(k), expected=float(want[k]),
+                          observed=float(got[k]), over=int(bad.sum()), elements=got.size,
+                          note="non-finite value")
+    err = np.abs(got - want)
+    k, ratio, over = _worst(err, np.broadcast_to(bound, err.shape))
+    return Comparison(quantity, name, "agrees" if over == 0 else "DIFFERS", worst=ratio,
+                      error=float(err[k]), bound=float(np.broadcast_to(bound, err.shape)[k]),
+                      where=where_of(k), expected=float(want[k]), observed=float(got[k]),
+                      over=over, elements=err.size)
+
+
+def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
+    """Every protocol method every implementation has, against the reference, on ``mesh``."""
+    from properties import curvature as cv
+    from properties.protocol import METHODS, capabilities, implementation_name
+
+    ex = MeshExamples(mesh)
+    V = np.array(mesh.V, dtype=np.float64)
+    F = np.array(mesh.F, dtype=np.int64)
+    facts = ex.facts
+    expected_cache: dict = {}
+
+    def expected(method):
+        if method not in expected_cache:
+            if method == "area" and facts["faces"] > EXACT_SUM_LIMIT:
+                expected_cache[method] = _rounded_area(ex)
+            else:
+                expected_cache[method] = getattr(reference, method)(V, F)
+        return expected_cache[method]
+
+    dense_x = {}
+
+    def exact_laplacian():
+        from properties.laplacian import Exact
+        if "X" not in dense_x:
+            dense_x["X"] = Exact(ex.mesh_case())
+        return dense_x["X"]
+
+    rows = []
+    for impl in impls:
+        name = implementation_name(impl)
+        caps = capabilities(impl)
+        for method in METHODS:
+            if method not in caps:
+                rows.append(Comparison(method, name, "not applicable", note="not provided"))
+                continue
+            if method == "genus" and facts["components"] != 1:
+                rows.append(Comparison(method, name, "not applicable",
+                                       note=f"{facts['components']} components"))
+                continue
+            if method == "edge_mean_curvature" and not facts["orientable"]:
+                rows.append(Comparison(method, name, "not applicable", note="not orientable"))
+                continue
+            if method in ("planar_delaunay", "intrinsic_delaunay_triangulation"):
+                rows.append(Comparison(method, name, "not applicable",
+                                       note="not unique or not a mesh quantity: checked by the "
+                                            "properties (T4.1, A4.13)"))
+                continue
+            if method in ("cotan_laplacian", "vertex_areas_voronoi", "vertex_areas_barycentric",
+                          "intrinsic_delaunay_laplacian") and facts["n"] > DENSE_LIMIT:
+                rows.append(Comparison(method, name, "skipped",
+                                       note=f"{facts['n']} vertices > {DENSE_LIMIT}: the entry "
+                                            "bounds are computed densely"))
+                continue
+            try:
+                got = getattr(impl, method)(V, F)
+            except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
+                rows.append(Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}"))
+                continue
+            with _epsilon_of(impl):
+                rows.append(_compare_one(method, name, got, expected(method), ex, exact_laplacian, cv))
+    return rows
+
+
+def _rounded_area(ex: MeshExamples) -> tuple[float, float]:
+    """(total area, bound on its error) from the exact face areas each correctly rounded
+    (error <= u |a_f|, u = 2**-53) and summed by math.fsum (correctly rounded: u |total|)."""
+    areas = [float(a) for a in ex.surface.metric().areas]
+    total = math.fsum(areas)
+    u = 2.0 ** -53
+    return total, u * (math.fsum(abs(a) for a in areas) + abs(total))
+
+
+def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison:
+    case = ex.curvature_case() if method in ("corner_angles", "angle_defects",
+                                             "edge_mean_curvature", "area") else None
+    if method in ("euler_characteristic", "is_orientable", "genus"):
+        same = type(want)(got) == want
+        return Comparison(method, name, "agrees" if same else "DIFFERS", expected=want,
+                          observed=got, elements=1, over=int(not same))
+    if method == "boundary_loops":
+        def edges(loops):
+            return sorted(tuple(sorted((int(a), int(b)))) for loop in loops
+                          for a, b in zip(loop, list(loop[1:]) + list(loop[:1])))
+        same = len(got) == len(want) and edges(got) == edges(want)
+        return Comparison(method, name, "agrees" if same else "DIFFERS",
+                          expected=f"{len(want)} loops", observed=f"{len(got)} loops",
+                          elements=1, over=int(not same),
+                          note=None if same else f"loops {[list(map(int, x)) for x in got]}"[:300])
+    if method == "corner_angles":
+        tol = cv.corner_tolerances(case)
+        return _numeric(method, name, got, want, tol, lambda k: f"face {k[0]}, corner {k[1]}")
+    if method == "angle_defects":
+        tol = cv.vertex_tolerances(case, cv.corner_tolerances(case))
+        return _numeric(method, name, np.asarray(got).reshape(-1), want, tol,
+                        lambda k: f"vertex {k[0]}")
+    if method == "edge_mean_curvature":
+        tol = cv.edge_mean_curvature_tolerances(case)
+        got = {(int(min(i, j)), int(max(i, j))): float(h) for (i, j), h in dict(got).items()}
+        if set(got) != set(want):
+            return Comparison(method, name, "DIFFERS", note="not the same set of interior edges",
+                              expected=len(want), observed=len(got))
+        keys = sorted(want)
+        return _numeric(method, name, [got[k] for k in keys], [want[k] for k in keys],
+                        np.array([tol[k] for k in keys]), lambda k: f"edge {keys[k[0]]}")
+    if method == "area":
+        want, extra = want if isinstance(want, tuple) else (want, 0.0)
+        return _numeric(method, name, [float(got)], [float(want)],
+                        cv.area_tolerance(case) + extra, lambda k: "total")
+    if method == "is_locally_delaunay":
+        got, want = np.asarray(got, dtype=bool), np.asarray(want, dtype=bool)
+        diff = np.argwhere(got != want)
+        note = None if not len(diff) else (f"face {diff[0][0]}, corner {diff[0][1]} (exact "
+                                           "ties may go either way)")
+        return Comparison(method, name, "agrees" if not len(diff) else "DIFFERS",
+                          elements=int(want.size), over=int(len(diff)), note=note)
+    if method == "intrinsic_delaunay_laplacian":
+        from properties.delaunay import DelaunayExact
+        D = DelaunayExact(ex.mesh_case())
+        A = got.toarray() if hasattr(got, "toarray") else np.asarray(got, dtype=float)
+        return _numeric(method, name, A, D.Lf, D.B, lambda k: f"entry {k}")
+    X = exact_laplacian()
+    if method == "cotan_laplacian":
+        A = got.toarray() if hasattr(got, "toarray") else np.asarray(got, dtype=float)
+        return _numeric(method, name, A, X.Lf, X.B, lambda k: f"entry {k}")
+    from properties.laplacian import vertex_area_bounds
+    vb, bb = vertex_area_bounds(X)
+    bound = vb if method == "vertex_areas_voronoi" else bb
+    return _numeric(method, name, np.asarray(got).reshape(-1), want, bound,
+                    lambda k: f"vertex {k[0]}")
+
+
+def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:
+    """The compare table: one line per quantity and implementation."""
+    head = f"{mesh.name}: {len(mesh.V)} vertices, {len(mesh.F)} faces"
+    if mesh.note:
+        head += f" ({mesh.note})"
+    lines = [head, ""]
+    cols = ("quantity", "implementation", "status", "max err/bound", "where", "expected",
+            "observed")
+    table = [cols]
+    for c in rows:
+        ratio = "-" if c.worst is None else ("inf" if math.isinf(c.worst) else f"{c.worst:.3g}")
+        if c.over and c.elements > 1:
+            ratio += f" ({c.over}/{c.elements} over)"
+        table.append((c.quantity, c.implementation, c.status, ratio, c.where or "-",
+                      _short(c.expected), _short(c.observed) + (f"  [{c.note}]" if c.note else "")))
+    widths = [max(len(r[k]) for r in table) for k in range(len(cols) - 1)]
+    for r in table:
+        lines.append("  ".join(x.ljust(w) for x, w in zip(r, widths)) + "  " + r[-1])
+    return "\n".join(lines)
+
+
+def _short(x) -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, float):
+        return f"{x:.17g}"
+    return str(x)

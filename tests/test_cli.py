@@ -1,0 +1,354 @@
+"""`ddg-oracle check` and `ddg-oracle compare`: options, exit codes, the report, determinism,
+one-line errors for bad mesh files."""
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from oracles.cli import Progress, main
+from oracles.exact_reference import ReferenceImplementation
+from oracles.meshfiles import read_mesh, write_obj
+from oracles.report import element_ids, jsonable
+from properties import PROPERTIES
+from properties.runner import CONVENTION, FAILED, PASSED, TIE, run_on_example, run_property
+from reference import surfaces
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+class RoundsFlatVertices(ReferenceImplementation):
+    """The exact angle defects, but an exactly flat vertex gets the float sum's noise
+    (4 ulp of 2 pi): a tie decided otherwise within rounding, not an error."""
+
+    name = "rounds-flat-vertices"
+
+    def angle_defects(self, V, F):
+        K = super().angle_defects(V, F)
+        return np.where(K == 0, 4 * np.spacing(2 * np.pi), K)
+
+
+class FlatVerticesCurved(ReferenceImplementation):
+    """Flat vertices get K = 1e-3: far beyond rounding, a real error."""
+
+    name = "flat-vertices-curved"
+
+    def angle_defects(self, V, F):
+        K = super().angle_defects(V, F)
+        return np.where(K == 0, 1e-3, K)
+
+
+def _run(capsys, *argv):
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+# --- exit codes and the table ---------------------------------------------------------------------
+
+
+def test_check_passes_with_exit_0_and_prints_the_table(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "D1.6", "--only", "L2.4",
+                      "--workers", "1")
+    assert rc == 0
+    assert re.search(r"^property\s+reference$", out, re.M)
+    assert re.search(r"^D1\.6 \(euler_characteristic_of_known_surfaces\)\s+passed \(\d+ examples\)",
+                     out, re.M)
+    assert "2 checks in" in out and "2 passed" in out
+
+
+def test_failure_gives_exit_1_and_the_counterexample(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
+                      "--only", "D1.6", "--workers", "1")
+    assert rc == 1
+    assert re.search(r"^D1\.6 .*FAILED$", out, re.M)
+    assert "expected: " in out and "observed: " in out and "mesh: " in out
+
+
+@pytest.mark.parametrize("argv", [
+    ["check", "--workers", "0"],
+    ["check", "--profile", "nope"],
+    ["check", "--impl", "reference", "--only", "Z9.9"],
+    ["check", "--impl", "libigl(boundary=sideways)"],
+    ["check", "--impl", "libigl(boundary)"],
+    ["compare", "no/such/mesh.obj"],
+])
+def test_bad_usage_is_one_line_and_exit_2(capsys, argv):
+    rc, out, err = _run(capsys, *argv)
+    assert rc == 2
+    assert err.startswith("ddg-oracle: error:") and err.count("\n") == 1, err
+
+
+# --- tie disagreements and conventions ------------------------------------------------------------
+
+
+def test_a_tie_decided_within_rounding_is_a_tie_disagreement_not_a_failure():
+    from hypothesis import settings
+    quick = settings(max_examples=40, deadline=None, database=None, derandomize=True)
+    r = run_property(PROPERTIES["L2.4"], RoundsFlatVertices(), quick)
+    assert r.status == TIE and r.ok and 0 < r.ties <= r.examples
+    assert r.failure.expected == 0.0 and r.failure.observed > 0
+    assert r.failure.error_in_bounds < 1
+    assert len(r.mesh[1]) <= 8                     # the smallest planar star seen
+    worse = run_property(PROPERTIES["L2.4"], FlatVerticesCurved(), quick)
+    assert worse.status == FAILED and not worse.ok
+    assert worse.failure.error_in_bounds > 1
+
+
+def test_tie_disagreement_keeps_exit_0(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.test_cli:RoundsFlatVertices",
+                      "--only", "L2.4", "--profile", "ci", "--workers", "1")
+    assert rc == 0
+    assert re.search(r"^L2\.4 .*tie disagreement \(\d+/60\)$", out, re.M)
+    assert "tie disagreement: exactly flat vertex" in out
+
+
+def test_expect_conventions_turns_a_documented_convention_into_an_expected_result(capsys):
+    argv = ["check", "--impl", "libigl(boundary=library)", "--only", "R2.4", "--only", "D2.2",
+            "--profile", "ci", "--workers", "1"]
+    rc, out, _ = _run(capsys, *argv)
+    assert rc == 1 and re.search(r"^R2\.4 .*FAILED$", out, re.M)
+    rc, out, _ = _run(capsys, *argv, "--expect-conventions")
+    assert rc == 0
+    assert re.search(r"^R2\.4 .*convention$", out, re.M)
+    assert re.search(r"^D2\.2 .*passed", out, re.M)
+    assert "documented convention L2" in out and "libigl passes the same example" in out
+
+
+def test_expect_conventions_does_not_excuse_an_undocumented_option():
+    from oracles.implementations import convention_counterpart
+    assert convention_counterpart("libigl(boundary=library)")[0] == "libigl"
+    assert convention_counterpart("pymeshlab(genus=library, boundary=library)")[0] == "pymeshlab"
+    assert convention_counterpart("tests.planted_bugs:ChiIgnoresBoundary") is None
+    assert convention_counterpart("libigl") is None
+
+
+# --- the report -----------------------------------------------------------------------------------
+
+
+def _report(tmp_path, name, workers, capsys):
+    d = tmp_path / name
+    rc, out, err = _run(capsys, "check", "--profile", "ci", "--impl", "reference",
+                        "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
+                        "--impl", "tests.test_cli:RoundsFlatVertices",
+                        "--only", "D1.6", "--only", "L2.4", "--workers", str(workers),
+                        "--report", str(d))
+    assert rc == 1, out + err
+    return d
+
+
+def test_report_files_and_json_schema(tmp_path, capsys):
+    d = _report(tmp_path, "r", 2, capsys)
+    doc = json.loads((d / "results.json").read_text())
+    assert doc["schema"] == 1
+    assert doc["command"]["profile"] == "ci" and "argv" not in doc["command"]
+    assert doc["counts"]["FAILED"] == 1 and doc["counts"]["tie disagreement"] == 1
+    assert set(doc["versions"]) >= {"python", "numpy", "hypothesis"}
+    keys = {"property_id", "property_name", "statement", "implementation", "spec", "source",
+            "status", "ok", "examples", "ties", "note", "crash", "also", "failure", "mesh", "files"}
+    assert len(doc["results"]) == 6 and all(set(r) == keys for r in doc["results"])
+    failed = [r for r in doc["results"] if r["status"] == FAILED]
+    assert len(failed) == 1
+    f = failed[0]
+    assert f["property_id"] == "D1.6" and f["spec"] == "tests.planted_bugs:ChiIgnoresBoundary"
+    assert f["ok"] is False and f["failure"]["expected"] != f["failure"]["observed"]
+    assert set(f["failure"]) == {"message", "element", "element_ids", "expected", "observed",
+                                 "error", "bound", "error_in_bounds"}
+    tie = next(r for r in doc["results"] if r["status"] == TIE)
+    assert tie["failure"]["element_ids"] == {"vertex": 0}
+    assert 0 < tie["failure"]["error_in_bounds"] < 1
+    # the files of the failure: the shrunk mesh, its picture, a snippet that reproduces it
+    V, F = read_mesh(d / f["files"]["obj"])
+    assert V == f["mesh"]["V"] and F == f["mesh"]["F"]
+    assert (d / f["files"]["png"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    out = subprocess.run([sys.executable, str(d / f["files"]["snippet"])], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    ref, impl = re.findall(r"(?:reference|implementation):\s+(-?\d+)", out.stdout)
+    assert int(ref) == f["failure"]["expected"] and int(impl) == f["failure"]["observed"]
+    summary = (d / "summary.md").read_text()
+    assert "| D1.6 (euler_characteristic_of_known_surfaces) |" in summary
+    assert f"]({f['files']['png']})" in summary
+    assert json.loads((d / "timings.json").read_text())["seconds"] > 0
+
+
+def test_report_json_is_identical_across_runs_and_worker_counts(tmp_path, capsys):
+    a = _report(tmp_path, "a", 1, capsys)
+    b = _report(tmp_path, "b", 2, capsys)
+    assert (a / "results.json").read_bytes() == (b / "results.json").read_bytes()
+
+
+def test_a_crash_is_reported_with_its_input_in_the_report(tmp_path, capsys):
+    d = tmp_path / "crash"
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.misbehaving:SegfaultsOnBoundary",
+                      "--only", "D1.6", "--profile", "ci", "--timeout", "20", "--workers", "1",
+                      "--report", str(d))
+    assert rc == 1 and "SIGSEGV" in out
+    r = json.loads((d / "results.json").read_text())["results"][0]
+    assert r["status"] == "crashed" and "SIGSEGV" in r["crash"]
+    assert r["mesh"]["F"] and (d / r["files"]["snippet"]).is_file()
+
+
+def test_element_ids_and_jsonable():
+    assert element_ids("edge (3, 9), theta ~ 0.1, l ~ 2") == {"edge": [3, 9]}
+    assert element_ids(np.int64(4)) == {"vertex": 4}
+    assert element_ids("row 7") == {"vertex": 7}
+    assert jsonable({(1, 2): np.float64(0.5), "x": float("nan"), "y": np.arange(2)}) == \
+        {"(1, 2)": 0.5, "x": "nan", "y": [0, 1]}
+
+
+def test_progress_bar_only_on_a_terminal():
+    import io
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    from oracles.jobs import Task
+    tty, pipe = Tty(), io.StringIO()
+    for stream in (tty, pipe):
+        p = Progress(2, stream)
+        p(Task("reference", "D1.6"), [])
+        p.finish()
+    assert "1/2" in tty.getvalue() and "#" in tty.getvalue()
+    assert pipe.getvalue() == ""
+
+
+# --- --mesh and compare ---------------------------------------------------------------------------
+
+
+@pytest.fixture
+def tetra_obj(tmp_path):
+    V, F = surfaces.tetrahedron().to_arrays()
+    path = tmp_path / "tetra.obj"
+    write_obj(path, V, F)
+    return path
+
+
+@pytest.fixture
+def disk_obj(tmp_path):
+    V, F = surfaces.disk(6).to_arrays()
+    path = tmp_path / "disk.obj"
+    write_obj(path, [list(p) + [0.0] * (3 - len(p)) for p in V], F)
+    return path
+
+
+def test_check_on_a_mesh_file(capsys, tetra_obj, disk_obj):
+    rc, out, _ = _run(capsys, "check", "--mesh", str(tetra_obj), str(disk_obj),
+                      "--impl", "reference", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
+                      "--workers", "2")
+    assert rc == 1
+    assert f"property on {tetra_obj}" in out and f"property on {disk_obj}" in out
+    assert re.search(r"^D2\.2 \(angle_defects_match_reference\)\s+passed \(1 example\)", out, re.M)
+    tetra, disk = out.split(f"property on {disk_obj}")[0], out.split(f"property on {disk_obj}")[1]
+    assert re.search(r"^D1\.6 .*passed \(1 example\)\s+passed \(1 example\)$", tetra, re.M)
+    assert re.search(r"^D1\.6 .*passed \(1 example\)\s+FAILED$", disk, re.M)   # chi of a disk
+    assert re.search(r"^T2\.6 .*not applicable", disk, re.M)                  # has a boundary
+    assert f"on: {disk_obj}" in out
+
+
+def test_sample_meshes_of_pymeshlab(capsys):
+    rc, out, err = _run(capsys, "check", "--mesh", "pymeshlab:cube.obj", "--impl", "reference",
+                        "--only", "D2.2", "--only", "X1.4")
+    assert rc == 0 and "property on pymeshlab:cube.obj" in out
+    from oracles.compare import resolve
+    everything = [name for name, _, _ in resolve(["pymeshlab:"])]
+    assert "pymeshlab:cube.obj" in everything and "pymeshlab:bunny.obj" in everything
+    rc, _, err = _run(capsys, "check", "--mesh", "pymeshlab:no-such.obj")
+    assert rc == 2 and "no such sample mesh" in err and err.count("\n") == 1
+
+
+def test_only_without_a_mesh_property_is_a_usage_error(capsys, tetra_obj):
+    rc, _, err = _run(capsys, "check", "--mesh", str(tetra_obj), "--only", "X1.4")
+    assert rc == 2 and "applies to a mesh file" in err
+
+
+BAD_FILES = {
+    "missing.obj": None,
+    "malformed.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
+    "nan.obj": "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+    "nonmanifold.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                       "f 1 2 3\nf 2 1 4\nf 1 2 5\n",
+    "flat.obj": "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
+    "quad.off": "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+    "mesh.xyz": "1 2 3\n",
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_FILES))
+@pytest.mark.parametrize("command", ["check", "compare"])
+def test_bad_mesh_file_is_one_line_exit_2_no_traceback(capsys, tmp_path, name, command):
+    path = tmp_path / name
+    if BAD_FILES[name] is not None:
+        path.write_text(BAD_FILES[name])
+    argv = [command, str(path)] if command == "compare" else [command, "--mesh", str(path)]
+    rc, out, err = _run(capsys, *argv, "--impl", "reference")
+    assert rc == 2
+    assert err.startswith("ddg-oracle: error:") and err.count("\n") == 1, err
+    assert "Traceback" not in err and name in err
+
+
+def test_unreferenced_vertices_are_removed_with_a_note(capsys, tmp_path):
+    path = tmp_path / "extra.obj"
+    V, F = surfaces.tetrahedron().to_arrays()
+    write_obj(path, list(V) + [[5.0, 5.0, 5.0]], F)
+    rc, out, err = _run(capsys, "check", "--mesh", str(path), "--impl", "reference",
+                        "--only", "D1.6")
+    assert rc == 0 and "1 unreferenced vertices removed" in err
+
+
+def test_run_on_example_uses_the_property_check_once():
+    from oracles.compare import MeshExamples, MeshInput
+    V, F = surfaces.cube().to_arrays()
+    ex = MeshExamples(MeshInput("cube", V, F))
+    r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.curvature_case(), "cube")
+    assert r.status == PASSED and r.examples == 1 and r.source == "cube"
+
+
+def test_compare_lists_every_quantity_with_its_worst_element(capsys, tetra_obj):
+    rc, out, _ = _run(capsys, "compare", str(tetra_obj), "--impl", "libigl")
+    assert rc == 0
+    from properties.protocol import METHODS
+    not_comparable = {"intrinsic_delaunay_triangulation", "planar_delaunay"}   # not unique / no mesh
+    for method in METHODS:
+        status = "not applicable" if method in not_comparable else "agrees"
+        assert re.search(rf"^{method}\s+libigl\s+{status}", out, re.M), method
+    assert re.search(r"^angle_defects\s+libigl\s+agrees\s+[\d.e-]+\s+vertex \d", out, re.M)
+    assert re.search(r"^cotan_laplacian\s+libigl\s+agrees\s+[\d.e-]+\s+entry \(\d+, \d+\)", out, re.M)
+
+
+def test_compare_finds_the_planted_bug_and_exits_1(capsys, disk_obj):
+    rc, out, _ = _run(capsys, "compare", str(disk_obj), "--impl",
+                      "tests.planted_bugs:ChiIgnoresBoundary", "--impl", "tests.test_cli:FlatVerticesCurved")
+    assert rc == 1
+    assert re.search(r"^euler_characteristic\s+chi-ignores-boundary\s+DIFFERS.*\s1\s+-?\d", out, re.M)
+    # the disk's centre is flat: K = 1e-3 instead of 0, beyond the bound, at vertex 0
+    assert re.search(r"^angle_defects\s+flat-vertices-curved\s+DIFFERS\s+\S+\s+\(1/7 over\)\s+vertex 0",
+                     out, re.M)
+
+
+def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
+    from reference.errors import TermLimitExceeded
+    from properties.runner import UNDECIDED
+
+    class Limited(ReferenceImplementation):
+        def euler_characteristic(self, V, F):
+            raise TermLimitExceeded("a square-root number would have too many terms")
+    from oracles.compare import MeshExamples, MeshInput
+    V, F = surfaces.cube().to_arrays()
+    ex = MeshExamples(MeshInput("cube", V, F))
+    r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.surface_case(), "cube")
+    assert r.status == UNDECIDED and r.ok and "too many terms" in r.error
+
+
+def test_convention_status_from_run_property():
+    from hypothesis import settings
+    from oracles.libigl import Libigl
+    quick = settings(max_examples=20, deadline=None, database=None, derandomize=True)
+    r = run_property(PROPERTIES["R2.4"], Libigl(boundary="library"), quick,
+                     counterpart=Libigl(), convention="L2")
+    assert r.status == CONVENTION and r.ok and "L2" in r.note
