@@ -48,7 +48,7 @@ from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _
                         obtuse_fans, planar_meshes)
 from .metrics import polycube_surfaces
 from .protocol import eps
-from .registry import PropertyFailure, prop
+from .registry import PropertyFailure, TieDisagreement, prop
 
 
 # --- the exact Delaunay operator on a case, with its error model ---------------------------------
@@ -205,6 +205,7 @@ def locally_delaunay_edges(impl, case: MeshCase):
     if got.shape != (t.n_faces, 3):
         _fail(pid, impl, case, "is_locally_delaunay has the wrong shape",
               expected=(t.n_faces, 3), observed=got.shape)
+    tie = None
     for f in range(t.n_faces):
         for c in range(3):
             h = 3 * f + (c + 1) % 3                 # the halfedge opposite corner c
@@ -215,11 +216,17 @@ def locally_delaunay_edges(impl, case: MeshCase):
             hs = [x for x in t.edge_halfedges(e) if x >= 0]
             s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
             bound = sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
-            if abs(s) <= bound:
-                continue                            # an (exact or near) tie: rounding decides
+            if abs(s) <= bound:                     # an (exact or near) tie: rounding decides
+                tie = tie or (f, c, want, bool(got[f, c]), s, bound)
+                continue
             _fail(pid, impl, case, f"edge {t.edge_vertices(e)} opposite corner {c} of face {f} "
                   f"is {'' if want else 'not '}Delaunay (cot sum {s:.6g}, the bound {bound:.3g})",
                   element=(f, c), expected=want, observed=bool(got[f, c]))
+    if tie:
+        f, c, want, seen, s, bound = tie
+        _near_tie(pid, impl, case.mesh, f"the edge opposite corner {c} of face {f} has the cot "
+                  f"sum {s:.3g}, within the float bound {bound:.3g} of 0", element=(f, c),
+                  expected=want, observed=seen)
 
 
 @prop("P4.10", "the interior-edge cotan weights of the implementation's cotan_laplacian are all "
@@ -512,10 +519,9 @@ def delaunay_minimal_surface_step(impl, case: MeshCase):
 
 
 def _near_tie(pid, impl, mesh, message, **kw):
-    """A disagreement that rounding decides (exact tie or within the float bound): not an
-    error of the implementation.  TIE: reported as a tie disagreement once the runner has
-    that category; until then accepted."""
-    return
+    """A disagreement that rounding decides (an exact tie, or within the float bound): a
+    tie disagreement, reported apart from real failures."""
+    raise TieDisagreement(pid, impl, message, mesh=mesh, **kw)
 
 
 def _planar_points():
