@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 from properties import PROPERTIES, triangulated_surfaces
 from properties import curvature as P
 from properties.profiles import profile
-from properties.runner import FAILED, PASSED, run_property
+from properties.runner import FAILED, PASSED, TIE, run_property
 from reference import curvature as C
 from reference import surfaces
 from reference.combinatorics import Triangulation
@@ -637,9 +637,9 @@ CATCH = settings(profile("ci"), max_examples=40)
 @pytest.mark.parametrize("impl", [ExactCurvature(), FloatCurvature()], ids=lambda i: i.name)
 def test_chapter2_property_passes(impl, pid):
     # the exact reference (correctly rounded) and a plain float64 implementation both
-    # stay within the derived bounds
+    # stay within the derived bounds (a float one may decide an exact tie by rounding)
     r = run_property(PROPERTIES[pid], impl, QUICK)
-    assert r.status == PASSED, r.failure or r.error
+    assert r.status in (PASSED, TIE), r.failure or r.error
     assert r.examples > 0
 
 
