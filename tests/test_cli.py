@@ -382,3 +382,9 @@ def test_render_writes_a_png_for_each_kind_of_element(tmp_path, element):
     path = tmp_path / "m.png"
     render_mesh(path, V, F, element, title="demo")
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 5000
+
+
+def test_seed_and_timeout_options_are_accepted(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "X2.1", "--seed", "7",
+                      "--timeout", "30", "--workers", "1")
+    assert rc == 0 and re.search(r"^X2\.1 .*passed \(\d+ examples\)$", out, re.M)
