@@ -84,7 +84,7 @@ class Libigl:
         """``igl.boundary_loop_all(F)``: every loop, walked along the faces' orientation.
 
         On a non-orientable surface this walk breaks the boundary into pieces
-        (docs/conventions.md, finding L1): returned as libigl gives it.
+        (docs/findings.md, L1): returned as libigl gives it.
         """
         _, F = _arrays(V, F)
         return [[int(v) for v in loop] for loop in igl.boundary_loop_all(F)]

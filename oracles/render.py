@@ -53,21 +53,27 @@ def render_mesh(path, V, F, element: dict | None = None, title: str = "") -> Non
         title += f" (the {len(faces)} faces within two rings of the element, of {len(F)})"
     used = np.unique(F[faces])
     fig = plt.figure(figsize=(6, 6), dpi=100)
-    ax = fig.add_subplot(projection="3d")
+    # drawn in order, so the element (added last) shows through the faces in front of it
+    ax = fig.add_subplot(projection="3d", computed_zorder=False)
     polys = V[F[faces]]
     colours = np.tile([0.80, 0.85, 0.92, 0.55], (len(faces), 1))
     if "face" in element:
         colours[faces == element["face"]] = [0.9, 0.2, 0.2, 0.8]
     ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=(0.3, 0.3, 0.4, 0.8),
                                          linewidths=0.6))
+    lines = []
     if "edge" in element:
-        i, j = element["edge"]
-        ax.add_collection3d(Line3DCollection([V[[i, j]]], colors="red", linewidths=3))
+        lines.append(V[element["edge"]])
+    if "face" in element and 0 <= element["face"] < len(F):
+        a, b, c = F[element["face"]]
+        lines += [V[[a, b]], V[[b, c]], V[[c, a]]]     # its outline shows through other faces
+    if lines:
+        ax.add_collection3d(Line3DCollection(lines, colors="red", linewidths=2.5, zorder=5))
     red = [element["vertex"]] if "vertex" in element else []
     if "corner" in element and "face" in element:
         red.append(int(F[element["face"], element["corner"]]))
     if red:
-        ax.scatter(*V[red].T, color="red", s=60, depthshade=False, zorder=5)
+        ax.scatter(*V[red].T, color="red", s=60, depthshade=False, zorder=6)
     if len(used) <= LABEL_LIMIT:
         for v in used:
             ax.text(*V[v], f" {v}", fontsize=8, color="red" if v in red or v in seeds else "black")

@@ -287,7 +287,7 @@ def write_failure_files(directory: Path, k: int, r, spec: str, methods) -> dict:
     V, F = r.mesh
     write_obj(d / "mesh.obj", V, F)
     ids = element_ids(r.failure.element) if r.failure is not None else None
-    render_mesh(d / "mesh.png", V, F, ids, title=describe_line(r)[:100])
+    render_mesh(d / "mesh.png", V, F, ids, title=describe_line(r)[:240])
     (d / "reproduce.py").write_text(snippet(r, spec, methods), encoding="utf-8")
     return {"obj": f"{sub.as_posix()}/mesh.obj", "png": f"{sub.as_posix()}/mesh.png",
             "snippet": f"{sub.as_posix()}/reproduce.py"}

@@ -81,8 +81,16 @@ class PropertyFailure(AssertionError):
                          f"{self.bound:.3g}")
         if self.mesh is not None:
             V, F = self.mesh
-            lines.append(f"  mesh: {len(V)} vertices, {len(F)} faces; F = {F}")
+            lines.append(f"  mesh: {len(V)} vertices, {len(F)} faces; F = {faces_text(F)}")
         return "\n".join(lines)
+
+
+def faces_text(F, limit: int = 40) -> str:
+    """The face list as text, cut after ``limit`` faces (a mesh file may have thousands)."""
+    F = [list(f) for f in F]
+    if len(F) <= limit:
+        return str(F)
+    return str(F[:limit])[:-1] + f", ... ({len(F) - limit} more)]"
 
 
 class TieDisagreement(PropertyFailure):

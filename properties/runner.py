@@ -37,7 +37,7 @@ from reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
 from .profiles import profile as named_profile
 from .protocol import capabilities, implementation_name
-from .registry import Property, PropertyFailure, TieDisagreement, all_properties
+from .registry import Property, PropertyFailure, TieDisagreement, all_properties, faces_text
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
@@ -273,7 +273,7 @@ def describe(r: Result) -> str:
             text += f"\n  {r.error}"
         if r.mesh is not None:
             V, F = r.mesh
-            text += f"\n  mesh: {len(V)} vertices, {len(F)} faces; F = {F}"
+            text += f"\n  mesh: {len(V)} vertices, {len(F)} faces; F = {faces_text(F)}"
         elif r.example is not None:
             text += f"\n  input: {r.example!r}"
     if r.source != "generated":

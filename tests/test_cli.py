@@ -352,3 +352,41 @@ def test_convention_status_from_run_property():
     r = run_property(PROPERTIES["R2.4"], Libigl(boundary="library"), quick,
                      counterpart=Libigl(), convention="L2")
     assert r.status == CONVENTION and r.ok and "L2" in r.note
+
+
+def test_report_of_a_failure_on_a_large_mesh_file_reads_the_obj(tmp_path, capsys):
+    V, F = surfaces.grid(15, 15).to_arrays()               # 256 vertices, a boundary
+    mesh = tmp_path / "grid.obj"
+    write_obj(mesh, [list(p) + [0.0] * (3 - len(p)) for p in V], F)
+    d = tmp_path / "big"
+    rc, out, _ = _run(capsys, "check", "--mesh", str(mesh), "--only", "D1.6", "--workers", "1",
+                      "--impl", "tests.planted_bugs:ChiIgnoresBoundary", "--report", str(d))
+    assert rc == 1
+    assert "more)]" in out                                  # the face list is cut in the text
+    r = json.loads((d / "results.json").read_text())["results"][0]
+    assert r["mesh"] == {"file": str(mesh), "vertices": 256, "faces": 450}
+    snippet = (d / r["files"]["snippet"]).read_text()
+    assert 'read_mesh(Path(__file__).with_name("mesh.obj"))' in snippet
+    out = subprocess.run([sys.executable, str(d / r["files"]["snippet"])], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert re.search(r"reference:\s+1\n", out.stdout) and "implementation:" in out.stdout
+
+
+@pytest.mark.parametrize("element", [{"vertex": 3}, {"edge": [0, 5]}, {"face": 2, "corner": 1},
+                                     {"face": 40}, None])
+def test_render_writes_a_png_for_each_kind_of_element(tmp_path, element):
+    from oracles.render import RING_LIMIT, render_mesh
+    s = surfaces.torus(24, 12) if element == {"face": 40} else surfaces.disk(6)
+    V, F = s.to_arrays()
+    if element == {"face": 40}:
+        assert len(F) > RING_LIMIT                          # only the neighbourhood is drawn
+    path = tmp_path / "m.png"
+    render_mesh(path, V, F, element, title="demo")
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 5000
+
+
+def test_seed_and_timeout_options_are_accepted(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "X2.1", "--seed", "7",
+                      "--timeout", "30", "--workers", "1")
+    assert rc == 0 and re.search(r"^X2\.1 .*passed \(\d+ examples\)$", out, re.M)
