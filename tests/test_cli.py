@@ -390,3 +390,28 @@ def test_seed_and_timeout_options_are_accepted(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "X2.1", "--seed", "7",
                       "--timeout", "30", "--workers", "1")
     assert rc == 0 and re.search(r"^X2\.1 .*passed \(\d+ examples\)$", out, re.M)
+
+
+# --- the hostile corpus through the command line: one line, exit 2 ----------------------------
+
+from tests import hostile  # noqa: E402
+
+
+@pytest.mark.parametrize("case", hostile.FILE_CASES + hostile.MESH_FILE_CASES,
+                         ids=lambda c: c.name)
+def test_every_hostile_mesh_file_is_one_line_and_exit_2(capsys, tmp_path, case):
+    path = hostile.write(case, tmp_path)
+    if "unreferenced" in case.name:
+        # the command line drops unreferenced vertices of real meshes, saying so
+        rc, out, err = _run(capsys, "check", "--mesh", str(path), "--impl", "reference",
+                            "--only", "D1.6")
+        assert rc == 0 and "unreferenced vertices removed" in err
+        return
+    for command in (["check", "--mesh", str(path), "--impl", "reference", "--only", "D1.6"],
+                    ["compare", str(path), "--impl", "reference"]):
+        rc, out, err = _run(capsys, *command)
+        assert rc == 2, (command, out, err)
+        assert err.startswith("ddg-oracle: error:") and err.count("\n") == 1, err
+        assert "Traceback" not in err
+        low = err.lower()
+        assert any(w.lower() in low for w in case.words), (case.words, err)
