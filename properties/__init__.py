@@ -4,15 +4,38 @@ Use from your own tests::
 
     from properties import check_implementation
     check_implementation(MyImplementation())          # raises AssertionError on failure
+
+or draw meshes for your own properties::
+
+    from hypothesis import given
+    from properties import any_meshes
+
+    @given(any_meshes())
+    def test_mine(case):
+        V, F = case.arrays()                          # float64 n x 3, int64 m x 3
 """
 
 from . import profiles  # noqa: F401  (registers the default / ci / thorough profiles)
 from .registry import PROPERTIES, Property, PropertyFailure, TieDisagreement, all_properties
 from .runner import check_implementation, run_properties
 from .strategies import (SurfaceCase, closed_surfaces, named_surfaces, triangulated_surfaces)
+# mesh strategies of the chapter modules, for users' own tests (MeshCase: exact positions,
+# .arrays() gives the float64 V and int64 F an implementation receives)
+from .curvature import jittered_surfaces, rational_motions, vertex_stars
+from .delaunay import delaunay_meshes, flipped_meshes, two_triangulations
+from .laplacian import (MeshCase, acute_meshes, any_meshes, closed_meshes, jittered_grids,
+                        obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
+                        weighted_graphs, with_functions)
+from .metrics import flat_tori, polycube_surfaces, randomly_flipped
+from .planar_points import integer_point_sets, integer_quadrilaterals, rational_point_sets
 
 all_properties()        # registers every property, so PROPERTIES is complete on import
 
 __all__ = ["PROPERTIES", "Property", "PropertyFailure", "TieDisagreement", "all_properties",
            "check_implementation", "run_properties", "SurfaceCase", "closed_surfaces", "named_surfaces",
-           "triangulated_surfaces"]
+           "triangulated_surfaces", "jittered_surfaces", "rational_motions", "vertex_stars",
+           "delaunay_meshes", "flipped_meshes", "two_triangulations", "MeshCase", "acute_meshes",
+           "any_meshes", "closed_meshes", "jittered_grids", "obtuse_meshes", "planar_meshes",
+           "scaled_meshes", "single_triangles", "weighted_graphs", "with_functions", "flat_tori",
+           "polycube_surfaces", "randomly_flipped", "integer_point_sets", "integer_quadrilaterals",
+           "rational_point_sets"]
