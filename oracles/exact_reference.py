@@ -6,12 +6,23 @@ correctly rounded.  This is what every other implementation is compared with.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from reference import curvature, delaunay, laplacian
 from reference.combinatorics import Triangulation
 from reference.exact.measures import surd_sum
 from reference.polyhedral import PolyhedralSurface
+
+
+def _view(x) -> float:
+    """The correctly rounded float of an exact value; beyond the float range that is +-inf
+    (IEEE round to nearest), where Python's float() of a Fraction raises OverflowError."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
 
 
 class ReferenceImplementation:
@@ -56,17 +67,17 @@ class ReferenceImplementation:
                 for e, h in curvature.mean_curvature(s).items()}
 
     def area(self, V, F) -> float:
-        return float(surd_sum(self._s(V, F).metric().areas))
+        return _view(surd_sum(self._s(V, F).metric().areas))
 
     # chapter 3
     def cotan_laplacian(self, V, F):
         return laplacian.cotan_laplacian(self._s(V, F)).to_scipy()
 
     def vertex_areas_barycentric(self, V, F):
-        return np.array([float(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))])
+        return np.array([_view(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))])
 
     def vertex_areas_voronoi(self, V, F):
-        return np.array([float(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))])
+        return np.array([_view(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))])
 
     # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + (c+1) % 3)
     def is_locally_delaunay(self, V, F):
@@ -81,7 +92,7 @@ class ReferenceImplementation:
     def intrinsic_delaunay_triangulation(self, V, F):
         d, _ = delaunay.flip_to_delaunay(self._s(V, F).metric())
         t = d.triangulation
-        l2 = [[float(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
+        l2 = [[_view(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
               for f in range(t.n_faces)]
         return np.array(t.faces, dtype=np.int64), np.array(l2, dtype=float)
 

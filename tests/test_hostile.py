@@ -259,3 +259,17 @@ def test_property_run_reports_an_overrunning_example_and_goes_on(monkeypatch):
     monkeypatch.setenv(TIME_LIMIT_ENV, "0")
     fine = run_property(PROPERTIES["X1.4"], ReferenceImplementation(), quick)
     assert fine.status != CRASHED
+
+
+def test_reference_float_views_beyond_the_float_range_are_inf():
+    import math
+
+    import numpy as np
+
+    from oracles.exact_reference import ReferenceImplementation
+    V = np.array([[0.0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]])
+    F = np.array([[0, 1, 2]])
+    r = ReferenceImplementation()
+    assert r.area(V, F) == math.inf                      # exactly 5e599: beyond every double
+    assert list(r.vertex_areas_voronoi(V, F)) == [math.inf] * 3
+    assert np.allclose(r.corner_angles(V, F).sum(), math.pi)   # scale-free views stay finite
