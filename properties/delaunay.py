@@ -43,7 +43,7 @@ from reference.intrinsic import flip
 from reference.laplacian import cotan_laplacian
 from reference.polyhedral import PolyhedralSurface
 
-from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _worst,
+from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _solve, _worst,
                         any_meshes, closed_meshes, entry_bounds, gamma, grid_faces, jittered_grids,
                         obtuse_fans, planar_meshes)
 from .metrics import polycube_surfaces
@@ -490,9 +490,7 @@ def delaunay_minimal_surface_step(impl, case: MeshCase):
     inner = _interior(case)
     if not inner.any():
         return
-    I, Bd = np.flatnonzero(inner), np.flatnonzero(~inner)
-    new = V.copy()
-    new[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, Bd)] @ V[Bd])
+    new, _ = _solve(A, list(np.flatnonzero(~inner)), V)
     area = float(D.X.metric.total_area())
 
     def energy(P):
@@ -538,35 +536,6 @@ def _planar_result(impl, pts, pid):
         raise PropertyFailure(pid, impl, "planar_delaunay: not an (m, 3) array of point indices",
                               mesh=mesh, observed=getattr(T, "shape", None))
     return [tuple(int(v) for v in t) for t in T], mesh
-
-
-def _merged_cells(pts, triangles):
-    """Triangles joined across shared edges whose four points are exactly cocircular: the
-    cells of the tessellation the triangulation refines (R4.7), as frozensets."""
-    from reference.planar import in_circle, orientation
-    parent = list(range(len(triangles)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    by_edge: dict = {}
-    for k, t in enumerate(triangles):
-        for c in range(3):
-            by_edge.setdefault(frozenset((t[c], t[(c + 1) % 3])), []).append(k)
-    for ks in by_edge.values():
-        if len(ks) == 2:
-            a, b = (triangles[k] for k in ks)
-            x, y, z = a if orientation(*(pts[v] for v in a)) > 0 else a[::-1]
-            (d,) = set(b) - set(a)
-            if in_circle(pts[x], pts[y], pts[z], pts[d]) == 0:
-                parent[find(ks[0])] = find(ks[1])
-    cells: dict = {}
-    for k, t in enumerate(triangles):
-        cells.setdefault(find(k), set()).update(t)
-    return frozenset(frozenset(c) for c in cells.values())
 
 
 def _incircle_bound(a, b, c, d) -> tuple[float, float]:
@@ -626,9 +595,9 @@ def empty_disk_property(impl, pts):
       "cocircular triangles are merged (compared with the exact flip algorithm's)",
       needs={"planar_delaunay"}, strategy=_planar_points)
 def unique_planar_tessellation(impl, pts):
-    from reference.planar import delaunay_tessellation
+    from reference.planar import cocircular_cells, delaunay_tessellation
     tris, mesh = _planar_result(impl, pts, "T4.1")
-    got, want = _merged_cells(pts, tris), delaunay_tessellation(pts)
+    got, want = cocircular_cells(pts, tris), delaunay_tessellation(pts)
     if got != want:
         extra = sorted(sorted(c) for c in got - want)
         missing = sorted(sorted(c) for c in want - got)

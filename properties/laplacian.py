@@ -620,7 +620,8 @@ def harmonic_functions_are_locally_constant(impl, case: MeshCase):
 
 
 def _solve(A, V0, c):
-    """The Dirichlet solution with the implementation's matrix (dense LU)."""
+    """The Dirichlet solution with the implementation's matrix (dense LU): ``c`` (values,
+    or positions n x k) kept on V0, ``A u = 0`` solved at the others; returns (u, others)."""
     n = A.shape[0]
     I = [v for v in range(n) if v not in set(V0)]
     u = np.array(c, dtype=float).copy()
@@ -803,14 +804,11 @@ def area_as_dirichlet_energy(impl, case: MeshCase):
 def minimal_surface_step_decreases_area(impl, case: MeshCase):
     A = _dense(impl, case, "A3.6")
     X = Exact(case)
-    V0 = list(case.boundary)
-    I = [v for v in range(X.n) if v not in set(V0)]
+    P = np.array([[float(x) for x in p] for p in case.positions])
+    U, I = _solve(A, list(case.boundary), P)
     if not I:
         return
-    P = np.array([[float(x) for x in p] for p in case.positions])
-    U = P.copy()
     AII = A[np.ix_(I, I)]
-    U[I] = np.linalg.solve(AII, -A[np.ix_(I, V0)] @ P[V0])
     before = float(X.metric.total_area())
     new = PolyhedralSurface(X.triangulation, [[Fraction(float(x)) for x in p] for p in U])
     try:

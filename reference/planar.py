@@ -61,7 +61,7 @@ from .laplacian import cotan_laplacian
 from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix
 
-__all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position",
+__all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
            "circumcircle", "planar_triangulation", "delaunay_triangulation",
            "delaunay_tessellation", "cell_boundary", "tessellation_edges", "voronoi_vertices",
            "voronoi_edges", "empty_disk_violations", "is_empty_disk_edge", "angle_criterion",
@@ -322,6 +322,35 @@ def delaunay_tessellation(points) -> frozenset:
     for group in _components(tri.n_faces, merge):
         cells.append(frozenset(v for f in group for v in tri.faces[f]))
     return frozenset(cells)
+
+
+def cocircular_cells(points, triangles) -> frozenset:
+    """R4.7 for any list of triangles (vertex-id triples) of ``points``: the triangles
+    merged across every shared edge whose four points lie exactly on one circle
+    (:func:`in_circle` is 0), as a frozenset of cells (frozensets of vertex ids).
+
+    For a Delaunay triangulation this is the Delaunay tessellation, however a
+    library split its cocircular cells (T4.1 compares implementations by it).
+
+    >>> sorted(sorted(c) for c in cocircular_cells([(0, 0), (1, 0), (1, 1), (0, 1)],
+    ...                                            [(0, 1, 2), (0, 2, 3)]))
+    [[0, 1, 2, 3]]
+    """
+    pts = as_point_set(points)
+    tris = [tuple(t) for t in triangles]
+    by_edge: dict = {}
+    for k, t in enumerate(tris):
+        for c in range(3):
+            by_edge.setdefault(frozenset((t[c], t[(c + 1) % 3])), []).append(k)
+    merge = []
+    for ks in by_edge.values():
+        if len(ks) == 2:
+            a, b = (tris[k] for k in ks)
+            (d,) = set(b) - set(a)
+            if in_circle(*(pts[v] for v in a), pts[d]) == 0:    # the sign of a's orientation
+                merge.append(tuple(ks))                          # does not matter for 0
+    return frozenset(frozenset(v for k in group for v in tris[k])
+                     for group in _components(len(tris), merge))
 
 
 def cell_boundary(points, cell) -> tuple[int, ...]:

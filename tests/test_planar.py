@@ -522,3 +522,22 @@ def test_semidefiniteness_with_square_roots():
     assert bad.quadratic_form(negative_direction(bad)) < 0
     with pytest.raises(InputError):
         negative_direction(SparseMatrix.from_rows((2, 2), {0: {1: 1}}))
+
+
+@given(rational_point_sets())
+def test_R4_7_cocircular_merging_by_in_circle_equals_merging_by_zero_weights(pts):
+    # two independent criteria for "same cell": in_circle == 0 of the four points, and cotan
+    # weight exactly 0 of the edge (delaunay_tessellation)
+    from reference.planar import cocircular_cells
+    d = delaunay_triangulation(pts)
+    assert cocircular_cells(pts, d.triangulation.faces) == delaunay_tessellation(pts)
+
+
+def test_R4_7_cocircular_cells_merge_a_square_but_not_a_kite():
+    from reference.planar import cocircular_cells
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    for split in ([(0, 1, 2), (0, 2, 3)], [(0, 1, 3), (1, 2, 3)]):      # either diagonal
+        assert cocircular_cells(square, split) == {frozenset(range(4))}
+    kite = [(2, 0), (0, 1), (-1, 0), (0, -1)]
+    assert cocircular_cells(kite, [(0, 1, 3), (1, 2, 3)]) == {frozenset({0, 1, 3}),
+                                                              frozenset({1, 2, 3})}
