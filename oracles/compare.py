@@ -363,10 +363,11 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
             if method == "edge_mean_curvature" and not facts["orientable"]:
                 rows.append(Comparison(method, name, "not applicable", note="not orientable"))
                 continue
-            if method in ("planar_delaunay", "intrinsic_delaunay_triangulation"):
+            if method in ("planar_delaunay", "intrinsic_delaunay_triangulation",
+                          "planar_flip_to_delaunay"):
                 rows.append(Comparison(method, name, "not applicable",
                                        note="not unique or not a mesh quantity: checked by the "
-                                            "properties (T4.1, A4.13)"))
+                                            "properties (T4.1, A4.13, L4.3 / P4.4)"))
                 continue
             if method in ("cotan_laplacian", "vertex_areas_voronoi", "vertex_areas_barycentric",
                           "intrinsic_delaunay_laplacian") and facts["n"] > DENSE_LIMIT:

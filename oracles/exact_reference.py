@@ -100,3 +100,12 @@ class ReferenceImplementation:
         from reference.planar import delaunay_triangulation
         return np.array(delaunay_triangulation([tuple(p) for p in np.asarray(P, float)])
                         .triangulation.faces, dtype=np.int64)
+
+    def planar_flip_to_delaunay(self, V, F):
+        from reference.planar import planar_flip_to_delaunay
+        V = np.asarray(V, float)
+        if V.ndim == 2 and V.shape[1] == 3 and np.any(V[:, 2] != 0):
+            raise ValueError("planar_flip_to_delaunay: the points must lie in the plane z = 0")
+        pts = [(x, y) for x, y, *_ in V]
+        return np.array(planar_flip_to_delaunay(pts, np.asarray(F).tolist()).triangulation.faces,
+                        dtype=np.int64)

@@ -230,3 +230,14 @@ class Libigl:
         V, F = _arrays(V, F)
         l, F2, *_ = igl.intrinsic_delaunay_triangulation(igl.edge_lengths(V, F), F)
         return np.asarray(F2, dtype=np.int64), np.asarray(l, dtype=float) ** 2
+
+    def planar_flip_to_delaunay(self, V, F):
+        """The faces of :meth:`intrinsic_delaunay_triangulation`: for points in the plane
+        z = 0 the intrinsic flips are the ordinary straight-line flips (a non-Delaunay
+        edge's quadrilateral is convex, L4.11), so libigl's intrinsic result is a planar
+        triangulation of the same polygon."""
+        V, F = _arrays(V, F)
+        if np.any(V[:, 2] != 0):
+            raise ValueError("planar_flip_to_delaunay: the points must lie in the plane z = 0")
+        F2, _ = self.intrinsic_delaunay_triangulation(V, F)
+        return F2

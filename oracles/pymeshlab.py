@@ -259,3 +259,25 @@ class PyMeshLab:
             for v, phi in boundary_edge_angles(V, F).items():
                 K[v] += phi - math.pi
         return K
+
+    # --- chapter 4: Delaunay flips ------------------------------------------------------
+
+    def planar_flip_to_delaunay(self, V, F) -> np.ndarray:
+        """``meshing_edge_flip_by_planar_optimization(planartype="delaunay", iterations=0)``.
+
+        vcg's ``TriEdgeFlip`` (tri_edge_flip.h): an edge is a candidate when its
+        two faces are coplanar within ``pthreshold`` degrees (here every z = 0,
+        so the normals are equal) and its quadrilateral is convex; its priority
+        is ``180 - (alpha + beta)`` in degrees (alpha, beta the opposite angles,
+        double precision); the filter flips while the smallest priority is below
+        ``-FLT_EPSILON`` degrees.  ``iterations=0``: by default the filter then
+        moves the vertices by a planar Laplacian smoothing
+        (``VertexCoordPlanarLaplacian``), which would change the points.
+        """
+        V, F = _arrays(V, F)
+        if np.any(V[:, 2] != 0):
+            raise ValueError("planar_flip_to_delaunay: the points must lie in the plane z = 0")
+        ms = _meshset(V, F)
+        ms.meshing_edge_flip_by_planar_optimization(planartype="delaunay", iterations=0)
+        _check_same(ms, V, F, "meshing_edge_flip_by_planar_optimization")
+        return np.asarray(ms.current_mesh().face_matrix(), dtype=np.int64)

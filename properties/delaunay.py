@@ -48,7 +48,7 @@ from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _
                         obtuse_fans, planar_meshes)
 from .metrics import polycube_surfaces
 from .protocol import eps
-from .registry import PropertyFailure, TieDisagreement, prop
+from .registry import PropertyFailure, TieDisagreement, faces_text, prop
 
 
 # --- the exact Delaunay operator on a case, with its error model ---------------------------------
@@ -609,6 +609,74 @@ def unique_planar_tessellation(impl, pts):
             return
         raise PropertyFailure("T4.1", impl, "not the Delaunay tessellation", mesh=mesh,
                               expected=missing, observed=extra)
+
+
+def _planar_triangulations():
+    from .planar_points import planar_triangulations
+    return planar_triangulations()
+
+
+@prop("L4.3 / P4.4", "planar_flip_to_delaunay returns a triangulation of the same polygon (same "
+      "vertices and boundary edges, faces counterclockwise) whose interior edges all have "
+      "opposite angles summing to at most pi (L4.3: exact in-circle test on the float points); "
+      "started on the convex hull, the Delaunay tessellation (T4.1)",
+      needs={"planar_flip_to_delaunay"}, strategy=_planar_triangulations)
+def planar_flips_reach_delaunay(impl, example):
+    from reference.planar import cocircular_cells, delaunay_tessellation, in_circle, orientation
+    pid = "L4.3 / P4.4"
+    pts, faces, on_hull = example
+    V = np.array([[float(x), float(y), 0.0] for x, y in pts])
+    out = np.asarray(impl.planar_flip_to_delaunay(V, np.array(faces, dtype=np.int64)))
+    # failures carry the input (what reproduces them); the result goes into the message
+    mesh = (V.tolist(), [list(f) for f in faces])
+    if (out.shape != (len(faces), 3) or not np.issubdtype(out.dtype, np.integer)
+            or out.min() < 0 or out.max() >= len(pts)):
+        raise PropertyFailure(pid, impl, "planar_flip_to_delaunay: not an (m, 3) array of "
+                              "vertex indices, m the input's face count", mesh=mesh,
+                              expected=(len(faces), 3), observed=getattr(out, "shape", None))
+    tris = [tuple(int(v) for v in f) for f in out]
+    result = f" (result faces {faces_text(tris)})"
+    for k, t in enumerate(tris):
+        if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
+            raise PropertyFailure(pid, impl, f"face {k} {t} is degenerate or clockwise" + result,
+                                  mesh=mesh, element=k)
+
+    def sides(fs):                  # directed edge -> (face, opposite vertex)
+        return {(f[c], f[(c + 1) % 3]): (k, f[(c + 2) % 3])
+                for k, f in enumerate(fs) for c in range(3)}
+
+    got, given = sides(tris), sides(faces)
+    if len(got) < 3 * len(tris):
+        raise PropertyFailure(pid, impl, "a directed edge is used twice: faces overlap" + result,
+                              mesh=mesh)
+    boundary = {e for e in got if e[::-1] not in got}
+    want = {e for e in given if e[::-1] not in given}
+    if boundary != want:
+        raise PropertyFailure(pid, impl, "the boundary edges changed: flips must keep the "
+                              "polygon" + result, mesh=mesh, expected=sorted(want),
+                              observed=sorted(boundary))
+    real, ties = [], 0
+    for (a, b), (k, c) in got.items():
+        if a < b and (b, a) in got:
+            d = got[(b, a)][1]
+            if in_circle(pts[a], pts[b], pts[c], pts[d]) > 0:
+                det, bound = _incircle_bound(pts[a], pts[b], pts[c], pts[d])
+                if abs(det) <= bound:
+                    ties += 1
+                else:
+                    real.append(((a, b), c, d, det, bound))
+    if real:
+        e, c, d, det, bound = real[0]
+        raise PropertyFailure(pid, impl, f"interior edge {e} is not Delaunay: point {d} is "
+                              f"inside the circle through {e} and {c} (in-circle determinant "
+                              f"{det:.3g}, float bound {bound:.3g})" + result, mesh=mesh, element=e,
+                              expected="<= 0", observed=det, bound=bound)
+    if ties:
+        _near_tie(pid, impl, mesh, f"{ties} interior edge(s) non-Delaunay within the float "
+                  "in-circle bound: nearly cocircular points split the other way" + result)
+    if on_hull and cocircular_cells(pts, tris) != delaunay_tessellation(pts):
+        raise PropertyFailure(pid, impl, "every edge passes, yet the cells are not the "
+                              "Delaunay tessellation" + result, mesh=mesh)
 
 
 def _quads():

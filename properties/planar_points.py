@@ -123,3 +123,42 @@ def counterclockwise(pts) -> list:
 #: four points in convex position, put in counterclockwise order)
 integer_quadrilaterals = st.lists(st.tuples(small, small), min_size=4, max_size=4,
                                   unique=True).map(counterclockwise).filter(is_convex_ccw)
+
+
+@st.composite
+def planar_triangulations(draw, max_points: int = 12):
+    """``(points, faces, on_hull)``: a straight-line triangulation of planar points, far
+    from Delaunay, to be flipped to Delaunay (A4.13 in the plane).
+
+    The points are :func:`rational_point_sets` rounded to floats and taken exactly
+    (what a float implementation sees is what the reference sees).  The start is
+    the sweep triangulation (long fans: rarely Delaunay), then random flips of
+    strictly convex quadrilaterals, then sometimes a boundary face removed (a
+    non-convex polygon: ``on_hull`` is False, the flips keep its boundary).
+    Faces are counterclockwise.  Shrinks towards three points.
+    """
+    from reference.errors import InputError
+    from reference.planar import planar_triangulation
+
+    pts = tuple((Fraction(float(x)), Fraction(float(y)))
+                for x, y in draw(rational_point_sets(max_points)))
+    if not spans_plane(pts) or len(set(pts)) < len(pts):
+        pts = ((Fraction(0), Fraction(0)), (Fraction(1), Fraction(0)), (Fraction(0), Fraction(1)))
+    t = planar_triangulation(pts).triangulation
+    for e in draw(st.lists(st.integers(0, 10 ** 6), max_size=12)):
+        e %= t.n_edges
+        if t.is_boundary_edge(e):
+            continue
+        u = t.flip(e)
+        if all(orientation(*(pts[v] for v in f)) > 0 for f in u.faces):
+            t = u                               # the quadrilateral was strictly convex
+    on_hull = True
+    if t.n_faces > 1 and draw(st.booleans()):
+        f = draw(st.integers(0, t.n_faces - 1))
+        if any(t.is_boundary_edge(t.edge_of(3 * f + c)) for c in range(3)):
+            try:
+                t = t.remove_face(f)
+                on_hull = False
+            except InputError:                  # would pinch a vertex or orphan one
+                pass
+    return pts, tuple(tuple(f) for f in t.faces), on_hull

@@ -44,6 +44,10 @@ METHODS: dict[str, str] = {
                                         "(m, 3) float squared lengths, l2[f, c] the edge opposite "
                                         "corner c, of an intrinsic Delaunay triangulation of the "
                                         "same metric (A4.13); F2 may have loops and multi-edges",
+    "planar_flip_to_delaunay": "(m, 3) int faces: the straight-line triangulation F of the "
+                               "planar points V (every z = 0, faces counterclockwise) after "
+                               "flipping interior edges until all are Delaunay (A4.13, P4.4); "
+                               "same vertices, same boundary edges",
     "planar_delaunay": "planar_delaunay(P): (m, 3) int array, a Delaunay triangulation of the "
                        "planar points P ((n, 2) float64), every point a vertex (T4.1, D4.1)",
 }

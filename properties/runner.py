@@ -150,44 +150,75 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     if not p.applies_to(capabilities(impl)):
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
-    state = {"n": 0, "last": None, "ties": 0, "tie": None}
+    state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False}
 
-    # one failure per property, the shrunk one: several distinct failures would come
-    # back as an ExceptionGroup and read as a crash
-    @Settings(settings, report_multiple_bugs=False)
-    @given(p.strategy())
-    def run(example):
+    def body(example):
         # Hypothesis replays the shrunk example last, so "last" is minimal.
         state["n"] += 1
         state["last"] = example
         try:
             p.check(impl, example)
         except TieDisagreement as t:
+            if state["ties_raise"]:
+                raise                               # the second pass: shrink the tie
             # not an error: keep going (a tie never hides a failure), keep the smallest
             state["ties"] += 1
             if state["tie"] is None or _size(t.mesh) < _size(state["tie"][0].mesh):
                 state["tie"] = (t, example)
 
     # each (property, implementation) its own database key and derandomized seed: Hypothesis
-    # derives both from the test function, the same `run` for every property (as its pytest
+    # derives both from the test function, the same `body` for every property (as its pytest
     # plugin does for parametrized tests)
-    run._hypothesis_internal_add_digest = f"{p.id}|{name}".encode()
-    if seed is not None:
-        run = hypothesis_seed(seed)(run)
+    body._hypothesis_internal_add_digest = f"{p.id}|{name}".encode()
     t0 = time.perf_counter()
-    try:
-        run()
-        errors = []
-    except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
-        if isinstance(e, (KeyboardInterrupt, SystemExit)):
-            raise
-        errors = _flatten(e)
+    errors, run = _search(body, p, settings, seed)
+    if not errors and state["tie"] is not None:
+        errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
     r = Result(p.id, p.name, name, examples=state["n"], seconds=time.perf_counter() - t0,
                ties=state["ties"], example=state["last"], **out)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, p, counterpart, convention)
     return r
+
+
+def _search(body, p: Property, settings: Settings, seed, **changes):
+    """Run Hypothesis on ``body``: (what it raised, flattened; the wrapped test)."""
+    # one failure per property, the shrunk one: several distinct failures would come
+    # back as an ExceptionGroup and read as a crash
+    run = Settings(settings, report_multiple_bugs=False, **changes)(given(p.strategy())(body))
+    if seed is not None:
+        run = hypothesis_seed(seed)(run)
+    try:
+        run()
+    except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
+        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+            raise
+        return _flatten(e), run
+    return [], run
+
+
+def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list:
+    """Tie disagreements do not stop the search, so Hypothesis does not shrink them.
+    Second pass: the same example stream (the same seed, or the same derandomized
+    digest), this time with ties raising, so the first tie is shrunk.  Returns what
+    that pass raised; if the stream differs (a database replay) and no tie comes up,
+    nothing: the smallest tie of the first pass stands."""
+    n, ties, tie = state["n"], state["ties"], state["tie"]
+    seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
+                                                 None)
+    state["ties_raise"] = True
+    try:
+        errors, _ = _search(body, p, settings, seed, database=None, max_examples=n)
+    finally:
+        state.update(n=n, ties=ties, ties_raise=False)
+    shrunk = [e for e in errors if isinstance(e, TieDisagreement)]
+    if shrunk and _size(shrunk[0].mesh) <= _size(tie[0].mesh):
+        state["tie"] = (shrunk[0], state["last"])
+        return []
+    state.update(tie=tie, last=tie[1])
+    # anything else it raised (a failure the first pass missed) is a result too
+    return [e for e in errors if not isinstance(e, TieDisagreement)]
 
 
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:

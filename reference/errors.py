@@ -86,6 +86,10 @@ class TriangleInequalityViolated(InputError):
     """Edge lengths of a face violate the strict triangle inequality."""
 
 
+class ClockwiseFace(InputError):
+    """A face of a planar triangulation that should run counterclockwise runs clockwise."""
+
+
 # --- planar point sets and quadrilaterals (chapter 4) ---------------------------
 
 

@@ -16,6 +16,8 @@ tolerance decides anything.  Catalog rows:
   empty circle.  Its dual: :func:`voronoi_vertices` (circumcentres of the
   cells) and :func:`voronoi_edges` (dual edges, orthogonal to their Delaunay
   edges).
+* A4.13 in the plane -- :func:`planar_flip_to_delaunay`: the edge-flip
+  algorithm started from a given triangulation of a polygon (boundary kept).
 * L4.3 / P4.4 -- :func:`angle_criterion`: ``alpha + beta`` against ``pi`` with
   exact :class:`~reference.exact.Angle` values, independent of the in-circle
   determinant; :func:`is_delaunay_by_angles` for a whole triangulation.
@@ -52,8 +54,8 @@ from functools import cmp_to_key
 from typing import Iterable
 
 from .delaunay import _incircle, delaunay_tessellation_edges, flip_to_delaunay
-from .errors import (BadInversion, BadQuadrilateral, BadShape, CollinearPoints, InputError,
-                     RepeatedPoint, TooFewPoints)
+from .errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace, CollinearPoints,
+                     DegenerateFace, InputError, RepeatedPoint, TooFewPoints)
 from .exact import corner_angle, pi
 from .exact.rationals import rational
 from .intrinsic import flip, is_flippable
@@ -62,7 +64,7 @@ from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix
 
 __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
-           "circumcircle", "planar_triangulation", "delaunay_triangulation",
+           "circumcircle", "planar_triangulation", "planar_flip_to_delaunay", "delaunay_triangulation",
            "delaunay_tessellation", "cell_boundary", "tessellation_edges", "voronoi_vertices",
            "voronoi_edges", "empty_disk_violations", "is_empty_disk_edge", "angle_criterion",
            "is_delaunay_by_angles", "invert", "inversion", "cells_avoiding",
@@ -274,6 +276,39 @@ def delaunay_triangulation(points) -> PolyhedralSurface:
     [[0, 3, 4], [1, 2, 4], [2, 3, 4]]
     """
     start = planar_triangulation(points)
+    return planar_flip_to_delaunay(start.positions, start.triangulation.faces)
+
+
+def planar_flip_to_delaunay(points, faces) -> PolyhedralSurface:
+    """A4.13 in the plane: the triangulation ``faces`` of ``points`` after flipping
+    interior edges until every one is Delaunay (P4.4), exact; boundary kept.
+
+    ``faces`` must be counterclockwise and non-degenerate (a straight-line
+    triangulation of a polygon, possibly non-convex, possibly with holes); the
+    flips are those of its flat metric
+    (:func:`reference.delaunay.flip_to_delaunay`): in the plane a non-Delaunay
+    edge has a strictly convex quadrilateral (L4.11), so each flip is the
+    ordinary one and the result is again a straight-line triangulation of the
+    same polygon, with the input positions.  On the convex hull of the points it
+    is a Delaunay triangulation of the points (T4.1).
+
+    Raises :class:`~reference.errors.DegenerateFace` or
+    :class:`~reference.errors.ClockwiseFace` naming the face, besides the face
+    list errors of :class:`~reference.combinatorics.Triangulation`.
+
+    >>> t = planar_flip_to_delaunay([(0, 0), (2, -1), (4, 0), (2, 1)], [(0, 1, 2), (0, 2, 3)])
+    >>> sorted(sorted(f) for f in t.faces)
+    [[0, 1, 3], [1, 2, 3]]
+    """
+    pts = as_point_set(points)
+    start = PolyhedralSurface.from_arrays(pts, faces)
+    for k, face in enumerate(start.triangulation.faces):
+        o = orientation(*(pts[v] for v in face))
+        if o == 0:
+            raise DegenerateFace(f"face {k} {tuple(face)} is degenerate: its points are collinear")
+        if o < 0:
+            raise ClockwiseFace(f"face {k} {tuple(face)} runs clockwise; a planar triangulation "
+                                "here has counterclockwise faces")
     m, _log = flip_to_delaunay(start.metric())
     return PolyhedralSurface(m.triangulation, start.positions)
 

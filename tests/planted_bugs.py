@@ -64,12 +64,36 @@ class NoFlips(ReferenceImplementation):
     def intrinsic_delaunay_laplacian(self, V, F):
         return self.cotan_laplacian(V, F)
 
+    def planar_flip_to_delaunay(self, V, F):
+        return F
+
     def intrinsic_delaunay_triangulation(self, V, F):
         import numpy as np
         V, F = np.asarray(V, float), np.asarray(F)
         l2 = np.stack([((V[F[:, (c + 1) % 3]] - V[F[:, (c + 2) % 3]]) ** 2).sum(1)
                        for c in range(3)], axis=1)
         return F, l2
+
+
+class OneFlipTooMany(ReferenceImplementation):
+    """Flips to Delaunay, then flips one more edge: the first interior edge whose
+    quadrilateral is strictly convex (a loop that tests its stopping rule after acting)."""
+
+    name = "one-flip-too-many"
+
+    def planar_flip_to_delaunay(self, V, F):
+        import numpy as np
+        from reference.planar import orientation
+        from reference.combinatorics import Triangulation
+        F2 = super().planar_flip_to_delaunay(V, F)
+        pts = [(x, y) for x, y, _ in np.asarray(V, float)]
+        t = Triangulation.from_faces(F2.tolist(), n_vertices=len(pts))
+        for e in range(t.n_edges):
+            if not t.is_boundary_edge(e):
+                u = t.flip(e)
+                if all(orientation(*(pts[v] for v in f)) > 0 for f in u.faces):
+                    return np.array(u.faces, dtype=np.int64)
+        return F2
 
 
 class OneSidedDelaunayTest(ReferenceImplementation):

@@ -344,6 +344,22 @@ def test_mean_curvature_is_half_the_cotan_laplacian_of_positions_over_mixed_area
 # --- guards ---------------------------------------------------------------------------
 
 
+def test_planar_flip_to_delaunay_flips_a_non_delaunay_quadrilateral_in_place():
+    # a kite whose long diagonal 0-2 is not Delaunay (both opposite angles obtuse): one flip
+    V = np.array([[0.0, 0, 0], [2, -1, 0], [4, 0, 0], [2, 1, 0]])
+    F = np.array([[0, 1, 2], [0, 2, 3]])
+    got = PyMeshLab().planar_flip_to_delaunay(V, F)        # vertices unmoved: checked inside
+    assert sorted(sorted(f) for f in got.tolist()) == [[0, 1, 3], [1, 2, 3]]
+    # already Delaunay: nothing changes (the stopping rule is met before the first pop)
+    assert np.array_equal(PyMeshLab().planar_flip_to_delaunay(V, got), got)
+
+
+def test_planar_flip_to_delaunay_refuses_points_off_the_plane():
+    V = np.array([[0.0, 0, 0], [2, -1, 0], [4, 0, 0], [2, 1, 1e-9]])
+    with pytest.raises(ValueError, match="z = 0"):
+        PyMeshLab().planar_flip_to_delaunay(V, np.array([[0, 1, 2], [0, 2, 3]]))
+
+
 def test_options_are_checked():
     with pytest.raises(ValueError, match="boundary"):
         PyMeshLab(boundary="whatever")

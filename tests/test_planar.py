@@ -19,21 +19,22 @@ from hypothesis import strategies as st
 from scipy.spatial import Delaunay, Voronoi
 
 from reference.delaunay import flip_to_delaunay, is_delaunay
-from reference.errors import (BadInversion, BadQuadrilateral, BadShape, CollinearPoints,
-                              InputError, RepeatedPoint, TooFewPoints)
+from reference.errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace,
+                              CollinearPoints, DegenerateFace, InputError, RepeatedPoint,
+                              TooFewPoints)
 from reference.exact import sqrt
 from reference.laplacian import cotan_laplacian, dirichlet_energy, dirichlet_energy_pl
 from reference.planar import (all_triangulations, angle_criterion, cell_boundary,
-                              cells_avoiding, circle_position, circumcircle,
+                              cells_avoiding, cocircular_cells, circle_position, circumcircle,
                               delaunay_tessellation, delaunay_triangulation,
                               empty_disk_violations, in_circle, inversion,
                               inversion_obstructions, is_delaunay_by_angles,
                               is_empty_disk_edge, laplacian_difference, orientation,
-                              planar_triangulation, tessellation_edges, triangulation_key,
+                              planar_flip_to_delaunay, planar_triangulation, tessellation_edges, triangulation_key,
                               voronoi_edges, voronoi_vertices)
 from reference.sparse import SparseMatrix, is_positive_semidefinite, negative_direction
-from properties.planar_points import (integer_point_sets, rational_point_sets, spans_plane,
-                                unit_circle_point)
+from properties.planar_points import (integer_point_sets, planar_triangulations,
+                                      rational_point_sets, spans_plane, unit_circle_point)
 
 rationals = st.fractions(-4, 4, max_denominator=4)
 rational_points = st.tuples(rationals, rationals)
@@ -276,6 +277,44 @@ def test_T4_1_flip_algorithm_on_planar_points_is_the_planar_flip(pts):
     assert all(cross(*(d.positions[v] for v in f)) > 0 for f in d.faces)
     assert not empty_disk_violations(pts, d.faces)
     assert not empty_disk_violations(pts, delaunay_tessellation(pts))
+
+
+def _boundary(faces):
+    directed = {(f[c], f[(c + 1) % 3]) for f in faces for c in range(3)}
+    return {e for e in directed if e[::-1] not in directed}
+
+
+@given(planar_triangulations())
+def test_A4_13_planar_flips_keep_the_polygon_and_reach_delaunay(example):
+    pts, faces, on_hull = example
+    d = planar_flip_to_delaunay(pts, faces)
+    assert d.positions == tuple(pts) and len(d.faces) == len(faces)
+    assert all(orientation(*(pts[v] for v in f)) > 0 for f in d.faces)
+    assert _boundary(d.faces) == _boundary(faces)            # boundary edges never flip
+    t = d.triangulation
+    assert all(is_empty_disk_edge(d, e) for e in range(t.n_edges))          # D4.1
+    assert is_delaunay_by_angles(d)                                          # P4.4
+    if on_hull:                                                              # T4.1
+        assert delaunay_tessellation(pts) == cocircular_cells(pts, d.faces)
+
+
+def test_A4_13_planar_flips_on_a_non_convex_polygon_keep_its_reflex_corner():
+    # an L-shaped hexagon (reflex corner at 3) fanned from 0: the diagonal 0-3 is not
+    # Delaunay (its opposite angles are both obtuse), its quadrilateral is convex: one flip
+    pts = [(0, 0), (4, 0), (4, 1), (1, 1), (1, 4), (0, 4)]
+    faces = [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5)]
+    d = planar_flip_to_delaunay(pts, faces)
+    assert _boundary(d.faces) == _boundary(faces)
+    assert all(is_empty_disk_edge(d, e) for e in range(d.triangulation.n_edges))
+    assert {frozenset(f) for f in d.faces} != {frozenset(f) for f in faces}
+
+
+def test_planar_flips_reject_clockwise_and_degenerate_faces():
+    pts = [(0, 0), (2, -1), (4, 0), (2, 1)]
+    with pytest.raises(ClockwiseFace, match="face 1 .*clockwise"):
+        planar_flip_to_delaunay(pts, [(0, 1, 2), (0, 3, 2)])      # the second face reversed
+    with pytest.raises(DegenerateFace, match="face 0 .*collinear"):
+        planar_flip_to_delaunay([(0, 0), (1, 0), (2, 0), (1, 1)], [(0, 1, 2), (0, 2, 3)])
 
 
 # --- D4.1 / L4.3 / P4.4 ------------------------------------------------------------------------

@@ -14,7 +14,8 @@ from reference.intrinsic import flip
 from reference.laplacian import cotan_weights
 from reference.polyhedral import PolyhedralSurface
 
-from tests.planted_bugs import LaplaceBeltramiWithoutHalf, NoFlips, OneSidedDelaunayTest
+from tests.planted_bugs import (LaplaceBeltramiWithoutHalf, NoFlips, OneFlipTooMany,
+                                OneSidedDelaunayTest)
 
 all_properties()
 CHAPTER4 = sorted(p for p in PROPERTIES if p[1] == "4" or "4." in p)
@@ -23,7 +24,7 @@ CHAPTER4 = sorted(p for p in PROPERTIES if p[1] == "4" or "4." in p)
 def test_every_chapter4_property_is_registered():
     assert {"D4.4 / T4.7 / P4.9", "P4.10", "D4.8 / R4.9", "T4.5", "T4.21", "X4.2", "L4.18",
             "D4.7 / L4.17", "A4.13", "C4.19", "L4.20 / C4.13", "D4.9 / R4.10",
-            "A4.23"} <= set(CHAPTER4)
+            "A4.23", "L4.3 / P4.4"} <= set(CHAPTER4)
 
 
 @pytest.mark.parametrize("pid", CHAPTER4)
@@ -37,6 +38,14 @@ def test_forgetting_to_flip_is_caught_on_a_few_faces():
     assert_caught("D4.8 / R4.9", NoFlips(), 4)
     assert_caught("A4.13", NoFlips(), 4)
     assert_caught("T4.5", NoFlips(), 8)
+    r = assert_caught("L4.3 / P4.4", NoFlips(), 4)
+    assert r.failure.observed > r.failure.bound
+
+
+def test_one_flip_past_delaunay_is_caught():
+    # what PyMeshLab's Delaunay flip filter does (docs/findings.md P7)
+    r = assert_caught("L4.3 / P4.4", OneFlipTooMany(), 4)
+    assert "is not Delaunay" in r.failure.message
 
 
 def test_a_one_sided_delaunay_test_is_caught():
