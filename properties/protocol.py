@@ -20,7 +20,8 @@ METHODS: dict[str, str] = {
     "euler_characteristic": "int: V - E + F of the surface (D1.6)",
     "boundary_loops": "list of boundary cycles, each a list of vertex indices in order",
     "is_orientable": "bool: whether the surface is orientable",
-    "genus": "int: g of an orientable surface, chi = 2 - 2g - k",
+    "genus": "int: g of an orientable surface (chi = 2 - 2g - k); of a non-orientable one "
+             "its number of crosscaps h (chi = 2 - h - k)",
     # chapter 2: curvature (integrated values, never divided by an area)
     "corner_angles": "(m, 3) float array: angle at corner c of face f, in (0, pi)",
     "angle_defects": "(n,) float array: 2 pi - angle sum at interior vertices, "

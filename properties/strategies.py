@@ -218,3 +218,16 @@ def named_surfaces():
         return SurfaceCase(s.triangulation, s.positions, truth[name], name)
 
     return st.sampled_from(sorted(_NAMED)).map(build)
+
+
+def mobius_strips(max_size: int = 6):
+    """Möbius strips of 2n faces, n = 3..max_size (``surfaces.mobius_strip``): the smallest
+    non-orientable surfaces with boundary, where a boundary walk that follows the faces'
+    orientation breaks (put first in a ``one_of`` so failures shrink to one of them)."""
+    truth = expected_classification(False, 1, 1)
+
+    def build(n):
+        s = surfaces.mobius_strip(n)
+        return SurfaceCase(s.triangulation, s.positions, truth, f"Möbius strip, {2 * n} faces")
+
+    return st.integers(3, max_size).map(build)

@@ -13,7 +13,7 @@ from reference.combinatorics import connected_sum
 
 from .registry import PropertyFailure, prop
 from .strategies import (SurfaceCase, apply_moves, closed_surfaces, extend_positions,
-                         named_surfaces, surface_moves, triangulated_surfaces)
+                         mobius_strips, named_surfaces, surface_moves, triangulated_surfaces)
 
 
 def _call(impl, method: str, case: SurfaceCase):
@@ -80,23 +80,25 @@ def connected_sum_lowers_chi_by_two(impl, example):
                               mesh=_mesh(holed), expected=ca - 1, observed=ch)
 
 
-@prop("T1.1 / C1.2", "a closed surface's orientability and genus match how it was built",
+@prop("T1.1 / C1.2", "a closed surface's orientability and genus match how it was built: "
+      "g handles (orientable) or h crosscaps (non-orientable)",
       needs={"is_orientable", "genus"}, strategy=lambda: closed_surfaces(max_genus=3))
 def classification_of_closed_surfaces(impl, case: SurfaceCase):
     orientable = bool(_call(impl, "is_orientable", case))
     if orientable != case.expected.orientable:
         raise PropertyFailure("T1.1 / C1.2", impl, "wrong orientability", mesh=_mesh(case),
                               expected=case.expected.orientable, observed=orientable)
-    if orientable:
-        g = int(_call(impl, "genus", case))
-        if g != case.expected.genus:
-            raise PropertyFailure("T1.1 / C1.2", impl, "wrong genus", mesh=_mesh(case),
-                                  expected=case.expected.genus, observed=g)
+    g = int(_call(impl, "genus", case))
+    if g != case.expected.genus:
+        what = "genus" if orientable else "number of crosscaps (the genus of a non-orientable surface)"
+        raise PropertyFailure("T1.1 / C1.2", impl, f"wrong {what}", mesh=_mesh(case),
+                              expected=case.expected.genus, observed=g)
 
 
-@prop("R1.6", "with k boundary loops, orientable: chi = 2 - 2g - k, k and g as built",
+@prop("R1.6", "with k boundary loops, orientable: chi = 2 - 2g - k, k and g as built (and its "
+      "non-orientable twin chi = 2 - h - k, h crosscaps)",
       needs={"euler_characteristic", "boundary_loops", "genus"},
-      strategy=lambda: triangulated_surfaces(orientable=True, max_holes=3))
+      strategy=lambda: st.one_of(mobius_strips(), triangulated_surfaces(max_holes=3)))
 def boundary_loops_and_genus(impl, case: SurfaceCase):
     loops = _call(impl, "boundary_loops", case)
     k = len(loops)
@@ -111,7 +113,9 @@ def boundary_loops_and_genus(impl, case: SurfaceCase):
                               mesh=_mesh(case), expected=sorted(truth), observed=sorted(boundary))
     chi = int(_call(impl, "euler_characteristic", case))
     g = int(_call(impl, "genus", case))
-    if chi != 2 - 2 * g - k or g != case.expected.genus:
-        raise PropertyFailure("R1.6", impl, "chi != 2 - 2g - k", mesh=_mesh(case),
+    handles = 2 if case.expected.orientable else 1      # a handle counts 2, a crosscap 1
+    if chi != 2 - handles * g - k or g != case.expected.genus:
+        formula = "2 - 2g - k" if handles == 2 else "2 - h - k"
+        raise PropertyFailure("R1.6", impl, f"chi != {formula}", mesh=_mesh(case),
                               expected=(case.expected.euler_characteristic, case.expected.genus),
                               observed=(chi, g))

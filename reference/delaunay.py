@@ -38,7 +38,8 @@ from .laplacian import cotan_laplacian, cotan_weights
 from .metric import PiecewiseFlatSurface
 from .sparse import exact_sum
 
-__all__ = ["is_delaunay_edge", "in_circumcircle", "is_delaunay", "non_delaunay_edges",
+__all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_delaunay",
+           "non_delaunay_edges",
            "face_harmonic_index", "harmonic_index", "FlipRecord", "flip_to_delaunay",
            "delaunay_tessellation_edges", "laplace_beltrami", "DelaunayError"]
 
@@ -84,9 +85,12 @@ def is_delaunay_edge(surface, e: int) -> bool:
     return _sign(_cot_sum(m, e)) >= 0
 
 
-def _incircle(a, b, c, d):
-    """The in-circle determinant of d against the circle through a, b, c: positive
-    iff d is inside when (a, b, c) is counterclockwise."""
+def incircle_determinant(a, b, c, d):
+    """D4.1 / T4.7: the in-circle determinant of ``d`` against the circle through ``a, b,
+    c`` (points as pairs; exact for exact coordinates): positive iff ``d`` is inside when
+    ``(a, b, c)`` is counterclockwise, 0 iff the four are cocircular.  The one predicate
+    of the intrinsic test (:func:`in_circumcircle`, on an unfolding) and the planar one
+    (:func:`reference.planar.in_circle`)."""
     rows = []
     for p in (a, b, c):
         x, y = p[0] - d[0], p[1] - d[1]
@@ -117,7 +121,7 @@ def in_circumcircle(surface, e: int) -> int:
     if t < 0:
         return -1
     i, j, k, l_ = unfold(m, e).scaled_points()
-    return _sign(_incircle(i, j, k, l_))
+    return _sign(incircle_determinant(i, j, k, l_))
 
 
 def non_delaunay_edges(surface) -> list[int]:

@@ -53,7 +53,7 @@ from fractions import Fraction
 from functools import cmp_to_key
 from typing import Iterable
 
-from .delaunay import _incircle, delaunay_tessellation_edges, flip_to_delaunay
+from .delaunay import delaunay_tessellation_edges, flip_to_delaunay, incircle_determinant
 from .errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace, CollinearPoints,
                      DegenerateFace, InputError, RepeatedPoint, TooFewPoints)
 from .exact import corner_angle, pi
@@ -168,7 +168,7 @@ def in_circle(a, b, c, d) -> int:
     >>> in_circle((0, 0), (0, 1), (1, 0), (Fraction(1, 2), Fraction(1, 2)))   # clockwise
     -1
     """
-    return _sign(_incircle(as_point(a), as_point(b), as_point(c), as_point(d)))
+    return _sign(incircle_determinant(as_point(a), as_point(b), as_point(c), as_point(d)))
 
 
 def circle_position(a, b, c, d) -> int:

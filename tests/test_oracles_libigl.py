@@ -288,13 +288,26 @@ def test_is_orientable_on_closed_non_orientable_surfaces():
         assert IGL.genus(V, F) == t.classify().genus
 
 
-CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS", "T1.1 / C1.2", "R1.6"]
+CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS", "T1.1 / C1.2"]      # R1.6: finding L1 (below)
 
 
 @pytest.mark.parametrize("pid", CHAPTER1)
 def test_chapter1_properties_pass(pid):
     r = run_property(PROPERTIES[pid], IGL, profile("default"))
     assert r.status == PASSED, r.failure or r.error
+
+
+def test_R1_6_holds_on_orientable_surfaces_the_non_orientable_failure_is_L1():
+    from hypothesis import given, settings
+    from properties.strategies import triangulated_surfaces
+    from properties.topology import boundary_loops_and_genus
+
+    @settings(max_examples=25, deadline=None, database=None, derandomize=True)
+    @given(triangulated_surfaces(orientable=True, max_holes=3))
+    def orientable(case):
+        boundary_loops_and_genus(IGL, case)          # raises PropertyFailure if wrong
+
+    orientable()
 
 
 # --- chapter 2: curvature --------------------------------------------------------------

@@ -39,8 +39,7 @@ def test_T1_1_reference_classifies_closed_surfaces(case):
 @given(triangulated_surfaces(max_holes=3))
 def test_R1_6_reference_boundary_and_genus(case):
     assert case.triangulation.classify() == case.expected
-    if case.expected.orientable:
-        boundary_loops_and_genus(REF, case)
+    boundary_loops_and_genus(REF, case)          # chi = 2 - 2g - k, or 2 - h - k
 
 
 @given(named_surfaces())
@@ -71,6 +70,21 @@ def test_planted_orientability_bug_is_caught_on_a_small_non_orientable_surface()
 def test_planted_boundary_loop_bug_is_caught():
     r = _caught("R1.6", OneBoundaryLoop())
     assert r.failure.expected != r.failure.observed
+
+
+def test_finding_L1_is_caught_by_R1_6_on_the_smallest_mobius_strip():
+    from oracles.libigl import Libigl
+    r = _caught("R1.6", Libigl())
+    assert len(r.failure.mesh[1]) == 6                      # mobius_strip(3)
+    assert (r.failure.expected, r.failure.observed) == (1, 4)
+
+
+def test_finding_P1_is_caught_by_T1_1_and_explained_by_the_documented_convention():
+    from oracles.pymeshlab import PyMeshLab
+    r = run_property(PROPERTIES["T1.1 / C1.2"], PyMeshLab(genus="library"), profile("ci"),
+                     counterpart=PyMeshLab(), convention="P1")
+    assert r.status == "convention" and r.failure.expected == 2 * r.failure.observed + 1
+    assert len(r.failure.mesh[1]) == 10                     # the projective plane
 
 
 @given(unrestricted_flips())
