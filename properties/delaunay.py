@@ -538,15 +538,15 @@ def _planar_result(impl, pts, pid):
     return [tuple(int(v) for v in t) for t in T], mesh
 
 
-def _incircle_bound(a, b, c, d) -> tuple[float, float]:
-    """(exact in-circle determinant of the exact points, as float; the bound on the error
-    of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
+def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
+    """(exact in-circle determinant of the exact points (D4.1), as float; the bound on the
+    error of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
     the permanent of the lifted 3 x 3 matrix, rounded up to 16 eps."""
+    from reference.delaunay import incircle_determinant
     rows = [(p[0] - d[0], p[1] - d[1]) for p in (a, b, c)]
     lifts = [x * x + y * y for x, y in rows]
     (ax, ay), (bx, by), (cx, cy) = rows
-    det = (lifts[0] * (bx * cy - cx * by) - lifts[1] * (ax * cy - cx * ay)
-           + lifts[2] * (ax * by - bx * ay))
+    det = incircle_determinant(a, b, c, d)
     perm = (lifts[0] * (abs(bx * cy) + abs(cx * by)) + lifts[1] * (abs(ax * cy) + abs(cx * ay))
             + lifts[2] * (abs(ax * by) + abs(bx * ay)))
     return float(det), 16 * eps() * float(perm)
@@ -562,7 +562,7 @@ def _real_violations(pts, tris):
         a, b, c = (pts[i] for i in t)
         if orientation(a, b, c) < 0:
             a, b = b, a
-        det, bound = _incircle_bound(a, b, c, pts[v])
+        det, bound = incircle_with_bound(a, b, c, pts[v])
         if abs(det) <= bound:
             ties += 1
         else:
@@ -660,7 +660,7 @@ def planar_flips_reach_delaunay(impl, example):
         if a < b and (b, a) in got:
             d = got[(b, a)][1]
             if in_circle(pts[a], pts[b], pts[c], pts[d]) > 0:
-                det, bound = _incircle_bound(pts[a], pts[b], pts[c], pts[d])
+                det, bound = incircle_with_bound(pts[a], pts[b], pts[c], pts[d])
                 if abs(det) <= bound:
                     ties += 1
                 else:

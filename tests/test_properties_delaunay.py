@@ -84,7 +84,7 @@ def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points(
     re-triangulates them, giving a triangle whose circumdisk strictly holds another point,
     by far more than a float in-circle evaluation could err."""
     from oracles.scipy_spatial import ScipySpatial
-    from properties.delaunay import _incircle_bound, empty_disk_property
+    from properties.delaunay import incircle_with_bound, empty_disk_property
     from properties.registry import PropertyFailure
     third = Fraction(1, 3)
     P = [(2 * third, -third), (1, -2 * third), (4 * third, -1), (5 * third, -4 * third),
@@ -94,5 +94,5 @@ def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points(
         empty_disk_property(ScipySpatial(), pts)
     # the reference's own planar Delaunay passes on the same floats
     empty_disk_property(ReferenceImplementation(), pts)
-    det, bound = _incircle_bound(pts[0], pts[1], pts[2], pts[4])
+    det, bound = incircle_with_bound(pts[0], pts[1], pts[2], pts[4])
     assert abs(det) > 1e9 * bound                              # no rounding tie
