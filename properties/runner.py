@@ -20,7 +20,9 @@ A :class:`Result` has one of these statuses:
   precision limit; the per-example time limit counts as a hang:
   :class:`reference.errors.ExactArithmeticLimit`) before deciding; the message
   says which limit to raise;
-* ``not applicable``: the implementation lacks a method the property needs.
+* ``not applicable``: the implementation lacks a method the property needs, or
+  declined every example as outside its domain
+  (:class:`~properties.protocol.OutsideDomain`; declined examples are not counted).
 
 Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
 """
@@ -29,14 +31,14 @@ from __future__ import annotations
 
 import time
 import traceback
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
 from reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
 from .profiles import profile as named_profile
-from .protocol import capabilities, implementation_name
+from .protocol import OutsideDomain, capabilities, implementation_name
 from .registry import Property, PropertyFailure, TieDisagreement, all_properties, faces_text
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
@@ -150,7 +152,10 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     if not p.applies_to(capabilities(impl)):
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
-    state = {"n": 0, "last": None, "ties": 0, "tie": None}
+    state = {"n": 0, "last": None, "ties": 0, "tie": None, "outside": 0, "why": None}
+    # examples the implementation declines are counted, not checked; the check is wrapped
+    # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
+    prop, p = p, replace(p, check=_in_domain(p.check, state))
 
     # one failure per property, the shrunk one: several distinct failures would come
     # back as an ExceptionGroup and read as a crash
@@ -183,11 +188,32 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
             raise
         errors = _flatten(e)
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=state["n"], seconds=time.perf_counter() - t0,
-               ties=state["ties"], example=state["last"], **out)
+    r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
+               seconds=time.perf_counter() - t0, ties=state["ties"], example=state["last"], **out)
+    _note_outside(r, state)
     if r.status == FAILED and counterpart is not None:
-        _explain_by_convention(r, p, counterpart, convention)
+        _explain_by_convention(r, prop, counterpart, convention)
     return r
+
+
+def _in_domain(check, state: dict):
+    """``check`` that counts an OutsideDomain of the implementation instead of raising it."""
+    def check_in_domain(impl, example):
+        try:
+            check(impl, example)
+        except OutsideDomain as o:
+            state["outside"] += 1
+            state["why"] = state["why"] or str(o)
+    return check_in_domain
+
+
+def _note_outside(r: Result, state: dict) -> None:
+    """Examples the implementation declined (OutsideDomain): a note; all of them: not applicable."""
+    if not state["outside"]:
+        return
+    r.note = f"{state['outside']} example(s) outside its domain: {state['why']}"
+    if r.status == PASSED and r.examples == 0:
+        r.status = NOT_APPLICABLE
 
 
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
@@ -214,19 +240,22 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, source=source,
                       note=f"lacks {', '.join(missing)}")
-    state = {"n": 1, "last": example, "ties": 0, "tie": None}
+    state = {"n": 1, "last": example, "ties": 0, "tie": None, "outside": 0, "why": None}
     t0 = time.perf_counter()
     try:
         p.check(impl, example)
         errors = []
+    except OutsideDomain as o:
+        state["outside"], state["why"], errors = 1, str(o), []
     except BaseException as e:  # noqa: BLE001
         if isinstance(e, (KeyboardInterrupt, SystemExit)):
             raise
         errors = [e]
         state["ties"] = int(isinstance(e, TieDisagreement))
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=1, seconds=time.perf_counter() - t0,
+    r = Result(p.id, p.name, name, examples=1 - state["outside"], seconds=time.perf_counter() - t0,
                ties=state["ties"], example=example, source=source, **out)
+    _note_outside(r, state)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, p, counterpart, convention)
     return r
