@@ -149,7 +149,7 @@ def test_capabilities_are_what_gpytoolbox_computes():
 
 
 def test_every_applicable_property_passes():
-    results = check_implementation(GPY, profile="default")
+    results = check_implementation(GPY, profile="default", seed=0)   # reproducible
     assert {r.property_id for r in results if r.status == "passed"} >= {
         "D2.2", "R2.4", "D2.6", "D2.3", "D3.1", "L3.7", "D1.6"}
 

@@ -75,5 +75,5 @@ class RawEdges:
 
 
 def test_every_applicable_property_passes():
-    results = check_implementation(PP, profile="default")
+    results = check_implementation(PP, profile="default", seed=0)     # reproducible
     assert {r.property_id for r in results if r.status == "passed"} >= {"D3.1", "D1.6", "T3.9"}
