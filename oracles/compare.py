@@ -324,7 +324,7 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
 def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``."""
     from properties import curvature as cv
-    from properties.protocol import METHODS, capabilities, implementation_name
+    from properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
 
     ex = MeshExamples(mesh)
     V = np.array(mesh.V, dtype=np.float64)
@@ -377,6 +377,9 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
                 continue
             try:
                 got = getattr(impl, method)(V, F)
+            except OutsideDomain as e:          # the implementation has no value on this mesh
+                rows.append(Comparison(method, name, "not applicable", note=str(e)))
+                continue
             except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
                 rows.append(Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}"))
                 continue

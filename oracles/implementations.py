@@ -20,6 +20,10 @@ BUILTIN: dict[str, str] = {
     "libigl": "oracles.libigl:Libigl",
     "pymeshlab": "oracles.pymeshlab:PyMeshLab",
     "scipy": "oracles.scipy_spatial:ScipySpatial",
+    # optional peers (`pip install -e '.[peers]'`): omitted by available() when not installed
+    "gpytoolbox": "oracles.gpytoolbox:Gpytoolbox",
+    "robust_laplacian": "oracles.robust_laplacian:RobustLaplacian",
+    "potpourri3d": "oracles.potpourri3d:Potpourri3d",
 }
 
 #: Adapter options that select a library's own convention instead of the
@@ -32,7 +36,36 @@ DOCUMENTED_CONVENTIONS: dict[str, dict[tuple[str, str], str]] = {
                                         "boundary vertices)"},
     "pymeshlab": {("boundary", "library"): "P2 (boundary term 2 pi - angle sum - phi)",
                   ("genus", "library"): "P1 (genus of a non-orientable mesh is floor(h / 2))"},
+    "gpytoolbox": {("boundary", "library"): "G1 (angle_defect: 0 at boundary vertices)",
+                   ("dihedral", "library"): "G2 (dihedral_angles: unsigned, reflex edges "
+                                            "count as convex)"},
+    "robust_laplacian": {("boundary", "library"): "R1 (tufted cover: boundary edges are "
+                                                  "flipped in the double of the surface)",
+                         ("mollify", "library"): "R3 (mollify_factor 1e-5 lengthens every "
+                                                 "edge of a nearly degenerate mesh)"},
 }
+
+#: The values of an adapter's convention option: the reference's or the library's own.
+CONVENTIONS = ("reference", "library")
+
+
+def convention_name(base: str, **options: str) -> str:
+    """Display name of an adapter with convention options (each one of CONVENTIONS):
+    ``base`` if all are "reference", else the non-default ones in parentheses.
+
+    >>> convention_name("gpytoolbox", boundary="library", dihedral="reference")
+    "gpytoolbox(boundary='library')"
+    >>> convention_name("gpytoolbox", boundary="lib")
+    Traceback (most recent call last):
+    ...
+    ValueError: boundary must be one of ('reference', 'library'), got 'lib'
+    """
+    for key, value in options.items():
+        if value not in CONVENTIONS:
+            raise ValueError(f"{key} must be one of {CONVENTIONS}, got {value!r}")
+    chosen = [f"{k}={v!r}" for k, v in options.items() if v != "reference"]
+    return f"{base}({', '.join(chosen)})" if chosen else base
+
 
 _OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
 

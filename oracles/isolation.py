@@ -26,7 +26,7 @@ import resource
 import signal
 import traceback
 
-from properties.protocol import METHODS, machine_epsilon
+from properties.protocol import METHODS, OutsideDomain, machine_epsilon
 
 
 class ImplementationCrashed(RuntimeError):
@@ -92,6 +92,8 @@ def _worker(spec: str, memory_bytes: int | None, conn) -> None:
             return
         try:
             conn.send(("ok", getattr(impl, method)(*args), None))
+        except OutsideDomain as e:        # an answer, not a crash: re-raised as such
+            conn.send(("outside", str(e), None))
         except MemoryError as e:
             conn.send(("memory", "".join(traceback.format_exception_only(type(e), e)).strip(),
                        None))
@@ -195,6 +197,8 @@ class Isolated:
                 f"ran out of memory under the limit of {_size(self.memory)} address space "
                 f"({payload}); raise it with {MEMORY_ENV}=SIZE or Isolated(memory=...)"
                 if self.memory else f"ran out of memory ({payload})")
+        if status == "outside":
+            raise OutsideDomain(payload)
         if status == "raised":
             raise ImplementationError(f"{self.name}.{method} raised {payload}")
         return payload

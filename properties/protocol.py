@@ -72,6 +72,13 @@ def eps() -> float:
     return _epsilon.get()
 
 
+class OutsideDomain(ValueError):
+    """Raised by an implementation for an input on which it has no value in the reference's
+    convention (``RobustLaplacian()`` on a mesh with boundary: the library computes another
+    operator there, and no mapping recovers the notes' one).  The runner does not check
+    that example; if no example is inside the domain the property is "not applicable"."""
+
+
 def capabilities(impl) -> frozenset[str]:
     """The protocol methods ``impl`` defines."""
     return frozenset(m for m in METHODS if callable(getattr(impl, m, None)))

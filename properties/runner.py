@@ -20,7 +20,9 @@ A :class:`Result` has one of these statuses:
   precision limit; the per-example time limit counts as a hang:
   :class:`reference.errors.ExactArithmeticLimit`) before deciding; the message
   says which limit to raise;
-* ``not applicable``: the implementation lacks a method the property needs.
+* ``not applicable``: the implementation lacks a method the property needs, or
+  declined every example as outside its domain
+  (:class:`~properties.protocol.OutsideDomain`; declined examples are not counted).
 
 Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
 """
@@ -29,14 +31,14 @@ from __future__ import annotations
 
 import time
 import traceback
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
 from reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
 from .profiles import profile as named_profile
-from .protocol import capabilities, implementation_name
+from .protocol import OutsideDomain, capabilities, implementation_name
 from .registry import Property, PropertyFailure, TieDisagreement, all_properties, faces_text
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
@@ -150,7 +152,11 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     if not p.applies_to(capabilities(impl)):
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
-    state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False}
+    state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
+             "why": None}
+    # examples the implementation declines are counted, not checked; the check is wrapped
+    # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
+    prop, p = p, replace(p, check=_in_domain(p.check, state))
 
     def body(example):
         # Hypothesis replays the shrunk example last, so "last" is minimal.
@@ -175,10 +181,11 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     if not errors and state["tie"] is not None:
         errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=state["n"], seconds=time.perf_counter() - t0,
-               ties=state["ties"], example=state["last"], **out)
+    r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
+               seconds=time.perf_counter() - t0, ties=state["ties"], example=state["last"], **out)
+    _note_outside(r, state)
     if r.status == FAILED and counterpart is not None:
-        _explain_by_convention(r, p, counterpart, convention)
+        _explain_by_convention(r, prop, counterpart, convention)
     return r
 
 
@@ -204,14 +211,14 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     digest), this time with ties raising, so the first tie is shrunk.  Returns what
     that pass raised; if the stream differs (a database replay) and no tie comes up,
     nothing: the smallest tie of the first pass stands."""
-    n, ties, tie = state["n"], state["ties"], state["tie"]
+    n, ties, tie, outside = state["n"], state["ties"], state["tie"], state["outside"]
     seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
                                                  None)
     state["ties_raise"] = True
     try:
         errors, _ = _search(body, p, settings, seed, database=None, max_examples=n)
     finally:
-        state.update(n=n, ties=ties, ties_raise=False)
+        state.update(n=n, ties=ties, outside=outside, ties_raise=False)
     shrunk = [e for e in errors if isinstance(e, TieDisagreement)]
     if shrunk and _size(shrunk[0].mesh) <= _size(tie[0].mesh):
         state["tie"] = (shrunk[0], state["last"])
@@ -219,6 +226,26 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     state.update(tie=tie, last=tie[1])
     # anything else it raised (a failure the first pass missed) is a result too
     return [e for e in errors if not isinstance(e, TieDisagreement)]
+
+
+def _in_domain(check, state: dict):
+    """``check`` that counts an OutsideDomain of the implementation instead of raising it."""
+    def check_in_domain(impl, example):
+        try:
+            check(impl, example)
+        except OutsideDomain as o:
+            state["outside"] += 1
+            state["why"] = state["why"] or str(o)
+    return check_in_domain
+
+
+def _note_outside(r: Result, state: dict) -> None:
+    """Examples the implementation declined (OutsideDomain): a note; all of them: not applicable."""
+    if not state["outside"]:
+        return
+    r.note = f"{state['outside']} example(s) outside its domain: {state['why']}"
+    if r.status == PASSED and r.examples == 0:
+        r.status = NOT_APPLICABLE
 
 
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
@@ -245,19 +272,22 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, source=source,
                       note=f"lacks {', '.join(missing)}")
-    state = {"n": 1, "last": example, "ties": 0, "tie": None}
+    state = {"n": 1, "last": example, "ties": 0, "tie": None, "outside": 0, "why": None}
     t0 = time.perf_counter()
     try:
         p.check(impl, example)
         errors = []
+    except OutsideDomain as o:
+        state["outside"], state["why"], errors = 1, str(o), []
     except BaseException as e:  # noqa: BLE001
         if isinstance(e, (KeyboardInterrupt, SystemExit)):
             raise
         errors = [e]
         state["ties"] = int(isinstance(e, TieDisagreement))
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=1, seconds=time.perf_counter() - t0,
+    r = Result(p.id, p.name, name, examples=1 - state["outside"], seconds=time.perf_counter() - t0,
                ties=state["ties"], example=example, source=source, **out)
+    _note_outside(r, state)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, p, counterpart, convention)
     return r
