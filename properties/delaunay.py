@@ -98,6 +98,7 @@ class DelaunayExact:
         self.Lf = np.array(self.L.to_dense_floats(), dtype=float).reshape(n, n)
         self.bounds = entry_bounds(self.delaunay, n, self.amplification)
         self.B = self.bounds.B
+        self._widen_on_cocircular_cells()
         # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
         # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, E4)
         t = self.delaunay.triangulation
@@ -108,6 +109,48 @@ class DelaunayExact:
             mask = boundary if t.is_boundary_edge(e) else self.interior_pairs
             mask[i, j] = mask[j, i] = True
         self.interior_pairs &= ~boundary
+
+
+    def _widen_on_cocircular_cells(self) -> None:
+        """R4.9: on a cell of cocircular triangles (joined across edges of weight exactly 0)
+        every choice of diagonals is Delaunay and gives the same operator, so an
+        implementation that chose other diagonals has weights exactly 0 (in floats: about
+        eps) at vertex pairs that are no edge here, where the bound would be 0.  Those
+        pairs get the largest bound of the cell's own zero-weight edges: the same corners'
+        conditioning, a weight that is 0 either way.  Weights within their bound of 0 count
+        as 0: there rounding decides which diagonal is Delaunay."""
+        from reference.laplacian import cotan_weights
+        t = self.delaunay.triangulation
+        w = cotan_weights(self.delaunay)
+        root = list(range(t.n_faces))
+
+        def find(f):
+            while root[f] != f:
+                root[f] = root[root[f]]
+                f = root[f]
+            return f
+
+        # exactly 0, or within the entry's float bound of 0 (the input's floats made an
+        # exactly cocircular quadrilateral nearly so: rounding may choose either diagonal)
+        zero = [e for e in range(t.n_edges) if not t.is_boundary_edge(e)
+                and abs(float(w[e])) <= self.B[t.edge_vertices(e)]]
+        for e in zero:
+            h, tw = t.edge_halfedges(e)
+            root[find(h // 3)] = find(tw // 3)
+        bound: dict[int, float] = {}
+        for e in zero:
+            i, j = t.edge_vertices(e)
+            r = find(t.edge_halfedges(e)[0] // 3)
+            bound[r] = max(bound.get(r, 0.0), self.B[i, j])
+        cells: dict[int, set] = {}
+        for f in range(t.n_faces):
+            if find(f) in bound:
+                cells.setdefault(find(f), set()).update(t.faces[f])
+        for r, vs in cells.items():
+            for i in vs:
+                for j in vs:
+                    if i != j and self.B[i, j] == 0:
+                        self.B[i, j] = bound[r]
 
 
 def _matrix(impl, case: MeshCase, pid: str, method: str):
@@ -356,10 +399,12 @@ def _triangulation_result(impl, case: MeshCase, pid: str):
 
 def _angles_from_squared_lengths(l2):
     """Corner angles (law of cosines in atan2 form, stable) and doubled areas per face."""
-    a = np.sqrt(l2)
+    # Kahan's stable Heron (lengths sorted a >= b >= c, parentheses as written): the
+    # textbook s(s-a)(s-b)(s-c) loses about rho digits on a cap, more than the bound allows
+    a, b, c = np.sort(np.sqrt(l2), axis=1)[:, ::-1].T
     out = np.zeros_like(l2)
-    s = (a[:, 0] + a[:, 1] + a[:, 2]) / 2
-    area = np.sqrt(np.maximum(s * (s - a[:, 0]) * (s - a[:, 1]) * (s - a[:, 2]), 0))
+    area = 0.25 * np.sqrt(np.maximum((a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c)),
+                                     0))
     for c in range(3):
         o, p, q = l2[:, c], l2[:, (c + 1) % 3], l2[:, (c + 2) % 3]
         out[:, c] = np.arctan2(4 * area, p + q - o)

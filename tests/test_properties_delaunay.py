@@ -96,3 +96,21 @@ def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points(
     empty_disk_property(ReferenceImplementation(), pts)
     det, bound = incircle_with_bound(pts[0], pts[1], pts[2], pts[4])
     assert abs(det) > 1e9 * bound                              # no rounding tie
+
+
+def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
+    # surfaces.torus(5, 4) has cocircular quadrilaterals: libigl flips some diagonals the
+    # reference keeps; both are Delaunay (R4.9), the weights there are exactly 0 either way
+    import numpy as np
+    from oracles.libigl import Libigl
+    from properties.delaunay import DelaunayExact, laplace_beltrami_operator
+    from properties.laplacian import MeshCase
+    s = surfaces.torus(5, 4)
+    case = MeshCase(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")
+    A = Libigl().intrinsic_delaunay_laplacian(*case.arrays()).toarray()
+    D = DelaunayExact(case)
+    other = (np.abs(A) > 0) & (D.Lf == 0) & ~np.eye(case.n, dtype=bool)
+    assert other.any()                                  # libigl did choose other diagonals
+    zero_edges = D.bounds.adjacent & (D.Lf == 0) & ~np.eye(case.n, dtype=bool)
+    assert np.all(D.B[other] > 0) and D.B[other].max() <= D.B[zero_edges].max()
+    laplace_beltrami_operator(Libigl(), case)           # passes: no PropertyFailure
