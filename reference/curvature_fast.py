@@ -44,7 +44,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .cotan_fast import applies, face_data, _maybe_square
+from .cotan_fast import _collector_paused, _maybe_square, applies, face_data
 from .exact import Angle, corner_angle
 
 __all__ = ["applies", "angle_sums_fast", "gauss_bonnet_holds_fast"]
@@ -53,15 +53,21 @@ _ZERO = Fraction(0)
 
 
 def angle_sums_fast(surface) -> list[Angle]:
-    """The sum of the corner angles at each vertex, equal (``==``) to
-    :func:`reference.curvature.angle_sums` (see the module docstring).
+    """The sum of the corner angles at each vertex (the cone angle; 2 pi minus it is
+    the angle defect of D2.2, pi minus it the turning angle of R2.4), exact Angles
+    equal (``==``) to :func:`reference.curvature.angle_sums_from_corners` (see the
+    module docstring).
 
     >>> from reference import surfaces
-    >>> from reference.curvature import angle_sums
-    >>> s = surfaces.torus(5, 3)
-    >>> angle_sums_fast(s) == angle_sums(s)
+    >>> from reference.curvature import angle_sums_from_corners
+    >>> angle_sums_fast(surfaces.torus(5, 3)) == angle_sums_from_corners(surfaces.torus(5, 3))
     True
     """
+    with _collector_paused():
+        return _angle_sums(surface)
+
+
+def _angle_sums(surface) -> list[Angle]:
     t = surface.triangulation
     fd = face_data(surface)
     N, residue, lazy = fd.N, fd.residue, fd.lazy
