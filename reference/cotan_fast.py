@@ -37,8 +37,9 @@ How, exactly at every step:
 
    * *rational or not* (a Fraction must be returned where the value is
      rational, as the definition does): with nonzero ``n_1, n_2`` the weight is
-     irrational unless ``G_1 G_2`` is a perfect square (square roots of
-     non-squares that differ modulo squares are linearly independent); a
+     irrational unless ``G_1 G_2`` is a perfect square (the square roots of 1
+     and of integers with different square-free parts are linearly
+     independent over Q); a
      diagonal entry is a sum of *positive* terms (two cotangents of one
      triangle add up to ``sin(alpha + beta) / (sin alpha sin beta) > 0``), so
      it is irrational unless every ``G_f`` is a square.  Squares are excluded
