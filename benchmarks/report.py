@@ -228,16 +228,18 @@ def _plot(path, series, title, ylabel="CPU seconds (median)"):
         import matplotlib.pyplot as plt
     except ImportError:
         return False
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for label, pts in series.items():
-        if pts:
+    fig, ax = plt.subplots(figsize=(9.5, 4.5))
+    colours = plt.get_cmap("tab20").colors
+    for k, (label, pts) in enumerate(series.items()):
+        if pts:      # more series than a colour cycle: distinct colours, markers, dashes
             xs, ys = zip(*sorted(pts))
-            ax.loglog(xs, ys, marker="o", label=label)
+            ax.loglog(xs, ys, marker="os^vDP"[k % 6], color=colours[(2 * k) % 20 + k // 10],
+                      linestyle="-" if label.startswith("reference") else "--", label=label)
     ax.set_xlabel("faces")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
