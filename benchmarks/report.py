@@ -263,7 +263,7 @@ def write(results: dict) -> None:
         if _plot(PLOTS / "cotan.png", series, "Exact cotan weights / Laplacian, icosphere"):
             out += ["![time vs faces](perf/cotan.png)", ""]
         if isinstance(res.get("curvature"), dict):
-            out += [CURVATURE, *_curvature_table(res["curvature"]), ""]
+            out += [CURVATURE, _meta(res), *_curvature_table(res["curvature"]), ""]
             series = {}
             for r in res["curvature"]["rows"]:
                 if r["mesh"] == "icosphere":
