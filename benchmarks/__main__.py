@@ -33,8 +33,9 @@ def main(argv=None) -> int:
     results = load_results()
     for g in groups:
         say(f"{g} ({'quick' if mode.quick else 'default'})")
+        meta = {**machine(), "quick": mode.quick}          # the load average at the start
         res = GROUPS[g](mode)
-        res["meta"] = {**machine(), "quick": mode.quick}
+        res["meta"] = meta
         results[g] = res
     if not args.no_write:
         save_results(results)

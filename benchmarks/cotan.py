@@ -5,13 +5,33 @@ from __future__ import annotations
 
 import importlib.util
 
-from reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
-from reference.curvature import angle_defects, gauss_bonnet_holds
+from reference.cotan_fast import CotanSum, cotan_laplacian_fast, cotan_weights_fast
+from reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
+                                 gauss_bonnet_holds_by_faces)
+from reference.exact import pi
 from reference.laplacian import cotan_laplacian_from_weights, cotan_weights
 from reference.polyhedral import PolyhedralSurface
 
 from . import meshes, peers
 from .common import Mode, fit_exponent, median_time, say
+
+def _canonical(values):
+    """Compute the canonical form of every CotanSum (what equality, arithmetic with
+    other Surds and str need; the fast path leaves it to them)."""
+    for v in values:
+        if isinstance(v, CotanSum):
+            v.terms()
+    return values
+
+
+def weights_canonical(s):
+    return _canonical(cotan_weights_fast(s).values())
+
+
+def laplacian_canonical(s):
+    L = cotan_laplacian_fast(s)
+    return _canonical([v for i, j, v in L.entries() if i <= j])
+
 
 # (name, what, function, largest faces default / quick, needs module).  The reference's
 # entries get a freshly built PolyhedralSurface (exact positions, no cached metric; the
@@ -19,6 +39,10 @@ from .common import Mode, fit_exponent, median_time, say
 PEERS = [
     ("reference fast path", "weights", cotan_weights_fast, (10 ** 6, 10 ** 4), None),
     ("reference fast path", "Laplacian", cotan_laplacian_fast, (10 ** 6, 10 ** 4), None),
+    ("reference fast path", "weights, canonical forms", weights_canonical, (10 ** 6, 10 ** 4),
+     None),
+    ("reference fast path", "Laplacian, canonical forms", laplacian_canonical,
+     (10 ** 6, 10 ** 4), None),
     ("reference definition", "weights", cotan_weights, (6000, 1300), None),
     ("reference definition", "Laplacian", cotan_laplacian_from_weights, (6000, 1300), None),
     ("reference input", "PolyhedralSurface.from_arrays", None, (10 ** 6, 10 ** 4), None),
@@ -77,16 +101,39 @@ def run(mode: Mode) -> dict:
     return {"rows": rows, "fits": fits, "curvature": _curvature(mode)}
 
 
-def _curvature(mode: Mode) -> list:
-    """Exact angle defects and the exact Gauss-Bonnet decision (definitions, metric
-    included) on the icospheres."""
+def angle_defects_definition(s):
+    """``reference.curvature.angle_defects`` as defined: the angle sums of the
+    metric's corner angles (``angle_sums_from_corners``), minus 2 pi."""
+    sums = angle_sums_from_corners(s)
+    t = s.triangulation
+    return {v: 2 * pi - x for v, x in enumerate(sums) if not t.is_boundary_vertex(v)}
+
+
+# (quantity, fast path, definition); the definitions run up to 5,120 faces (1,280 quick)
+CURVATURE = [("angle defects", angle_defects, angle_defects_definition),
+             ("Gauss-Bonnet decision", gauss_bonnet_holds, gauss_bonnet_holds_by_faces)]
+
+
+def _curvature(mode: Mode) -> dict:
+    """Exact angle defects and the exact Gauss-Bonnet decision (metric included): the
+    fast paths the public functions dispatch to, and the definitions, on the same
+    meshes in the same run."""
     rows = []
-    for levels in (1, 2, 3) if mode.quick else (1, 2, 3, 4):
-        V, F = meshes.icosphere_arrays(levels)
-        for what, fn in (("angle defects", angle_defects),
-                         ("Gauss-Bonnet decision", gauss_bonnet_holds)):
-            t, runs, _ = median_time(lambda: fn(_surface(V, F)), mode)
-            rows.append({"faces": len(F), "quantity": what, "seconds": t, "runs": runs,
-                         "faces_per_s": len(F) / t})
-            say(f"  curvature {len(F):6} {what:22} {t:9.4f} s")
-    return rows
+    for label, nf, V, F in _meshes(mode):
+        for what, fast, definition in CURVATURE:
+            for impl, fn in (("fast path", fast), ("definition", definition)):
+                if impl == "definition" and (label != "icosphere"
+                                             or nf > (1300 if mode.quick else 6000)):
+                    continue
+                t, runs, _ = median_time(fn, mode, setup=lambda: _surface(V, F))
+                rows.append({"mesh": label, "faces": nf, "quantity": what, "impl": impl,
+                             "seconds": t, "runs": runs, "faces_per_s": nf / t})
+                say(f"  curvature {label:10} {nf:6} {what:22} {impl:10} {t:9.4f} s")
+    fits = {}
+    for what, *_ in CURVATURE:
+        for impl in ("fast path", "definition"):
+            pts = [(r["faces"], r["seconds"]) for r in rows if r["mesh"] == "icosphere"
+                   and r["quantity"] == what and r["impl"] == impl]
+            if len(pts) >= 2:
+                fits[f"{what} / {impl}"] = fit_exponent(*zip(*pts))
+    return {"rows": rows, "fits": fits}

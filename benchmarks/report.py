@@ -43,9 +43,15 @@ perturbed float icosphere of the tests (`float_icosphere`, 20 * 4^k faces) and
 pymeshlab's sample bunnies (real scanned meshes).  Peers:
 
 * **reference fast path**: `reference.cotan_fast` (what `cotan_laplacian`
-  dispatches to): integers on a common denominator per face, one square root
-  per face, canonical `Surd` values built from known factors (see its module
-  docstring).  Equal to the definition entry by entry (tests/test_fast_paths.py).
+  dispatches to): integers on a common denominator per face, each weight kept
+  as `1/2 (n1 / sqrt(G1) + n2 / sqrt(G2))` in a `CotanSum`, a `Surd` whose
+  canonical form is computed when something needs it (see its module
+  docstring).  Rationality (a Fraction is returned where the value is
+  rational), sign, `float()`, `hash()` and enclosures are decided exactly from
+  the integers.  Equal to the definition entry by entry (tests/test_fast_paths.py).
+* **reference fast path, canonical forms**: the same, then the canonical form
+  of every value computed (what `==` with another Surd, Surd arithmetic and
+  `str` need): the price of the fully canonical result.
 * **reference definition**: `reference.laplacian.cotan_weights` /
   `cotan_laplacian_from_weights`: `PiecewiseFlatSurface` (Fraction squared
   lengths, Surd areas) and Surd arithmetic; the readable definition.
@@ -61,21 +67,31 @@ lengths, the definition (`cotan_laplacian_from_weights`) otherwise (squared
 lengths that intrinsic flips made irrational).  `cotan_weights` stays the
 definition of (3.3); `reference.cotan_fast.cotan_weights_fast` is its fast twin.
 
-What limits the fast path: about ten gcds of 200-bit integers per face
-(reducing each Fraction, proving the radicands that meet in an entry coprime,
-splitting off small square factors), a microsecond each in CPython, plus the
-objects of the result.  The pairs peers do neither (their values have no
-canonical form), which is why gmpy2 pairs stay close.  The Laplacian costs
-about twice the weights: its diagonal entries are sums over all faces at a
-vertex, each needing the coprimality of all those radicands.
+What the fast path costs: per face the integer Gram data (a dozen products of
+60-bit integers), per edge one residue test that proves `G1 G2` is not a
+square (so the weight is irrational; about 1 in 3,000 goes on to `isqrt`) and
+one small object.  What it leaves to the consumers that need it: the
+canonical form, about ten gcds of 200-bit integers per face (reducing
+Fractions, proving radicands coprime, splitting off small square factors),
+shown in the "canonical forms" rows.  `float()` of every entry (what
+`to_scipy()` does) needs no canonical form.
 """
 
 CURVATURE = """\
 ## 2. Exact angle defects and the Gauss-Bonnet decision
 
 `reference.curvature.angle_defects` (exact `Angle` values) and
-`gauss_bonnet_holds` (exact decision of sum K = 2 pi chi), definitions only
-(no fast path: measured, not optimised), metric included, on the icospheres.
+`gauss_bonnet_holds` (exact decision of sum K = 2 pi chi), metric included,
+from the float meshes of section 1.  **fast path**: what the public functions
+dispatch to, `reference.curvature_fast` (see its module docstring): the angle
+at a corner is `arccot(N / sqrt(G))` with the cotangent kept as a `CotanSum`
+(its hash and enclosures come from the integers), and Gauss-Bonnet needs, per
+face, only the integer identity `N0 N1 + N1 N2 + N2 N0 = G` with
+`N0 N1 N2 < G (N0 + N1 + N2)`, which proves that its three angles sum to pi;
+then it is combinatorial.  **definition**: `angle_sums_from_corners` (the
+metric's corner angles added per vertex) minus 2 pi, and
+`gauss_bonnet_holds_by_faces` (each face's angle sum compared to pi with exact
+`Angle` arithmetic).  Equal results, tested (tests/test_fast_paths.py).
 """
 
 FLIPS = """\
@@ -156,6 +172,28 @@ def _cotan_table(res: dict) -> list[str]:
     return out
 
 
+def _curvature_table(res: dict) -> list[str]:
+    """Faces per second of the fast path and the definition side by side."""
+    out = ["Faces per second (CPU), same run:", "",
+           "| mesh | faces | quantity | fast path | definition | fast / definition |",
+           "|---|---|---|---|---|---|"]
+    keys = []
+    for r in res["rows"]:
+        if (r["mesh"], r["faces"], r["quantity"]) not in keys:
+            keys.append((r["mesh"], r["faces"], r["quantity"]))
+    for mesh, faces, what in keys:
+        at = {r["impl"]: r for r in res["rows"]
+              if (r["mesh"], r["faces"], r["quantity"]) == (mesh, faces, what)}
+        fast, slow = at.get("fast path"), at.get("definition")
+        ratio = f"{slow['seconds'] / fast['seconds']:,.0f} x" if fast and slow else ""
+        out.append(f"| {mesh} | {faces:,} | {what} | "
+                   f"{_rate(fast['faces_per_s']) if fast else ''} | "
+                   f"{_rate(slow['faces_per_s']) if slow else ''} | {ratio} |")
+    out += ["", "Fitted exponents on the icospheres (time ~ faces^k): " + ", ".join(
+        f"{k}: {v:.2f}" for k, v in res["fits"].items() if v is not None) + "."]
+    return out
+
+
 def _ratios(rows) -> str:
     """Ratios at the benchmark mesh (1,280 faces), measured in the same run."""
     at = {(r["peer"], r["quantity"]): r["seconds"] for r in rows
@@ -172,6 +210,13 @@ def _ratios(rows) -> str:
                                                                     "Laplacian"))
     if t and lap:
         parts.append(f"the Laplacian at {t / lap:.1f}x the speed of the definition")
+    canon = [(q, at.get(("reference fast path", f"{q}, canonical forms")))
+             for q in ("weights", "Laplacian")]
+    if lap and all(t for _, t in canon):
+        parts.append("and with every canonical form computed the weights take "
+                     + " and the Laplacian ".join(f"{t / (fast if q == 'weights' else lap):.1f}x"
+                                                   for q, t in canon)
+                     + " the time of the fast path")
     return ("At 1,280 faces the fast path computes the exact weights at " + ", ".join(parts)
             + " (same run).") if parts else ""
 
@@ -183,16 +228,18 @@ def _plot(path, series, title, ylabel="CPU seconds (median)"):
         import matplotlib.pyplot as plt
     except ImportError:
         return False
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for label, pts in series.items():
-        if pts:
+    fig, ax = plt.subplots(figsize=(9.5, 4.5))
+    colours = plt.get_cmap("tab20").colors
+    for k, (label, pts) in enumerate(series.items()):
+        if pts:      # more series than a colour cycle: distinct colours, markers, dashes
             xs, ys = zip(*sorted(pts))
-            ax.loglog(xs, ys, marker="o", label=label)
+            ax.loglog(xs, ys, marker="os^vDP"[k % 6], color=colours[(2 * k) % 20 + k // 10],
+                      linestyle="-" if label.startswith("reference") else "--", label=label)
     ax.set_xlabel("faces")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -215,11 +262,16 @@ def write(results: dict) -> None:
                     (r["faces"], r["seconds"]))
         if _plot(PLOTS / "cotan.png", series, "Exact cotan weights / Laplacian, icosphere"):
             out += ["![time vs faces](perf/cotan.png)", ""]
-        if res.get("curvature"):
-            out += [CURVATURE, "| faces | quantity | seconds | faces/s |", "|---|---|---|---|"]
-            out += [f"| {r['faces']:,} | {r['quantity']} | {r['seconds']:.3f} | "
-                    f"{_rate(r['faces_per_s'])} |" for r in res["curvature"]]
-            out.append("")
+        if isinstance(res.get("curvature"), dict):
+            out += [CURVATURE, _meta(res), *_curvature_table(res["curvature"]), ""]
+            series = {}
+            for r in res["curvature"]["rows"]:
+                if r["mesh"] == "icosphere":
+                    series.setdefault(f"{r['quantity']} ({r['impl']})", []).append(
+                        (r["faces"], r["seconds"]))
+            if _plot(PLOTS / "curvature.png", series,
+                     "Exact angle defects / Gauss-Bonnet decision, icosphere"):
+                out += ["![time vs faces](perf/curvature.png)", ""]
     if "flips" in results:
         res = results["flips"]
         out += [FLIPS, _meta(res), "| faces | peer | flips | seconds to Delaunay | flips/s |",
@@ -269,9 +321,11 @@ def _targets(results: dict) -> list[str]:
         return hit[0]["faces_per_s"] if hit else None
 
     w, lap = rate("reference fast path", "weights"), rate("reference fast path", "Laplacian")
+    canon = rate("reference fast path", "weights, canonical forms")
     if w:
         lines.append(f"| exact cotan weights >= 100,000 faces/s (1,280-face icosphere) | "
-                     f"{w:,.0f} faces/s (Laplacian: {lap:,.0f}) | {'yes' if w >= 1e5 else 'no'} |")
+                     f"{w:,.0f} faces/s (Laplacian: {_rate(lap)}; every canonical form "
+                     f"computed too: {_rate(canon)}) | {'yes' if w >= 1e5 else 'no'} |")
     g = rate("gmpy2 pairs", "weights")
     for faces in (1280, 320, 80):          # sympy is measured on the smaller meshes only
         sym, ours = rate("sympy", "weights", faces), rate("reference fast path", "weights", faces)

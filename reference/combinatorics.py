@@ -538,6 +538,17 @@ class Triangulation:
     def is_boundary_vertex(self, v: int) -> bool:
         return not self._fan(v)[2]
 
+    def boundary_vertices(self) -> set[int]:
+        """The boundary vertices, all at once: the endpoints of the boundary edges (a
+        vertex has one fan, open iff a boundary edge ends there).  Without walking
+        the fans, so cheaper than :meth:`is_boundary_vertex` on every vertex."""
+        out = set()
+        for h, t in self._edges:
+            if t < 0:
+                out.add(self.tail(h))
+                out.add(self.head(h))
+        return out
+
     # --- global invariants ----------------------------------------------------------------
 
     def euler_characteristic(self) -> int:

@@ -5,9 +5,12 @@ the cotan Laplacian (D3.2): exact squared lengths and Surd face areas
 (:class:`~reference.metric.PiecewiseFlatSurface`), one cotangent per corner,
 weights added edge by edge.  This module computes the *same* exact values
 (``==`` on every entry, tested with Hypothesis and on a 1,280-face float
-icosphere) about 10 to 15 times faster, standard library only.
+icosphere) about 60 times faster on float meshes, standard library only
+(about 12 times faster when every canonical form is computed as well, which
+the definition always does).
 :func:`reference.laplacian.cotan_laplacian` dispatches here whenever it
-applies (:func:`applies`).
+applies (:func:`applies`); :mod:`reference.curvature_fast` reuses the face
+data.
 
 How, exactly at every step:
 
@@ -22,31 +25,50 @@ How, exactly at every step:
 
    From squared side lengths (a piecewise flat surface with rational lengths)
    the same with ``N = a + b - o`` and ``G = 16 area^2`` (Heron, :func:`heron16`).
-2. *One square root per face.*  ``G = c^2 m`` with ``m`` free of squares of the
+   :class:`FaceData` holds ``G`` per face and ``N`` per halfedge (the corner
+   opposite it).
+2. *The value kept as it comes.*  An edge weight is
+   ``1/2 (n_1 / sqrt(G_1) + n_2 / sqrt(G_2))``, a diagonal entry of the
+   Laplacian ``1/2 sum_f n_f / sqrt(G_f)`` over the faces at the vertex.  Such a
+   number is returned as a :class:`CotanSum`: a :class:`~reference.exact.Surd`
+   that keeps these integers and computes its canonical form (base, terms)
+   only when something needs it -- equality with another Surd, arithmetic,
+   ``str``.  What is cheap is done on the integers, exactly:
+
+   * *rational or not* (a Fraction must be returned where the value is
+     rational, as the definition does): with nonzero ``n_1, n_2`` the weight is
+     irrational unless ``G_1 G_2`` is a perfect square (the square roots of 1
+     and of integers with different square-free parts are linearly
+     independent over Q); a
+     diagonal entry is a sum of *positive* terms (two cotangents of one
+     triangle add up to ``sin(alpha + beta) / (sin alpha sin beta) > 0``), so
+     it is irrational unless every ``G_f`` is a square.  Squares are excluded
+     by the power of 2 and the residues of the odd part modulo
+     ``2^6 * 3 * 5 * ... * 37`` (:func:`_odd_residue`, :func:`_maybe_square`:
+     about 1 odd non-square in 3,000 passes), then by :func:`math.isqrt`.  Values
+     that may be rational take the canonical route at once (step 3);
+   * the *sign*: the signs of the ``n``, or for two terms of opposite signs
+     ``n_1^2 G_2`` against ``n_2^2 G_1`` (never equal: the value is irrational);
+   * ``float()``, ``hash()`` and enclosures, correctly rounded / rigorous
+     as for every Surd: ``|n| 2^k / (2 sqrt(G))`` lies in ``[s, s + 1]`` for
+     ``s = isqrt(n^2 4^k // 4G)`` (:meth:`CotanSum._bounds`).
+3. *Canonical form on demand.*  ``G = c^2 m`` with ``m`` free of squares of the
    primes below 100 -- the radicand :func:`reference.exact.sqrt` gives for the
    face -- and ``m = s M``: ``s`` the product of the primes below 100 dividing
-   ``m``, ``M`` free of them.  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``:
-   the three corners of a face share one denominator.  (When the denominator
-   ``D`` is not a power of two, the known square ``D^4`` is divided out of
-   ``G`` first, as ``sqrt`` would: it may hold squares of primes above 100.)
-3. *Canonical Surds without re-merging.*  An entry is a sum over a few faces
-   of ``q_f sqrt(m_f)``.  A :class:`~reference.exact.Surd` needs a base of
-   pairwise coprime non-squares whose subset products are the radicands.  When
-   the large parts ``M`` of the faces around a vertex are pairwise coprime
-   (checked exactly, one gcd per face against the product of the previous
-   ones; an edge weight checks its two radicands with one gcd), the base is
-   read off the factors: group the primes below 100 and the large parts by the
-   set of radicands they divide, one base element per group -- the coarsest
-   coprime base, the one Surd addition computes.  Every pair of faces sharing
-   an edge shares a vertex, so the vertex checks cover the edge weights too.
-   When two large parts share a prime (a few vertices of a float mesh), the
-   factors are refined by gcd splitting as Surd addition does (:func:`_refined`).
+   ``m``, ``M`` free of them (:func:`_split_root`; computed once per face, when
+   first needed).  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``.  An entry's
+   terms ``{m: q}`` become a canonical Surd (:func:`_value`): when the large
+   parts ``M`` are pairwise coprime (checked exactly with gcds), the base is
+   read off the factors -- group the primes below 100 and the large parts by
+   the set of radicands they divide, one base element per group, the coarsest
+   coprime base, the one Surd addition computes; when two large parts share a
+   prime the factors are refined by gcd splitting as Surd addition does
+   (:func:`_refined`).
 
-The cost left is mostly gcds of 200-bit integers (reducing Fractions, checking
-coprimality), about ten per face: see docs/performance.md.
-
-No float is used anywhere; a sign is never needed (zero is decided by the
-canonical form: an entry is zero iff no term is left).
+Hence building the weights costs integer products and one residue test per
+edge; the gcds of 200-bit integers that canonical forms need (about ten per
+face) are paid by the values that are compared, added or printed.  No float
+is used anywhere.
 """
 
 from __future__ import annotations
@@ -58,12 +80,13 @@ from fractions import Fraction
 from math import gcd, isqrt, lcm, prod
 from operator import mul
 
-from .exact.surds import _SMALL_SQUARES, _make, _refine, _reexpress
+from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress
 from .metric import PiecewiseFlatSurface, degenerate_face, heron16
 from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix, _normal
 
-__all__ = ["applies", "face_cotangents", "cotan_weights_fast", "cotan_laplacian_fast"]
+__all__ = ["applies", "FaceData", "CotanSum", "face_data", "face_cotangents",
+           "cotan_weights_fast", "cotan_laplacian_fast"]
 
 _ZERO = Fraction(0)
 _PRIMES = tuple(p for p, _ in _SMALL_SQUARES)                   # the primes below 100
@@ -80,6 +103,47 @@ def applies(surface) -> bool:
             and all(isinstance(x, Fraction) for x in surface.squared_lengths))
 
 
+# --- perfect squares, excluded cheaply ---------------------------------------------------------
+
+
+def _square_residues(m: int) -> bytes:
+    """``t[r] == 1`` iff ``r`` is a square modulo ``m``."""
+    t = bytearray(m)
+    for y in range(m):
+        t[y * y % m] = 1
+    return bytes(t)
+
+
+_SQ64 = _square_residues(64)
+_SQ15015 = _square_residues(3 * 5 * 7 * 11 * 13)
+_SQ7429 = _square_residues(17 * 19 * 23)
+_SQ33263 = _square_residues(29 * 31 * 37)
+#: A square is a square modulo every m; faces keep their G's odd part modulo this.
+_RESIDUE_MODULUS = 64 * 15015 * 7429 * 33263
+
+
+def _maybe_square(r: int) -> bool:
+    """False if ``r`` (an integer, or its residue modulo :data:`_RESIDUE_MODULUS`, or a
+    product of such residues) is certainly no perfect square; True if it may be one.
+    Meant for odd numbers (a multiple of 64 passes the first test)."""
+    return bool(_SQ64[r & 63] and _SQ15015[r % 15015] and _SQ7429[r % 7429]
+                and _SQ33263[r % 33263])
+
+
+def _odd_residue(n: int) -> tuple[int, int]:
+    """``(r, p)``: the odd part of ``n > 0`` modulo :data:`_RESIDUE_MODULUS` and the
+    parity of the power of 2 in ``n``.  ``n`` can be a square only if ``p == 0`` and
+    ``_maybe_square(r)``; about 1 odd non-square in 3,000 passes."""
+    v = (n & -n).bit_length() - 1
+    return (n >> v) % _RESIDUE_MODULUS, v & 1
+
+
+def _is_square(n: int) -> bool:
+    """Whether the integer ``n > 0`` is a perfect square (residues first)."""
+    r, p = _odd_residue(n)
+    return not p and _maybe_square(r) and isqrt(n) ** 2 == n
+
+
 # --- step 1: integer Gram data per face ------------------------------------------------
 
 # One denominator for the whole mesh if it stays this small (float meshes: all
@@ -88,66 +152,275 @@ def applies(surface) -> bool:
 _COMMON_DENOMINATOR_BITS = 128
 
 
-def _integer_faces(surface: PolyhedralSurface):
-    """``(D, A, B, C)`` per face: its three points times D, integer vectors."""
-    P, faces = surface.positions, surface.triangulation.faces
-    D = lcm(*{x.denominator for p in P for x in p})
-    if D.bit_length() <= _COMMON_DENOMINATOR_BITS:
-        pts = [tuple([x.numerator * (D // x.denominator) for x in p]) for p in P]
-        return [(D, pts[a], pts[b], pts[c]) for a, b, c in faces]
-    out = []
-    for face in faces:
-        D = lcm(*{x.denominator for v in face for x in P[v]})
-        out.append((D, *(tuple([x.numerator * (D // x.denominator) for x in P[v]])
-                          for v in face)))
-    return out
+class FaceData:
+    """The integers of step 1 for every face of a surface (see the module docstring).
+
+    ``G[f]``: ``4 area^2`` (from positions) or ``16 area^2`` (from lengths) times a
+    square ``S[f]^2``; ``N[h]``: the numerator of the cotangent of the corner
+    opposite halfedge ``h``, ``cot = N[h] / sqrt(G[h // 3])``; ``residue[f]``,
+    ``twos[f]``: the odd part of ``G[f]`` modulo :data:`_RESIDUE_MODULUS` and the
+    parity of its power of 2 (:func:`_odd_residue`).  Square roots (step 3) are
+    computed per face when first needed and kept.
+    """
+
+    __slots__ = ("G", "S", "N", "residue", "twos", "parts", "_roots", "_by_G")
+
+    def __init__(self, G: list, S: list, N: list):
+        self.G, self.S, self.N = G, S, N
+        self.residue, self.twos = [], []
+        for g in G:
+            r, p = _odd_residue(g)
+            self.residue.append(r)
+            self.twos.append(p)
+        self.parts = {1: (1, 1)}          # radicand m -> (s, M), see _split_root
+        self._roots = [None] * len(G)
+        self._by_G = {}                   # equal G on many faces (regular meshes)
+
+    def is_square(self, f: int) -> bool:
+        """Whether ``G[f]`` is a perfect square (the face's cotangents are rational)."""
+        return (not self.twos[f] and _maybe_square(self.residue[f])
+                and isqrt(self.G[f]) ** 2 == self.G[f])
+
+    def root(self, f: int) -> tuple:
+        """``(m, den, k)``: half the cotangent ``n / sqrt(G[f])`` of a corner of face f
+        is ``(n k / den) sqrt(m)``, m the radicand :func:`reference.exact.sqrt` gives."""
+        r = self._roots[f]
+        if r is None:
+            G, S = self.G[f], self.S[f]
+            key = (G, S) if S & (S - 1) else G      # S matters only if not a power of 2
+            r = self._by_G.get(key)
+            if r is None:
+                r = self._by_G[key] = self._root(G, S)
+            self._roots[f] = r
+        return r
+
+    def _root(self, G: int, S: int):
+        k = scale = 1
+        if S & (S - 1):
+            # S is not a power of two: its odd primes would stay in G as squares of
+            # primes above 100 that sqrt() never sees; take G / S^2 = n / d in lowest
+            # terms as sqrt() does: sqrt(G) = S sqrt(n d) / d
+            g = gcd(G, S * S)
+            n, k = G // g, S * S // g
+            G, scale = n * k, S
+        c, s, M = _split_root(G)
+        m = s * M
+        self.parts.setdefault(m, (s, M))
+        return m, 2 * c * m * scale, k
+
+    def terms(self, raw) -> dict:
+        """``{m: q}`` with ``sum q sqrt(m) = 1/2 sum n / sqrt(G[f])`` over the pairs
+        ``raw = (f1, n1, f2, n2, ...)``: equal radicands added, zeros dropped."""
+        acc: dict[int, list] = {}
+        for i in range(0, len(raw), 2):
+            m, d, k = self.root(raw[i])
+            n = raw[i + 1] * k
+            a = acc.get(m)
+            if a is None:
+                acc[m] = [n, d]
+            elif a[1] == d:
+                a[0] += n
+            else:
+                a[0], a[1] = a[0] * d + n * a[1], a[1] * d
+        return {m: _fraction(n, d) for m, (n, d) in acc.items() if n}
+
+    def value(self, raw):
+        """``1/2 sum n / sqrt(G[f])`` over ``raw`` as a canonical Surd, or a Fraction."""
+        if len(raw) == 4:
+            # an edge weight, the common case: two coprime radicands are their own base
+            f1, n1, f2, n2 = raw
+            m1, d1, k1 = self._roots[f1] or self.root(f1)
+            m2, d2, k2 = self._roots[f2] or self.root(f2)
+            if m1 != 1 and m2 != 1 and gcd(m1, m2) == 1:
+                return _make((m1, m2) if m1 < m2 else (m2, m1),
+                             {m1: _fraction(n1 * k1, d1), m2: _fraction(n2 * k2, d2)},
+                             prune=False)
+        return _value(self.terms(raw), self.parts)
+
+    def lazy(self, raw) -> "CotanSum":
+        """The same value as a :class:`CotanSum`; only for values known to be irrational
+        (and raw numerators that are not 0)."""
+        x = _new(CotanSum)
+        x._src, x._raw, x._hash = self, raw, None
+        return x
 
 
-def _gram_from_positions(surface: PolyhedralSurface):
-    """Per face ``(N0, N1, N2, G, S)`` in integers (see the module docstring): the
-    points were scaled by D, so ``G = S^2 * 4 area^2`` with ``S = D^2``."""
+_new = object.__new__
+
+
+def _positions_data(surface: PolyhedralSurface) -> FaceData:
     t = surface.triangulation
-    out = []
-    if surface.dimension == 3:          # the common case, written out (2x faster)
-        for f, (D, (ax, ay, az), (bx, by, bz), (cx, cy, cz)) in enumerate(_integer_faces(surface)):
+    P, faces = surface.positions, t.faces
+    G, S, N = [], [], []
+    gram, add = G.append, N.extend
+    D = lcm(*{x.denominator for p in P for x in p})
+    if D.bit_length() <= _COMMON_DENOMINATOR_BITS and surface.dimension == 3:
+        # the common case, written out (2x faster)
+        pts = [(x.numerator * (D // x.denominator), y.numerator * (D // y.denominator),
+                z.numerator * (D // z.denominator)) for x, y, z in P]
+        for f, (a, b, c) in enumerate(faces):
+            ax, ay, az = pts[a]
+            bx, by, bz = pts[b]
+            cx, cy, cz = pts[c]
             ux, uy, uz = bx - ax, by - ay, bz - az
             vx, vy, vz = cx - ax, cy - ay, cz - az
             uu = ux * ux + uy * uy + uz * uz
             vv = vx * vx + vy * vy + vz * vz
             uv = ux * vx + uy * vy + uz * vz
-            G = uu * vv - uv * uv
-            if not G:
-                raise degenerate_face(t, f, surface.positions)
-            out.append((uv, uu - uv, vv - uv, G, D * D))
-        return out
-    for f, (D, A, B, C) in enumerate(_integer_faces(surface)):
+            g = uu * vv - uv * uv
+            if not g:
+                _degenerate(surface, f)
+            gram(g)
+            add((vv - uv, uv, uu - uv))             # N_2, N_0, N_1: halfedges 3f, 3f+1, 3f+2
+        S = [D * D] * len(faces)
+        return FaceData(G, S, N)
+    common = D.bit_length() <= _COMMON_DENOMINATOR_BITS
+    for f, face in enumerate(faces):
+        if not common:
+            D = lcm(*{x.denominator for v in face for x in P[v]})
+        A, B, C = ([x.numerator * (D // x.denominator) for x in P[v]] for v in face)
         u = [y - x for x, y in zip(A, B)]
         v = [y - x for x, y in zip(A, C)]
         uu = sum(map(mul, u, u))
         vv = sum(map(mul, v, v))
         uv = sum(map(mul, u, v))
-        G = uu * vv - uv * uv
-        if not G:
-            raise degenerate_face(t, f, surface.positions)
-        out.append((uv, uu - uv, vv - uv, G, D * D))
-    return out
+        g = uu * vv - uv * uv
+        if not g:
+            _degenerate(surface, f)
+        gram(g)
+        S.append(D * D)
+        add((vv - uv, uv, uu - uv))
+    return FaceData(G, S, N)
 
 
-def _gram_from_lengths(m: PiecewiseFlatSurface):
-    """Per face ``(N0, N1, N2, G, S)`` in integers from rational squared lengths (scaled
-    by S = D, so ``G = S^2 * 16 area^2``)."""
+def _degenerate(surface: PolyhedralSurface, f: int):
+    """Raise the error the definition raises for a surface with the zero-area face f
+    (its metric checks coincident vertices everywhere first)."""
+    surface.metric()
+    raise degenerate_face(surface.triangulation, f, surface.positions)   # pragma: no cover
+
+
+def _lengths_data(m: PiecewiseFlatSurface) -> FaceData:
     sq, eo = m.squared_lengths, m.triangulation.edge_of
-    out = []
+    G, S, N = [], [], []
     for f in range(m.triangulation.n_faces):
         l0, l1, l2 = sq[eo(3 * f)], sq[eo(3 * f + 1)], sq[eo(3 * f + 2)]
         D = lcm(l0.denominator, l1.denominator, l2.denominator)
         a, b, c = (x.numerator * (D // x.denominator) for x in (l0, l1, l2))
         # cot at corner 0 = (|01|^2 + |20|^2 - |12|^2) / (4 area), 4 area = sqrt(16 area^2)
-        out.append((a + c - b, a + b - c, b + c - a, heron16(a, b, c), D))
-    return out
+        G.append(heron16(a, b, c))
+        S.append(D)
+        N.extend((b + c - a, a + c - b, a + b - c))    # N_2, N_0, N_1
+    return FaceData(G, S, N)
 
 
-# --- step 2: one square root per face --------------------------------------------------------
+def face_data(surface) -> FaceData:
+    """The integers of step 1 for a surface that :func:`applies`; raises
+    :class:`~reference.errors.DegenerateFace` at a face of zero area."""
+    if isinstance(surface, PolyhedralSurface):
+        return _positions_data(surface)
+    return _lengths_data(surface)
+
+
+# --- step 2: the value kept as it comes -----------------------------------------------------
+
+
+class CotanSum(Surd):
+    """An irrational :class:`~reference.exact.Surd` known as ``1/2 sum n_k / sqrt(G_k)``.
+
+    The terms are integers of a :class:`FaceData` (``raw = (f1, n1, f2, n2, ...)``,
+    ``G_k = G[f_k]``, nonzero ``n_k``); the value is known to be irrational when
+    it is made.  It *is* a Surd: everything a Surd does works, equal Surds
+    compare and hash equal.  The canonical form (``_base``, ``_terms``) is
+    computed on first use (``__getattr__``: those slots stay unset until then);
+    the sign, ``float()``, ``hash()``, enclosures, negation and comparisons with
+    0 are decided from the integers without it.
+    """
+
+    __slots__ = ("_src", "_raw")
+
+    def __getattr__(self, name):
+        if name != "_base" and name != "_terms":
+            raise AttributeError(f"'CotanSum' object has no attribute {name!r}")
+        v = self._src.value(self._raw)
+        if type(v) is not Surd or not v._base:       # pragma: no cover - a bug
+            raise AssertionError(f"a CotanSum made for the rational value {v}")
+        self._base, self._terms = v._base, v._terms
+        return v._base if name == "_base" else v._terms
+
+    def is_rational(self):
+        return False
+
+    def __bool__(self):
+        return True
+
+    def sign(self):
+        raw = self._raw
+        positive = raw[1] > 0
+        if all((n > 0) == positive for n in raw[3::2]):
+            return 1 if positive else -1
+        if len(raw) == 4:
+            # n1 / sqrt(G1) + n2 / sqrt(G2) with opposite signs: the larger modulus wins
+            G = self._src.G
+            f1, n1, f2, n2 = raw
+            big = n1 if n1 * n1 * G[f2] > n2 * n2 * G[f1] else n2
+            return 1 if big > 0 else -1
+        return Surd.sign(self)
+
+    def __neg__(self):
+        raw = self._raw
+        return self._src.lazy(tuple(-x if i & 1 else x for i, x in enumerate(raw)))
+
+    def _bound_count(self):
+        return len(self._raw) // 2
+
+    def _bounds(self, k):
+        if k > 8192:
+            # float() refines until the enclosure is narrow, which ends for irrational
+            # values only: make sure (the canonical form raises if it is rational)
+            self._terms
+        # |n| 2^k / (2 sqrt(G)) = sqrt(n^2 4^k / 4G) lies in [s, s + 1], s = isqrt(floor)
+        G, raw = self._src.G, self._raw
+        lo = hi = 0
+        for i in range(0, len(raw), 2):
+            n = raw[i + 1]
+            s = isqrt((n * n << 2 * k) // (G[raw[i]] << 2))
+            if n > 0:
+                lo += s
+                hi += s + 1
+            else:
+                lo -= s + 1
+                hi -= s
+        return lo, hi
+
+
+def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
+    """``sign`` times the cotan weight of the edge of halfedges ``h`` and ``t``
+    (``t = -1``: boundary): a :class:`CotanSum` when it is certainly irrational, else
+    the canonical value (a Fraction when rational)."""
+    N = fd.N
+    f, n1 = h // 3, N[h] * sign
+    if t < 0:
+        if not n1:
+            return _ZERO
+        raw = (f, n1)
+        return fd.value(raw) if fd.is_square(f) else fd.lazy(raw)
+    g, n2 = t // 3, N[t] * sign
+    if n1 and n2:
+        raw = (f, n1, g, n2)
+        r = fd.residue[f] * fd.residue[g]
+        if fd.twos[f] != fd.twos[g] or not (_SQ64[r & 63] and _SQ15015[r % 15015]
+                                            and _SQ7429[r % 7429] and _SQ33263[r % 33263]):
+            return fd.lazy(raw)                    # G1 G2 is no square: irrational
+        P = fd.G[f] * fd.G[g]
+        return fd.value(raw) if isqrt(P) ** 2 == P else fd.lazy(raw)
+    if n1 or n2:
+        raw = (f, n1) if n1 else (g, n2)
+        return fd.value(raw) if fd.is_square(raw[0]) else fd.lazy(raw)
+    return _ZERO
+
+
+# --- step 3: canonical Surds --------------------------------------------------------------
 
 
 def _split_root(G: int):
@@ -190,93 +463,6 @@ def _small_primes(s: int) -> tuple:
     """The primes below 100 of a product of distinct ones."""
     return tuple(p for p in _PRIMES if s % p == 0)
 
-
-class _Faces:
-    """Per face: radicand ``m`` (1 if rational), denominator ``2 c m`` shared by its
-    three half-cotangents (``N_c / (2 c m) * sqrt(m)``), numerators ``(N0, N1, N2)``;
-    per radicand its factors ``(s, M)``: the product of its primes below 100, the rest."""
-
-    __slots__ = ("rad", "den", "num", "parts")
-
-    def __init__(self, gram):
-        self.rad, self.den, self.num = [], [], []
-        self.parts = {1: (1, 1)}
-        rad, den, num = self.rad.append, self.den.append, self.num.append
-        roots = {}                                  # equal G on many faces (regular meshes)
-        for x in gram:
-            n0, n1, n2, G, S = x
-            key = (G, S) if S & (S - 1) else G      # S matters only if not a power of 2
-            hit = roots.get(key)
-            if hit is None:
-                hit = roots[key] = self._root(G, S)
-            rad(hit[0])
-            den(hit[1])
-            k = hit[2]
-            num((n0 * k, n1 * k, n2 * k) if k != 1 else x)    # x[:3] are the numerators
-
-    def _root(self, G: int, S: int):
-        """``(m, 2 c m S', k)`` with ``sqrt(G) = (c S' / k) sqrt(m)``, m the radicand
-        :func:`reference.exact.sqrt` gives for the face (``G / S^2``)."""
-        k = scale = 1
-        if S & (S - 1):
-            # S is not a power of two: its odd primes would stay in G as squares of
-            # primes above 100 that sqrt() never sees; take G / S^2 = n / d in lowest
-            # terms as sqrt() does: sqrt(G) = S sqrt(n d) / d
-            g = gcd(G, S * S)
-            n, k = G // g, S * S // g
-            G, scale = n * k, S
-        c, s, M = _split_root(G)
-        m = s * M
-        self.parts.setdefault(m, (s, M))
-        return m, 2 * c * m * scale, k
-
-    def edge_value(self, h: int, t: int, sign: int = 1, checked: bool = False):
-        """``sign`` times the weight of the edge of halfedges ``h``, ``t`` as an exact
-        value (:func:`_value` of :meth:`edge_terms`, the common case inlined: two
-        faces with coprime radicands, which are then their own base)."""
-        rad, num = self.rad, self.num
-        f = h // 3
-        m1, n1 = rad[f], num[f][(h + 2) % 3]
-        if t >= 0 and n1:
-            g = t // 3
-            m2, n2 = rad[g], num[g][(t + 2) % 3]
-            if n2 and m1 != m2 and m1 != 1 and m2 != 1 and (
-                    gcd(self.parts[m1][0], self.parts[m2][0]) == 1 if checked
-                    else gcd(m1, m2) == 1):
-                if sign < 0:
-                    n1, n2 = -n1, -n2
-                return _make((m1, m2) if m1 < m2 else (m2, m1),
-                             {m1: _fraction(n1, self.den[f]), m2: _fraction(n2, self.den[g])},
-                             prune=False)
-        return _value(self.edge_terms(h, t, sign), self.parts, checked)
-
-    def edge_terms(self, h: int, t: int, sign: int = 1) -> dict:
-        """``{m: q}``: ``sign`` times the half-cotangents opposite halfedge ``h`` and its
-        twin ``t`` (``t = -1``: boundary), equal radicands added, zeros dropped."""
-        rad, den, num = self.rad, self.den, self.num
-        f = h // 3
-        m1, n1, d1 = rad[f], sign * num[f][(h + 2) % 3], den[f]
-        if t < 0:
-            return {m1: _fraction(n1, d1)} if n1 else {}
-        g = t // 3
-        m2, n2, d2 = rad[g], sign * num[g][(t + 2) % 3], den[g]
-        if m1 == m2:                    # one radicand on both sides (regular meshes)
-            if d1 != d2:
-                n1, n2, d1 = n1 * d2, n2 * d1, d1 * d2
-            return {m1: _fraction(n1 + n2, d1)} if n1 + n2 else {}
-        out = {m1: _fraction(n1, d1)} if n1 else {}
-        if n2:
-            out[m2] = _fraction(n2, d2)
-        return out
-
-
-def _gram(surface):
-    if isinstance(surface, PolyhedralSurface):
-        return _gram_from_positions(surface)
-    return _gram_from_lengths(surface)
-
-
-# --- step 3: canonical Surds ------------------------------------------------------------
 
 def _from_slots(n: int, d: int) -> Fraction:
     # what Fraction(n, d) stores once reduced, without re-checking the types
@@ -327,10 +513,9 @@ def _coprime_large_parts(rads, parts) -> bool:
     return True
 
 
-def _value(terms: dict, parts, checked: bool = False):
+def _value(terms: dict, parts):
     """``sum q * sqrt(m)`` over ``terms = {m: q}`` (q nonzero Fractions) as a canonical
-    Surd, or a Fraction when rational.  ``checked``: the large parts are known to be
-    pairwise coprime."""
+    Surd, or a Fraction when rational."""
     if len(terms) < 2:
         if not terms:
             return _ZERO
@@ -338,12 +523,11 @@ def _value(terms: dict, parts, checked: bool = False):
         return q if m == 1 else _make((m,), terms, prune=False)
     if len(terms) == 2:                 # an edge: two faces, the common case
         m1, m2 = terms
-        (s1, M1), (s2, M2) = parts[m1], parts[m2]
-        if gcd(s1, s2) == 1 and (checked or gcd(M1, M2) == 1):
+        if gcd(m1, m2) == 1:
             # coprime radicands are their own base (1, the rational part, is none)
             base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
             return _make(base, terms, prune=False)
-    if not checked and not _coprime_large_parts(terms, parts):
+    if not _coprime_large_parts(terms, parts):
         return _refined(terms, parts)
     # The coarsest coprime base: one element per set of radicands a factor divides.
     pattern: dict[int, int] = {}
@@ -379,7 +563,7 @@ def _refined(terms: dict, parts):
 def _collector_paused():
     """Pause the cyclic garbage collector while building the result.
 
-    The fast path allocates a few acyclic objects per face (Fractions, Surds,
+    The fast path allocates a few acyclic objects per face (tuples, CotanSums,
     dicts) that all survive; the collector would traverse them again and again
     (about a fifth of the time on a 10,000-face mesh).  Restored on exit.
     """
@@ -396,7 +580,7 @@ def _collector_paused():
 
 
 def face_cotangents(surface) -> list[tuple]:
-    """The exact cotangents of the three corners of every face, fast.
+    """The exact cotangents of the three corners of every face, fast, canonical.
 
     ``[(cot0, cot1, cot2), ...]`` equal to
     ``PiecewiseFlatSurface.corner_cot(f, c)`` (Fractions where rational).
@@ -405,16 +589,18 @@ def face_cotangents(surface) -> list[tuple]:
     >>> face_cotangents(surfaces.grid(1, 1))[0]
     (Fraction(1, 1), Fraction(0, 1), Fraction(1, 1))
     """
-    fc = _Faces(_gram(surface))
-    return [tuple(_value({m: _fraction(2 * n, d)}, fc.parts) if n else _ZERO for n in ns[:3])
-            for m, d, ns in zip(fc.rad, fc.den, fc.num)]
+    fd = face_data(surface)
+    N = fd.N
+    return [tuple(fd.value((f, 2 * N[3 * f + (c + 1) % 3])) for c in range(3))
+            for f in range(len(fd.G))]
 
 
 def cotan_weights_fast(surface) -> dict:
     """(3.3): the cotan weights, equal to :func:`reference.laplacian.cotan_weights`.
 
-    Same keys (every edge id) and values (``==``), Fractions where rational;
-    computed as described in the module docstring.  For surfaces that
+    Same keys (every edge id) and values (``==``), Fractions where rational,
+    irrational ones as :class:`CotanSum` (Surds whose canonical form is computed
+    when first needed); see the module docstring.  For surfaces that
     :func:`applies` rejects, use the definition.
 
     >>> from reference import surfaces
@@ -425,18 +611,20 @@ def cotan_weights_fast(surface) -> dict:
     """
     t = surface.triangulation
     with _collector_paused():
-        fc = _Faces(_gram(surface))
-        return {e: fc.edge_value(*t.edge_halfedges(e)) for e in range(t.n_edges)}
+        fd = face_data(surface)
+        return {e: _weight(fd, h, tw) for e, (h, tw) in
+                enumerate(map(t.edge_halfedges, range(t.n_edges)))}
 
 
 def cotan_laplacian_fast(surface) -> SparseMatrix:
     """D3.2: the cotan Laplacian, equal to the definition
     :func:`reference.laplacian.cotan_laplacian_from_weights` (``==`` entrywise).
 
-    Diagonal first: vertex ``i`` collects, from each face at one of its corners,
-    the half-cotangents of the two other corners (one term per face); then each
-    off-diagonal entry is minus the weight of the edge(s) between ``i`` and ``j``
-    (several edges between two vertices are summed, loops ignored).
+    Diagonal: vertex ``i`` collects, from each face at one of its corners, the
+    half-cotangents of the two other corners (one positive term per face); then
+    each off-diagonal entry is minus the weight of the edge(s) between ``i`` and
+    ``j`` (several edges between two vertices are summed, loops ignored).
+    Irrational entries are :class:`CotanSum` values.
 
     >>> from reference import surfaces
     >>> from reference.laplacian import cotan_laplacian_from_weights
@@ -450,50 +638,42 @@ def cotan_laplacian_fast(surface) -> SparseMatrix:
 
 def _laplacian(surface) -> SparseMatrix:
     t = surface.triangulation
-    fc = _Faces(_gram(surface))
+    fd = face_data(surface)
     n = t.n_vertices
-    rad, den, num, parts = fc.rad, fc.den, fc.num, fc.parts
-    # diag[i] = {m: [numerator, denominator]}: integer sums, one Fraction per term at the end
-    diag: list[dict] = [{} for _ in range(n)]
-
-    def add(i, m, N, d):
-        acc = diag[i].get(m)
-        if acc is None:
-            diag[i][m] = [N, d]
-        elif acc[1] == d:
-            acc[0] += N
-        else:
-            acc[0], acc[1] = acc[0] * d + N * acc[1], acc[1] * d
-
+    N = fd.N
+    # diag[i] = [f1, n1, f2, n2, ...]: the faces at vertex i and the numerators of
+    # their two other corners' cotangents, summed (positive; see the module docstring)
+    diag: list[list] = [[] for _ in range(n)]
+    rational = [True] * n          # every face at i has a square G
     for f, (a, b, c) in enumerate(t.faces):
-        n0, n1, n2 = num[f][:3]
-        m, d = rad[f], den[f]
+        n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
         if a != b and b != c and a != c:
             # corner a: halfedges a->b (opposite corner 2) and c->a (opposite corner 1)
-            add(a, m, n1 + n2, d)
-            add(b, m, n0 + n2, d)
-            add(c, m, n0 + n1, d)
+            diag[a] += (f, n1 + n2)
+            diag[b] += (f, n0 + n2)
+            diag[c] += (f, n0 + n1)
+            at = (a, b, c)
         else:                   # a loop halfedge (tail == head) adds nothing
-            for k, N in ((0, n2), (1, n0), (2, n1)):
-                x, y = (a, b, c)[k], (a, b, c)[(k + 1) % 3]
-                if x != y:
-                    add(x, m, N, d)
-                    add(y, m, N, d)
+            at = []
+            for k, x in ((0, n2), (1, n0), (2, n1)):
+                i, j = (a, b, c)[k], (a, b, c)[(k + 1) % 3]
+                if i != j and x:
+                    diag[i] += (f, x)
+                    diag[j] += (f, x)
+                    at += (i, j)
+        if not fd.is_square(f):
+            for i in at:
+                rational[i] = False
     rows: dict[int, dict] = {}
-    clean = [True] * n          # the large parts of the faces at i are pairwise coprime
-    for i, acc in enumerate(diag):
-        if len(acc) > 1:        # every face at i, also those whose terms cancel
-            clean[i] = _coprime_large_parts(acc, parts)
-        terms = {m: _fraction(N, d) for m, (N, d) in acc.items() if N}
-        v = _value(terms, parts, checked=clean[i])
-        if v:
-            rows[i] = {i: v}
+    for i, raw in enumerate(diag):
+        if raw:
+            rows[i] = {i: fd.value(tuple(raw)) if rational[i] else fd.lazy(tuple(raw))}
     for e in range(t.n_edges):
         h, tw = t.edge_halfedges(e)
         i, j = t.tail(h), t.head(h)
         if i == j:
             continue
-        w = fc.edge_value(h, tw, -1, clean[i] or clean[j])  # both faces are at i and j
+        w = _weight(fd, h, tw, -1)
         if not w:               # zero, or equal radicands in two spellings cancelled
             continue
         ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})

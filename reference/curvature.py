@@ -39,6 +39,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+from . import curvature_fast
 from .errors import InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .exact.measures import AngleLength, surd_sum
@@ -46,8 +47,9 @@ from .metric import PiecewiseFlatSurface, as_metric
 from .polyhedral import PolyhedralSurface
 
 __all__ = [
-    "corner_angles", "angle_sums", "angle_defects", "turning_angles",
-    "total_curvature", "gauss_bonnet_holds", "vertex_type",
+    "corner_angles", "angle_sums", "angle_sums_from_corners", "angle_defects",
+    "turning_angles", "total_curvature", "gauss_bonnet_holds", "gauss_bonnet_holds_by_faces",
+    "vertex_type",
     "is_convex_star", "is_planar_star", "is_saddle_star",
     "dihedral_angles", "mean_curvature", "total_mean_curvature", "steiner_coefficients",
     "cayley_rotation", "rigid_motion", "push_vertex_in",
@@ -120,7 +122,22 @@ def corner_angles(surface) -> list[tuple[Angle, Angle, Angle]]:
 
 
 def angle_sums(surface) -> list[Angle]:
-    """The sum of the corner angles at each vertex (the cone angle), exact."""
+    """The sum of the corner angles at each vertex (the cone angle), exact.
+
+    The definition is :func:`angle_sums_from_corners`.  For a polyhedral surface,
+    or a piecewise flat one with rational squared lengths, this returns the equal
+    list computed by :func:`reference.curvature_fast.angle_sums_fast` (integer
+    arithmetic; equality tested angle by angle).
+    """
+    if curvature_fast.applies(surface):
+        return curvature_fast.angle_sums_fast(surface)
+    return angle_sums_from_corners(surface)
+
+
+def angle_sums_from_corners(surface) -> list[Angle]:
+    """The definition of :func:`angle_sums`: the corner angles of the metric
+    (:meth:`~reference.metric.PiecewiseFlatSurface.corner_angle`) added vertex by
+    vertex.  Accepts every surface (irrational squared lengths too)."""
     m = as_metric(surface)
     t = m.triangulation
     parts = [{} for _ in range(t.n_vertices)]
@@ -147,9 +164,9 @@ def angle_defects(surface) -> dict[int, Angle]:
     >>> list(K), K[0] == 0
     ([0], True)
     """
-    t = as_metric(surface).triangulation
-    sums = angle_sums(surface)
-    return {v: 2 * pi - s for v, s in enumerate(sums) if not t.is_boundary_vertex(v)}
+    sums = angle_sums(surface)          # checks the surface first
+    boundary = surface.triangulation.boundary_vertices()
+    return {v: 2 * pi - s for v, s in enumerate(sums) if v not in boundary}
 
 
 def turning_angles(surface) -> dict[int, Angle]:
@@ -158,9 +175,9 @@ def turning_angles(surface) -> dict[int, Angle]:
     Positive where the boundary turns towards the surface (a convex corner of a
     planar polygon), zero where it runs straight.
     """
-    t = as_metric(surface).triangulation
-    sums = angle_sums(surface)
-    return {v: pi - s for v, s in enumerate(sums) if t.is_boundary_vertex(v)}
+    sums = angle_sums(surface)          # checks the surface first
+    boundary = surface.triangulation.boundary_vertices()
+    return {v: pi - s for v, s in enumerate(sums) if v in boundary}
 
 
 def total_curvature(surface) -> Angle:
@@ -180,6 +197,21 @@ def total_curvature(surface) -> Angle:
 
 def gauss_bonnet_holds(surface) -> bool:
     """T2.6 / R2.4: decide exactly whether ``total_curvature(surface) == 2 pi chi``.
+
+    The definition is :func:`gauss_bonnet_holds_by_faces`.  For a polyhedral
+    surface, or a piecewise flat one with rational squared lengths, the same
+    decision is taken by :func:`reference.curvature_fast.gauss_bonnet_holds_fast`
+    (each face's angle sum shown to be pi with integers; tested to agree).
+    """
+    if curvature_fast.applies(surface):
+        holds = curvature_fast.gauss_bonnet_holds_fast(surface)
+        if holds is not None:
+            return holds
+    return gauss_bonnet_holds_by_faces(surface)
+
+
+def gauss_bonnet_holds_by_faces(surface) -> bool:
+    """The definition of :func:`gauss_bonnet_holds`, with exact Angle arithmetic.
 
     The total minus 2 pi chi is regrouped face by face,
 

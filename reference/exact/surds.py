@@ -729,12 +729,25 @@ class Surd:
         """
         if isinstance(bits, bool) or not isinstance(bits, numbers.Integral):
             raise InputError(f"bits must be an integer, got {bits!r}")
-        if not self._base:
+        if self.is_rational():
             q = self._terms.get(1, _ZERO)
             return q, q
-        k = max(0, int(bits) + (2 * len(self._terms) + 1).bit_length())
-        lo, hi = _t_bounds(self._terms, k)
+        k = max(0, int(bits) + (2 * self._bound_count() + 1).bit_length())
+        lo, hi = self._bounds(k)
         return Fraction(lo, 1 << k), Fraction(hi, 1 << k)
+
+    def _bound_count(self):
+        """How many terms :meth:`_bounds` adds up (its enclosures are that many units wide)."""
+        return len(self._terms)
+
+    def _bounds(self, k):
+        """Integers ``lo <= self * 2**k <= hi``, ``hi - lo <= 2 * self._bound_count() + 1``.
+
+        What :meth:`interval`, ``float()`` and ``hash()`` use: a subclass that knows
+        its value in another form (``reference.cotan_fast.CotanSum``) overrides this
+        and :meth:`_bound_count` to skip the canonical form.
+        """
+        return _t_bounds(self._terms, k)
 
     def __float__(self):
         """The correctly rounded float (round half to even), like ``float(Fraction)``.
@@ -746,13 +759,13 @@ class Surd:
         >>> float(sqrt(2) + sqrt(3)) == 3.1462643699419726
         True
         """
-        if not self._base:
+        if self.is_rational():
             return float(self._terms.get(1, _ZERO))
-        extra = (2 * len(self._terms) + 1).bit_length()
+        extra = (2 * self._bound_count() + 1).bit_length()
         bits = 64
         while True:
             k = bits + extra
-            lo, hi = _t_bounds(self._terms, k)
+            lo, hi = self._bounds(k)
             if lo > 0 or hi < 0:
                 den = 1 << k
                 try:
@@ -825,6 +838,8 @@ class Surd:
     def __eq__(a, b):
         """a == b (exact)"""
         if isinstance(b, Surd):
+            if a is b:
+                return True
             if a._base == b._base:
                 return a._terms == b._terms
             if not a._base or not b._base:
@@ -837,7 +852,7 @@ class Surd:
             b = Fraction(b)
         elif not isinstance(b, (int, Fraction, numbers.Rational)):
             return NotImplemented
-        if a._base:
+        if not a.is_rational():
             return False
         return a._terms.get(1, 0) == b
 
@@ -850,8 +865,10 @@ class Surd:
             b = Fraction(b)
         elif not isinstance(b, (int, Fraction, numbers.Rational)):
             return NotImplemented
-        if not a._base:
+        if a.is_rational():
             return op(a._terms.get(1, 0), b)
+        if not b:
+            return op(a.sign(), 0)
         return op((a - _from_fraction(rational(b))).sign(), 0)
 
     def __lt__(a, b):
@@ -875,7 +892,7 @@ class Surd:
         rounded float (a function of the value, whatever the base)."""
         h = self._hash
         if h is None:
-            if not self._base:
+            if self.is_rational():
                 h = hash(self._terms.get(1, _ZERO))
             else:
                 try:

@@ -1,0 +1,114 @@
+"""Exact angle sums and the exact Gauss-Bonnet decision, fast: integer arithmetic, same answers.
+
+:mod:`reference.curvature` defines the angle sums, angle defects (D2.2) and the
+Gauss-Bonnet decision (T2.6, R2.4) from the metric: Fraction squared lengths,
+Surd areas and cotangents, one exact :class:`~reference.exact.Angle` per
+corner.  This module gives the *same* results (``==`` on every Angle, the same
+bool; tested with Hypothesis and on the 1,280-face float icosphere) from the
+integers of :func:`reference.cotan_fast.face_data`: per face ``G`` and per
+corner ``N`` with ``cot = N / sqrt(G)``.  :func:`reference.curvature.angle_sums`
+(hence ``angle_defects`` and ``turning_angles``) and
+:func:`reference.curvature.gauss_bonnet_holds` dispatch here whenever
+:func:`applies`.
+
+Angle sums.  The angle at a corner is ``arccot(N / sqrt(G))``; the definition
+stores it as ``pi / 24`` multiples when it is one (right angles, 60 degrees,
+...) and as the primitive ``arccot(cot)`` otherwise
+(:func:`reference.exact.corner_angle`).  Such a multiple has a cotangent whose
+radicand is 1, 2, 3 or 6, i.e. ``k G`` is a square for one of ``k = 1, 2, 3,
+6``, i.e. the odd part of ``G`` is a square or 3 times one; residues exclude
+that for almost every face of a float mesh (:func:`reference.cotan_fast._maybe_square`),
+and those corners get a
+:class:`~reference.cotan_fast.CotanSum` cotangent (canonical form on demand;
+its hash, enclosures and sign come from the integers).  The other faces take
+the definition's route: canonical cotangent, then ``corner_angle``.
+
+Gauss-Bonnet.  The total curvature minus ``2 pi chi`` regroups face by face as
+``sum_f (pi - angle sum of f) + (2 |V_int| + |V_bd| - F - 2 chi) pi`` (see
+:func:`reference.curvature.gauss_bonnet_holds`).  A face's angles sum to pi
+exactly when ``w = (c_0 + i)(c_1 + i)(c_2 + i)`` is a negative real: each
+``arccot(c_k) = arg(c_k + i)`` lies in (0, pi), so the sum lies in (0, 3 pi)
+and ``arg w`` is the sum modulo 2 pi.  With ``c_k = N_k / sqrt(G)``,
+
+    Im w = 0  <=>  N_0 N_1 + N_1 N_2 + N_2 N_0 = G,
+    Re w < 0  <=>  N_0 N_1 N_2 < G (N_0 + N_1 + N_2),
+
+integer tests (the first is the identity ``cot a cot b + cot b cot c +
+cot c cot a = 1`` of a triangle).  When every face passes, the decision is
+the integer test; should one fail (impossible for a Euclidean triangle; it
+would be a bug), :func:`gauss_bonnet_holds_fast` returns None and the
+definition decides.  No float is used anywhere.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+from .cotan_fast import _collector_paused, _maybe_square, applies, face_data
+from .exact import Angle, corner_angle
+
+__all__ = ["applies", "angle_sums_fast", "gauss_bonnet_holds_fast"]
+
+_ZERO = Fraction(0)
+
+
+def angle_sums_fast(surface) -> list[Angle]:
+    """The sum of the corner angles at each vertex (the cone angle; 2 pi minus it is
+    the angle defect of D2.2, pi minus it the turning angle of R2.4), exact Angles
+    equal (``==``) to :func:`reference.curvature.angle_sums_from_corners` (see the
+    module docstring).
+
+    >>> from reference import surfaces
+    >>> from reference.curvature import angle_sums_from_corners
+    >>> angle_sums_fast(surfaces.torus(5, 3)) == angle_sums_from_corners(surfaces.torus(5, 3))
+    True
+    """
+    with _collector_paused():
+        return _angle_sums(surface)
+
+
+def _angle_sums(surface) -> list[Angle]:
+    t = surface.triangulation
+    fd = face_data(surface)
+    N, residue, lazy = fd.N, fd.residue, fd.lazy
+    parts: list[dict] = [{} for _ in range(t.n_vertices)]
+    pis = [_ZERO] * t.n_vertices
+    for f, face in enumerate(t.faces):
+        r = residue[f]              # k G is a square for k = 1, 2, 3 or 6: odd part 1 or 3
+        special = _maybe_square(r) or _maybe_square(3 * r)
+        for c, v in enumerate(face):
+            n = 2 * N[3 * f + (c + 1) % 3]          # cot = n / (2 sqrt(G)), halfedge opposite c
+            if special or not n:                    # maybe a multiple of pi / 24: as defined
+                a = corner_angle(fd.value((f, n)))
+                acc = parts[v]
+                for cot, k in a.parts.items():
+                    acc[cot] = acc.get(cot, 0) + k
+                pis[v] += a.pi_coefficient
+            else:
+                cot = lazy((f, n))
+                acc = parts[v]
+                acc[cot] = acc.get(cot, 0) + 1
+    return [Angle._raw({c: k for c, k in p.items() if k}, q) for p, q in zip(parts, pis)]
+
+
+def gauss_bonnet_holds_fast(surface) -> bool | None:
+    """T2.6 / R2.4: whether ``total_curvature(surface) == 2 pi chi``, decided with
+    integers (see the module docstring); None if a face's angle sum could not be
+    shown to be pi this way (never for a Euclidean triangle; the caller then
+    decides with the definition).  Equal to
+    :func:`reference.curvature.gauss_bonnet_holds`.
+
+    >>> from reference import surfaces
+    >>> gauss_bonnet_holds_fast(surfaces.genus_surface(2))
+    True
+    """
+    t = surface.triangulation
+    fd = face_data(surface)
+    N = fd.N
+    for f, G in enumerate(fd.G):
+        n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
+        if n0 * n1 + n1 * n2 + n2 * n0 != G or n0 * n1 * n2 >= G * (n0 + n1 + n2):
+            return None
+    boundary = len(t.boundary_vertices())
+    interior = t.n_vertices - boundary
+    return 2 * interior + boundary - t.n_faces - 2 * t.euler_characteristic() == 0
