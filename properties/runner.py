@@ -153,24 +153,36 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
-             "why": None}
+             "why": None, "abort": False}
     # examples the implementation declines are counted, not checked; the check is wrapped
     # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
     prop, p = p, replace(p, check=_in_domain(p.check, state))
 
     def body(example):
+        if state["abort"]:
+            return
         # Hypothesis replays the shrunk example last, so "last" is minimal.
         state["n"] += 1
         state["last"] = example
         try:
             p.check(impl, example)
         except TieDisagreement as t:
-            if state["ties_raise"]:
-                raise                               # the second pass: shrink the tie
-            # not an error: keep going (a tie never hides a failure), keep the smallest
-            state["ties"] += 1
+            # keep the smallest tie of either pass
             if state["tie"] is None or _size(t.mesh) < _size(state["tie"][0].mesh):
                 state["tie"] = (t, example)
+            if state["ties_raise"]:
+                raise                               # the second pass: shrink the tie
+            # not an error: keep going (a tie never hides a failure)
+            state["ties"] += 1
+        except PropertyFailure:
+            raise
+        except BaseException:
+            if not state["ties_raise"]:
+                raise
+            # the second pass only shrinks a tie: a crash or hang on one of its simpler
+            # candidates is not chased (each hang costs the call timeout); stop here, the
+            # smallest tie seen so far stands
+            state["abort"] = True
 
     # each (property, implementation) its own database key and derandomized seed: Hypothesis
     # derives both from the test function, the same `body` for every property (as its pytest
@@ -208,24 +220,23 @@ def _search(body, p: Property, settings: Settings, seed, **changes):
 def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list:
     """Tie disagreements do not stop the search, so Hypothesis does not shrink them.
     Second pass: the same example stream (the same seed, or the same derandomized
-    digest), this time with ties raising, so the first tie is shrunk.  Returns what
-    that pass raised; if the stream differs (a database replay) and no tie comes up,
-    nothing: the smallest tie of the first pass stands."""
-    n, ties, tie, outside = state["n"], state["ties"], state["tie"], state["outside"]
+    digest), this time with ties raising, so the first tie is shrunk; ``state["tie"]``
+    ends as the smallest tie of both passes (if the stream differs, e.g. after a
+    database replay, the first pass's stands).  A crash or hang of the implementation
+    on a candidate of this pass stops it (not chased: each hang costs the timeout).
+    Returns a real failure this pass found on a simpler example, if any."""
+    n, ties, outside = state["n"], state["ties"], state["outside"]
     seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
                                                  None)
     state["ties_raise"] = True
     try:
         errors, _ = _search(body, p, settings, seed, database=None, max_examples=n)
     finally:
-        state.update(n=n, ties=ties, outside=outside, ties_raise=False)
-    shrunk = [e for e in errors if isinstance(e, TieDisagreement)]
-    if shrunk and _size(shrunk[0].mesh) <= _size(tie[0].mesh):
-        state["tie"] = (shrunk[0], state["last"])
-        return []
-    state.update(tie=tie, last=tie[1])
-    # anything else it raised (a failure the first pass missed) is a result too
-    return [e for e in errors if not isinstance(e, TieDisagreement)]
+        state.update(n=n, ties=ties, outside=outside, ties_raise=False, abort=False)
+    state["last"] = state["tie"][1]                 # body kept the smallest tie of both passes
+    # a real failure on a simpler example the first pass missed is a result too
+    return [e for e in errors if isinstance(e, PropertyFailure)
+            and not isinstance(e, TieDisagreement)]
 
 
 def _in_domain(check, state: dict):
