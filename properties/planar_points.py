@@ -138,7 +138,7 @@ def planar_triangulations(draw, max_points: int = 12):
     Faces are counterclockwise.  Shrinks towards three points.
     """
     from reference.errors import InputError
-    from reference.planar import planar_triangulation
+    from reference.planar import planar_triangulation, straight_line_flip
 
     pts = tuple((Fraction(float(x)), Fraction(float(y)))
                 for x, y in draw(rational_point_sets(max_points)))
@@ -146,12 +146,7 @@ def planar_triangulations(draw, max_points: int = 12):
         pts = ((Fraction(0), Fraction(0)), (Fraction(1), Fraction(0)), (Fraction(0), Fraction(1)))
     t = planar_triangulation(pts).triangulation
     for e in draw(st.lists(st.integers(0, 10 ** 6), max_size=12)):
-        e %= t.n_edges
-        if t.is_boundary_edge(e):
-            continue
-        u = t.flip(e)
-        if all(orientation(*(pts[v] for v in f)) > 0 for f in u.faces):
-            t = u                               # the quadrilateral was strictly convex
+        t = straight_line_flip(pts, t, e % t.n_edges) or t     # convex quadrilaterals only
     on_hull = True
     if t.n_faces > 1 and draw(st.booleans()):
         f = draw(st.integers(0, t.n_faces - 1))

@@ -17,7 +17,8 @@ tolerance decides anything.  Catalog rows:
   cells) and :func:`voronoi_edges` (dual edges, orthogonal to their Delaunay
   edges).
 * A4.13 in the plane -- :func:`planar_flip_to_delaunay`: the edge-flip
-  algorithm started from a given triangulation of a polygon (boundary kept).
+  algorithm started from a given triangulation of a polygon (boundary kept);
+  :func:`straight_line_flip` (L4.11) the flip of a strictly convex quadrilateral.
 * L4.3 / P4.4 -- :func:`angle_criterion`: ``alpha + beta`` against ``pi`` with
   exact :class:`~reference.exact.Angle` values, independent of the in-circle
   determinant; :func:`is_delaunay_by_angles` for a whole triangulation.
@@ -64,7 +65,7 @@ from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix
 
 __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
-           "circumcircle", "planar_triangulation", "planar_flip_to_delaunay", "delaunay_triangulation",
+           "circumcircle", "planar_triangulation", "straight_line_flip", "planar_flip_to_delaunay", "delaunay_triangulation",
            "delaunay_tessellation", "cell_boundary", "tessellation_edges", "voronoi_vertices",
            "voronoi_edges", "empty_disk_violations", "is_empty_disk_edge", "angle_criterion",
            "is_delaunay_by_angles", "invert", "inversion", "cells_avoiding",
@@ -277,6 +278,32 @@ def delaunay_triangulation(points) -> PolyhedralSurface:
     """
     start = planar_triangulation(points)
     return planar_flip_to_delaunay(start.positions, start.triangulation.faces)
+
+
+def straight_line_flip(points, triangulation, e: int):
+    """L4.11 in the plane: the triangulation with interior edge ``e`` flipped when its
+    quadrilateral is strictly convex (both new faces counterclockwise, exact), else
+    None: the flip that keeps a counterclockwise triangulation of ``points`` a
+    straight-line one.  A non-Delaunay edge always has a strictly convex
+    quadrilateral, so :func:`planar_flip_to_delaunay` never meets None.
+
+    >>> from reference.combinatorics import Triangulation
+    >>> pts = [(0, 0), (2, -1), (4, 0), (2, 1)]
+    >>> t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3)])
+    >>> e = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {0, 2})
+    >>> sorted(sorted(f) for f in straight_line_flip(pts, t, e).faces)
+    [[0, 1, 3], [1, 2, 3]]
+    >>> straight_line_flip([(0, 0), (-1, -1), (4, 0), (-1, 1)], t, e) is None  # reflex at 0
+    True
+    """
+    pts = as_point_set(points)
+    if triangulation.is_boundary_edge(e):
+        return None
+    u = triangulation.flip(e)
+    h, t = u.edge_halfedges(e)                  # the two faces the flip rebuilt
+    if all(orientation(*(pts[v] for v in u.faces[x // 3])) > 0 for x in (h, t)):
+        return u
+    return None
 
 
 def planar_flip_to_delaunay(points, faces) -> PolyhedralSurface:

@@ -83,16 +83,15 @@ class OneFlipTooMany(ReferenceImplementation):
 
     def planar_flip_to_delaunay(self, V, F):
         import numpy as np
-        from reference.planar import orientation
         from reference.combinatorics import Triangulation
+        from reference.planar import straight_line_flip
         F2 = super().planar_flip_to_delaunay(V, F)
         pts = [(x, y) for x, y, _ in np.asarray(V, float)]
         t = Triangulation.from_faces(F2.tolist(), n_vertices=len(pts))
         for e in range(t.n_edges):
-            if not t.is_boundary_edge(e):
-                u = t.flip(e)
-                if all(orientation(*(pts[v] for v in f)) > 0 for f in u.faces):
-                    return np.array(u.faces, dtype=np.int64)
+            u = straight_line_flip(pts, t, e)
+            if u is not None:
+                return np.array(u.faces, dtype=np.int64)
         return F2
 
 

@@ -30,8 +30,10 @@ from reference.planar import (all_triangulations, angle_criterion, cell_boundary
                               empty_disk_violations, in_circle, inversion,
                               inversion_obstructions, is_delaunay_by_angles,
                               is_empty_disk_edge, laplacian_difference, orientation,
-                              planar_flip_to_delaunay, planar_triangulation, tessellation_edges, triangulation_key,
+                              planar_flip_to_delaunay, planar_triangulation,
+                              straight_line_flip, tessellation_edges, triangulation_key,
                               voronoi_edges, voronoi_vertices)
+from reference.polyhedral import PolyhedralSurface
 from reference.sparse import SparseMatrix, is_positive_semidefinite, negative_direction
 from properties.planar_points import (integer_point_sets, planar_triangulations,
                                       rational_point_sets, spans_plane, unit_circle_point)
@@ -296,6 +298,24 @@ def test_A4_13_planar_flips_keep_the_polygon_and_reach_delaunay(example):
     assert is_delaunay_by_angles(d)                                          # P4.4
     if on_hull:                                                              # T4.1
         assert delaunay_tessellation(pts) == cocircular_cells(pts, d.faces)
+
+
+@given(planar_triangulations())
+def test_L4_11_non_delaunay_planar_edges_have_convex_quadrilaterals(example):
+    # every non-Delaunay interior edge flips to a straight-line triangulation (its
+    # quadrilateral is strictly convex) and its new edge is Delaunay; boundary edges never flip
+    pts, faces, _ = example
+    s = PolyhedralSurface.from_arrays(pts, faces)
+    t = s.triangulation
+    for e in range(t.n_edges):
+        if t.is_boundary_edge(e):
+            assert straight_line_flip(pts, t, e) is None
+            continue
+        u = straight_line_flip(pts, t, e)
+        if not is_empty_disk_edge(s, e):
+            assert u is not None
+            assert is_empty_disk_edge(PolyhedralSurface(u, s.positions), e)
+            assert all(orientation(*(pts[v] for v in f)) > 0 for f in u.faces)
 
 
 def test_A4_13_planar_flips_on_a_non_convex_polygon_keep_its_reflex_corner():
