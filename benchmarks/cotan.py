@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import importlib.util
 
-from reference.cotan_fast import CotanSum, cotan_laplacian_fast, cotan_weights_fast
-from reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
+from ddg_oracle.reference.cotan_fast import CotanSum, cotan_laplacian_fast, cotan_weights_fast
+from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces)
-from reference.exact import pi
-from reference.laplacian import cotan_laplacian_from_weights, cotan_weights
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.exact import pi
+from ddg_oracle.reference.laplacian import cotan_laplacian_from_weights, cotan_weights
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import meshes, peers
 from .common import Mode, fit_exponent, median_time, say
@@ -102,7 +102,7 @@ def run(mode: Mode) -> dict:
 
 
 def angle_defects_definition(s):
-    """``reference.curvature.angle_defects`` as defined: the angle sums of the
+    """``ddg_oracle.reference.curvature.angle_defects`` as defined: the angle sums of the
     metric's corner angles (``angle_sums_from_corners``), minus 2 pi."""
     sums = angle_sums_from_corners(s)
     t = s.triangulation

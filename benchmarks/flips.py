@@ -3,8 +3,8 @@
 
 from __future__ import annotations
 
-from reference.delaunay import flip_to_delaunay
-from reference.exact import Surd
+from ddg_oracle.reference.delaunay import flip_to_delaunay
+from ddg_oracle.reference.exact import Surd
 
 from . import meshes, peers
 from .common import Mode, fit_exponent, median_time, say

@@ -6,10 +6,10 @@ import random
 from fractions import Fraction
 from pathlib import Path
 
-from reference import surfaces
-from reference.intrinsic import IntrinsicTriangulation
-from reference.polyhedral import PolyhedralSurface
-from properties.metrics import flat_torus
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ddg_oracle.properties.metrics import flat_torus
 from tests.test_laplacian import float_icosphere
 
 
@@ -29,7 +29,7 @@ def pymeshlab_sample(name: str):
         import pymeshlab
     except ImportError:
         return None
-    from oracles.meshfiles import read_mesh
+    from ddg_oracle.meshfiles import read_mesh
     path = Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / name
     return read_mesh(path) if path.exists() else None
 

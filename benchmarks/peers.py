@@ -3,7 +3,7 @@
 Exact cotan weights, each from float positions ``V`` (taken exactly) and faces
 ``F``; the exact weight of an edge is ``sum over its faces of q_f sqrt(G_f)``
 (``q = N / (2 G)``, ``N`` the dot product at the opposite corner,
-``G = |u x v|^2``, see reference.cotan_fast):
+``G = |u x v|^2``, see ddg_oracle.reference.cotan_fast):
 
 * :func:`weights_fractions`: straightforward ``fractions.Fraction`` code, the
   weight kept as its list of ``(q, G)`` pairs (exact, no canonical form, so no
@@ -16,7 +16,7 @@ Exact cotan weights, each from float positions ``V`` (taken exactly) and faces
 
 :func:`flip_to_delaunay_immutable`: the flip algorithm as it was before
 issue 7, one immutable (O(F)) flip at a time; the tests check that it gives
-what :func:`reference.delaunay.flip_to_delaunay` gives.
+what :func:`ddg_oracle.reference.delaunay.flip_to_delaunay` gives.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ from __future__ import annotations
 from collections import deque
 from fractions import Fraction
 
-from reference.delaunay import face_harmonic_index, harmonic_index, is_delaunay_edge
-from reference.intrinsic import flip, is_flippable
+from ddg_oracle.reference.delaunay import face_harmonic_index, harmonic_index, is_delaunay_edge
+from ddg_oracle.reference.intrinsic import flip, is_flippable
 
 
 def _faces(V, F, number):

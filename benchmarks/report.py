@@ -42,7 +42,7 @@ converting the floats, the squared lengths, areas and cotangents.  Meshes: the
 perturbed float icosphere of the tests (`float_icosphere`, 20 * 4^k faces) and
 pymeshlab's sample bunnies (real scanned meshes).  Peers:
 
-* **reference fast path**: `reference.cotan_fast` (what `cotan_laplacian`
+* **reference fast path**: `ddg_oracle.reference.cotan_fast` (what `cotan_laplacian`
   dispatches to): integers on a common denominator per face, each weight kept
   as `1/2 (n1 / sqrt(G1) + n2 / sqrt(G2))` in a `CotanSum`, a `Surd` whose
   canonical form is computed when something needs it (see its module
@@ -52,7 +52,7 @@ pymeshlab's sample bunnies (real scanned meshes).  Peers:
 * **reference fast path, canonical forms**: the same, then the canonical form
   of every value computed (what `==` with another Surd, Surd arithmetic and
   `str` need): the price of the fully canonical result.
-* **reference definition**: `reference.laplacian.cotan_weights` /
+* **reference definition**: `ddg_oracle.reference.laplacian.cotan_weights` /
   `cotan_laplacian_from_weights`: `PiecewiseFlatSurface` (Fraction squared
   lengths, Surd areas) and Surd arithmetic; the readable definition.
 * **Fraction pairs** / **gmpy2 pairs**: straightforward code keeping each weight
@@ -61,11 +61,11 @@ pymeshlab's sample bunnies (real scanned meshes).  Peers:
 * **sympy**: `Rational` and `sqrt`, canonical sympy expressions.
 * **libigl cotmatrix**, **numpy**: float64, for scale.
 
-Dispatch: `reference.laplacian.cotan_laplacian` uses the fast path for a
+Dispatch: `ddg_oracle.reference.laplacian.cotan_laplacian` uses the fast path for a
 `PolyhedralSurface` and for a `PiecewiseFlatSurface` with rational squared
 lengths, the definition (`cotan_laplacian_from_weights`) otherwise (squared
 lengths that intrinsic flips made irrational).  `cotan_weights` stays the
-definition of (3.3); `reference.cotan_fast.cotan_weights_fast` is its fast twin.
+definition of (3.3); `ddg_oracle.reference.cotan_fast.cotan_weights_fast` is its fast twin.
 
 What the fast path costs: per face the integer Gram data (a dozen products of
 60-bit integers), per edge one residue test that proves `G1 G2` is not a
@@ -80,10 +80,10 @@ shown in the "canonical forms" rows.  `float()` of every entry (what
 CURVATURE = """\
 ## 2. Exact angle defects and the Gauss-Bonnet decision
 
-`reference.curvature.angle_defects` (exact `Angle` values) and
+`ddg_oracle.reference.curvature.angle_defects` (exact `Angle` values) and
 `gauss_bonnet_holds` (exact decision of sum K = 2 pi chi), metric included,
 from the float meshes of section 1.  **fast path**: what the public functions
-dispatch to, `reference.curvature_fast` (see its module docstring): the angle
+dispatch to, `ddg_oracle.reference.curvature_fast` (see its module docstring): the angle
 at a corner is `arccot(N / sqrt(G))` with the cotangent kept as a `CotanSum`
 (its hash and enclosures come from the integers), and Gauss-Bonnet needs, per
 face, only the integer identity `N0 N1 + N1 N2 + N2 N0 = G` with
@@ -97,11 +97,11 @@ metric's corner angles added per vertex) minus 2 pi, and
 FLIPS = """\
 ## 3. Intrinsic flips to Delaunay
 
-`reference.delaunay.flip_to_delaunay` on a flat torus (rational squared
+`ddg_oracle.reference.delaunay.flip_to_delaunay` on a flat torus (rational squared
 lengths and areas) of 2 n^2 faces, randomised by 1.5 F random flips.  It now
 flips in place on an `IntrinsicTriangulation` (O(1) per flip, frozen once at
 the end); **immutable flips (before)** is the loop as it was before issue 7,
-one O(F) `reference.intrinsic.flip` per flip (the tests check both give the same
+one O(F) `ddg_oracle.reference.intrinsic.flip` per flip (the tests check both give the same
 surface and log).
 """
 

@@ -16,11 +16,11 @@ PROPERTY = "D3.1"        # cotan_laplacian equals the exact cotan weights, withi
 def run_hypothesis(mode: Mode) -> dict:
     from hypothesis import settings
 
-    import properties.profiles  # noqa: F401  (registers the profiles)
-    from oracles.exact_reference import ReferenceImplementation
-    from oracles.libigl import Libigl
-    from properties.registry import PROPERTIES
-    from properties.runner import run_property
+    import ddg_oracle.properties.profiles  # noqa: F401  (registers the profiles)
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from ddg_oracle.oracles.libigl import Libigl
+    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties.runner import run_property
 
     n = 25 if mode.quick else 200
     s = settings(settings.get_profile("ci"), max_examples=n)
@@ -42,7 +42,7 @@ COMMANDS = [
                                      "-p", "no:cacheprovider", "reference", "tests"], {}),
     ("test suite, ci profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
                                 "-p", "no:cacheprovider", "reference", "tests"], {"CI": "true"}),
-    ("ddg-oracle check (default)", [sys.executable, "-m", "oracles.cli", "check"], {}),
+    ("ddg-oracle check (default)", [sys.executable, "-m", "ddg_oracle.cli", "check"], {}),
 ]
 
 

@@ -4,7 +4,7 @@ libraries segfault on a bad index instead of raising.
 :func:`checked_arrays` checks what a library cannot survive or would silently
 misread: shapes, dtypes (a float index would be truncated), index range, NaN
 and infinite coordinates.  It raises the reference's typed errors
-(:mod:`reference.errors`, all ``ValueError``), naming the face and corner or
+(:mod:`ddg_oracle.reference.errors`, all ``ValueError``), naming the face and corner or
 the vertex and coordinate, with the same wording as the reference.  Mesh-level
 properties (repeated vertex in a face, non-manifold edges and vertices,
 unreferenced vertices, zero-area faces) are left to the library on purpose:
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, NegativeIndex,
+from ddg_oracle.reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, NegativeIndex,
                               NonFiniteValue, NonIntegerIndex, NotANumber)
 
 
@@ -35,7 +35,7 @@ def checked_arrays(V, F) -> tuple[np.ndarray, np.ndarray]:
     >>> checked_arrays([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 3]])
     Traceback (most recent call last):
     ...
-    reference.errors.IndexOutOfRange: face 0, corner 2: vertex index 3 >= number of vertices 3
+    ddg_oracle.reference.errors.IndexOutOfRange: face 0, corner 2: vertex index 3 >= number of vertices 3
     """
     V = _array(V, "V")
     F = _array(F, "F")

@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 
-from reference import curvature, delaunay, laplacian
-from reference.combinatorics import Triangulation
-from reference.exact.measures import surd_sum
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference import curvature, delaunay, laplacian
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.exact.measures import surd_sum
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 
 def _view(x) -> float:
@@ -97,12 +97,12 @@ class ReferenceImplementation:
         return np.array(t.faces, dtype=np.int64), np.array(l2, dtype=float)
 
     def planar_delaunay(self, P):
-        from reference.planar import delaunay_triangulation
+        from ddg_oracle.reference.planar import delaunay_triangulation
         return np.array(delaunay_triangulation([tuple(p) for p in np.asarray(P, float)])
                         .triangulation.faces, dtype=np.int64)
 
     def planar_flip_to_delaunay(self, V, F):
-        from reference.planar import planar_flip_to_delaunay
+        from ddg_oracle.reference.planar import planar_flip_to_delaunay
         V = np.asarray(V, float)
         if V.ndim == 2 and V.shape[1] == 3 and np.any(V[:, 2] != 0):
             raise ValueError("planar_flip_to_delaunay: the points must lie in the plane z = 0")

@@ -32,7 +32,7 @@ convex for outward faces).  ``dihedral="library"`` keeps the unsigned angle.
 
 Bad input: gpytoolbox does not check indices (a negative one silently wraps
 around in numpy, one >= #V raises IndexError deep inside); :func:`_arrays`
-(``oracles.arrays.checked_arrays``) checks shapes, index ranges and finite
+(``ddg_oracle.oracles.arrays.checked_arrays``) checks shapes, index ranges and finite
 coordinates first and raises the reference's typed ``ValueError``s.
 
 >>> import numpy as np
@@ -52,7 +52,7 @@ import scipy.sparse
 import gpytoolbox as gpy
 
 from .arrays import checked_arrays
-from .implementations import convention_name
+from .conventions import convention_name
 
 _arrays = checked_arrays
 

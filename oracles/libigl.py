@@ -42,8 +42,8 @@ import scipy.sparse
 import igl
 
 from .arrays import checked_arrays
+from .conventions import CONVENTIONS
 
-BOUNDARY_CONVENTIONS = ("reference", "library")
 
 
 _arrays = checked_arrays
@@ -64,8 +64,8 @@ class Libigl:
     name = "libigl"
 
     def __init__(self, boundary: str = "reference"):
-        if boundary not in BOUNDARY_CONVENTIONS:
-            raise ValueError(f"boundary must be one of {BOUNDARY_CONVENTIONS}, got {boundary!r}")
+        if boundary not in CONVENTIONS:
+            raise ValueError(f"boundary must be one of {CONVENTIONS}, got {boundary!r}")
         self.boundary = boundary
         if boundary != "reference":
             self.name = f"libigl(boundary={boundary!r})"

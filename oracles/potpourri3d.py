@@ -22,7 +22,7 @@ Bad input: ``validate_mesh`` checks shapes only (its index test, off by
 default, uses ``np.amin`` where it means the maximum, core.py l. 23); an
 index out of range raises numpy's IndexError in the numpy functions but
 reaches C++ unchecked in ``edges``.  :func:`_arrays`
-(``oracles.arrays.checked_arrays``) checks first and raises the reference's
+(``ddg_oracle.oracles.arrays.checked_arrays``) checks first and raises the reference's
 typed ``ValueError``s.
 
 >>> import numpy as np

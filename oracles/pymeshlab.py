@@ -15,7 +15,7 @@ Conversions (each a named option; the defaults give the reference's conventions)
 * The Gaussian-curvature filter returns angle defect *divided by* Meyer et
   al.'s mixed area, computed by vcg in single precision.  The adapter
   multiplies by the reference's exact mixed area
-  (:func:`exact_mixed_voronoi_areas`: ``reference.laplacian.vertex_areas_voronoi``,
+  (:func:`exact_mixed_voronoi_areas`: ``ddg_oracle.reference.laplacian.vertex_areas_voronoi``,
   exact ``Surd`` arithmetic, rounded once), so the numbers compared are
   PyMeshLab's, not the conversion's.
 * ``boundary="reference"`` (default): at a boundary vertex vcg returns
@@ -53,11 +53,10 @@ import math
 import numpy as np
 
 from .arrays import checked_arrays
+from .conventions import CONVENTIONS
 
 import pymeshlab
 
-BOUNDARY_CONVENTIONS = ("reference", "library")
-GENUS_CONVENTIONS = ("reference", "library")
 
 
 class VertexOrderChanged(ValueError):
@@ -99,19 +98,19 @@ def _meshset(V, F) -> "pymeshlab.MeshSet":
 def exact_mixed_voronoi_areas(V, F, exact: bool = False):
     """The reference's mixed Voronoi areas (Meyer et al. 2003) of the float input, exact.
 
-    ``reference.laplacian.vertex_areas_voronoi`` when that module is present,
-    else the same rule computed here from ``reference.metric`` (exact squared
+    ``ddg_oracle.reference.laplacian.vertex_areas_voronoi`` when that module is present,
+    else the same rule computed here from ``ddg_oracle.reference.metric`` (exact squared
     lengths, ``Surd`` cotangents and areas): a non-obtuse face gives corner c
     ``(l_a^2 cot(opposite a) + l_b^2 cot(opposite b)) / 8`` over its two sides
     a, b; an obtuse face (decided exactly) gives A/2 to the obtuse corner and
     A/4 to the others.  Sums are exact.  Returns floats (each correctly
     rounded), or the exact ``Surd`` values with ``exact=True``.
     """
-    from reference import PolyhedralSurface
+    from ddg_oracle.reference import PolyhedralSurface
 
     surface = PolyhedralSurface.from_arrays(V, F)
     try:
-        from reference.laplacian import vertex_areas_voronoi
+        from ddg_oracle.reference.laplacian import vertex_areas_voronoi
     except ImportError:
         areas = _mixed_areas_from_metric(surface.metric())
     else:
@@ -120,7 +119,7 @@ def exact_mixed_voronoi_areas(V, F, exact: bool = False):
 
 
 def _mixed_areas_from_metric(metric) -> list:
-    from reference.exact import Surd
+    from ddg_oracle.reference.exact import Surd
 
     t = metric.triangulation
     acc = [Surd(0)] * t.n_vertices
@@ -166,10 +165,10 @@ class PyMeshLab:
     name = "pymeshlab"
 
     def __init__(self, boundary: str = "reference", genus: str = "reference"):
-        if boundary not in BOUNDARY_CONVENTIONS:
-            raise ValueError(f"boundary must be one of {BOUNDARY_CONVENTIONS}, got {boundary!r}")
-        if genus not in GENUS_CONVENTIONS:
-            raise ValueError(f"genus must be one of {GENUS_CONVENTIONS}, got {genus!r}")
+        if boundary not in CONVENTIONS:
+            raise ValueError(f"boundary must be one of {CONVENTIONS}, got {boundary!r}")
+        if genus not in CONVENTIONS:
+            raise ValueError(f"genus must be one of {CONVENTIONS}, got {genus!r}")
         self.boundary = boundary
         self.genus_convention = genus
         options = [f"{k}={v!r}" for k, v in (("boundary", boundary), ("genus", genus))

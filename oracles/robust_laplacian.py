@@ -29,7 +29,7 @@ Options (the defaults give the reference's conventions)
 -------------------------------------------------------
 ``RobustLaplacian(boundary="reference")``: meshes with a boundary edge (an
 edge of exactly one face) are outside the domain: the method raises
-:class:`properties.protocol.OutsideDomain` and the properties do not check
+:class:`ddg_oracle.properties.protocol.OutsideDomain` and the properties do not check
 that example.  ``boundary="library"``: the tufted-cover operator on every mesh.
 
 ``RobustLaplacian(mollify="reference")``: ``mollify_factor=0``, no intrinsic
@@ -40,7 +40,7 @@ some triangle is that close to degenerate (geometry-central
 ``intrinsic_mollification.cpp`` l. 20-37); then every weight changes (R3).
 
 Bad input: the C++ code indexes vertices by the face list unchecked;
-:func:`_arrays` (``oracles.arrays.checked_arrays``) checks shapes, index ranges
+:func:`_arrays` (``ddg_oracle.oracles.arrays.checked_arrays``) checks shapes, index ranges
 and finite coordinates first and raises the reference's typed ``ValueError``s.
 
 >>> import numpy as np
@@ -58,10 +58,10 @@ import scipy.sparse
 
 import robust_laplacian
 
-from properties.protocol import OutsideDomain
+from ddg_oracle.properties.protocol import OutsideDomain
 
 from .arrays import checked_arrays
-from .implementations import convention_name
+from .conventions import convention_name
 
 MOLLIFY_FACTOR = {"reference": 0.0, "library": 1e-5}   # mollify option -> mollify_factor
 

@@ -1,21 +1,24 @@
 """Hypothesis strategies of meshes and implementation-agnostic properties, one per catalog ID.
 
+Importing this package registers our properties in our own registry and
+nothing else: no Hypothesis profile is loaded or registered (see
+:mod:`.profiles`), so a user's own ``@given`` tests keep their settings.
+
 Use from your own tests::
 
-    from properties import check_implementation
+    from ddg_oracle.properties import check_implementation
     check_implementation(MyImplementation())          # raises AssertionError on failure
 
 or draw meshes for your own properties::
 
     from hypothesis import given
-    from properties import any_meshes
+    from ddg_oracle.properties import any_meshes
 
     @given(any_meshes())
     def test_mine(case):
         V, F = case.arrays()                          # float64 n x 3, int64 m x 3
 """
 
-from . import profiles  # noqa: F401  (registers the default / ci / thorough profiles)
 from .registry import PROPERTIES, Property, PropertyFailure, TieDisagreement, all_properties
 from .runner import check_implementation, run_properties
 from .strategies import (SurfaceCase, closed_surfaces, named_surfaces, triangulated_surfaces)

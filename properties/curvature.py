@@ -1,9 +1,9 @@
 """Chapter 2 properties: curvature of polyhedral surfaces (D2.2, R2.2, L2.4, T2.5, T2.6,
 X2.1, R2.4, D2.3, T2.7, R2.5, D2.6, X2.3).
 
-Each property takes an implementation (see :mod:`properties.protocol`) and an
+Each property takes an implementation (see :mod:`ddg_oracle.properties.protocol`) and an
 example drawn from its strategy.  Expected values come from the exact reference
-(:mod:`reference.curvature`) evaluated on *exactly the float coordinates the
+(:mod:`ddg_oracle.reference.curvature`) evaluated on *exactly the float coordinates the
 implementation receives* (every float is a rational), or from how the example
 was built (chi, the kind of a vertex star, a support-function integral).
 
@@ -30,10 +30,10 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import assume, strategies as st
 
-from reference import curvature as ref
-from reference import surfaces
-from reference.combinatorics import Triangulation
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference import curvature as ref
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .registry import PropertyFailure, TieDisagreement, prop
 
@@ -612,7 +612,7 @@ def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
       "(the piecewise flat metric built from squared lengths alone)", needs={"corner_angles"},
       strategy=jittered_surfaces)
 def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
-    from reference.metric import PiecewiseFlatSurface
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
     m = case.surface.metric()
     flat = PiecewiseFlatSurface(case.triangulation, m.squared_lengths)     # no positions used
     expected = np.array([[float(a) for a in face] for face in ref.corner_angles(flat)])

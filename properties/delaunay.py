@@ -8,11 +8,11 @@ reference sign: positive semidefinite) and ``intrinsic_delaunay_triangulation``
 (faces and squared lengths, ``l2[f, c]`` the edge opposite corner c).
 
 The truth is the exact reference on the very floats the implementation received
-(:class:`properties.laplacian.Exact`) and its exact flip algorithm
-(:func:`reference.delaunay.flip_to_delaunay`).
+(:class:`ddg_oracle.properties.laplacian.Exact`) and its exact flip algorithm
+(:func:`ddg_oracle.reference.delaunay.flip_to_delaunay`).
 
 Error model, derived and stated.  For the input triangulation: the corner bound
-``beta = K_COT eps (1 + cot^2) rho`` of :mod:`properties.laplacian`.  A float
+``beta = K_COT eps (1 + cot^2) rho`` of :mod:`ddg_oracle.properties.laplacian`.  A float
 implementation that flips edges computes each new squared diagonal from the
 five squared lengths and two areas of its quadrilateral, in the reference's
 notation ``b + c - (e+b-a)(e+c-d)/(2e) + 8 A1 A2 / e``; to first order its
@@ -37,11 +37,11 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import strategies as st
 
-from reference.curvature import corner_angles
-from reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
-from reference.intrinsic import flip
-from reference.laplacian import cotan_laplacian
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.curvature import corner_angles
+from ddg_oracle.reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
+from ddg_oracle.reference.intrinsic import flip
+from ddg_oracle.reference.laplacian import cotan_laplacian
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .laplacian import (K_COT, Exact, MeshCase, _case, _dense, _fail, _record, _solve, _worst,
                         any_meshes, closed_meshes, entry_bounds, gamma, grid_faces, jittered_grids,
@@ -119,7 +119,7 @@ class DelaunayExact:
         pairs get the largest bound of the cell's own zero-weight edges: the same corners'
         conditioning, a weight that is 0 either way.  Weights within their bound of 0 count
         as 0: there rounding decides which diagonal is Delaunay."""
-        from reference.laplacian import cotan_weights
+        from ddg_oracle.reference.laplacian import cotan_weights
         t = self.delaunay.triangulation
         w = cotan_weights(self.delaunay)
         root = list(range(t.n_faces))
@@ -182,7 +182,7 @@ def flipped_meshes(draw):
     """A closed jittered polyhedron (or a grid in R^3) with up to 12 drawn combinatorial
     flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
     flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
-    from reference.errors import InputError
+    from ddg_oracle.reference.errors import InputError
     case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
         lambda s: _case(s.positions, s.triangulation.faces, "polycube"))))
     t = case.surface().triangulation
@@ -587,7 +587,7 @@ def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
     """(exact in-circle determinant of the exact points (D4.1), as float; the bound on the
     error of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
     the permanent of the lifted 3 x 3 matrix, rounded up to 16 eps."""
-    from reference.delaunay import incircle_determinant
+    from ddg_oracle.reference.delaunay import incircle_determinant
     rows = [(p[0] - d[0], p[1] - d[1]) for p in (a, b, c)]
     lifts = [x * x + y * y for x, y in rows]
     (ax, ay), (bx, by), (cx, cy) = rows
@@ -600,7 +600,7 @@ def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
 def _real_violations(pts, tris):
     """Empty-disk violations of the triangles beyond the float in-circle bound, and the
     number within it (near ties, which rounding decides)."""
-    from reference.planar import empty_disk_violations, orientation
+    from ddg_oracle.reference.planar import empty_disk_violations, orientation
     real, ties = [], 0
     for cell, v, why in empty_disk_violations(pts, [frozenset(t) for t in tris]):
         t = sorted(cell)
@@ -619,7 +619,7 @@ def _real_violations(pts, tris):
       "other point in its interior (exact in-circle test on the float points)",
       needs={"planar_delaunay"}, strategy=_planar_points)
 def empty_disk_property(impl, pts):
-    from reference.planar import orientation
+    from ddg_oracle.reference.planar import orientation
     tris, mesh = _planar_result(impl, pts, "D4.1")
     for k, t in enumerate(tris):
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) == 0:
@@ -640,7 +640,7 @@ def empty_disk_property(impl, pts):
       "cocircular triangles are merged (compared with the exact flip algorithm's)",
       needs={"planar_delaunay"}, strategy=_planar_points)
 def unique_planar_tessellation(impl, pts):
-    from reference.planar import cocircular_cells, delaunay_tessellation
+    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
     tris, mesh = _planar_result(impl, pts, "T4.1")
     got, want = cocircular_cells(pts, tris), delaunay_tessellation(pts)
     if got != want:
@@ -667,7 +667,7 @@ def _planar_triangulations():
       "started on the convex hull, the Delaunay tessellation (T4.1)",
       needs={"planar_flip_to_delaunay"}, strategy=_planar_triangulations)
 def planar_flips_reach_delaunay(impl, example):
-    from reference.planar import cocircular_cells, delaunay_tessellation, in_circle, orientation
+    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation, in_circle, orientation
     pid = "L4.3 / P4.4"
     pts, faces, on_hull = example
     V = np.array([[float(x), float(y), 0.0] for x, y in pts])
@@ -735,7 +735,7 @@ def _quads():
       "sign is that of r1 r3 - r2 r4 (L4.15, C4.16) unless within the bound",
       needs={"cotan_laplacian"}, strategy=_quads)
 def rippa_energy_difference(impl, quad_u):
-    from reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
+    from ddg_oracle.reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
     pts, u = quad_u
     exact = float(rippa_right_side(pts, u))
     V = [(x, y, 0) for x, y in pts]

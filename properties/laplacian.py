@@ -5,14 +5,14 @@ for L3.7, ``vertex_areas_voronoi`` / ``vertex_areas_barycentric``), V float64
 n x 3 and F int m x 3, in the reference's conventions: ``(L f)(i) = sum_j nu(ij)
 (f(i) - f(j))``, positive semidefinite, ``nu = 1/2 (cot a + cot b)``, boundary
 ``1/2 cot a`` (see ``properties/protocol.py``).  The truth comes from the exact
-reference (``reference.laplacian``, ``reference.area``) evaluated on the very
+reference (``ddg_oracle.reference.laplacian``, ``ddg_oracle.reference.area``) evaluated on the very
 floats the implementation received (every float is a dyadic rational, taken
 exactly), or from how the example was built.
 
 Tolerances are derived, never a bare constant.  A stable floating point
 cotangent of a corner is the exact cotangent of a triangle whose side lengths
 (or coordinates) are perturbed relatively by a few units of ``EPS``, the
-checked implementation's declared machine epsilon (:func:`properties.protocol.eps`:
+checked implementation's declared machine epsilon (:func:`ddg_oracle.properties.protocol.eps`:
 2**-52 for float64 unless the implementation declares e.g. float32).  A
 relative change ``delta`` of one side ``a`` moves an angle by at most
 ``delta a^2 / (2A) <= delta rho_T`` with ``rho_T = l_max^2 / (2 A_T)`` (the
@@ -44,14 +44,14 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.area import area_gradient
-from reference.combinatorics import Triangulation
-from reference.dirichlet import directional_derivative
-from reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.area import area_gradient
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.dirichlet import directional_derivative
+from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
                                  vertex_areas_barycentric, vertex_areas_voronoi,
                                  weight_sign_by_angles)
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .protocol import eps
 from .registry import PropertyFailure, TieDisagreement, prop
@@ -406,7 +406,7 @@ class EntryBounds:
     """Float views of the exact cotan corners of a metric and the entry bounds ``B`` of its
     Laplacian (module docstring); ``amplification[f]`` scales the length perturbation
     of face f (1 for lengths computed from coordinates; more after float flips, see
-    :mod:`properties.delaunay`)."""
+    :mod:`ddg_oracle.properties.delaunay`)."""
 
     cot: np.ndarray
     rho: np.ndarray
@@ -826,7 +826,7 @@ def minimal_surface_step_decreases_area(impl, case: MeshCase):
 
 
 def _face_areas(surface):
-    from reference.exact import sqrt
+    from ddg_oracle.reference.exact import sqrt
     p = surface.positions
     for a, b, c in surface.triangulation.faces:
         u = [y - x for x, y in zip(p[a], p[b])]

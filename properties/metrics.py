@@ -19,10 +19,10 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from reference.combinatorics import Triangulation
-from reference.intrinsic import flip, is_flippable
-from reference.metric import PiecewiseFlatSurface
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.intrinsic import flip, is_flippable
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 __all__ = ["flat_torus", "flat_tori", "polycube", "polycube_surfaces", "randomly_flipped"]
 

@@ -13,7 +13,7 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from reference.planar import orientation
+from ddg_oracle.reference.planar import orientation
 
 #: the 12 integer points on the circle x^2 + y^2 = 25 (from 3^2 + 4^2 = 5^2)
 CIRCLE5 = ((5, 0), (4, 3), (3, 4), (0, 5), (-3, 4), (-4, 3),
@@ -137,8 +137,8 @@ def planar_triangulations(draw, max_points: int = 12):
     non-convex polygon: ``on_hull`` is False, the flips keep its boundary).
     Faces are counterclockwise.  Shrinks towards three points.
     """
-    from reference.errors import InputError
-    from reference.planar import planar_triangulation, straight_line_flip
+    from ddg_oracle.reference.errors import InputError
+    from ddg_oracle.reference.planar import planar_triangulation, straight_line_flip
 
     pts = tuple((Fraction(float(x)), Fraction(float(y)))
                 for x, y in draw(rational_point_sets(max_points)))

@@ -1,8 +1,13 @@
 """Hypothesis settings profiles, the example database, and the time limit per example.
 
 Profiles: ``default`` (fast), ``ci`` (derandomized, more examples) and
-``thorough``.  Select one with pytest's ``--hypothesis-profile``,
-``ddg-oracle check --profile``, or ``settings.load_profile(name)``.
+``thorough``, registered with Hypothesis under our own names
+``ddg-oracle-default``, ``ddg-oracle-ci`` and ``ddg-oracle-thorough`` the first
+time one is asked for (:func:`profile`), never at import.  Nothing here loads
+a profile or touches the profiles Hypothesis or a user own: importing
+ddg-oracle leaves every other Hypothesis test exactly as strong as it was.
+Select ours with ``ddg-oracle check --profile``, pytest's ``--ddg-profile``,
+or ``settings.load_profile("ddg-oracle-ci")`` after :func:`register_profiles`.
 
 Example database (where Hypothesis saves every failing example and from which
 it replays them first on the next run): chosen by the environment variable
@@ -25,7 +30,7 @@ keeps its runs reproducible: ``pytest --hypothesis-seed 0`` or
 
 Time limit: every property example runs under :func:`example_time_limit`
 (``DDG_EXAMPLE_TIME_LIMIT`` seconds, default 120, ``0`` for none).  An example
-that overruns raises :class:`~reference.errors.TimeLimitExceeded` saying what
+that overruns raises :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` saying what
 to change; Hypothesis then shrinks and reports it like any failure.  (Hypothesis's
 own ``deadline`` stays off: it only measures after the example has returned,
 so it cannot stop one that never returns.)
@@ -42,9 +47,11 @@ from contextlib import contextmanager
 from hypothesis import HealthCheck, settings
 from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 
-from reference.errors import InputError, TimeLimitExceeded
+from ddg_oracle.reference.errors import InputError, TimeLimitExceeded
 
 PROFILES = ("default", "ci", "thorough")
+#: Hypothesis profile name of each of ours: a prefix no user or Hypothesis profile has.
+PREFIX = "ddg-oracle-"
 DATABASE_ENV = "DDG_HYPOTHESIS_DATABASE"
 TIME_LIMIT_ENV = "DDG_EXAMPLE_TIME_LIMIT"
 #: Seconds per property example when ``DDG_EXAMPLE_TIME_LIMIT`` is unset: far
@@ -94,19 +101,21 @@ def database_from(spec: str | None):
 
 
 def _register(database) -> None:
+    global _registered
+    _registered = True
     db = {} if database is _DEFAULT_DATABASE else {"database": database}
     settings.register_profile(
-        "default", max_examples=25, deadline=None, suppress_health_check=_quiet, **db)
+        PREFIX + "default", max_examples=25, deadline=None, suppress_health_check=_quiet, **db)
     if db and database is not None:
         # derandomize excludes a database: reproducible through a fixed seed instead
         ci = {"derandomize": False, "database": database}
     else:
         ci = {"derandomize": True, "database": None}
     settings.register_profile(
-        "ci", max_examples=60, deadline=None, suppress_health_check=_quiet, print_blob=True,
+        PREFIX + "ci", max_examples=60, deadline=None, suppress_health_check=_quiet, print_blob=True,
         **ci)
     settings.register_profile(
-        "thorough", max_examples=1000, deadline=None, suppress_health_check=_quiet, **db)
+        PREFIX + "thorough", max_examples=1000, deadline=None, suppress_health_check=_quiet, **db)
 
 
 def use_database(spec: str | None) -> ExampleDatabase | None:
@@ -120,14 +129,28 @@ def use_database(spec: str | None) -> ExampleDatabase | None:
     return None if db is _DEFAULT_DATABASE else db
 
 
-_register(database_from(os.environ.get(DATABASE_ENV)))
+_registered = False
+
+
+def register_profiles() -> None:
+    """Register ``ddg-oracle-default``, ``-ci`` and ``-thorough`` (database from
+    ``DDG_HYPOTHESIS_DATABASE``) unless done already; loads none of them."""
+    if not _registered:
+        _register(database_from(os.environ.get(DATABASE_ENV)))
 
 
 def profile(name: str) -> settings:
-    """The registered settings object of a profile, with a clear error for a typo."""
-    if name not in PROFILES:
+    """The settings of one of our profiles, by short name (``"ci"``) or Hypothesis name
+    (``"ddg-oracle-ci"``), with a clear error for a typo.
+
+    >>> profile("ci").derandomize or profile("ci").database is not None
+    True
+    """
+    short = name[len(PREFIX):] if name.startswith(PREFIX) else name
+    if short not in PROFILES:
         raise ValueError(f"unknown Hypothesis profile {name!r}; choose one of {', '.join(PROFILES)}")
-    return settings.get_profile(name)
+    register_profiles()
+    return settings.get_profile(PREFIX + short)
 
 
 # --- time limit per property example ------------------------------------------
@@ -150,7 +173,7 @@ def time_limit_seconds() -> float | None:
 
 @contextmanager
 def example_time_limit(what: str, seconds: float | None = -1.0):
-    """Raise :class:`~reference.errors.TimeLimitExceeded` if the block runs over ``seconds``.
+    """Raise :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` if the block runs over ``seconds``.
 
     ``what`` names the property and implementation in the message; ``seconds``
     defaults to :func:`time_limit_seconds`, None means no limit.  Uses

@@ -87,3 +87,69 @@ def capabilities(impl) -> frozenset[str]:
 def implementation_name(impl) -> str:
     """A display name: ``impl.name`` if set, else the class name."""
     return str(getattr(impl, "name", None) or type(impl).__name__)
+
+
+#: Names other libraries give to protocol methods (libigl, gpytoolbox, trimesh, ...),
+#: so that a near miss is answered with the protocol's name.
+KNOWN_ALIASES: dict[str, str] = {
+    "cotmatrix": "cotan_laplacian", "cotangent_laplacian": "cotan_laplacian",
+    "laplacian": "cotan_laplacian", "massmatrix": "vertex_areas_voronoi",
+    "mass_matrix": "vertex_areas_voronoi", "gaussian_curvature": "angle_defects",
+    "angle_defect": "angle_defects", "vertex_defects": "angle_defects",
+    "internal_angles": "corner_angles", "tip_angles": "corner_angles",
+    "doublearea": "area", "boundary_loop": "boundary_loops", "boundary_loop_all": "boundary_loops",
+    "euler": "euler_characteristic", "euler_number": "euler_characteristic",
+    "intrinsic_delaunay_cotmatrix": "intrinsic_delaunay_laplacian",
+    "delaunay": "planar_delaunay", "mean_curvature": "edge_mean_curvature",
+}
+
+
+class NotAnImplementation(TypeError):
+    """An object given as an implementation that defines none of the protocol's methods:
+    checking it would pass every property vacuously."""
+
+
+def near_misses(impl) -> list[tuple[str, str]]:
+    """(name ``impl`` has, protocol method it probably means), for its public callables
+    that are not protocol methods but look like one.
+
+    >>> class Typo:
+    ...     def angle_defect(self, V, F): ...
+    ...     def cotmatrix(self, V, F): ...
+    >>> near_misses(Typo())
+    [('angle_defect', 'angle_defects'), ('cotmatrix', 'cotan_laplacian')]
+    """
+    import difflib
+
+    out = []
+    for name in sorted(dir(impl)):
+        if name.startswith("_") or name in METHODS or not callable(getattr(impl, name, None)):
+            continue
+        guess = KNOWN_ALIASES.get(name.lower()) or next(
+            iter(difflib.get_close_matches(name.lower(), METHODS, n=1, cutoff=0.75)), None)
+        if guess is not None and guess not in capabilities(impl):
+            out.append((name, guess))
+    return out
+
+
+def require_protocol(impl) -> frozenset[str]:
+    """The protocol methods ``impl`` defines; :class:`NotAnImplementation` if none, naming
+    the protocol's methods and the nearest names ``impl`` has.
+
+    >>> class Typo:
+    ...     def angle_defect(self, V, F): ...
+    >>> require_protocol(Typo())
+    Traceback (most recent call last):
+    ...
+    ddg_oracle.properties.protocol.NotAnImplementation: Typo defines none of the protocol's methods (did you mean `angle_defects` for `angle_defect`?); the methods are: euler_characteristic, boundary_loops, is_orientable, genus, corner_angles, angle_defects, edge_mean_curvature, area, cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi, is_locally_delaunay, intrinsic_delaunay_laplacian, intrinsic_delaunay_triangulation, planar_flip_to_delaunay, planar_delaunay (ddg_oracle.properties.protocol.METHODS)
+    """
+    caps = capabilities(impl)
+    if caps:
+        return caps
+    misses = near_misses(impl)
+    hint = ""
+    if misses:
+        hint = " (did you mean " + ", ".join(f"`{g}` for `{n}`" for n, g in misses) + "?)"
+    raise NotAnImplementation(
+        f"{implementation_name(impl)} defines none of the protocol's methods{hint}; the "
+        f"methods are: {', '.join(METHODS)} (ddg_oracle.properties.protocol.METHODS)")

@@ -157,8 +157,40 @@ PROPERTY_MODULES = ("topology", "curvature", "laplacian", "delaunay")
 
 
 def all_properties() -> list[Property]:
-    """Every registered property, in catalog order of registration."""
+    """Every registered property, chapter module by chapter module (PROPERTY_MODULES), each
+    in its order of registration: the same order whichever module was imported first."""
     import importlib
     for m in PROPERTY_MODULES:
         importlib.import_module(f"{__package__}.{m}")
-    return list(PROPERTIES.values())
+    order = {f"{__package__}.{m}": k for k, m in enumerate(PROPERTY_MODULES)}
+    registered = list(PROPERTIES.values())
+    return sorted(registered, key=lambda p: (order.get(p.check.__module__, len(order)),
+                                             registered.index(p)))
+
+
+def _parts(catalog_id: str) -> set[str]:
+    """The IDs a (possibly joint) catalog ID is made of: 'L4.3 / P4.4' -> {'L4.3', 'P4.4'}."""
+    return {part.strip() for part in catalog_id.split("/")}
+
+
+def select_properties(only=None) -> list[Property]:
+    """The registered properties whose catalog ID is, or has as one of its parts, one of
+    ``only`` (every property if ``only`` is None); ValueError naming an ID that selects
+    none.  Entries of ``only`` may themselves be comma-separated.
+
+    >>> [p.id for p in select_properties(["L4.3", "D1.6"])]
+    ['D1.6', 'L4.3 / P4.4']
+    """
+    props = all_properties()
+    if only is None:
+        return props
+    wanted = {w.strip() for entry in only for w in str(entry).split(",") if w.strip()}
+    chosen = [p for p in props if p.id in wanted or _parts(p.id) & wanted]
+    known = {part for p in props for part in _parts(p.id) | {p.id}}
+    unknown = sorted(wanted - known)
+    if unknown:
+        import difflib
+        hints = [f"{u} (did you mean {', '.join(m)}?)" if (m := difflib.get_close_matches(
+            u, sorted(known), n=3, cutoff=0.6)) else u for u in unknown]
+        raise ValueError(f"no property for catalog ID(s) {', '.join(hints)}")
+    return chosen

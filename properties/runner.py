@@ -8,21 +8,21 @@ observed).  The CLI uses :func:`run_properties` and prints the results instead.
 A :class:`Result` has one of these statuses:
 
 * ``passed``: every example held;
-* ``FAILED``: a :class:`~properties.registry.PropertyFailure` on the shrunk example;
+* ``FAILED``: a :class:`~ddg_oracle.properties.registry.PropertyFailure` on the shrunk example;
 * ``tie disagreement``: no failure, but on some example the exact reference
   decided an exact tie the implementation decided otherwise within its rounding
-  (:class:`~properties.registry.TieDisagreement`); the smallest such example is kept;
+  (:class:`~ddg_oracle.properties.registry.TieDisagreement`); the smallest such example is kept;
 * ``convention``: a failure that disappears when the implementation's documented
   convention is mapped onto the reference's (``counterpart``, see
   :func:`run_property`): expected, not an error;
 * ``crashed``: the implementation raised, died or hung on the (shrunk) example;
 * ``undecided``: the exact reference hit one of its guards (a term limit, a
   precision limit; the per-example time limit counts as a hang:
-  :class:`reference.errors.ExactArithmeticLimit`) before deciding; the message
+  :class:`ddg_oracle.reference.errors.ExactArithmeticLimit`) before deciding; the message
   says which limit to raise;
 * ``not applicable``: the implementation lacks a method the property needs, or
   declined every example as outside its domain
-  (:class:`~properties.protocol.OutsideDomain`; declined examples are not counted).
+  (:class:`~ddg_oracle.properties.protocol.OutsideDomain`; declined examples are not counted).
 
 Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
 """
@@ -35,11 +35,11 @@ from dataclasses import dataclass, field, replace
 
 from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
-from reference.errors import ExactArithmeticLimit, TimeLimitExceeded
+from ddg_oracle.reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
 from .profiles import profile as named_profile
-from .protocol import OutsideDomain, capabilities, implementation_name
-from .registry import Property, PropertyFailure, TieDisagreement, all_properties, faces_text
+from .protocol import OutsideDomain, capabilities, implementation_name, require_protocol
+from .registry import Property, PropertyFailure, TieDisagreement, faces_text, select_properties
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
@@ -151,7 +151,9 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
         missing = sorted(p.needs - capabilities(impl))
-        return Result(p.id, p.name, name, NOT_APPLICABLE, note=f"lacks {', '.join(missing)}")
+        return Result(p.id, p.name, name, NOT_APPLICABLE,
+                      note=f"lacks {', '.join(missing)} (protocol method"
+                           f"{'s' if len(missing) > 1 else ''} this property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
              "why": None, "abort": False}
     # examples the implementation declines are counted, not checked; the check is wrapped
@@ -306,12 +308,13 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
 
 def run_properties(impl, profile: str = "default", only=None, seed: int | None = None,
                    on_result=None) -> list[Result]:
-    """Every registered (or ``only`` the given IDs) property on ``impl``."""
+    """Every registered property (or those of the catalog IDs ``only``, parts of joint IDs
+    included) on ``impl``; :class:`~.protocol.NotAnImplementation` if ``impl`` defines
+    none of the protocol's methods (every property would pass vacuously)."""
+    require_protocol(impl)
     s = named_profile(profile)
     results = []
-    for p in all_properties():
-        if only is not None and p.id not in only:
-            continue
+    for p in select_properties(only):
         r = run_property(p, impl, s, seed)
         results.append(r)
         if on_result is not None:
@@ -323,7 +326,7 @@ def check_implementation(impl, profile: str = "default", only=None,
                          seed: int | None = None) -> list[Result]:
     """Run every applicable property on ``impl``; raise AssertionError on any failure.
 
-    >>> from oracles.exact_reference import ReferenceImplementation
+    >>> from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     >>> results = check_implementation(ReferenceImplementation(), only={"D1.6"})
     >>> [r.status for r in results]
     ['passed']

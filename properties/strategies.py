@@ -15,9 +15,9 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.combinatorics import Classification, Triangulation, connected_sum
-from reference.errors import InputError, NotFlippable
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Classification, Triangulation, connected_sum
+from ddg_oracle.reference.errors import InputError, NotFlippable
 
 
 @dataclass(frozen=True)
@@ -202,7 +202,7 @@ _NAMED = {
 
 
 def named_surfaces():
-    """The constructors of ``reference.surfaces`` with their known topology (X1.4)."""
+    """The constructors of ``ddg_oracle.reference.surfaces`` with their known topology (X1.4)."""
     truth = {
         "disk": expected_classification(True, 0, 1),
         "sphere (tetrahedron)": expected_classification(True, 0, 0),

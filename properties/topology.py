@@ -1,6 +1,6 @@
 """Chapter 1 properties: Euler characteristic and the classification of surfaces.
 
-Each property takes an implementation (see :mod:`properties.protocol`) and an
+Each property takes an implementation (see :mod:`ddg_oracle.properties.protocol`) and an
 example drawn from its strategy.  The truth comes from how the example was
 built (genus, crosscaps, holes), never from the implementation under test.
 """
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from reference.combinatorics import connected_sum
+from ddg_oracle.reference.combinatorics import connected_sum
 
 from .registry import PropertyFailure, prop
 from .strategies import (SurfaceCase, apply_moves, closed_surfaces, extend_positions,

@@ -3,7 +3,7 @@
 Standard library only; no float and no tolerance decides anything.  Data flows
 one way: combinatorics -> metric -> operators -> algorithms.
 
->>> from reference import surfaces
+>>> from ddg_oracle.reference import surfaces
 >>> surfaces.tetrahedron().triangulation.euler_characteristic()
 2
 """

@@ -6,7 +6,7 @@ Dirichlet energy of its coordinate functions; its gradient is the cotan
 Laplacian of the positions).  Everything is exact: squared lengths and dot
 products are Fractions, areas and cotangents are Surds.
 
-Conventions: those of :mod:`reference.laplacian` (``Lap`` positive semidefinite,
+Conventions: those of :mod:`ddg_oracle.reference.laplacian` (``Lap`` positive semidefinite,
 ``E(f) = 1/2 sum_edges nu(ij) (f(i) - f(j))^2``, cotan weights (3.3)).  For an
 R^N-valued f, ``E(f) = sum_k E(f_k)`` and ``Lap`` acts coordinate-wise.
 
@@ -15,7 +15,7 @@ nu(ij) |f(i) - f(j)|^2`` and ``grad_{f(i)} A = (Lap f)(i)``.  The notes print
 ``A = 2 sum_k E(f_k) = sum nu |f(i) - f(j)|^2`` and ``grad A = 2 Lap f``, both
 twice too large (see :func:`area_as_dirichlet_energy` for the evidence).
 
->>> from reference import surfaces
+>>> from ddg_oracle.reference import surfaces
 >>> s = surfaces.tetrahedron()
 >>> area_as_dirichlet_energy(s) == s.metric().total_area()        # T3.9
 True

@@ -958,7 +958,7 @@ class _Builder:
     It also reads like a :class:`Triangulation` (``tail``, ``head``,
     ``edge_halfedges``, ...), so that a long sequence of flips can run on one
     builder, O(1) each, and be frozen once with :meth:`build`
-    (:class:`reference.intrinsic.IntrinsicTriangulation`); ``Triangulation.flip``
+    (:class:`ddg_oracle.reference.intrinsic.IntrinsicTriangulation`); ``Triangulation.flip``
     is one :meth:`flip` on a fresh copy, so both give identical triangulations.
     """
 

@@ -1,15 +1,15 @@
 """Exact cotan weights and cotan Laplacian, fast: integer arithmetic, same values.
 
-:mod:`reference.laplacian` is the definition of the cotan weights (3.3) and of
+:mod:`ddg_oracle.reference.laplacian` is the definition of the cotan weights (3.3) and of
 the cotan Laplacian (D3.2): exact squared lengths and Surd face areas
-(:class:`~reference.metric.PiecewiseFlatSurface`), one cotangent per corner,
+(:class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface`), one cotangent per corner,
 weights added edge by edge.  This module computes the *same* exact values
 (``==`` on every entry, tested with Hypothesis and on a 1,280-face float
 icosphere) about 60 times faster on float meshes, standard library only
 (about 12 times faster when every canonical form is computed as well, which
 the definition always does).
-:func:`reference.laplacian.cotan_laplacian` dispatches here whenever it
-applies (:func:`applies`); :mod:`reference.curvature_fast` reuses the face
+:func:`ddg_oracle.reference.laplacian.cotan_laplacian` dispatches here whenever it
+applies (:func:`applies`); :mod:`ddg_oracle.reference.curvature_fast` reuses the face
 data.
 
 How, exactly at every step:
@@ -30,7 +30,7 @@ How, exactly at every step:
 2. *The value kept as it comes.*  An edge weight is
    ``1/2 (n_1 / sqrt(G_1) + n_2 / sqrt(G_2))``, a diagonal entry of the
    Laplacian ``1/2 sum_f n_f / sqrt(G_f)`` over the faces at the vertex.  Such a
-   number is returned as a :class:`CotanSum`: a :class:`~reference.exact.Surd`
+   number is returned as a :class:`CotanSum`: a :class:`~ddg_oracle.reference.exact.Surd`
    that keeps these integers and computes its canonical form (base, terms)
    only when something needs it -- equality with another Surd, arithmetic,
    ``str``.  What is cheap is done on the integers, exactly:
@@ -53,7 +53,7 @@ How, exactly at every step:
      as for every Surd: ``|n| 2^k / (2 sqrt(G))`` lies in ``[s, s + 1]`` for
      ``s = isqrt(n^2 4^k // 4G)`` (:meth:`CotanSum._bounds`).
 3. *Canonical form on demand.*  ``G = c^2 m`` with ``m`` free of squares of the
-   primes below 100 -- the radicand :func:`reference.exact.sqrt` gives for the
+   primes below 100 -- the radicand :func:`ddg_oracle.reference.exact.sqrt` gives for the
    face -- and ``m = s M``: ``s`` the product of the primes below 100 dividing
    ``m``, ``M`` free of them (:func:`_split_root`; computed once per face, when
    first needed).  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``.  An entry's
@@ -183,7 +183,7 @@ class FaceData:
 
     def root(self, f: int) -> tuple:
         """``(m, den, k)``: half the cotangent ``n / sqrt(G[f])`` of a corner of face f
-        is ``(n k / den) sqrt(m)``, m the radicand :func:`reference.exact.sqrt` gives."""
+        is ``(n k / den) sqrt(m)``, m the radicand :func:`ddg_oracle.reference.exact.sqrt` gives."""
         r = self._roots[f]
         if r is None:
             G, S = self.G[f], self.S[f]
@@ -316,7 +316,7 @@ def _lengths_data(m: PiecewiseFlatSurface) -> FaceData:
 
 def face_data(surface) -> FaceData:
     """The integers of step 1 for a surface that :func:`applies`; raises
-    :class:`~reference.errors.DegenerateFace` at a face of zero area."""
+    :class:`~ddg_oracle.reference.errors.DegenerateFace` at a face of zero area."""
     if isinstance(surface, PolyhedralSurface):
         return _positions_data(surface)
     return _lengths_data(surface)
@@ -326,7 +326,7 @@ def face_data(surface) -> FaceData:
 
 
 class CotanSum(Surd):
-    """An irrational :class:`~reference.exact.Surd` known as ``1/2 sum n_k / sqrt(G_k)``.
+    """An irrational :class:`~ddg_oracle.reference.exact.Surd` known as ``1/2 sum n_k / sqrt(G_k)``.
 
     The terms are integers of a :class:`FaceData` (``raw = (f1, n1, f2, n2, ...)``,
     ``G_k = G[f_k]``, nonzero ``n_k``); the value is known to be irrational when
@@ -585,7 +585,7 @@ def face_cotangents(surface) -> list[tuple]:
     ``[(cot0, cot1, cot2), ...]`` equal to
     ``PiecewiseFlatSurface.corner_cot(f, c)`` (Fractions where rational).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> face_cotangents(surfaces.grid(1, 1))[0]
     (Fraction(1, 1), Fraction(0, 1), Fraction(1, 1))
     """
@@ -596,15 +596,15 @@ def face_cotangents(surface) -> list[tuple]:
 
 
 def cotan_weights_fast(surface) -> dict:
-    """(3.3): the cotan weights, equal to :func:`reference.laplacian.cotan_weights`.
+    """(3.3): the cotan weights, equal to :func:`ddg_oracle.reference.laplacian.cotan_weights`.
 
     Same keys (every edge id) and values (``==``), Fractions where rational,
     irrational ones as :class:`CotanSum` (Surds whose canonical form is computed
     when first needed); see the module docstring.  For surfaces that
     :func:`applies` rejects, use the definition.
 
-    >>> from reference import surfaces
-    >>> from reference.laplacian import cotan_weights
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.laplacian import cotan_weights
     >>> s = surfaces.icosahedron()
     >>> cotan_weights_fast(s) == cotan_weights(s)
     True
@@ -618,7 +618,7 @@ def cotan_weights_fast(surface) -> dict:
 
 def cotan_laplacian_fast(surface) -> SparseMatrix:
     """D3.2: the cotan Laplacian, equal to the definition
-    :func:`reference.laplacian.cotan_laplacian_from_weights` (``==`` entrywise).
+    :func:`ddg_oracle.reference.laplacian.cotan_laplacian_from_weights` (``==`` entrywise).
 
     Diagonal: vertex ``i`` collects, from each face at one of its corners, the
     half-cotangents of the two other corners (one positive term per face); then
@@ -626,8 +626,8 @@ def cotan_laplacian_fast(surface) -> SparseMatrix:
     ``j`` (several edges between two vertices are summed, loops ignored).
     Irrational entries are :class:`CotanSum` values.
 
-    >>> from reference import surfaces
-    >>> from reference.laplacian import cotan_laplacian_from_weights
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.laplacian import cotan_laplacian_from_weights
     >>> s = surfaces.torus(6, 4)
     >>> cotan_laplacian_fast(s) == cotan_laplacian_from_weights(s)
     True

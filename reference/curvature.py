@@ -1,8 +1,8 @@
 """Curvature of polyhedral surfaces (chapter 2 of the notes), exact.
 
 Intrinsic quantities (everything here that needs edge lengths only) take a
-:class:`~reference.metric.PiecewiseFlatSurface` or a
-:class:`~reference.polyhedral.PolyhedralSurface` (whose ``metric()`` is used):
+:class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface` or a
+:class:`~ddg_oracle.reference.polyhedral.PolyhedralSurface` (whose ``metric()`` is used):
 
 * corner angles, angle sums, the discrete Gaussian curvature (angle defect)
   K(p) = 2 pi - sum of the angles at an interior vertex p (D2.2), the turning
@@ -18,14 +18,14 @@ Extrinsic quantities take a polyhedral surface in R^3 with exact positions:
 * rigid motions with rational rotations (Cayley transform) and "pushing a
   vertex in" (T2.5, X2.3), isometries under which K does not change.
 
-Values are exact: angles are :class:`~reference.exact.Angle`, lengths and
-areas :class:`~reference.exact.Surd`, angle-times-length sums
-:class:`~reference.exact.measures.AngleLength`.  No float decides anything.
-Faces of zero area raise :class:`~reference.errors.DegenerateFace` naming the
+Values are exact: angles are :class:`~ddg_oracle.reference.exact.Angle`, lengths and
+areas :class:`~ddg_oracle.reference.exact.Surd`, angle-times-length sums
+:class:`~ddg_oracle.reference.exact.measures.AngleLength`.  No float decides anything.
+Faces of zero area raise :class:`~ddg_oracle.reference.errors.DegenerateFace` naming the
 face (from ``PolyhedralSurface.metric()``).
 
->>> from reference import surfaces
->>> from reference.exact import pi
+>>> from ddg_oracle.reference import surfaces
+>>> from ddg_oracle.reference.exact import pi
 >>> cube = surfaces.cube()
 >>> set(angle_defects(cube).values()) == {pi / 2}          # X2.1
 True
@@ -111,8 +111,8 @@ def corner_angles(surface) -> list[tuple[Angle, Angle, Angle]]:
     Entry ``f`` lists the angles at corners 0, 1, 2 of face ``f`` (the corners
     of ``triangulation.faces[f]`` in order).
 
-    >>> from reference import surfaces
-    >>> from reference.exact import pi
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.exact import pi
     >>> corner_angles(surfaces.cube())[0] == (pi / 4, pi / 2, pi / 4)   # face (0, 1, 2)
     True
     """
@@ -126,7 +126,7 @@ def angle_sums(surface) -> list[Angle]:
 
     The definition is :func:`angle_sums_from_corners`.  For a polyhedral surface,
     or a piecewise flat one with rational squared lengths, this returns the equal
-    list computed by :func:`reference.curvature_fast.angle_sums_fast` (integer
+    list computed by :func:`ddg_oracle.reference.curvature_fast.angle_sums_fast` (integer
     arithmetic; equality tested angle by angle).
     """
     if curvature_fast.applies(surface):
@@ -136,7 +136,7 @@ def angle_sums(surface) -> list[Angle]:
 
 def angle_sums_from_corners(surface) -> list[Angle]:
     """The definition of :func:`angle_sums`: the corner angles of the metric
-    (:meth:`~reference.metric.PiecewiseFlatSurface.corner_angle`) added vertex by
+    (:meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface.corner_angle`) added vertex by
     vertex.  Accepts every surface (irrational squared lengths too)."""
     m = as_metric(surface)
     t = m.triangulation
@@ -158,8 +158,8 @@ def angle_defects(surface) -> dict[int, Angle]:
     Integrated (not divided by an area), exact.  Boundary vertices are left
     out: their curvature is the turning angle (:func:`turning_angles`, R2.4).
 
-    >>> from reference import surfaces
-    >>> from reference.exact import pi
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.exact import pi
     >>> K = angle_defects(surfaces.disk(6))                   # the flat centre only
     >>> list(K), K[0] == 0
     ([0], True)
@@ -200,7 +200,7 @@ def gauss_bonnet_holds(surface) -> bool:
 
     The definition is :func:`gauss_bonnet_holds_by_faces`.  For a polyhedral
     surface, or a piecewise flat one with rational squared lengths, the same
-    decision is taken by :func:`reference.curvature_fast.gauss_bonnet_holds_fast`
+    decision is taken by :func:`ddg_oracle.reference.curvature_fast.gauss_bonnet_holds_fast`
     (each face's angle sum shown to be pi with integers; tested to agree).
     """
     if curvature_fast.applies(surface):
@@ -241,9 +241,9 @@ def vertex_type(surface, v: int) -> str:
     """D2.2: ``"elliptic"``, ``"flat"`` or ``"hyperbolic"`` by the exact sign of K(v) > 0, = 0, < 0.
 
     Only for interior vertices (D2.2 defines K there); a boundary vertex raises
-    :class:`~reference.errors.InputError`.
+    :class:`~ddg_oracle.reference.errors.InputError`.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> vertex_type(surfaces.cube(), 0), vertex_type(surfaces.grid(2, 2), 4)
     ('elliptic', 'flat')
     """
@@ -400,7 +400,7 @@ def dihedral_angles(surface) -> dict[int, Angle]:
     """D2.3: the signed angle theta(e) in (-pi, pi) between the two face normals at each interior edge.
 
     Convention.  Face normals follow the corner order of each face by the
-    right-hand rule (outward for the constructors in ``reference.surfaces``).
+    right-hand rule (outward for the constructors in ``ddg_oracle.reference.surfaces``).
     For an interior edge e whose first halfedge runs i -> j in face f = (i, j, k)
     and whose twin runs j -> i in face g = (j, i, l) (a consistent orientation),
     n_f = (x_j - x_i) x (x_k - x_i), n_g = (x_i - x_j) x (x_l - x_j), and
@@ -413,12 +413,12 @@ def dihedral_angles(surface) -> dict[int, Angle]:
 
     Keyed by edge id (``triangulation.edge_vertices(e)`` gives its vertices);
     boundary edges have no dihedral angle.  Raises
-    :class:`~reference.errors.InputError` at an edge whose two faces are
+    :class:`~ddg_oracle.reference.errors.InputError` at an edge whose two faces are
     oriented inconsistently (a non-orientable surface, or faces not oriented
     alike) or folded flat onto each other (theta = +-pi).
 
-    >>> from reference import surfaces
-    >>> from reference.exact import pi
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.exact import pi
     >>> sorted(set(dihedral_angles(surfaces.cube()).values()), key=float) == [0, pi / 2]
     True
     """
@@ -470,8 +470,8 @@ def mean_curvature(surface) -> dict[int, AngleLength]:
 def total_mean_curvature(surface) -> AngleLength:
     """D2.3: H(S) = sum_e H(e) = 1/2 sum_e theta(e) l(e) over the interior edges, exact.
 
-    >>> from reference import surfaces
-    >>> from reference.exact import pi
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.exact import pi
     >>> H = total_mean_curvature(surfaces.cube())
     >>> H.parts, H.pi_coefficient                  # structurally 3 pi
     ({}, Surd('3'))
@@ -534,10 +534,10 @@ def push_vertex_in(surface: PolyhedralSurface, v: int) -> PolyhedralSurface:
     Every edge length, hence the metric, every angle and K, is unchanged
     (the neighbours are fixed and |p - q| = |p' - q| for the reflection p' of p);
     the polyhedral surface is a different one (Example 2.3).  Raises
-    :class:`~reference.errors.InputError` when the neighbours of v are not
+    :class:`~ddg_oracle.reference.errors.InputError` when the neighbours of v are not
     coplanar or all collinear.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> push_vertex_in(surfaces.octahedron(), 4).positions[4]      # (0, 0, 1) -> (0, 0, -1)
     (Fraction(0, 1), Fraction(0, 1), Fraction(-1, 1))
     """

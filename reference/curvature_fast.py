@@ -1,31 +1,31 @@
 """Exact angle sums and the exact Gauss-Bonnet decision, fast: integer arithmetic, same answers.
 
-:mod:`reference.curvature` defines the angle sums, angle defects (D2.2) and the
+:mod:`ddg_oracle.reference.curvature` defines the angle sums, angle defects (D2.2) and the
 Gauss-Bonnet decision (T2.6, R2.4) from the metric: Fraction squared lengths,
-Surd areas and cotangents, one exact :class:`~reference.exact.Angle` per
+Surd areas and cotangents, one exact :class:`~ddg_oracle.reference.exact.Angle` per
 corner.  This module gives the *same* results (``==`` on every Angle, the same
 bool; tested with Hypothesis and on the 1,280-face float icosphere) from the
-integers of :func:`reference.cotan_fast.face_data`: per face ``G`` and per
-corner ``N`` with ``cot = N / sqrt(G)``.  :func:`reference.curvature.angle_sums`
+integers of :func:`ddg_oracle.reference.cotan_fast.face_data`: per face ``G`` and per
+corner ``N`` with ``cot = N / sqrt(G)``.  :func:`ddg_oracle.reference.curvature.angle_sums`
 (hence ``angle_defects`` and ``turning_angles``) and
-:func:`reference.curvature.gauss_bonnet_holds` dispatch here whenever
+:func:`ddg_oracle.reference.curvature.gauss_bonnet_holds` dispatch here whenever
 :func:`applies`.
 
 Angle sums.  The angle at a corner is ``arccot(N / sqrt(G))``; the definition
 stores it as ``pi / 24`` multiples when it is one (right angles, 60 degrees,
 ...) and as the primitive ``arccot(cot)`` otherwise
-(:func:`reference.exact.corner_angle`).  Such a multiple has a cotangent whose
+(:func:`ddg_oracle.reference.exact.corner_angle`).  Such a multiple has a cotangent whose
 radicand is 1, 2, 3 or 6, i.e. ``k G`` is a square for one of ``k = 1, 2, 3,
 6``, i.e. the odd part of ``G`` is a square or 3 times one; residues exclude
-that for almost every face of a float mesh (:func:`reference.cotan_fast._maybe_square`),
+that for almost every face of a float mesh (:func:`ddg_oracle.reference.cotan_fast._maybe_square`),
 and those corners get a
-:class:`~reference.cotan_fast.CotanSum` cotangent (canonical form on demand;
+:class:`~ddg_oracle.reference.cotan_fast.CotanSum` cotangent (canonical form on demand;
 its hash, enclosures and sign come from the integers).  The other faces take
 the definition's route: canonical cotangent, then ``corner_angle``.
 
 Gauss-Bonnet.  The total curvature minus ``2 pi chi`` regroups face by face as
 ``sum_f (pi - angle sum of f) + (2 |V_int| + |V_bd| - F - 2 chi) pi`` (see
-:func:`reference.curvature.gauss_bonnet_holds`).  A face's angles sum to pi
+:func:`ddg_oracle.reference.curvature.gauss_bonnet_holds`).  A face's angles sum to pi
 exactly when ``w = (c_0 + i)(c_1 + i)(c_2 + i)`` is a negative real: each
 ``arccot(c_k) = arg(c_k + i)`` lies in (0, pi), so the sum lies in (0, 3 pi)
 and ``arg w`` is the sum modulo 2 pi.  With ``c_k = N_k / sqrt(G)``,
@@ -55,11 +55,11 @@ _ZERO = Fraction(0)
 def angle_sums_fast(surface) -> list[Angle]:
     """The sum of the corner angles at each vertex (the cone angle; 2 pi minus it is
     the angle defect of D2.2, pi minus it the turning angle of R2.4), exact Angles
-    equal (``==``) to :func:`reference.curvature.angle_sums_from_corners` (see the
+    equal (``==``) to :func:`ddg_oracle.reference.curvature.angle_sums_from_corners` (see the
     module docstring).
 
-    >>> from reference import surfaces
-    >>> from reference.curvature import angle_sums_from_corners
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.curvature import angle_sums_from_corners
     >>> angle_sums_fast(surfaces.torus(5, 3)) == angle_sums_from_corners(surfaces.torus(5, 3))
     True
     """
@@ -96,9 +96,9 @@ def gauss_bonnet_holds_fast(surface) -> bool | None:
     integers (see the module docstring); None if a face's angle sum could not be
     shown to be pi this way (never for a Euclidean triangle; the caller then
     decides with the definition).  Equal to
-    :func:`reference.curvature.gauss_bonnet_holds`.
+    :func:`ddg_oracle.reference.curvature.gauss_bonnet_holds`.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> gauss_bonnet_holds_fast(surfaces.genus_surface(2))
     True
     """

@@ -8,7 +8,7 @@ Catalog rows implemented here:
   :func:`is_delaunay`: all edges are.
 * T4.7 / D4.4 -- :func:`in_circumcircle`: the empty-circle criterion, computed
   independently of the angles by the exact in-circle determinant on the
-  unfolded pair of triangles (:func:`reference.intrinsic.unfold`, points scaled
+  unfolded pair of triangles (:func:`ddg_oracle.reference.intrinsic.unfold`, points scaled
   by ``|ij|``, a similarity which does not change the sign).
 * D4.7 / L4.17 -- :func:`harmonic_index`: ``h(T) = sum_faces (a^2 + b^2 + c^2) / A``
   (a, b, c side lengths, A area) ``= sum_faces 4 (cot + cot + cot)``.
@@ -23,7 +23,7 @@ Catalog rows implemented here:
 
 Conventions: halfedge ``h = 3 f + c`` runs from corner ``c`` to corner
 ``c + 1`` of face ``f`` and is opposite corner ``c + 2``; squared lengths and
-areas are exact (``Fraction`` or :class:`~reference.exact.Surd`); every sign is
+areas are exact (``Fraction`` or :class:`~ddg_oracle.reference.exact.Surd`); every sign is
 decided exactly.
 """
 
@@ -73,7 +73,7 @@ def is_delaunay_edge(surface, e: int) -> bool:
     For a boundary edge: always True (D4.4 concerns interior edges only; note
     that its single opposite angle may be obtuse).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> s = surfaces.grid(1, 1).metric()
     >>> [is_delaunay_edge(s, e) for e in range(5)]
     [True, True, True, True, True]
@@ -90,7 +90,7 @@ def incircle_determinant(a, b, c, d):
     c`` (points as pairs; exact for exact coordinates): positive iff ``d`` is inside when
     ``(a, b, c)`` is counterclockwise, 0 iff the four are cocircular.  The one predicate
     of the intrinsic test (:func:`in_circumcircle`, on an unfolding) and the planar one
-    (:func:`reference.planar.in_circle`)."""
+    (:func:`ddg_oracle.reference.planar.in_circle`)."""
     rows = []
     for p in (a, b, c):
         x, y = p[0] - d[0], p[1] - d[1]
@@ -112,7 +112,7 @@ def in_circumcircle(surface, e: int) -> int:
     A degenerate unfolding where both sides lie in one face is still laid out
     (two copies of the face) and handled alike.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> in_circumcircle(surfaces.grid(1, 1).metric(), 2)     # cocircular square
     0
     """
@@ -149,7 +149,7 @@ def harmonic_index(surface):
     L4.18 ``h(T) = 8 sum_i E(phi_i)`` over the hat functions; both are checked in
     the tests, not used here.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> harmonic_index(surfaces.grid(1, 1))       # two right isosceles: (1 + 1 + 2) / (1/2) each
     Fraction(16, 1)
     """
@@ -187,12 +187,12 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
     flips and raises :class:`DelaunayError` if exceeded.
 
     The flips run in place on an
-    :class:`~reference.intrinsic.IntrinsicTriangulation` (O(1) each, the
+    :class:`~ddg_oracle.reference.intrinsic.IntrinsicTriangulation` (O(1) each, the
     surface is frozen once at the end); the result and the log are those of
-    the same loop written with :func:`reference.intrinsic.flip` (tested).
+    the same loop written with :func:`ddg_oracle.reference.intrinsic.flip` (tested).
 
-    >>> from reference import surfaces
-    >>> from reference.intrinsic import flip
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.intrinsic import flip
     >>> s = flip(surfaces.grid(2, 1).metric(), 2)
     >>> d, log = flip_to_delaunay(s)
     >>> is_delaunay(d), len(log)
@@ -256,8 +256,8 @@ def delaunay_tessellation_edges(surface) -> set[int]:
 
 def laplace_beltrami(surface):
     """D4.8: the discrete Laplace-Beltrami operator, the cotan Laplacian
-    (:func:`reference.laplacian.cotan_laplacian`, exact
-    :class:`~reference.sparse.SparseMatrix`) of a Delaunay triangulation of the
+    (:func:`ddg_oracle.reference.laplacian.cotan_laplacian`, exact
+    :class:`~ddg_oracle.reference.sparse.SparseMatrix`) of a Delaunay triangulation of the
     surface reached by :func:`flip_to_delaunay`.  Same vertex set and order.
     By R4.9 it does not depend on which Delaunay triangulation is reached."""
     return cotan_laplacian(flip_to_delaunay(surface)[0])

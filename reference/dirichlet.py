@@ -18,19 +18,19 @@ rational weights; Surds for cotan weights of a general surface).  Around it:
 * P3.10: positive weights and harmonic at i => f(i) is a convex combination of
   its neighbours (:func:`neighbour_convex_combination`), and a separating
   direction as the exact certificate that a point is *not* in a hull
-  (:func:`separates`), for the cotan counterexample (see :mod:`reference.minimal`).
+  (:func:`separates`), for the cotan counterexample (see :mod:`ddg_oracle.reference.minimal`).
 
-Conventions: those of :mod:`reference.laplacian` (``Lap`` positive
+Conventions: those of :mod:`ddg_oracle.reference.laplacian` (``Lap`` positive
 semidefinite, ``E = 1/2 f^T Lap f = 1/2 sum_edges nu (f(i) - f(j))^2``).
 
 Exactness guard: with Surd entries every elimination step multiplies and adds
 square-root numbers and the number of terms grows; each operation is bounded
-by ``reference.exact.settings.term_limit`` (default 4096) and raises
-:class:`~reference.errors.TermLimitExceeded` beyond it.  ``solve_dirichlet``
+by ``ddg_oracle.reference.exact.settings.term_limit`` (default 4096) and raises
+:class:`~ddg_oracle.reference.errors.TermLimitExceeded` beyond it.  ``solve_dirichlet``
 takes ``term_limit=`` to raise the guard for one call.  Keep Surd systems small
 (a handful of interior vertices); rational systems are cheap.
 
->>> from reference.laplacian import graph_laplacian
+>>> from ddg_oracle.reference.laplacian import graph_laplacian
 >>> L = graph_laplacian(3, [(0, 1, 1), (1, 2, 3)])
 >>> solve_dirichlet(L, {0: 0, 2: 4})                   # f(1) = (1*0 + 3*4) / 4
 [Fraction(0, 1), Fraction(3, 1), Fraction(4, 1)]
@@ -225,7 +225,7 @@ def kernel_dimension(L: SparseMatrix) -> int:
     Laplacian is exactly the locally constant functions: its dimension is the
     number of components of the graph (Liouville, C3.3).
 
-    >>> from reference.laplacian import graph_laplacian
+    >>> from ddg_oracle.reference.laplacian import graph_laplacian
     >>> kernel_dimension(graph_laplacian(4, [(0, 1, 1), (2, 3, 5)]))
     2
     """

@@ -136,7 +136,7 @@ class TermLimitExceeded(ExactArithmeticLimit):
 class TimeLimitExceeded(ExactArithmeticLimit):
     """One property example ran longer than its time limit.
 
-    Raised by the guard of ``properties.profiles.example_time_limit`` (the
+    Raised by the guard of ``ddg_oracle.properties.profiles.example_time_limit`` (the
     reference itself never reads a clock); the message names the property and
     the setting to change (``DDG_EXAMPLE_TIME_LIMIT``).
     """

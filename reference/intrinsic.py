@@ -44,12 +44,12 @@ Hence ``alpha + beta < pi`` iff ``cot alpha + cot beta > 0``; with
 and likewise ``N_j = (e + a - b) A2 + (e + d - c) A1 > 0`` at ``j``.  ``N = 0``
 means the angle is exactly pi (``k``, ``i``, ``l`` collinear: the new
 triangle would be degenerate), so strict convexity is required.  Both signs
-are decided exactly (:meth:`~reference.exact.Surd.sign`).
+are decided exactly (:meth:`~ddg_oracle.reference.exact.Surd.sign`).
 
 Squared lengths that become irrational (surfaces from R^3) are stored as
-:class:`~reference.exact.Surd` values; rational ones stay ``Fraction``.
+:class:`~ddg_oracle.reference.exact.Surd` values; rational ones stay ``Fraction``.
 
->>> from reference import surfaces
+>>> from ddg_oracle.reference import surfaces
 >>> s = surfaces.grid(1, 1).metric()     # unit square; edge 2 is the diagonal (1,1)-(0,0)
 >>> is_flippable(s, 2), is_flippable(s, 0)
 (True, False)
@@ -182,10 +182,10 @@ def unfold(surface, e: int) -> Unfolding:
 
     Reads the five squared lengths and two areas by halfedge position, not by
     vertex id, so loops, multiple edges and orientation-reversing gluings are
-    handled.  Raises :class:`~reference.errors.NotFlippable` for a boundary edge
+    handled.  Raises :class:`~ddg_oracle.reference.errors.NotFlippable` for a boundary edge
     (it has one triangle only).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> u = unfold(surfaces.grid(1, 1).metric(), 2)      # the diagonal 3 -> 0 of the unit square
     >>> u.vertices, u.sq_ij, u.area_ijk, u.new_squared_length
     ((3, 0, 2, 1), Fraction(2, 1), Fraction(1, 2), Fraction(2, 1))
@@ -251,7 +251,7 @@ def is_flippable(surface, e: int) -> bool:
     docstring for the derivation).  Convexity at the other two corners is
     automatic.  Signs are exact (Surd arithmetic, no tolerance).
 
-    >>> from reference import PiecewiseFlatSurface, Triangulation
+    >>> from ddg_oracle.reference import PiecewiseFlatSurface, Triangulation
     >>> t = Triangulation.from_faces([[0, 1, 2], [1, 0, 3]])
     >>> is_flippable(PiecewiseFlatSurface(t, [1, 1, 1, 1, 1]), 0)      # two equilateral
     True
@@ -274,16 +274,16 @@ def flip(surface, e: int) -> PiecewiseFlatSurface:
     ``PiecewiseFlatSurface`` (any triangulation, non-regular and
     non-orientable ones included) or a ``PolyhedralSurface`` (its metric).
 
-    Raises :class:`~reference.errors.NotFlippable` naming the edge and the
+    Raises :class:`~ddg_oracle.reference.errors.NotFlippable` naming the edge and the
     reason (boundary edge; the same face on both sides; not strictly convex at
     vertex i or j, naming it) and
-    :class:`~reference.errors.TermLimitExceeded` (naming the edge) if the
-    exact numbers outgrow ``reference.exact.settings.term_limit``.
+    :class:`~ddg_oracle.reference.errors.TermLimitExceeded` (naming the edge) if the
+    exact numbers outgrow ``ddg_oracle.reference.exact.settings.term_limit``.
 
     Flipping ``e`` twice gives back the squared lengths; the faces ``f`` and
     ``g`` trade places (with their areas).
 
-    >>> from reference import PiecewiseFlatSurface, Triangulation
+    >>> from ddg_oracle.reference import PiecewiseFlatSurface, Triangulation
     >>> t = Triangulation.from_faces([[0, 1, 2], [1, 0, 3]])
     >>> r = flip(PiecewiseFlatSurface(t, [1, 1, 1, 1, 1]), 0)
     >>> r.triangulation.faces, r.squared_lengths[0], r.areas
@@ -326,22 +326,22 @@ class IntrinsicTriangulation:
     """A piecewise flat surface that is flipped in place: O(1) per flip (L2.8).
 
     :func:`flip` returns a new immutable surface and so copies O(F) data per
-    flip; long flip sequences (:func:`reference.delaunay.flip_to_delaunay`,
+    flip; long flip sequences (:func:`ddg_oracle.reference.delaunay.flip_to_delaunay`,
     random flips on large meshes) run here instead and freeze the result once
     with :meth:`surface`.  Each :meth:`flip` is exactly :func:`flip` (same
     checks, errors, closed formulas, face and edge numbering), so
     ``IntrinsicTriangulation(s)`` flipped at ``e1, e2, ...`` then frozen equals
     ``flip(flip(s, e1), e2) ...``.
 
-    It reads like a :class:`~reference.metric.PiecewiseFlatSurface` where the
+    It reads like a :class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface` where the
     edge-local functions need it (``squared_length``, ``face_squared_lengths``,
     ``areas``, and ``triangulation`` with ``tail``, ``head``, ``edge_halfedges``
     ...), so :func:`unfold`, :func:`is_flippable`,
-    :func:`reference.delaunay.is_delaunay_edge` and
-    :func:`reference.delaunay.face_harmonic_index` accept it.  Its
+    :func:`ddg_oracle.reference.delaunay.is_delaunay_edge` and
+    :func:`ddg_oracle.reference.delaunay.face_harmonic_index` accept it.  Its
     ``triangulation`` is a live view that changes with every flip.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> s = surfaces.grid(1, 1).metric()
     >>> w = IntrinsicTriangulation(s)
     >>> w.flip(2); w.flip(2)
@@ -381,7 +381,7 @@ class IntrinsicTriangulation:
 
     def flip_unfolded(self, u: Unfolding) -> None:
         """Flip the edge of ``u``, an unfolding of this surface already found
-        flippable (saves unfolding twice in :func:`~reference.delaunay.flip_to_delaunay`)."""
+        flippable (saves unfolding twice in :func:`~ddg_oracle.reference.delaunay.flip_to_delaunay`)."""
         new_sq, at_i, at_j = _flipped_data(u)
         self.triangulation.flip(u.edge)
         f, g = u.faces
@@ -406,7 +406,7 @@ def cot_sum(surface, e: int):
     Delaunay (D4.4 / P4.9) iff ``alpha + beta <= pi`` iff this is ``>= 0``.
     Works when both sides of ``e`` lie in one face (two corners of that face).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> cot_sum(surfaces.grid(1, 1).metric(), 2)          # the diagonal: two right angles
     Fraction(0, 1)
     """

@@ -10,18 +10,18 @@ Conventions (the notes' own; every function below uses them):
 * cotan weights (3.3): ``nu(ij) = 1/2 (cot alpha_ij + cot alpha_ji)`` on an
   interior edge, ``1/2 cot alpha_ij`` on a boundary edge, alpha the angles
   opposite the edge;
-* weights are per EDGE (edge ids of the :class:`~reference.combinatorics.Triangulation`),
+* weights are per EDGE (edge ids of the :class:`~ddg_oracle.reference.combinatorics.Triangulation`),
   never per vertex pair: non-regular triangulations have several edges between
   two vertices.  The matrix sums the weights of all edges between i and j; a
   loop edge contributes nothing to the matrix (``f(i) - f(i) = 0``);
 * mass matrices are lumped (diagonal, one area per vertex), integrated values.
 
 Geometry flows one way: positions -> exact squared lengths and areas
-(:class:`~reference.metric.PiecewiseFlatSurface`) -> cotangents -> weights ->
-operators.  Cotangents and weights are :class:`~reference.exact.Surd` values
+(:class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface`) -> cotangents -> weights ->
+operators.  Cotangents and weights are :class:`~ddg_oracle.reference.exact.Surd` values
 (one square root per face area); energies of rational functions are Surds.
 
->>> from reference import surfaces
+>>> from ddg_oracle.reference import surfaces
 >>> s = surfaces.grid(1, 1)              # unit square, diagonal (0,0)-(1,1)
 >>> L = cotan_laplacian(s)
 >>> L[0, 1], L[0, 3], L[0, 0]            # the diagonal's weight is 0 (two right angles)
@@ -52,7 +52,7 @@ __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weight
 _ZERO = Fraction(0)
 
 
-# Kept as a name for the chapter-3 modules; one definition: reference.metric.as_metric.
+# Kept as a name for the chapter-3 modules; one definition: ddg_oracle.reference.metric.as_metric.
 metric_of_surface = as_metric
 
 
@@ -115,7 +115,7 @@ def cotan_weights(surface) -> dict[int, Surd]:
     loop edge gets its weight too (it is an edge of the triangulation); only the
     matrix ignores it.  Exact: Surds, or Fractions where rational.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> w = cotan_weights(surfaces.grid(1, 1))
     >>> sorted(str(x) for x in w.values())
     ['0', '1/2', '1/2', '1/2', '1/2']
@@ -151,10 +151,10 @@ def cotan_laplacian(surface) -> SparseMatrix:
     The definition is :func:`cotan_laplacian_from_weights`.  For a polyhedral
     surface, or a piecewise flat one with rational squared lengths, this
     returns the equal matrix computed by
-    :func:`reference.cotan_fast.cotan_laplacian_fast` (integer arithmetic,
+    :func:`ddg_oracle.reference.cotan_fast.cotan_laplacian_fast` (integer arithmetic,
     ~10x faster on float meshes; equality tested entry by entry).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> L = cotan_laplacian(surfaces.tetrahedron())
     >>> L.is_symmetric(), sum(L.matvec([1, 1, 1, 1])) == 0
     (True, True)
@@ -169,7 +169,7 @@ def cotan_laplacian_from_weights(surface) -> SparseMatrix:
     edge by edge into the matrix.  The definition :func:`cotan_laplacian` is
     tested against; it accepts every surface (irrational squared lengths too).
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> cotan_laplacian_from_weights(surfaces.grid(1, 1))[0, 1]
     Fraction(-1, 2)
     """
@@ -284,7 +284,7 @@ def dirichlet_energy_pl(surface, f: Sequence):
     independent computation of what ``1/2 sum nu(ij) (f(i) - f(j))^2`` gives
     with cotan weights.  Exact.
 
-    >>> from reference import surfaces
+    >>> from ddg_oracle.reference import surfaces
     >>> dirichlet_energy_pl(surfaces.grid(2, 2), [i for i in range(3) for j in range(3)])
     Fraction(2, 1)
     """
@@ -368,7 +368,7 @@ def weight_sign_by_angles(surface, e: int) -> int:
     ``nu = sin(alpha + alpha') / (2 sin alpha sin alpha')`` with both angles in
     (0, pi), so ``sign(nu) = sign(pi - (alpha + alpha'))`` on an interior edge and
     ``sign(pi/2 - alpha)`` on a boundary edge.  Computed with exact
-    :class:`~reference.exact.Angle` sums compared to pi, never from a cotangent
+    :class:`~ddg_oracle.reference.exact.Angle` sums compared to pi, never from a cotangent
     sum: an independent check of the sign of :func:`cotan_weights`.
     """
     m = metric_of_surface(surface)

@@ -2,7 +2,7 @@
 
 Everything that depends on edge lengths alone is computed here once: face
 areas, corner cotangents, corner angles.  Squared lengths are Fractions; a face
-area is a :class:`~reference.exact.Surd` (one square root per face), carried
+area is a :class:`~ddg_oracle.reference.exact.Surd` (one square root per face), carried
 alongside the lengths and never recomputed once known, so that intrinsic edge
 flips (chapter 4) stay exact.
 
@@ -32,14 +32,14 @@ class PiecewiseFlatSurface:
     """A triangulation with exact squared edge lengths and face areas (D2.6).
 
     Squared lengths are Fractions, or Surds where intrinsic flips of a surface
-    from R^3 made them irrational (see :mod:`reference.intrinsic`).
+    from R^3 made them irrational (see :mod:`ddg_oracle.reference.intrinsic`).
 
     Build from squared lengths (``PiecewiseFlatSurface(t, squared_lengths)``),
     from lengths (:meth:`from_lengths`, each squared exactly), or from a
     polyhedral surface (``PolyhedralSurface.metric()``).  Every face must
     satisfy the strict triangle inequality; the error names the face.
 
-    >>> from reference import Triangulation
+    >>> from ddg_oracle.reference import Triangulation
     >>> t = Triangulation.from_faces([[0, 1, 2]])
     >>> s = PiecewiseFlatSurface(t, [1, 1, 1])            # equilateral, side 1
     >>> s.area(0)

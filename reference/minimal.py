@@ -28,9 +28,9 @@ next step, and reports the exact areas of the rounded surfaces.  That rounding
 is the only inexact operation, and it is stated.
 
 Keep the meshes small: the elimination runs over Surd entries (a handful of
-interior vertices; see the term guard in :mod:`reference.dirichlet`).
+interior vertices; see the term guard in :mod:`ddg_oracle.reference.dirichlet`).
 
->>> from reference.polyhedral import PolyhedralSurface
+>>> from ddg_oracle.reference.polyhedral import PolyhedralSurface
 >>> star = PolyhedralSurface.from_arrays(
 ...     [(0, 0, 1), (2, 0, 0), (0, 2, 0), (-2, 0, 0), (0, -2, 0)],
 ...     [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 1)])
@@ -197,7 +197,7 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions, *,
     to exact Surd arithmetic past ``PRECISION_CAP`` bits.
 
     ``domain`` (A4.23): another triangulation of the same metric, a
-    :class:`~reference.metric.PiecewiseFlatSurface` (e.g. the intrinsic Delaunay
+    :class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface` (e.g. the intrinsic Delaunay
     one); E is then the Dirichlet energy on ``domain`` and the new surface has
     the combinatorics of ``domain``.  The shortcut "unmoved face: E_T = A(T)"
     holds only on the surface's own triangulation, so every face is decided.

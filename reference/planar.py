@@ -9,7 +9,7 @@ tolerance decides anything.  Catalog rows:
   property of a tessellation, :func:`is_empty_disk_edge` the Delaunay edge
   property of an edge of a planar triangulation.
 * T4.1 -- :func:`delaunay_triangulation` (the intrinsic edge-flip algorithm,
-  :func:`reference.delaunay.flip_to_delaunay`, started from the sweep
+  :func:`ddg_oracle.reference.delaunay.flip_to_delaunay`, started from the sweep
   triangulation :func:`planar_triangulation`) and :func:`delaunay_tessellation`
   (its triangles merged across the edges of weight exactly 0, R4.7): the
   unique Delaunay tessellation, each cell a convex polygon inscribed in an
@@ -20,7 +20,7 @@ tolerance decides anything.  Catalog rows:
   algorithm started from a given triangulation of a polygon (boundary kept);
   :func:`straight_line_flip` (L4.11) the flip of a strictly convex quadrilateral.
 * L4.3 / P4.4 -- :func:`angle_criterion`: ``alpha + beta`` against ``pi`` with
-  exact :class:`~reference.exact.Angle` values, independent of the in-circle
+  exact :class:`~ddg_oracle.reference.exact.Angle` values, independent of the in-circle
   determinant; :func:`is_delaunay_by_angles` for a whole triangulation.
 * T4.2 -- :func:`invert`, :func:`inversion` (rational centre and squared
   radius: rational points stay rational), :func:`cells_avoiding` and
@@ -29,18 +29,18 @@ tolerance decides anything.  Catalog rows:
 * T4.21 -- :func:`all_triangulations` (breadth-first search of the flip
   graph, which is connected for planar point sets) and
   :func:`laplacian_difference`: ``L_T - L_Delaunay`` is positive
-  semidefinite (:func:`reference.sparse.is_positive_semidefinite`), so the
+  semidefinite (:func:`ddg_oracle.reference.sparse.is_positive_semidefinite`), so the
   Delaunay triangulation minimises the Dirichlet energy of every function.
 
-Triangulations are returned as :class:`~reference.polyhedral.PolyhedralSurface`
+Triangulations are returned as :class:`~ddg_oracle.reference.polyhedral.PolyhedralSurface`
 with two-dimensional positions (the input points, in input order: vertex ``i``
 is point ``i``) and counterclockwise faces.  A tessellation is a frozenset of
 cells, each cell the frozenset of its vertex ids (a convex polygon is
 determined by its vertices; :func:`cell_boundary` orders them).
 
-Bad input raises :class:`~reference.errors.TooFewPoints`,
-:class:`~reference.errors.RepeatedPoint` (naming both indices) or
-:class:`~reference.errors.CollinearPoints`.
+Bad input raises :class:`~ddg_oracle.reference.errors.TooFewPoints`,
+:class:`~ddg_oracle.reference.errors.RepeatedPoint` (naming both indices) or
+:class:`~ddg_oracle.reference.errors.CollinearPoints`.
 
 >>> square = [(0, 0), (1, 0), (1, 1), (0, 1), (2, 0)]
 >>> sorted(sorted(c) for c in delaunay_tessellation(square))
@@ -102,7 +102,7 @@ def as_point_set(points) -> tuple[tuple[Fraction, Fraction], ...]:
     >>> as_point_set([(0, 0), (1, 0), (0, 0)])
     Traceback (most recent call last):
     ...
-    reference.errors.RepeatedPoint: points 0 and 2 coincide: (0, 0)
+    ddg_oracle.reference.errors.RepeatedPoint: points 0 and 2 coincide: (0, 0)
     """
     if hasattr(points, "tolist"):
         points = points.tolist()
@@ -160,7 +160,7 @@ def in_circle(a, b, c, d) -> int:
     ``0`` on, ``-1`` outside).  For collinear ``a, b, c`` the circle degenerates
     into their line and the sign says on which side of it ``d`` lies (0 on
     it).  The same determinant as the intrinsic test
-    :func:`reference.delaunay.in_circumcircle`.
+    :func:`ddg_oracle.reference.delaunay.in_circumcircle`.
 
     >>> in_circle((0, 0), (1, 0), (0, 1), (1, 1))        # the unit square is cocircular
     0
@@ -176,7 +176,7 @@ def circle_position(a, b, c, d) -> int:
     """Where ``d`` lies relative to the circle through ``a, b, c``: ``+1`` inside,
     ``0`` on, ``-1`` outside; independent of the orientation of ``a, b, c``.
 
-    Raises :class:`~reference.errors.CollinearPoints` if ``a, b, c`` are collinear
+    Raises :class:`~ddg_oracle.reference.errors.CollinearPoints` if ``a, b, c`` are collinear
     (no circle).
 
     >>> circle_position((0, 0), (0, 1), (1, 0), (Fraction(1, 2), Fraction(1, 2)))
@@ -264,7 +264,7 @@ def delaunay_triangulation(points) -> PolyhedralSurface:
     """A Delaunay triangulation of ``points`` (T4.1), exact.
 
     :func:`planar_triangulation`, then the edge-flip algorithm
-    :func:`reference.delaunay.flip_to_delaunay` (A4.13) on its metric: for
+    :func:`ddg_oracle.reference.delaunay.flip_to_delaunay` (A4.13) on its metric: for
     planar points the intrinsic flip of a convex quadrilateral is the ordinary
     flip, so the flipped triangulation is a straight-line triangulation of the
     same points, rational throughout.  Returned with the input positions;
@@ -287,7 +287,7 @@ def straight_line_flip(points, triangulation, e: int):
     straight-line one.  A non-Delaunay edge always has a strictly convex
     quadrilateral, so :func:`planar_flip_to_delaunay` never meets None.
 
-    >>> from reference.combinatorics import Triangulation
+    >>> from ddg_oracle.reference.combinatorics import Triangulation
     >>> pts = [(0, 0), (2, -1), (4, 0), (2, 1)]
     >>> t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3)])
     >>> e = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {0, 2})
@@ -313,15 +313,15 @@ def planar_flip_to_delaunay(points, faces) -> PolyhedralSurface:
     ``faces`` must be counterclockwise and non-degenerate (a straight-line
     triangulation of a polygon, possibly non-convex, possibly with holes); the
     flips are those of its flat metric
-    (:func:`reference.delaunay.flip_to_delaunay`): in the plane a non-Delaunay
+    (:func:`ddg_oracle.reference.delaunay.flip_to_delaunay`): in the plane a non-Delaunay
     edge has a strictly convex quadrilateral (L4.11), so each flip is the
     ordinary one and the result is again a straight-line triangulation of the
     same polygon, with the input positions.  On the convex hull of the points it
     is a Delaunay triangulation of the points (T4.1).
 
-    Raises :class:`~reference.errors.DegenerateFace` or
-    :class:`~reference.errors.ClockwiseFace` naming the face, besides the face
-    list errors of :class:`~reference.combinatorics.Triangulation`.
+    Raises :class:`~ddg_oracle.reference.errors.DegenerateFace` or
+    :class:`~ddg_oracle.reference.errors.ClockwiseFace` naming the face, besides the face
+    list errors of :class:`~ddg_oracle.reference.combinatorics.Triangulation`.
 
     >>> t = planar_flip_to_delaunay([(0, 0), (2, -1), (4, 0), (2, 1)], [(0, 1, 2), (0, 2, 3)])
     >>> sorted(sorted(f) for f in t.faces)
@@ -362,7 +362,7 @@ def delaunay_tessellation(points) -> frozenset:
 
     The triangles of :func:`delaunay_triangulation` are merged across every
     interior edge whose cotan weight is exactly 0 (R4.7,
-    :func:`reference.delaunay.delaunay_tessellation_edges`): such an edge joins
+    :func:`ddg_oracle.reference.delaunay.delaunay_tessellation_edges`): such an edge joins
     two triangles inscribed in one circle.  Each cell is a convex polygon
     whose vertices are all the points on an empty circle (D4.1,
     :func:`empty_disk_violations` checks it).
@@ -504,7 +504,7 @@ def is_empty_disk_edge(surface: PolyhedralSurface, e: int) -> bool:
 
     Both tests are made on the positions (``circle_position``), as the
     definition states them; boundary edges are Delaunay.  (The intrinsic test
-    :func:`reference.delaunay.in_circumcircle` does the same on an unfolding.)
+    :func:`ddg_oracle.reference.delaunay.in_circumcircle` does the same on an unfolding.)
     """
     tri = surface.triangulation
     h, t = tri.edge_halfedges(e)
@@ -534,7 +534,7 @@ def angle_criterion(p1, p2, p3, p4) -> int:
 
     By the lemma ``+1`` iff P4 lies inside the circle through P1, P2, P3, ``0``
     on it, ``-1`` outside (the same values as :func:`circle_position`).  The
-    angles are exact :class:`~reference.exact.Angle` values (arccot of a
+    angles are exact :class:`~ddg_oracle.reference.exact.Angle` values (arccot of a
     rational), summed and compared with ``pi`` by certified enclosures and an
     exact zero test: no determinant is involved.
 
@@ -542,7 +542,7 @@ def angle_criterion(p1, p2, p3, p4) -> int:
     sides of the line P1 P3 (the quadrilateral need not be convex; by the
     inscribed angle theorem the points seeing the chord P1 P3 at the angle
     ``pi - alpha`` from that side are exactly the arc).  Otherwise
-    :class:`~reference.errors.BadQuadrilateral`.
+    :class:`~ddg_oracle.reference.errors.BadQuadrilateral`.
 
     >>> angle_criterion((1, 0), (0, 1), (-1, 0), (0, -1))      # a square: on the circle
     0
@@ -599,7 +599,7 @@ def invert(point, centre, squared_radius=1) -> tuple[Fraction, Fraction]:
 
 def inversion(points, centre, squared_radius=1) -> tuple:
     """:func:`invert` applied to every point (same order); the centre must not be
-    one of them (:class:`~reference.errors.BadInversion`, naming it)."""
+    one of them (:class:`~ddg_oracle.reference.errors.BadInversion`, naming it)."""
     out = []
     for i, p in enumerate(points):
         try:
@@ -736,11 +736,11 @@ def all_triangulations(points, limit: int = 20000) -> list[PolyhedralSurface]:
     by breadth-first search of the flip graph from :func:`planar_triangulation`.
 
     A flip replaces the diagonal of a strictly convex quadrilateral of two
-    triangles (:func:`reference.intrinsic.is_flippable`, exact); the flip graph
+    triangles (:func:`ddg_oracle.reference.intrinsic.is_flippable`, exact); the flip graph
     of a planar point set is connected (every triangulation flips to a
     Delaunay triangulation, and the triangulations of one convex cocircular
     cell are connected by flips), so the search finds them all.  Identified by
-    :func:`triangulation_key`.  Raises :class:`~reference.errors.InputError` if
+    :func:`triangulation_key`.  Raises :class:`~ddg_oracle.reference.errors.InputError` if
     there are more than ``limit`` (the count grows exponentially with the
     number of points: keep point sets small).
 
@@ -770,11 +770,11 @@ def all_triangulations(points, limit: int = 20000) -> list[PolyhedralSurface]:
 
 def laplacian_difference(surface, other) -> SparseMatrix:
     """``L_surface - L_other`` of two triangulations of the same vertex set, exact
-    (cotan Laplacians, :func:`reference.laplacian.cotan_laplacian`).
+    (cotan Laplacians, :func:`ddg_oracle.reference.laplacian.cotan_laplacian`).
 
     T4.21: for ``other`` a Delaunay triangulation this is positive
     semidefinite for every triangulation ``surface``
-    (:func:`reference.sparse.is_positive_semidefinite`), i.e.
+    (:func:`ddg_oracle.reference.sparse.is_positive_semidefinite`), i.e.
     ``E_T(f) - E_Delaunay(f) = 1/2 f^T (L_T - L_D) f >= 0`` for every ``f``.
     """
     a, b = cotan_laplacian(surface), cotan_laplacian(other)

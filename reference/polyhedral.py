@@ -20,7 +20,7 @@ from .metric import PiecewiseFlatSurface, metric_of
 class PolyhedralSurface:
     """A triangulation plus exact positions, one point of R^n (n >= 2) per vertex.
 
-    >>> from reference import PolyhedralSurface
+    >>> from ddg_oracle.reference import PolyhedralSurface
     >>> s = PolyhedralSurface.from_arrays([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
     >>> s.positions[1]
     (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1))
@@ -56,7 +56,7 @@ class PolyhedralSurface:
         """Build from a (n_vertices x dim) position array and an (n_faces x 3) face array.
 
         Accepts nested sequences or numpy arrays; every vertex must be used by a face.
-        Errors (all :class:`~reference.errors.InputError`) name the face, corner,
+        Errors (all :class:`~ddg_oracle.reference.errors.InputError`) name the face, corner,
         vertex or coordinate: EmptyMesh, BadShape, NonIntegerIndex, NegativeIndex,
         IndexOutOfRange, RepeatedVertexInFace, NonManifoldEdge, NonManifoldVertex,
         UnreferencedVertex, NotANumber, NonFiniteValue.  Zero-area faces are valid
@@ -82,7 +82,7 @@ class PolyhedralSurface:
     def metric(self) -> PiecewiseFlatSurface:
         """The intrinsic metric: exact squared edge lengths and face areas (cached).
 
-        Raises :class:`~reference.errors.DegenerateFace` naming a zero-area face.
+        Raises :class:`~ddg_oracle.reference.errors.DegenerateFace` naming a zero-area face.
         """
         if self._metric is None:
             self._metric = metric_of(self.positions, self.triangulation)

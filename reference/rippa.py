@@ -12,13 +12,13 @@ Catalog rows:
 
 * L4.14 (Rippa's lemma) -- :func:`energy_difference` computes
   ``E(u13) - E(u24)`` from the two triangulations' Dirichlet energies
-  (:func:`reference.laplacian.dirichlet_energy_pl`, gradients face by face);
+  (:func:`ddg_oracle.reference.laplacian.dirichlet_energy_pl`, gradients face by face);
   :func:`rippa_right_side` evaluates the notes' formula (4.2)
 
       1/4 (u0 - u0*)^2 / sin(theta) * (r1 + r3)(r2 + r4) / (r1 r2 r3 r4) * (r1 r3 - r2 r4)
 
   literally, with ``r_i``, ``sin(theta)``, ``u0``, ``u0*`` as exact square-root
-  numbers (:class:`~reference.exact.Surd`): ``r_i = sqrt(r_i^2)``,
+  numbers (:class:`~ddg_oracle.reference.exact.Surd`): ``r_i = sqrt(r_i^2)``,
   ``sin(theta) = |(P1 - X) x (P2 - X)| / (r1 r2)``,
   ``u0 = (r3 u1 + r1 u3) / (r1 + r3)``, ``u0* = (r4 u2 + r2 u4) / (r2 + r4)``.
   The two agree exactly (tests); the formula is printed correctly.
@@ -91,7 +91,7 @@ class Quadrilateral:
 
 def quadrilateral(points) -> Quadrilateral:
     """The quadrilateral of four points, checked to be strictly convex and
-    counterclockwise (:class:`~reference.errors.BadQuadrilateral` otherwise,
+    counterclockwise (:class:`~ddg_oracle.reference.errors.BadQuadrilateral` otherwise,
     naming the corner).
 
     >>> q = quadrilateral([(1, 0), (0, 1), (-1, 0), (0, -1)])
@@ -129,7 +129,7 @@ def energy_difference(points, u: Sequence):
     Each energy is ``1/2 integral |grad u|^2`` of the piecewise linear
     interpolant on the triangulation (:data:`TRIANGLES_13` or
     :data:`TRIANGLES_24`), computed face by face from gradients
-    (:func:`reference.laplacian.dirichlet_energy_pl`), not from the formula.
+    (:func:`ddg_oracle.reference.laplacian.dirichlet_energy_pl`), not from the formula.
 
     >>> energy_difference([(1, 0), (0, 1), (-1, 0), (0, -1)], [1, 0, 0, 0])   # circular
     Fraction(0, 1)
@@ -146,7 +146,7 @@ def rippa_right_side(points, u: Sequence):
 
         1/4 (u0 - u0*)^2 / sin(theta) * (r1 + r3)(r2 + r4) / (r1 r2 r3 r4) * (r1 r3 - r2 r4)
 
-    with every quantity an exact :class:`~reference.exact.Surd` (see the module
+    with every quantity an exact :class:`~ddg_oracle.reference.exact.Surd` (see the module
     docstring); the result is returned as a Fraction when rational (it always
     is for rational points and values).
 

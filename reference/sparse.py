@@ -47,7 +47,7 @@ def exact_sum(values) -> object:
     one by one re-merges an ever larger base (cubic in n), pairwise it stays
     near quadratic.  Returns a Fraction when the sum is rational.
 
-    >>> from reference.exact import sqrt
+    >>> from ddg_oracle.reference.exact import sqrt
     >>> exact_sum([sqrt(2), sqrt(3), -sqrt(2), Fraction(1, 2)])
     Surd('1/2 + sqrt(3)')
     >>> exact_sum([])
@@ -327,8 +327,8 @@ def is_positive_semidefinite(A: SparseMatrix) -> bool:
     """True iff the symmetric matrix ``A`` is positive semidefinite, decided exactly
     (see :func:`negative_direction`, which also gives a witness when it is not).
 
-    >>> from reference import surfaces
-    >>> from reference.laplacian import cotan_laplacian
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.laplacian import cotan_laplacian
     >>> is_positive_semidefinite(cotan_laplacian(surfaces.grid(2, 2)))
     True
     """

@@ -9,7 +9,7 @@ plane, Klein bottle) do not embed in R^3 and are returned as bare
 :class:`Triangulation` objects.  Orientable closed surfaces are oriented
 consistently, with outward normals.
 
->>> from reference import surfaces
+>>> from ddg_oracle.reference import surfaces
 >>> [surfaces.tetrahedron().triangulation.euler_characteristic(),
 ...  surfaces.torus().triangulation.euler_characteristic(),
 ...  surfaces.genus_surface(2).triangulation.euler_characteristic()]

@@ -1,12 +1,15 @@
-"""Hypothesis profile for the project's own tests: `ci` when $CI is set, else `default`.
+"""Hypothesis profile for the project's own tests: ``ddg-oracle-ci`` when $CI is set, else
+``ddg-oracle-default``.
 
-`--hypothesis-profile NAME` (Hypothesis's pytest plugin) overrides this.
+``--hypothesis-profile ddg-oracle-thorough`` (Hypothesis's pytest plugin) overrides this.
+This is our own test suite's choice: the package itself never loads a profile.
 """
 
 import os
 
 from hypothesis import settings
 
-import properties.profiles  # noqa: F401  (registers the profiles)
+from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
-settings.load_profile("ci" if os.environ.get("CI") else "default")
+register_profiles()
+settings.load_profile(PREFIX + ("ci" if os.environ.get("CI") else "default"))

@@ -6,7 +6,7 @@ Used to show that a check run reports them and goes on (issues 6 and 8).
 import ctypes
 import os
 
-from oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 
 
 def _has_boundary(F) -> bool:

@@ -6,9 +6,9 @@ reference on exactly the floats the adapter receives (``PolyhedralSurface.from_a
 takes every float as a dyadic rational), and compares with the bound the
 corresponding property uses: ``corner_tolerances`` / ``vertex_tolerances`` /
 ``edge_mean_curvature_tolerances`` / ``area_tolerance`` of
-``properties.curvature`` (D2.6, D2.2 + R2.4, D2.3, R2.5), the entry bounds
-``Exact(...).B`` of ``properties.laplacian`` (D3.1), ``vertex_area_bounds`` (L3.7)
-and ``DelaunayExact(...).B`` of ``properties.delaunay`` (D4.8).  The bounds
+``ddg_oracle.properties.curvature`` (D2.6, D2.2 + R2.4, D2.3, R2.5), the entry bounds
+``Exact(...).B`` of ``ddg_oracle.properties.laplacian`` (D3.1), ``vertex_area_bounds`` (L3.7)
+and ``DelaunayExact(...).B`` of ``ddg_oracle.properties.delaunay`` (D4.8).  The bounds
 are derived there from machine epsilon and the conditioning of each quantity.
 """
 
@@ -18,13 +18,13 @@ from fractions import Fraction
 
 import numpy as np
 
-from properties.curvature import (CurvatureCase, area_tolerance, corner_tolerances,
+from ddg_oracle.properties.curvature import (CurvatureCase, area_tolerance, corner_tolerances,
                                   edge_mean_curvature_tolerances, floated, vertex_tolerances)
-from properties.delaunay import DelaunayExact
-from properties.laplacian import Exact, MeshCase, vertex_area_bounds
-from reference import surfaces
-from reference import curvature as ref_curvature
-from reference import laplacian as ref_laplacian
+from ddg_oracle.properties.delaunay import DelaunayExact
+from ddg_oracle.properties.laplacian import Exact, MeshCase, vertex_area_bounds
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference import curvature as ref_curvature
+from ddg_oracle.reference import laplacian as ref_laplacian
 
 MESHES = {
     "cube": surfaces.cube,

@@ -4,7 +4,7 @@ Each class is the reference with one plausible bug planted, the kind a
 developer actually writes.
 """
 
-from oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 
 
 class ChiIgnoresBoundary(ReferenceImplementation):
@@ -83,8 +83,8 @@ class OneFlipTooMany(ReferenceImplementation):
 
     def planar_flip_to_delaunay(self, V, F):
         import numpy as np
-        from reference.combinatorics import Triangulation
-        from reference.planar import straight_line_flip
+        from ddg_oracle.reference.combinatorics import Triangulation
+        from ddg_oracle.reference.planar import straight_line_flip
         F2 = super().planar_flip_to_delaunay(V, F)
         pts = [(x, y) for x, y, _ in np.asarray(V, float)]
         t = Triangulation.from_faces(F2.tolist(), n_vertices=len(pts))

@@ -1,10 +1,10 @@
 """Shared assertions of the property tests: an implementation passes a property well inside
 its bounds, or a planted bug is caught with a shrunk counterexample."""
 
-from properties import laplacian as props
-from properties.profiles import profile
-from properties.registry import PROPERTIES
-from properties.runner import FAILED, PASSED, run_property
+from ddg_oracle.properties import laplacian as props
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.registry import PROPERTIES
+from ddg_oracle.properties.runner import FAILED, PASSED, run_property
 
 
 def assert_passes_well_inside(pid, impl, ratio=0.05):

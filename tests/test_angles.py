@@ -6,9 +6,9 @@ import mpmath
 import pytest
 from hypothesis import assume, given, strategies as st
 
-from reference.errors import InputError
-from reference.exact.angles import Angle, corner_angle, direction_angle, pi
-from reference.exact.surds import Surd, sqrt
+from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.exact.angles import Angle, corner_angle, direction_angle, pi
+from ddg_oracle.reference.exact.surds import Surd, sqrt
 
 
 

@@ -10,13 +10,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from oracles.cli import Progress, main
-from oracles.exact_reference import ReferenceImplementation
-from oracles.meshfiles import read_mesh, write_obj
-from oracles.report import element_ids, jsonable
-from properties import PROPERTIES
-from properties.runner import CONVENTION, FAILED, PASSED, TIE, run_on_example, run_property
-from reference import surfaces
+from ddg_oracle.cli import Progress, main
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.meshfiles import read_mesh, write_obj
+from ddg_oracle.report import element_ids, jsonable
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.runner import CONVENTION, FAILED, PASSED, TIE, run_on_example, run_property
+from ddg_oracle.reference import surfaces
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -120,7 +120,7 @@ def test_expect_conventions_turns_a_documented_convention_into_an_expected_resul
 
 
 def test_expect_conventions_does_not_excuse_an_undocumented_option():
-    from oracles.implementations import convention_counterpart
+    from ddg_oracle.implementations import convention_counterpart
     assert convention_counterpart("libigl(boundary=library)")[0] == "libigl"
     assert convention_counterpart("pymeshlab(genus=library, boundary=library)")[0] == "pymeshlab"
     assert convention_counterpart("tests.planted_bugs:ChiIgnoresBoundary") is None
@@ -208,7 +208,7 @@ def test_progress_bar_only_on_a_terminal():
         def isatty(self):
             return True
 
-    from oracles.jobs import Task
+    from ddg_oracle.jobs import Task
     tty, pipe = Tty(), io.StringIO()
     for stream in (tty, pipe):
         p = Progress(2, stream)
@@ -255,7 +255,7 @@ def test_sample_meshes_of_pymeshlab(capsys):
     rc, out, err = _run(capsys, "check", "--mesh", "pymeshlab:cube.obj", "--impl", "reference",
                         "--only", "D2.2", "--only", "X1.4")
     assert rc == 0 and "property on pymeshlab:cube.obj" in out
-    from oracles.compare import resolve
+    from ddg_oracle.compare import resolve
     everything = [name for name, _, _ in resolve(["pymeshlab:"])]
     assert "pymeshlab:cube.obj" in everything and "pymeshlab:bunny.obj" in everything
     rc, _, err = _run(capsys, "check", "--mesh", "pymeshlab:no-such.obj")
@@ -302,7 +302,7 @@ def test_unreferenced_vertices_are_removed_with_a_note(capsys, tmp_path):
 
 
 def test_run_on_example_uses_the_property_check_once():
-    from oracles.compare import MeshExamples, MeshInput
+    from ddg_oracle.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.curvature_case(), "cube")
@@ -312,7 +312,7 @@ def test_run_on_example_uses_the_property_check_once():
 def test_compare_lists_every_quantity_with_its_worst_element(capsys, tetra_obj):
     rc, out, _ = _run(capsys, "compare", str(tetra_obj), "--impl", "libigl")
     assert rc == 0
-    from properties.protocol import METHODS
+    from ddg_oracle.properties.protocol import METHODS
     not_comparable = {"intrinsic_delaunay_triangulation", "planar_delaunay",   # not unique / no mesh
                       "planar_flip_to_delaunay"}
     for method in METHODS:
@@ -333,13 +333,13 @@ def test_compare_finds_the_planted_bug_and_exits_1(capsys, disk_obj):
 
 
 def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
-    from reference.errors import TermLimitExceeded
-    from properties.runner import UNDECIDED
+    from ddg_oracle.reference.errors import TermLimitExceeded
+    from ddg_oracle.properties.runner import UNDECIDED
 
     class Limited(ReferenceImplementation):
         def euler_characteristic(self, V, F):
             raise TermLimitExceeded("a square-root number would have too many terms")
-    from oracles.compare import MeshExamples, MeshInput
+    from ddg_oracle.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.surface_case(), "cube")
@@ -348,7 +348,7 @@ def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
 
 def test_convention_status_from_run_property():
     from hypothesis import settings
-    from oracles.libigl import Libigl
+    from ddg_oracle.oracles.libigl import Libigl
     quick = settings(max_examples=20, deadline=None, database=None, derandomize=True)
     r = run_property(PROPERTIES["R2.4"], Libigl(boundary="library"), quick,
                      counterpart=Libigl(), convention="L2")
@@ -377,7 +377,7 @@ def test_report_of_a_failure_on_a_large_mesh_file_reads_the_obj(tmp_path, capsys
 @pytest.mark.parametrize("element", [{"vertex": 3}, {"edge": [0, 5]}, {"face": 2, "corner": 1},
                                      {"face": 40}, None])
 def test_render_writes_a_png_for_each_kind_of_element(tmp_path, element):
-    from oracles.render import RING_LIMIT, render_mesh
+    from ddg_oracle.render import RING_LIMIT, render_mesh
     s = surfaces.torus(24, 12) if element == {"face": 40} else surfaces.disk(6)
     V, F = s.to_arrays()
     if element == {"face": 40}:

@@ -1,4 +1,4 @@
-"""Tests of reference.combinatorics: input validation, the halfedge structure,
+"""Tests of ddg_oracle.reference.combinatorics: input validation, the halfedge structure,
 D1.4 / D1.6 / R1.5 / CS / T1.1 / R1.6, and non-regular triangulations from flips."""
 
 
@@ -6,9 +6,9 @@ import pytest
 from hypothesis import HealthCheck, find, given, settings
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.combinatorics import Classification, Triangulation, connected_sum
-from reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, InputError, NegativeIndex,
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Classification, Triangulation, connected_sum
+from ddg_oracle.reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, InputError, NegativeIndex,
                               NonIntegerIndex, NonManifoldEdge, NonManifoldVertex,
                               NotConnected, NotFlippable, RepeatedVertexInFace,
                               UnreferencedVertex)

@@ -1,5 +1,5 @@
-"""Chapter 2, curvature of polyhedral surfaces: the exact reference (reference.curvature,
-reference.exact.measures) and the chapter-2 properties (properties.curvature).
+"""Chapter 2, curvature of polyhedral surfaces: the exact reference (ddg_oracle.reference.curvature,
+ddg_oracle.reference.exact.measures) and the chapter-2 properties (ddg_oracle.properties.curvature).
 
 Catalog IDs in test names: D2.2, R2.2, L2.4, T2.5, T2.6, X2.1, R2.4, D2.3, T2.7, R2.5,
 D2.6, X2.3.
@@ -13,22 +13,22 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 
-from oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 
-from properties import PROPERTIES, triangulated_surfaces
-from properties import curvature as P
-from properties.profiles import profile
-from properties.runner import FAILED, PASSED, TIE, run_property
-from reference import curvature as C
-from reference import surfaces
-from reference.combinatorics import Triangulation
-from reference.errors import DegenerateFace, InputError, TriangleInequalityViolated
-from reference.exact import Angle, Surd, corner_angle, pi, sqrt
-from reference.exact.measures import AngleLength, surd_sum
-from reference.metric import PiecewiseFlatSurface
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.properties import PROPERTIES, triangulated_surfaces
+from ddg_oracle.properties import curvature as P
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
+from ddg_oracle.reference import curvature as C
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.errors import DegenerateFace, InputError, TriangleInequalityViolated
+from ddg_oracle.reference.exact import Angle, Surd, corner_angle, pi, sqrt
+from ddg_oracle.reference.exact.measures import AngleLength, surd_sum
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 mpmath.mp.dps = 60
 

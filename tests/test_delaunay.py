@@ -1,4 +1,4 @@
-"""Tests of reference.delaunay: intrinsic Delaunay triangulations (chapter 4), exact.
+"""Tests of ddg_oracle.reference.delaunay: intrinsic Delaunay triangulations (chapter 4), exact.
 
 Rows: D4.4 / T4.7 / P4.9 (angle criterion vs in-circle determinant), P4.10,
 L4.11, A4.13 / T4.12 / C4.19 / L4.20 (runs of the flip algorithm, replayed
@@ -15,18 +15,18 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.combinatorics import Triangulation
-from reference.delaunay import (DelaunayError, delaunay_tessellation_edges, face_harmonic_index,
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.delaunay import (DelaunayError, delaunay_tessellation_edges, face_harmonic_index,
                                 flip_to_delaunay, harmonic_index, in_circumcircle,
                                 is_delaunay, is_delaunay_edge, laplace_beltrami,
                                 non_delaunay_edges)
-from reference.errors import InputError
-from reference.exact import corner_angle
-from reference.intrinsic import cot_sum, flip, is_flippable
-from reference.laplacian import cotan_laplacian, cotan_weights
-from properties.metrics import flat_torus
-from reference.metric import PiecewiseFlatSurface, metric_of
+from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.exact import corner_angle
+from ddg_oracle.reference.intrinsic import cot_sum, flip, is_flippable
+from ddg_oracle.reference.laplacian import cotan_laplacian, cotan_weights
+from ddg_oracle.properties.metrics import flat_torus
+from ddg_oracle.reference.metric import PiecewiseFlatSurface, metric_of
 
 SETTINGS = settings(max_examples=40, deadline=None, database=None,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -6,18 +6,18 @@ from fractions import Fraction
 import pytest
 from hypothesis import given, strategies as st
 
-from properties.laplacian import obtuse_meshes, planar_meshes, weighted_graphs, with_boundary
-from reference.dirichlet import (SingularDirichletProblem, directional_derivative,
+from ddg_oracle.properties.laplacian import obtuse_meshes, planar_meshes, weighted_graphs, with_boundary
+from ddg_oracle.reference.dirichlet import (SingularDirichletProblem, directional_derivative,
                                  energy_gradient, energy_increase, has_positive_weights,
                                  is_constant_on_components, is_harmonic_at, kernel_dimension,
                                  matrix_components, neighbour_convex_combination,
                                  satisfies_maximum_principle, separates, solve_dirichlet,
                                  strict_interior_extrema)
-from reference.laplacian import (cotan_laplacian, cotan_weights, dirichlet_energy,
+from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_weights, dirichlet_energy,
                                  dirichlet_energy_pl, graph_laplacian)
-from reference.minimal import (area_decrease_certificate, area_enclosure, figure_3_7_star,
+from ddg_oracle.reference.minimal import (area_decrease_certificate, area_enclosure, figure_3_7_star,
                                minimal_surface_iteration, minimal_surface_step)
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 
 def _vector(n):
@@ -138,7 +138,7 @@ def test_singular_problems_name_the_component():
 def test_vector_valued_boundary_values_and_term_limit_guard():
     L = graph_laplacian(3, [(0, 1, 1), (1, 2, 1)])
     assert solve_dirichlet(L, {0: (0, 2), 2: (4, 0)})[1] == (2, 1)
-    from reference.errors import TermLimitExceeded
+    from ddg_oracle.reference.errors import TermLimitExceeded
     s = PolyhedralSurface.from_arrays(
         [(0, 0, 0), (3, 0, 1), (1, 2, 0), (-2, 1, 1), (-1, -2, 0), (2, -3, 1)],
         [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5), (0, 5, 1)])
@@ -220,7 +220,7 @@ def _fan(k, h, zs):
 def _small_surfaces():
     """Small disks in R^3 with one interior vertex: fans with a lifted centre and 2 x 2 grids
     with heights.  (With Surd weights the exact solve grows like 2^F in the number of faces
-    around the unknowns; see reference.minimal.)"""
+    around the unknowns; see ddg_oracle.reference.minimal.)"""
     fan = st.builds(_fan, st.integers(4, 6), st.integers(-2, 3),
                     st.lists(st.integers(-1, 1), min_size=6, max_size=6))
     grid = planar_meshes(heights=True, min_size=2, max_size=2).map(lambda c: c.surface())

@@ -1,11 +1,11 @@
 """The fast exact paths agree exactly with the definitions they replace (issue 7).
 
-* reference.cotan_fast (integer cotan weights and Laplacian) against
-  reference.laplacian.cotan_weights / cotan_laplacian_from_weights: ``==`` on
+* ddg_oracle.reference.cotan_fast (integer cotan weights and Laplacian) against
+  ddg_oracle.reference.laplacian.cotan_weights / cotan_laplacian_from_weights: ``==`` on
   every entry, on generated meshes, float meshes, intrinsic surfaces with loops,
   and the 1,280-face float icosphere of the benchmarks;
 * IntrinsicTriangulation (in-place O(1) flips) against chains of the immutable
-  reference.intrinsic.flip, and flip_to_delaunay against the same loop written
+  ddg_oracle.reference.intrinsic.flip, and flip_to_delaunay against the same loop written
   with immutable flips: same surface, same triangulation, same vertex stars,
   same log.
 
@@ -20,21 +20,21 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 
 from benchmarks.peers import flip_to_delaunay_immutable
-from properties.laplacian import any_meshes, closed_meshes
-from properties.strategies import triangulated_surfaces
-from reference import cotan_fast, curvature_fast, surfaces
-from reference.combinatorics import Triangulation
-from reference.cotan_fast import (CotanSum, applies, cotan_laplacian_fast, cotan_weights_fast,
+from ddg_oracle.properties.laplacian import any_meshes, closed_meshes
+from ddg_oracle.properties.strategies import triangulated_surfaces
+from ddg_oracle.reference import cotan_fast, curvature_fast, surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.cotan_fast import (CotanSum, applies, cotan_laplacian_fast, cotan_weights_fast,
                                   face_cotangents)
-from reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
+from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces, turning_angles)
-from reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
-from reference.errors import DegenerateFace, NotFlippable
-from reference.exact import Surd, pi, sqrt
-from reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
-from reference.laplacian import cotan_laplacian, cotan_laplacian_from_weights, cotan_weights
-from reference.metric import PiecewiseFlatSurface
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
+from ddg_oracle.reference.errors import DegenerateFace, NotFlippable
+from ddg_oracle.reference.exact import Surd, pi, sqrt
+from ddg_oracle.reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
+from ddg_oracle.reference.laplacian import cotan_laplacian, cotan_laplacian_from_weights, cotan_weights
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from tests.test_delaunay import flat_torus, random_flips
 from tests.test_laplacian import float_icosphere
 
@@ -128,7 +128,7 @@ def test_degenerate_face_raises_the_same_error():
 def test_canonical_values_with_large_shared_primes_and_hidden_squares():
     """Radicands sharing the prime 101, a large part that is a square (101^2 * 2), a
     rational face: each face's sqrt(G) = c sqrt(m), and the canonical Surds built from
-    the factors equal sums of reference.exact.sqrt."""
+    the factors equal sums of ddg_oracle.reference.exact.sqrt."""
     G = [101 * 103, 101 * 107 * 4, 101 ** 2 * 2 * 9, 103, 49, 6 * 101 * 113, 6 * 5]
     fd = cotan_fast.FaceData(G, [1] * len(G), [1] * (3 * len(G)))
     for f, g in enumerate(G):

@@ -4,7 +4,7 @@ Random bytes, format-shaped random text, and mutated valid files of every
 format and variant (tests/hostile.py ``valid_files``) must give a mesh or one
 ``MeshFileError``; random arrays must give a surface or an ``InputError``;
 nothing else, and never a hang: each example runs under a hard time limit
-(:func:`properties.profiles.example_time_limit`) and Hypothesis's deadline.
+(:func:`ddg_oracle.properties.profiles.example_time_limit`) and Hypothesis's deadline.
 
 Budget: a fixed multiple of the loaded profile's ``max_examples`` (default
 25 -> 200 files per test, ``ci`` 60 -> 480 and derandomized, ``thorough``
@@ -18,13 +18,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from oracles.arrays import checked_arrays
-from oracles.meshfiles import MeshFileError, read_mesh
-from properties.profiles import example_time_limit
-from reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
-from reference.curvature import angle_defects
-from reference.errors import InputError
-from reference.laplacian import cotan_laplacian
+from ddg_oracle.oracles.arrays import checked_arrays
+from ddg_oracle.meshfiles import MeshFileError, read_mesh
+from ddg_oracle.properties.profiles import example_time_limit
+from ddg_oracle.reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
+from ddg_oracle.reference.curvature import angle_defects
+from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.laplacian import cotan_laplacian
 from tests.hostile import valid_files
 
 _base = settings.default                    # the profile conftest.py / --hypothesis-profile loaded

@@ -12,19 +12,19 @@ import numpy as np
 import pytest
 from hypothesis import Phase, settings
 
-from oracles.arrays import checked_arrays
-from oracles.exact_reference import ReferenceImplementation
-from oracles.meshfiles import MeshFileError, read_mesh
-from properties import PROPERTIES
-from properties.profiles import TIME_LIMIT_ENV, example_time_limit, time_limit_seconds
-from properties.runner import CRASHED, run_property
-from reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
-from reference.curvature import (angle_defects, dihedral_angles, gauss_bonnet_holds,
+from ddg_oracle.oracles.arrays import checked_arrays
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.meshfiles import MeshFileError, read_mesh
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.profiles import TIME_LIMIT_ENV, example_time_limit, time_limit_seconds
+from ddg_oracle.properties.runner import CRASHED, run_property
+from ddg_oracle.reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
+from ddg_oracle.reference.curvature import (angle_defects, dihedral_angles, gauss_bonnet_holds,
                                  mean_curvature)
-from reference.errors import (DegenerateFace, InputError, TermLimitExceeded,
+from ddg_oracle.reference.errors import (DegenerateFace, InputError, TermLimitExceeded,
                               TimeLimitExceeded)
-from reference.exact import limits, sqrt
-from reference.laplacian import cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi
+from ddg_oracle.reference.exact import limits, sqrt
+from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi
 from tests.hostile import (ARRAY_CASES, FILE_CASES, ICO_F, ICO_V, LENGTH_CASES,
                            MESH_FILE_CASES, TET_F, TET_V, TRIANGULATION_CASES, valid_files, write)
 
@@ -202,7 +202,7 @@ def test_term_limit_says_which_limit_and_how_to_raise_it():
     with limits(term_limit=4):
         with pytest.raises(TermLimitExceeded) as err:
             sum((sqrt(p) for p in primes), start=sqrt(1))
-    _says(err.value, ("5 terms", "term limit 4", "reference.exact.limits(term_limit="))
+    _says(err.value, ("5 terms", "term limit 4", "ddg_oracle.reference.exact.limits(term_limit="))
     with limits(term_limit=8):                     # raised as the message says: fine
         assert sum((sqrt(p) for p in primes), start=sqrt(1)).n_terms == 7
 
@@ -266,7 +266,7 @@ def test_reference_float_views_beyond_the_float_range_are_inf():
 
     import numpy as np
 
-    from oracles.exact_reference import ReferenceImplementation
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     V = np.array([[0.0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]])
     F = np.array([[0, 1, 2]])
     r = ReferenceImplementation()

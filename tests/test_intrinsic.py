@@ -1,4 +1,4 @@
-"""Tests of reference.intrinsic: exact intrinsic edge flips (L2.8, X2.5).
+"""Tests of ddg_oracle.reference.intrinsic: exact intrinsic edge flips (L2.8, X2.5).
 
 The closed formulas are checked against coordinates (planar rational quads,
 exactly; quads in R^3, exactly via an independent decomposition and with
@@ -17,13 +17,13 @@ import pytest
 from hypothesis import HealthCheck, assume, event, given, settings
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.combinatorics import Triangulation
-from reference.errors import DegenerateFace, NotFlippable, TermLimitExceeded
-from reference.exact import Surd, corner_angle, limits, pi, sqrt
-from reference.intrinsic import (Unfolding, cot_sum, flip, is_flippable,
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.errors import DegenerateFace, NotFlippable, TermLimitExceeded
+from ddg_oracle.reference.exact import Surd, corner_angle, limits, pi, sqrt
+from ddg_oracle.reference.intrinsic import (Unfolding, cot_sum, flip, is_flippable,
                                  regular_tetrahedron_flip, unfold)
-from reference.metric import PiecewiseFlatSurface, heron16, metric_of
+from ddg_oracle.reference.metric import PiecewiseFlatSurface, heron16, metric_of
 
 SETTINGS = settings(max_examples=40, deadline=None, database=None,
                     suppress_health_check=[HealthCheck.too_slow])
@@ -643,15 +643,15 @@ def test_flip_accepts_a_polyhedral_surface():
 
 @given(st.sampled_from(["tetrahedron", "cube", "grid", "octahedron"]), st.integers(0, 1 << 16))
 def test_L2_8_structural_property_on_constructors(name, pick):
-    from properties.structure import intrinsic_flip_keeps_the_metric
+    from ddg_oracle.properties.structure import intrinsic_flip_keeps_the_metric
     s = {"tetrahedron": surfaces.tetrahedron, "cube": surfaces.cube, "octahedron": surfaces.octahedron,
          "grid": lambda: surfaces.grid(2, 2)}[name]().metric()
     intrinsic_flip_keeps_the_metric(s, pick % s.triangulation.n_edges)
 
 
 def test_X2_5_structural_property_on_the_regular_tetrahedron():
-    from properties.structure import intrinsic_flip_keeps_the_metric
-    from reference.intrinsic import regular_tetrahedron_flip
+    from ddg_oracle.properties.structure import intrinsic_flip_keeps_the_metric
+    from ddg_oracle.reference.intrinsic import regular_tetrahedron_flip
     m = regular_tetrahedron_flip()
     for e in range(m.triangulation.n_edges):
         intrinsic_flip_keeps_the_metric(m, e)

@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
-from oracles.isolation import ImplementationCrashed, Isolated, memory_limit
-from properties import PROPERTIES
-from properties.runner import CRASHED, PASSED, run_property
-from reference import surfaces
-from reference.errors import InputError
+from ddg_oracle.isolation import ImplementationCrashed, Isolated, memory_limit
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.runner import CRASHED, PASSED, run_property
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.errors import InputError
 
 CLOSED = surfaces.tetrahedron().to_arrays()
 OPEN = surfaces.disk(5).to_arrays()

@@ -10,30 +10,30 @@ import pytest
 import scipy.sparse as sp
 from hypothesis import given, strategies as st
 
-from properties import laplacian as props
-from properties.laplacian import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
+from ddg_oracle.properties import laplacian as props
+from ddg_oracle.properties.laplacian import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
                                   planar_meshes, weighted_graphs, with_functions)
-from properties.profiles import profile
+from ddg_oracle.properties.profiles import profile
 from tests.property_checks import assert_caught, assert_passes_well_inside
-from properties.registry import PROPERTIES
-from properties.runner import PASSED, run_property
-from reference import surfaces
-from reference.area import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,
+from ddg_oracle.properties.registry import PROPERTIES
+from ddg_oracle.properties.runner import PASSED, run_property
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.area import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,
                             area_gradient_cotan, area_gradient_cross, area_gradient_direct,
                             area_length_derivatives, heron_partial_derivatives,
                             laplacian_of_positions, triangle_area_heron, triangle_cotangents)
-from reference.combinatorics import Triangulation
-from reference.errors import InputError
-from reference.exact import Surd, corner_angle, pi, sqrt
-from reference.laplacian import (cotan_laplacian, cotan_weight_by_sines, cotan_weighted_edges,
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.exact import Surd, corner_angle, pi, sqrt
+from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_weight_by_sines, cotan_weighted_edges,
                                  cotan_weights, dirichlet_energy, dirichlet_energy_pl,
                                  dirichlet_inner_product_pl, graph_laplacian, gradient_pl,
                                  opposite_angle_sum, vertex_areas_barycentric,
                                  vertex_areas_voronoi, weight_sign_by_angles)
-from reference.dirichlet import kernel_dimension
-from reference.metric import PiecewiseFlatSurface
-from reference.polyhedral import PolyhedralSurface
-from reference.sparse import SparseMatrix
+from ddg_oracle.reference.dirichlet import kernel_dimension
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.sparse import SparseMatrix
 
 CHAPTER3 = ["D3.1", "T3.1 / R3.2", "T3.2", "C3.3", "C3.4 / T3.5", "T3.6", "R3.3", "L3.7",
             "L3.8", "T3.9", "A3.6", "P3.10", "E3.12"]

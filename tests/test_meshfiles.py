@@ -5,8 +5,8 @@ import struct
 import pytest
 from hypothesis import given, strategies as st
 
-from oracles.meshfiles import MeshFileError, read_mesh, write_obj
-from reference import surfaces
+from ddg_oracle.meshfiles import MeshFileError, read_mesh, write_obj
+from ddg_oracle.reference import surfaces
 
 V0, F0 = surfaces.icosahedron().to_arrays()
 

@@ -4,10 +4,10 @@ from fractions import Fraction
 
 from hypothesis import given, settings
 
-from properties.metrics import flat_tori, polycube, polycube_surfaces, randomly_flipped
-from reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay, laplace_beltrami
-from reference.exact import Surd
-from reference.laplacian import cotan_weights
+from ddg_oracle.properties.metrics import flat_tori, polycube, polycube_surfaces, randomly_flipped
+from ddg_oracle.reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay, laplace_beltrami
+from ddg_oracle.reference.exact import Surd
+from ddg_oracle.reference.laplacian import cotan_weights
 
 
 def _rational(x):

@@ -4,15 +4,15 @@ from fractions import Fraction
 
 from hypothesis import given, settings
 
-from reference import surfaces
-from reference.delaunay import is_delaunay
-from reference.dirichlet import neighbour_convex_combination
-from reference.laplacian import cotan_laplacian
-from reference.minimal import (area_decrease_certificate, area_enclosure,
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.delaunay import is_delaunay
+from ddg_oracle.reference.dirichlet import neighbour_convex_combination
+from ddg_oracle.reference.laplacian import cotan_laplacian
+from ddg_oracle.reference.minimal import (area_decrease_certificate, area_enclosure,
                                delaunay_minimal_surface_step, delaunay_neighbour_hull,
                                figure_3_7_star, is_minimal_narrow, is_minimal_wide,
                                minimal_surface_step)
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from tests.test_dirichlet import _small_surfaces
 

@@ -9,10 +9,10 @@ import pytest
 
 from examples.numpy_cotan import (AbsoluteThreshold, BoundaryWithoutHalf, NumpyCotan, SignError,
                                   WrongCorner)
-from properties import check_implementation
-from properties.profiles import profile
-from properties.registry import PROPERTIES
-from properties.runner import FAILED, PASSED, run_property
+from ddg_oracle.properties import check_implementation
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.registry import PROPERTIES
+from ddg_oracle.properties.runner import FAILED, PASSED, run_property
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -44,7 +44,7 @@ def _run(*args):
 
 
 def test_one_command_finds_the_wrong_corner():
-    out = _run("oracles.cli", "check", "--impl", "examples.numpy_cotan:WrongCorner",
+    out = _run("ddg_oracle.cli", "check", "--impl", "examples.numpy_cotan:WrongCorner",
                "--only", "D3.1", "--profile", "ci")
     assert out.returncode == 1, out.stdout + out.stderr
     assert "[D3.1] numpy-cotan-wrong-corner" in out.stdout

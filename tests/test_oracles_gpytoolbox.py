@@ -14,12 +14,12 @@ import pytest
 
 gpy = pytest.importorskip("gpytoolbox")
 
-from oracles.gpytoolbox import Gpytoolbox  # noqa: E402
-from properties import check_implementation  # noqa: E402
-from properties.protocol import capabilities  # noqa: E402
-from reference import surfaces  # noqa: E402
-from reference.curvature import corner_angles  # noqa: E402
-from reference.polyhedral import PolyhedralSurface  # noqa: E402
+from ddg_oracle.oracles.gpytoolbox import Gpytoolbox  # noqa: E402
+from ddg_oracle.properties import check_implementation  # noqa: E402
+from ddg_oracle.properties.protocol import capabilities  # noqa: E402
+from ddg_oracle.reference import surfaces  # noqa: E402
+from ddg_oracle.reference.curvature import corner_angles  # noqa: E402
+from ddg_oracle.reference.polyhedral import PolyhedralSurface  # noqa: E402
 from tests import peer_checks as pc  # noqa: E402
 
 GPY = Gpytoolbox()
@@ -155,7 +155,7 @@ def test_every_applicable_property_passes():
 
 
 def test_runs_in_a_worker_process():
-    from oracles.isolation import Isolated
+    from ddg_oracle.isolation import Isolated
     V, F = (np.array(a) for a in surfaces.torus(5, 4).to_arrays())
     with Isolated("gpytoolbox", timeout=60) as impl:
         assert impl.euler_characteristic(V, F) == 0

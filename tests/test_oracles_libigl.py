@@ -7,8 +7,8 @@ the rounding of the constructors' rational coordinates.  The expected values
 are assembled in this file from the reference's exact primitives
 (``corner_angle``, ``corner_cot``, ``area``, squared lengths: ``Angle`` /
 ``Surd`` arithmetic, rounded once; dihedral angles from mpmath at 40 digits on
-the exact rational positions), written while ``reference.curvature`` and
-``reference.laplacian`` were being written;
+the exact rational positions), written while ``ddg_oracle.reference.curvature`` and
+``ddg_oracle.reference.laplacian`` were being written;
 ``test_expectations_are_the_reference_chapter_2_3_functions`` checks that they
 are exactly what those modules return.
 
@@ -34,12 +34,12 @@ import igl
 import numpy as np
 import pytest
 
-from oracles.libigl import Libigl
-from properties import PROPERTIES
-from properties.profiles import profile
-from properties.runner import PASSED, run_property
-from reference import PolyhedralSurface, surfaces
-from reference.exact import Angle, Surd, pi
+from ddg_oracle.oracles.libigl import Libigl
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.runner import PASSED, run_property
+from ddg_oracle.reference import PolyhedralSurface, surfaces
+from ddg_oracle.reference.exact import Angle, Surd, pi
 
 U = 2.0 ** -53
 IGL = Libigl()
@@ -214,10 +214,10 @@ def _edge_mean_curvature_mp(c: Case) -> dict[tuple[int, int], float]:
 @pytest.mark.parametrize("name", list(MESHES))
 def test_expectations_are_the_reference_chapter_2_3_functions(name):
     """The expected values above, assembled from the reference's primitives, equal what
-    ``reference.curvature`` / ``reference.laplacian`` return (exactly, or as floats of the
+    ``ddg_oracle.reference.curvature`` / ``ddg_oracle.reference.laplacian`` return (exactly, or as floats of the
     same exact numbers)."""
-    curvature = pytest.importorskip("reference.curvature")
-    laplacian = pytest.importorskip("reference.laplacian")
+    curvature = pytest.importorskip("ddg_oracle.reference.curvature")
+    laplacian = pytest.importorskip("ddg_oracle.reference.laplacian")
     c = case(name)
     s = c.surface
     defects = {**curvature.angle_defects(s), **curvature.turning_angles(s)}
@@ -280,7 +280,7 @@ def test_finding_L1_boundary_loop_all_breaks_the_boundary_of_a_mobius_strip(n):
 
 
 def test_is_orientable_on_closed_non_orientable_surfaces():
-    from properties.strategies import extend_positions
+    from ddg_oracle.properties.strategies import extend_positions
     for t in (surfaces.projective_plane(), surfaces.klein_bottle()):
         V = np.array([[float(x) for x in p] for p in extend_positions(t, ())])
         F = np.array(t.to_face_list())
@@ -299,8 +299,8 @@ def test_chapter1_properties_pass(pid):
 
 def test_R1_6_holds_on_orientable_surfaces_the_non_orientable_failure_is_L1():
     from hypothesis import given, settings
-    from properties.strategies import triangulated_surfaces
-    from properties.topology import boundary_loops_and_genus
+    from ddg_oracle.properties.strategies import triangulated_surfaces
+    from ddg_oracle.properties.topology import boundary_loops_and_genus
 
     @settings(max_examples=25, deadline=None, database=None, derandomize=True)
     @given(triangulated_surfaces(orientable=True, max_holes=3))
@@ -531,8 +531,8 @@ def test_bad_indices_raise_instead_of_segfaulting():
 
 
 def test_runs_in_a_worker_process():
-    from oracles.isolation import Isolated
+    from ddg_oracle.isolation import Isolated
     c = case("torus(5,4)")
-    with Isolated("oracles.libigl:Libigl", timeout=60) as impl:
+    with Isolated("ddg_oracle.oracles.libigl:Libigl", timeout=60) as impl:
         assert impl.euler_characteristic(c.V, c.F) == 0
         assert impl.genus(c.V, c.F) == 1

@@ -4,7 +4,7 @@ float32 and float64 roundoff; its documented disagreements are asserted as such.
 As in ``test_oracles_libigl.py`` the truth is the reference's exact value for
 the float input PyMeshLab sees (``PolyhedralSurface.from_arrays(V, F)``),
 assembled here from the reference's exact primitives (the libigl tests check
-that these equal ``reference.curvature`` / ``reference.laplacian``).
+that these equal ``ddg_oracle.reference.curvature`` / ``ddg_oracle.reference.laplacian``).
 
 Error bounds
 ------------
@@ -28,13 +28,13 @@ import math
 import numpy as np
 import pytest
 
-from oracles.pymeshlab import (PyMeshLab, VertexOrderChanged, boundary_edge_angles,
+from ddg_oracle.oracles.pymeshlab import (PyMeshLab, VertexOrderChanged, boundary_edge_angles,
                                exact_mixed_voronoi_areas)
-from properties import PROPERTIES
-from properties.profiles import profile
-from properties.runner import NOT_APPLICABLE, PASSED, run_property
-from reference import PolyhedralSurface, surfaces
-from reference.exact import Angle, pi
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, run_property
+from ddg_oracle.reference import PolyhedralSurface, surfaces
+from ddg_oracle.reference.exact import Angle, pi
 
 U = 2.0 ** -53
 U32 = 2.0 ** -24
@@ -135,10 +135,10 @@ def test_exact_mixed_areas_partition_the_area_and_match_numpy(name):
 
 
 def test_exact_mixed_areas_fallback_equals_the_reference_function():
-    """The adapter's own rule (used only if reference.laplacian is missing) is the
+    """The adapter's own rule (used only if ddg_oracle.reference.laplacian is missing) is the
     reference's vertex_areas_voronoi, exactly."""
-    laplacian = pytest.importorskip("reference.laplacian")
-    from oracles.pymeshlab import _mixed_areas_from_metric
+    laplacian = pytest.importorskip("ddg_oracle.reference.laplacian")
+    from ddg_oracle.oracles.pymeshlab import _mixed_areas_from_metric
     for name in MESHES:
         c = case(name)
         surface = PolyhedralSurface.from_arrays(c.V, c.F)
@@ -170,7 +170,7 @@ def test_topological_measures_keys_and_hole_count():
 
 def _closed(t):
     """A closed abstract surface with the strategies' distinct placeholder points."""
-    from properties.strategies import extend_positions
+    from ddg_oracle.properties.strategies import extend_positions
     V = np.array([[float(x) for x in p] for p in extend_positions(t, ())])
     return V, np.array(t.to_face_list())
 
@@ -180,7 +180,7 @@ def test_finding_P1_library_genus_of_non_orientable_surfaces_is_half_the_crossca
     genus = -((V + F - E + holes - 2 C) / 2) with C++ integer division.  For h crosscaps
     that is h / 2 rounded toward zero: RP^2 0, Klein bottle 1, RP^2 # RP^2 # RP^2 1,
     Moebius strip 0.  The default adapter returns h = 2 - chi - holes instead."""
-    from reference.combinatorics import connected_sum
+    from ddg_oracle.reference.combinatorics import connected_sum
     rp2 = surfaces.projective_plane()
     raw = PyMeshLab(genus="library")
     for t, h in ((rp2, 1), (surfaces.klein_bottle(), 2),
@@ -388,8 +388,8 @@ def test_unreferenced_vertex_is_reported_not_silently_dropped():
 
 
 def test_runs_in_a_worker_process():
-    from oracles.isolation import Isolated
+    from ddg_oracle.isolation import Isolated
     c = case("annulus(5)")
-    with Isolated("oracles.pymeshlab:PyMeshLab", timeout=60) as impl:
+    with Isolated("ddg_oracle.oracles.pymeshlab:PyMeshLab", timeout=60) as impl:
         assert impl.euler_characteristic(c.V, c.F) == 0
         assert impl.genus(c.V, c.F) == 0

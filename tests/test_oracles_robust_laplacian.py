@@ -15,16 +15,16 @@ import pytest
 
 rl = pytest.importorskip("robust_laplacian")
 
-from oracles.robust_laplacian import RobustLaplacian, boundary_edges  # noqa: E402
-from properties import PROPERTIES, check_implementation  # noqa: E402
-from properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
-from properties.laplacian import Exact, entry_bounds, vertex_area_bounds  # noqa: E402
-from properties.profiles import profile  # noqa: E402
-from properties.protocol import OutsideDomain  # noqa: E402
-from properties.runner import NOT_APPLICABLE, PASSED, run_on_example, run_property  # noqa: E402
-from reference import PolyhedralSurface, Triangulation  # noqa: E402
-from reference.delaunay import flip_to_delaunay  # noqa: E402
-from reference.laplacian import cotan_laplacian, vertex_areas_barycentric  # noqa: E402
+from ddg_oracle.oracles.robust_laplacian import RobustLaplacian, boundary_edges  # noqa: E402
+from ddg_oracle.properties import PROPERTIES, check_implementation  # noqa: E402
+from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
+from ddg_oracle.properties.laplacian import Exact, entry_bounds, vertex_area_bounds  # noqa: E402
+from ddg_oracle.properties.profiles import profile  # noqa: E402
+from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
+from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, run_on_example, run_property  # noqa: E402
+from ddg_oracle.reference import PolyhedralSurface, Triangulation  # noqa: E402
+from ddg_oracle.reference.delaunay import flip_to_delaunay  # noqa: E402
+from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_barycentric  # noqa: E402
 from tests import peer_checks as pc  # noqa: E402
 
 RL = RobustLaplacian()
@@ -230,7 +230,7 @@ def test_runner_skips_examples_outside_the_domain():
 
 
 def test_outside_domain_crosses_the_worker_process():
-    from oracles.isolation import Isolated
+    from ddg_oracle.isolation import Isolated
     V, F = pc.arrays("disk(6)")
     with Isolated("robust_laplacian", timeout=60) as impl:
         with pytest.raises(OutsideDomain, match="R1"):

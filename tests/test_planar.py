@@ -1,11 +1,11 @@
-"""Tests of reference.planar: Delaunay tessellations of planar point sets (section 4.1).
+"""Tests of ddg_oracle.reference.planar: Delaunay tessellations of planar point sets (section 4.1).
 
 Rows: D4.1 (exact predicates, empty disk property), T4.1 (against
 scipy.spatial.Delaunay and scipy.spatial.Voronoi, as tessellations), L4.3 /
 P4.4 (angle criterion against in-circle), T4.2 (Moebius invariance, the
 precise planar statement), T4.21 (exhaustive over all triangulations of small
 point sets: L_T - L_Delaunay positive semidefinite, exactly), and the exact
-semidefiniteness test of reference.sparse.
+semidefiniteness test of ddg_oracle.reference.sparse.
 """
 
 import itertools
@@ -18,13 +18,13 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy.spatial import Delaunay, Voronoi
 
-from reference.delaunay import flip_to_delaunay, is_delaunay
-from reference.errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace,
+from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
+from ddg_oracle.reference.errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace,
                               CollinearPoints, DegenerateFace, InputError, RepeatedPoint,
                               TooFewPoints)
-from reference.exact import sqrt
-from reference.laplacian import cotan_laplacian, dirichlet_energy, dirichlet_energy_pl
-from reference.planar import (all_triangulations, angle_criterion, cell_boundary,
+from ddg_oracle.reference.exact import sqrt
+from ddg_oracle.reference.laplacian import cotan_laplacian, dirichlet_energy, dirichlet_energy_pl
+from ddg_oracle.reference.planar import (all_triangulations, angle_criterion, cell_boundary,
                               cells_avoiding, cocircular_cells, circle_position, circumcircle,
                               delaunay_tessellation, delaunay_triangulation,
                               empty_disk_violations, in_circle, inversion,
@@ -33,16 +33,16 @@ from reference.planar import (all_triangulations, angle_criterion, cell_boundary
                               planar_flip_to_delaunay, planar_triangulation,
                               straight_line_flip, tessellation_edges, triangulation_key,
                               voronoi_edges, voronoi_vertices)
-from reference.polyhedral import PolyhedralSurface
-from reference.sparse import SparseMatrix, is_positive_semidefinite, negative_direction
-from properties.planar_points import (integer_point_sets, planar_triangulations,
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.sparse import SparseMatrix, is_positive_semidefinite, negative_direction
+from ddg_oracle.properties.planar_points import (integer_point_sets, planar_triangulations,
                                       rational_point_sets, spans_plane, unit_circle_point)
 
 rationals = st.fractions(-4, 4, max_denominator=4)
 rational_points = st.tuples(rationals, rationals)
 
 
-# --- independent helpers (no reference.planar inside) ----------------------------------------
+# --- independent helpers (no ddg_oracle.reference.planar inside) ----------------------------------------
 
 
 def cross(a, b, c):
@@ -587,13 +587,13 @@ def test_semidefiniteness_with_square_roots():
 def test_R4_7_cocircular_merging_by_in_circle_equals_merging_by_zero_weights(pts):
     # two independent criteria for "same cell": in_circle == 0 of the four points, and cotan
     # weight exactly 0 of the edge (delaunay_tessellation)
-    from reference.planar import cocircular_cells
+    from ddg_oracle.reference.planar import cocircular_cells
     d = delaunay_triangulation(pts)
     assert cocircular_cells(pts, d.triangulation.faces) == delaunay_tessellation(pts)
 
 
 def test_R4_7_cocircular_cells_merge_a_square_but_not_a_kite():
-    from reference.planar import cocircular_cells
+    from ddg_oracle.reference.planar import cocircular_cells
     square = [(0, 0), (1, 0), (1, 1), (0, 1)]
     for split in ([(0, 1, 2), (0, 2, 3)], [(0, 1, 3), (1, 2, 3)]):      # either diagonal
         assert cocircular_cells(square, split) == {frozenset(range(4))}

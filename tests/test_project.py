@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from oracles.cli import main
-from properties import traceability
+from ddg_oracle.cli import main
+from ddg_oracle import traceability
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -66,14 +66,14 @@ def test_traceability_table_is_true():
 def test_traceability_check_catches_a_missing_function(tmp_path):
     bad = tmp_path / "t.toml"
     text = traceability.TABLE.read_text(encoding="utf-8")
-    text = text.replace('reference = ["reference.combinatorics:Triangulation.euler_characteristic"]',
-                        'reference = ["reference.combinatorics:Triangulation.no_such_thing"]', 1)
+    text = text.replace('reference = ["ddg_oracle.reference.combinatorics:Triangulation.euler_characteristic"]',
+                        'reference = ["ddg_oracle.reference.combinatorics:Triangulation.no_such_thing"]', 1)
     bad.write_text(text, encoding="utf-8")
     assert any("no_such_thing does not exist" in p for p in traceability.check(bad))
 
 
 def test_every_claimed_row_has_a_registered_property():
-    from properties.registry import all_properties
+    from ddg_oracle.properties.registry import all_properties
     claimed, entries = traceability.load()
     registered = {f"{p.check.__module__}:{p.name}" for p in all_properties()}
     for e in entries:

@@ -4,15 +4,15 @@ from fractions import Fraction
 
 import pytest
 
-from oracles.exact_reference import ReferenceImplementation
-from properties.delaunay import flip_amplification
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.properties.delaunay import flip_amplification
 from tests.property_checks import assert_caught, assert_passes_well_inside
-from properties.registry import PROPERTIES, all_properties
-from reference import surfaces
-from reference.delaunay import flip_to_delaunay, is_delaunay
-from reference.intrinsic import flip
-from reference.laplacian import cotan_weights
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.properties.registry import PROPERTIES, all_properties
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
+from ddg_oracle.reference.intrinsic import flip
+from ddg_oracle.reference.laplacian import cotan_weights
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from tests.planted_bugs import (LaplaceBeltramiWithoutHalf, NoFlips, OneFlipTooMany,
                                 OneSidedDelaunayTest)
@@ -83,9 +83,9 @@ def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points(
     """Finding S1 (docs/findings.md): Qhull merges nearly coplanar lifted facets and 'Qt'
     re-triangulates them, giving a triangle whose circumdisk strictly holds another point,
     by far more than a float in-circle evaluation could err."""
-    from oracles.scipy_spatial import ScipySpatial
-    from properties.delaunay import incircle_with_bound, empty_disk_property
-    from properties.registry import PropertyFailure
+    from ddg_oracle.oracles.scipy_spatial import ScipySpatial
+    from ddg_oracle.properties.delaunay import incircle_with_bound, empty_disk_property
+    from ddg_oracle.properties.registry import PropertyFailure
     third = Fraction(1, 3)
     P = [(2 * third, -third), (1, -2 * third), (4 * third, -1), (5 * third, -4 * third),
          (0, 0), (-third, 0)]
@@ -102,9 +102,9 @@ def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
     # surfaces.torus(5, 4) has cocircular quadrilaterals: libigl flips some diagonals the
     # reference keeps; both are Delaunay (R4.9), the weights there are exactly 0 either way
     import numpy as np
-    from oracles.libigl import Libigl
-    from properties.delaunay import DelaunayExact, laplace_beltrami_operator
-    from properties.laplacian import MeshCase
+    from ddg_oracle.oracles.libigl import Libigl
+    from ddg_oracle.properties.delaunay import DelaunayExact, laplace_beltrami_operator
+    from ddg_oracle.properties.laplacian import MeshCase
     s = surfaces.torus(5, 4)
     case = MeshCase(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")
     A = Libigl().intrinsic_delaunay_laplacian(*case.arrays()).toarray()

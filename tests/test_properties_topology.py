@@ -3,13 +3,13 @@
 import pytest
 from hypothesis import given
 
-from oracles.exact_reference import ReferenceImplementation
-from properties import PROPERTIES, closed_surfaces, named_surfaces, triangulated_surfaces
-from properties.profiles import profile
-from properties.runner import FAILED, PASSED, run_property
-from properties.topology import (boundary_loops_and_genus, classification_of_closed_surfaces,
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.properties import PROPERTIES, closed_surfaces, named_surfaces, triangulated_surfaces
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.runner import FAILED, PASSED, run_property
+from ddg_oracle.properties.topology import (boundary_loops_and_genus, classification_of_closed_surfaces,
                                  euler_characteristic_of_known_surfaces)
-from properties.structure import unrestricted_flips
+from ddg_oracle.properties.structure import unrestricted_flips
 from tests.planted_bugs import AlwaysOrientable, ChiIgnoresBoundary, OneBoundaryLoop
 
 REF = ReferenceImplementation()
@@ -73,14 +73,14 @@ def test_planted_boundary_loop_bug_is_caught():
 
 
 def test_finding_L1_is_caught_by_R1_6_on_the_smallest_mobius_strip():
-    from oracles.libigl import Libigl
+    from ddg_oracle.oracles.libigl import Libigl
     r = _caught("R1.6", Libigl())
     assert len(r.failure.mesh[1]) == 6                      # mobius_strip(3)
     assert (r.failure.expected, r.failure.observed) == (1, 4)
 
 
 def test_finding_P1_is_caught_by_T1_1_and_explained_by_the_documented_convention():
-    from oracles.pymeshlab import PyMeshLab
+    from ddg_oracle.oracles.pymeshlab import PyMeshLab
     r = run_property(PROPERTIES["T1.1 / C1.2"], PyMeshLab(genus="library"), profile("ci"),
                      counterpart=PyMeshLab(), convention="P1")
     assert r.status == "convention" and r.failure.expected == 2 * r.failure.observed + 1
@@ -89,7 +89,7 @@ def test_finding_P1_is_caught_by_T1_1_and_explained_by_the_documented_convention
 
 @given(unrestricted_flips())
 def test_D1_4_flips_create_non_regular_triangulations(example):
-    from properties.structure import flip_freely, regularity_predicates
+    from ddg_oracle.properties.structure import flip_freely, regularity_predicates
     case, choices = example
     t = flip_freely(case.triangulation, choices)
     regularity_predicates(t)
@@ -97,8 +97,8 @@ def test_D1_4_flips_create_non_regular_triangulations(example):
 
 
 def test_D1_4_a_flip_sequence_reaches_a_loop_and_a_double_edge():
-    from properties.structure import regularity_predicates
-    from reference import surfaces
+    from ddg_oracle.properties.structure import regularity_predicates
+    from ddg_oracle.reference import surfaces
     t = surfaces.tetrahedron().triangulation
     # flipping any edge of a tetrahedron joins two vertices already joined: a double edge
     u = t.flip(0)

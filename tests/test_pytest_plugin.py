@@ -38,4 +38,4 @@ def test_plugin_fails_a_planted_bug_with_the_counterexample(tmp_path):
 
 def test_plugin_reports_an_unknown_implementation_as_usage_error(tmp_path):
     out = _pytest("--ddg-impl", "nowhere:Nothing", cwd=tmp_path)
-    assert out.returncode == 4 and "cannot import 'nowhere'" in out.stderr
+    assert out.returncode == 4 and "cannot import your module 'nowhere'" in out.stderr

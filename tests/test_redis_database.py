@@ -20,9 +20,9 @@ import redis
 from hypothesis import HealthCheck, Phase, settings
 from hypothesis.extra.redis import RedisExampleDatabase
 
-from properties import PROPERTIES
-from properties.profiles import DATABASE_ENV, database_from, use_database
-from properties.runner import FAILED, run_property
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.profiles import DATABASE_ENV, database_from, use_database
+from ddg_oracle.properties.runner import FAILED, run_property
 from tests.planted_bugs import ChiIgnoresBoundary
 
 REDIS_SERVER = shutil.which("redis-server")
@@ -156,7 +156,7 @@ def test_use_database_switches_every_profile_and_ci_trades_derandomize_for_it(re
 
 
 def test_environment_variable_selects_redis_in_a_fresh_process(redis_server):
-    code = ("import properties.profiles\n"
+    code = ("import ddg_oracle.properties.profiles\n"
             "from hypothesis import settings\n"
             "p = settings.get_profile('ci')\n"
             "print(type(settings.get_profile('default').database).__name__, p.derandomize)\n")

@@ -1,4 +1,4 @@
-"""Tests of reference.rippa: Dirichlet energy and edge flips (section 4.3.1), exact.
+"""Tests of ddg_oracle.reference.rippa: Dirichlet energy and edge flips (section 4.3.1), exact.
 
 Rows: L4.14 (Rippa's lemma: both sides computed independently, on integer
 quadrilaterals where r_i and sin(theta) are irrational and on Q(r1, r2, r3,
@@ -13,14 +13,14 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from reference.errors import BadQuadrilateral, BadShape
-from reference.exact import Surd
-from reference.laplacian import cotan_laplacian, dirichlet_energy
-from reference.planar import angle_criterion, circle_position
-from reference.polyhedral import PolyhedralSurface
-from reference.rippa import (TRIANGLES_13, TRIANGLES_24, circularity, energy_difference,
+from ddg_oracle.reference.errors import BadQuadrilateral, BadShape
+from ddg_oracle.reference.exact import Surd
+from ddg_oracle.reference.laplacian import cotan_laplacian, dirichlet_energy
+from ddg_oracle.reference.planar import angle_criterion, circle_position
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference.rippa import (TRIANGLES_13, TRIANGLES_24, circularity, energy_difference,
                              is_affine_on, quadrilateral, rippa_right_side)
-from properties.planar_points import integer_quadrilaterals, parameter_quadrilaterals, unit_circle_point
+from ddg_oracle.properties.planar_points import integer_quadrilaterals, parameter_quadrilaterals, unit_circle_point
 
 values = st.lists(st.integers(-4, 4), min_size=4, max_size=4)
 

@@ -1,4 +1,4 @@
-"""Tests of reference.exact.surds: canonical form, field axioms, exact signs,
+"""Tests of ddg_oracle.reference.exact.surds: canonical form, field axioms, exact signs,
 correctly rounded float, enclosures, hashing, the term guard, mixed arithmetic.
 
 Reference values are computed independently here: with ``decimal`` at 220
@@ -16,10 +16,10 @@ from math import isqrt
 import pytest
 from hypothesis import assume, given, settings as hsettings, strategies as st
 
-from reference.errors import (ExactArithmeticLimit, InputError, NonFiniteValue,
+from ddg_oracle.reference.errors import (ExactArithmeticLimit, InputError, NonFiniteValue,
                               NotANumber, TermLimitExceeded)
-from reference.exact import surds as surds_module
-from reference.exact.surds import Surd, limits, settings, sqrt
+from ddg_oracle.reference.exact import surds as surds_module
+from ddg_oracle.reference.exact.surds import Surd, limits, settings, sqrt
 
 # --- independent reference evaluation -------------------------------------------
 

@@ -1,4 +1,4 @@
-"""Tests of reference.surfaces: X1.4 counts and chi, T1.1 / C1.2 / R1.6 classification,
+"""Tests of ddg_oracle.reference.surfaces: X1.4 counts and chi, T1.1 / C1.2 / R1.6 classification,
 exact embeddings, and the CS / remove_face relations on the example surfaces."""
 
 import math
@@ -8,10 +8,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from reference import surfaces
-from reference.combinatorics import Classification, Triangulation
-from reference.errors import InputError
-from reference.polyhedral import PolyhedralSurface
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.combinatorics import Classification, Triangulation
+from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 SETTINGS = settings(max_examples=80, deadline=None, database=None,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -1,6 +1,6 @@
 """Exact numbers: rationals, square-root numbers (:class:`Surd`), angles (:class:`Angle`).
 
->>> from reference.exact import sqrt, pi
+>>> from ddg_oracle.reference.exact import sqrt, pi
 >>> sqrt(8) == 2 * sqrt(2)
 True
 """

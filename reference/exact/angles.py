@@ -1,7 +1,7 @@
 """Exact angles: integer combinations of corner angles plus rational multiples of pi.
 
 A corner angle of a triangle lies in (0, pi) and is determined exactly by its
-cotangent, an element of the square-root field (:class:`~reference.exact.surds.Surd`).
+cotangent, an element of the square-root field (:class:`~ddg_oracle.reference.exact.surds.Surd`).
 An :class:`Angle` is a formal sum
 
     theta = m_1 arccot(c_1) + ... + m_n arccot(c_n) + r pi      (m_i integers, r rational)
@@ -21,12 +21,12 @@ How comparisons are decided, exactly:
   covers every multiple of pi/24.
 * Otherwise theta != 0 and the enclosure is refined until it excludes 0.  For
   a pi part with 24 r not an integer no exact zero test exists; after
-  ``PRECISION_LIMIT`` bits :class:`~reference.errors.Undecidable` is raised.
+  ``PRECISION_LIMIT`` bits :class:`~ddg_oracle.reference.errors.Undecidable` is raised.
 
 No float is used anywhere in a decision.  ``float(angle)`` is correctly rounded.
 
 >>> from fractions import Fraction
->>> from reference.exact import pi, corner_angle
+>>> from ddg_oracle.reference.exact import pi, corner_angle
 >>> right = corner_angle(0)              # cot = 0: a right angle
 >>> right == pi * Fraction(1, 2)
 True

@@ -4,8 +4,8 @@ An :class:`AngleLength` is a finite sum
 
     x = s_1 arccot(c_1) + ... + s_n arccot(c_n) + s_pi pi
 
-with square-root numbers (:class:`~reference.exact.surds.Surd`) ``s_k``,
-``s_pi`` and ``c_k``: an exact angle (:class:`~reference.exact.angles.Angle`)
+with square-root numbers (:class:`~ddg_oracle.reference.exact.surds.Surd`) ``s_k``,
+``s_pi`` and ``c_k``: an exact angle (:class:`~ddg_oracle.reference.exact.angles.Angle`)
 multiplied by an exact length, and sums of such products.  The discrete mean
 curvature H(e) = 1/2 theta(e) l(e) of an edge and the total mean curvature
 H(S) are of this form.
@@ -25,7 +25,7 @@ How ``==`` and the sign are decided, exactly:
   A denominator-cleared A_j is an :class:`Angle` with integer multiplicities,
   and ``Angle.sign`` decides it exactly.
 * Otherwise x != 0, and the enclosure is refined until it excludes 0; past
-  ``PRECISION_LIMIT`` bits :class:`~reference.errors.Undecidable` is raised
+  ``PRECISION_LIMIT`` bits :class:`~ddg_oracle.reference.errors.Undecidable` is raised
   (this only happens for nonzero values closer to 0 than 2**-4096).
 
 No float is used in a decision.  ``float(x)`` is correctly rounded: a nonzero
@@ -33,7 +33,7 @@ x is transcendental (Baker), so it is never a rounding midpoint and the
 refinement terminates.
 
 >>> from fractions import Fraction
->>> from reference.exact import corner_angle, pi, sqrt
+>>> from ddg_oracle.reference.exact import corner_angle, pi, sqrt
 >>> right = corner_angle(0)                     # dihedral angle of a cube edge
 >>> H = AngleLength.of(right, Fraction(1, 2))   # H(e) = 1/2 theta l, l = 1
 >>> 12 * H == 3 * pi                            # total mean curvature of the unit cube
@@ -80,7 +80,7 @@ def surd_sum(values) -> Surd:
     400-face mesh with float coordinates takes ~25 s); here the coprime
     refinement of all bases is computed once.  Used for total areas.
 
-    >>> from reference.exact import sqrt
+    >>> from ddg_oracle.reference.exact import sqrt
     >>> surd_sum([sqrt(2), sqrt(8), sqrt(3), 1]) == 1 + 3 * sqrt(2) + sqrt(3)
     True
     """
@@ -107,7 +107,7 @@ class AngleLength:
     Angles and the number 0 mix in sums and comparisons.  ``==``, ``<`` and
     :meth:`sign` are exact (see the module docstring).
 
-    >>> from reference.exact import pi, sqrt
+    >>> from ddg_oracle.reference.exact import pi, sqrt
     >>> x = AngleLength.of(pi, sqrt(2))
     >>> x - x == 0, x > 0, x.pi_coefficient
     (True, True, Surd('sqrt(2)'))
@@ -138,7 +138,7 @@ class AngleLength:
     def of(cls, angle: Angle, factor=1) -> "AngleLength":
         """The product ``factor * angle`` (factor: int, Fraction or Surd).
 
-        >>> from reference.exact import corner_angle, sqrt
+        >>> from ddg_oracle.reference.exact import corner_angle, sqrt
         >>> AngleLength.of(corner_angle(0), sqrt(8))
         AngleLength(sqrt(2)*pi)
         """

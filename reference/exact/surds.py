@@ -39,7 +39,7 @@ Exactness guards
 ----------------
 A product of sums can have as many terms as the product of the term counts.
 ``settings.term_limit`` (default 4096) bounds the number of terms of every
-result; exceeding it raises :class:`~reference.errors.TermLimitExceeded`.
+result; exceeding it raises :class:`~ddg_oracle.reference.errors.TermLimitExceeded`.
 Use ``with limits(term_limit=N):`` to change it temporarily.  The setting is
 process-wide (not thread-local).
 """
@@ -369,7 +369,7 @@ def _make(base, terms, prune=True):
         raise TermLimitExceeded(
             f"a square-root number would have {n} terms, more than the term limit "
             f"{settings.term_limit}; raise it with "
-            f"`with reference.exact.limits(term_limit=...)`")
+            f"`with ddg_oracle.reference.exact.limits(term_limit=...)`")
     self = object.__new__(Surd)
     self._base = _prune(base, terms) if prune else base
     self._terms = terms
@@ -744,7 +744,7 @@ class Surd:
         """Integers ``lo <= self * 2**k <= hi``, ``hi - lo <= 2 * self._bound_count() + 1``.
 
         What :meth:`interval`, ``float()`` and ``hash()`` use: a subclass that knows
-        its value in another form (``reference.cotan_fast.CotanSum``) overrides this
+        its value in another form (``ddg_oracle.reference.cotan_fast.CotanSum``) overrides this
         and :meth:`_bound_count` to skip the canonical form.
         """
         return _t_bounds(self._terms, k)
@@ -907,7 +907,7 @@ def sqrt(q):
     """The exact square root of a rational ``q >= 0`` as a :class:`Surd`.
 
     ints, Fractions, floats (taken exactly) and rational Surds are accepted;
-    a negative value raises :class:`~reference.errors.InputError`.
+    a negative value raises :class:`~ddg_oracle.reference.errors.InputError`.
 
     >>> sqrt(8), sqrt(Fraction(9, 4)), sqrt(Fraction(1, 2))
     (Surd('2*sqrt(2)'), Surd('3/2'), Surd('1/2*sqrt(2)'))

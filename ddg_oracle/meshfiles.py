@@ -16,7 +16,7 @@ check is the mesh: repeated vertices in a face, non-manifold edges or
 vertices, unreferenced vertices and zero-area faces come through, and the
 reference rejects them (``PolyhedralSurface.from_arrays`` raises the typed
 error naming the face or vertex).  Every error is a :class:`MeshFileError`
-(an :class:`~reference.errors.InputError`); the readers are fuzzed with random
+(an :class:`~ddg_oracle.reference.errors.InputError`); the readers are fuzzed with random
 and mutated files (tests/test_fuzz_readers.py).
 """
 
@@ -26,7 +26,7 @@ import math
 import struct
 from pathlib import Path
 
-from reference.errors import InputError
+from ddg_oracle.reference.errors import InputError
 
 
 class MeshFileError(InputError):

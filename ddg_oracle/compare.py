@@ -8,7 +8,7 @@ of each cotan weight) on that mesh; ``ddg-oracle compare MESH`` prints, per
 protocol method, the largest error of each implementation in units of the
 derived bound, and where.  Both take the same mesh arguments:
 
-* a path to an OBJ, OFF, PLY or STL file (:func:`oracles.meshfiles.read_mesh`);
+* a path to an OBJ, OFF, PLY or STL file (:func:`ddg_oracle.meshfiles.read_mesh`);
 * ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
   package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them.
 
@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reference.errors import InputError
+from ddg_oracle.reference.errors import InputError
 
 from .meshfiles import MeshFileError, read_mesh
 
@@ -109,7 +109,7 @@ def load(name: str, path: Path) -> MeshInput:
         V = [V[v] for v in used]
         F = [[new[i] for i in f] for f in F]
     try:
-        from reference.polyhedral import PolyhedralSurface
+        from ddg_oracle.reference.polyhedral import PolyhedralSurface
         PolyhedralSurface.from_arrays(V, F).metric()      # manifold, no zero-area face
     except InputError as e:
         raise type(e)(f"{name}: {e}") from None
@@ -151,7 +151,7 @@ class MeshExamples:
 
     @property
     def surface(self):
-        from reference.polyhedral import PolyhedralSurface
+        from ddg_oracle.reference.polyhedral import PolyhedralSurface
         return self._get("surface", lambda: PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F))
 
     @property
@@ -164,8 +164,8 @@ class MeshExamples:
         return self._get("facts", build)
 
     def surface_case(self):
-        from reference.combinatorics import Classification
-        from properties.strategies import SurfaceCase
+        from ddg_oracle.reference.combinatorics import Classification
+        from ddg_oracle.properties.strategies import SurfaceCase
 
         def build():
             t, f = self.surface.triangulation, self.facts
@@ -175,12 +175,12 @@ class MeshExamples:
         return self._get("surface_case", build)
 
     def curvature_case(self):
-        from properties.curvature import CurvatureCase
+        from ddg_oracle.properties.curvature import CurvatureCase
         return self._get("curvature_case", lambda: CurvatureCase(
             self.surface, self.facts["chi"], self.mesh.name))
 
     def mesh_case(self):
-        from properties.laplacian import MeshCase
+        from ddg_oracle.properties.laplacian import MeshCase
         return self._get("mesh_case", lambda: MeshCase(
             self.surface.positions, tuple(tuple(f) for f in self.mesh.F), self.mesh.name))
 
@@ -245,9 +245,9 @@ FILE_PROPERTIES: dict[str, tuple[str, object]] = {
 def run_mesh_properties(examples: MeshExamples, impl, only=None, counterpart=None,
                         convention=None) -> list:
     """Every property of :data:`FILE_PROPERTIES` (or ``only`` those IDs) on one mesh."""
-    from properties.registry import all_properties
-    from properties.runner import NOT_APPLICABLE, Result, run_on_example
-    from properties.protocol import implementation_name
+    from ddg_oracle.properties.registry import all_properties
+    from ddg_oracle.properties.runner import NOT_APPLICABLE, Result, run_on_example
+    from ddg_oracle.properties.protocol import implementation_name
 
     results = []
     for p in all_properties():
@@ -287,7 +287,7 @@ class Comparison:
 
 @contextmanager
 def _epsilon_of(impl):
-    from properties.protocol import _epsilon, machine_epsilon
+    from ddg_oracle.properties.protocol import _epsilon, machine_epsilon
     token = _epsilon.set(machine_epsilon(impl))
     try:
         yield
@@ -323,8 +323,8 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
 
 def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``."""
-    from properties import curvature as cv
-    from properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
+    from ddg_oracle.properties import curvature as cv
+    from ddg_oracle.properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
 
     ex = MeshExamples(mesh)
     V = np.array(mesh.V, dtype=np.float64)
@@ -343,7 +343,7 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
     dense_x = {}
 
     def exact_laplacian():
-        from properties.laplacian import Exact
+        from ddg_oracle.properties.laplacian import Exact
         if "X" not in dense_x:
             dense_x["X"] = Exact(ex.mesh_case())
         return dense_x["X"]
@@ -441,7 +441,7 @@ def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison
         return Comparison(method, name, "agrees" if not len(diff) else "DIFFERS",
                           elements=int(want.size), over=int(len(diff)), note=note)
     if method == "intrinsic_delaunay_laplacian":
-        from properties.delaunay import DelaunayExact
+        from ddg_oracle.properties.delaunay import DelaunayExact
         D = DelaunayExact(ex.mesh_case())
         A = got.toarray() if hasattr(got, "toarray") else np.asarray(got, dtype=float)
         return _numeric(method, name, A, D.Lf, D.B, lambda k: f"entry {k}")
@@ -449,7 +449,7 @@ def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison
     if method == "cotan_laplacian":
         A = got.toarray() if hasattr(got, "toarray") else np.asarray(got, dtype=float)
         return _numeric(method, name, A, X.Lf, X.B, lambda k: f"entry {k}")
-    from properties.laplacian import vertex_area_bounds
+    from ddg_oracle.properties.laplacian import vertex_area_bounds
     vb, bb = vertex_area_bounds(X)
     bound = vb if method == "vertex_areas_voronoi" else bb
     return _numeric(method, name, np.asarray(got).reshape(-1), want, bound,

@@ -1,9 +1,12 @@
 """The traceability table: catalog ID -> reference function, property, tests, status.
 
-The table is ``properties/traceability.toml``.  :func:`check` verifies that it
-is true: every named function, property and test exists, every row of the
-catalog is present, and every row of a claimed chapter is verified (or an
-erratum listed in ``docs/errata.md``).
+The table is ``ddg_oracle/traceability.toml`` (package data, so an installed
+copy checks itself).  :func:`check` verifies that it is true: every named
+function and property exists, every row of a claimed chapter is verified (or
+an erratum listed in the errata, ``docs/errata.md``, installed as
+``ddg_oracle/data/errata.md``); where the repository is at hand (a checkout,
+or an editable install) also every named test exists and every row of the
+catalog ``../shared/THEOREMS.md`` is present.
 """
 
 from __future__ import annotations
@@ -17,7 +20,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 TABLE = Path(__file__).with_name("traceability.toml")
-REPO = Path(__file__).resolve().parent.parent
+DATA = Path(__file__).with_name("data")          # errata.md, findings.md (links into docs/)
+
+
+def repository() -> Path | None:
+    """The repository checkout this package runs from (editable install), else None."""
+    root = Path(__file__).resolve().parent.parent
+    return root if (root / "pyproject.toml").is_file() and (root / "reference").is_dir() else None
+
 STATUSES = ("verified", "erratum", "not yet")
 
 
@@ -50,7 +60,9 @@ def catalog_path() -> Path | None:
     """THEOREMS.md: $DDG_CATALOG, else ../shared/THEOREMS.md beside the repository."""
     env = os.environ.get("DDG_CATALOG")
     candidates = [Path(env)] if env else []
-    candidates.append(REPO.parent / "shared" / "THEOREMS.md")
+    repo = repository()
+    if repo is not None:
+        candidates.append(repo.parent / "shared" / "THEOREMS.md")
     return next((p for p in candidates if p.is_file()), None)
 
 
@@ -80,11 +92,12 @@ def _resolve(dotted: str) -> bool:
 
 
 def _test_exists(spec: str) -> bool | None:
-    """'tests/test_x.py::test_name' (or ::Class::test_name) exists; None if no tests/ here."""
-    if not (REPO / "tests").is_dir():
+    """'tests/test_x.py::test_name' (or ::Class::test_name) exists; None outside a checkout."""
+    repo = repository()
+    if repo is None:
         return None
     path, *names = spec.split("::")
-    file = REPO / path
+    file = repo / path
     if not file.is_file():
         return False
     if not names:
@@ -100,10 +113,8 @@ def _test_exists(spec: str) -> bool | None:
 
 
 def errata_ids() -> set[str]:
-    """IDs of the entries of docs/errata.md (headings '## E<n>: ...')."""
-    path = REPO / "docs" / "errata.md"
-    if not path.is_file():
-        return set()
+    """IDs of the entries of the errata (docs/errata.md, headings '## E<n>: ...')."""
+    path = DATA / "errata.md"
     return set(re.findall(r"^## (E\d+)\b", path.read_text(encoding="utf-8"), re.M))
 
 

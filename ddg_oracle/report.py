@@ -159,7 +159,7 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
 
 
 def counts(results) -> dict:
-    from properties.runner import STATUSES
+    from ddg_oracle.properties.runner import STATUSES
     return {s: sum(r.status == s for r in results) for s in STATUSES}
 
 
@@ -208,8 +208,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.getcwd())     # a module:object implementation imports from here, as in the CLI
-from oracles.exact_reference import ReferenceImplementation  # noqa: E402
-from oracles.implementations import load_implementation  # noqa: E402
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
+from ddg_oracle.implementations import load_implementation  # noqa: E402
 {mesh}
 ELEMENT = {element!r}
 EXPECTED, OBSERVED = {expected!r}, {observed!r}     # as the property reported them
@@ -253,7 +253,7 @@ def snippet(r, spec: str, methods, name: str = "reproduce.py") -> str:
         mesh = ("\nV = np.array(" + repr([[float(x) for x in p] for p in V]) + ", dtype=np.float64)"
                 "\nF = np.array(" + repr([[int(i) for i in f] for f in F]) + ", dtype=np.int64)\n")
     else:
-        mesh = ("from pathlib import Path  # noqa: E402\n\nfrom oracles.meshfiles import read_mesh  # noqa: E402\n\n"
+        mesh = ("from pathlib import Path  # noqa: E402\n\nfrom ddg_oracle.meshfiles import read_mesh  # noqa: E402\n\n"
                 "V, F = (np.array(a) for a in read_mesh(Path(__file__).with_name(\"mesh.obj\")))\n")
     f = r.failure
     ids = element_ids(f.element) if f is not None else None
@@ -295,8 +295,8 @@ def write_failure_files(directory: Path, k: int, r, spec: str, methods) -> dict:
 
 def write_report(directory, results, command: dict, spec_of: dict, timings: dict) -> Path:
     """Write results.json, timings.json, summary.md and the failure files into ``directory``."""
-    from properties.registry import PROPERTIES
-    from properties.runner import PASSED, NOT_APPLICABLE, describe
+    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
 
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)

@@ -14,58 +14,23 @@ import os
 import re
 import sys
 
+from ddg_oracle.oracles.conventions import DOCUMENTED_CONVENTIONS
+
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
 BUILTIN: dict[str, str] = {
-    "reference": "oracles.exact_reference:ReferenceImplementation",
-    "libigl": "oracles.libigl:Libigl",
-    "pymeshlab": "oracles.pymeshlab:PyMeshLab",
-    "scipy": "oracles.scipy_spatial:ScipySpatial",
+    "reference": "ddg_oracle.oracles.exact_reference:ReferenceImplementation",
+    "libigl": "ddg_oracle.oracles.libigl:Libigl",
+    "pymeshlab": "ddg_oracle.oracles.pymeshlab:PyMeshLab",
+    "scipy": "ddg_oracle.oracles.scipy_spatial:ScipySpatial",
     # optional peers (`pip install -e '.[peers]'`): omitted by available() when not installed
-    "gpytoolbox": "oracles.gpytoolbox:Gpytoolbox",
-    "robust_laplacian": "oracles.robust_laplacian:RobustLaplacian",
-    "potpourri3d": "oracles.potpourri3d:Potpourri3d",
+    "gpytoolbox": "ddg_oracle.oracles.gpytoolbox:Gpytoolbox",
+    "robust_laplacian": "ddg_oracle.oracles.robust_laplacian:RobustLaplacian",
+    "potpourri3d": "ddg_oracle.oracles.potpourri3d:Potpourri3d",
 }
 
-#: Adapter options that select a library's own convention instead of the
-#: reference's, each with the finding that documents the difference
-#: (docs/findings.md, docs/conventions.md).  ``ddg-oracle check
-#: --expect-conventions`` reports a failure of such a spec as "convention" when
-#: the same spec without the option passes the same example.
-DOCUMENTED_CONVENTIONS: dict[str, dict[tuple[str, str], str]] = {
-    "libigl": {("boundary", "library"): "L2 (gaussian_curvature: 2 pi - angle sum at "
-                                        "boundary vertices)"},
-    "pymeshlab": {("boundary", "library"): "P2 (boundary term 2 pi - angle sum - phi)",
-                  ("genus", "library"): "P1 (genus of a non-orientable mesh is floor(h / 2))"},
-    "gpytoolbox": {("boundary", "library"): "G1 (angle_defect: 0 at boundary vertices)",
-                   ("dihedral", "library"): "G2 (dihedral_angles: unsigned, reflex edges "
-                                            "count as convex)"},
-    "robust_laplacian": {("boundary", "library"): "R1 (tufted cover: boundary edges are "
-                                                  "flipped in the double of the surface)",
-                         ("mollify", "library"): "R3 (mollify_factor 1e-5 lengthens every "
-                                                 "edge of a nearly degenerate mesh)"},
-}
-
-#: The values of an adapter's convention option: the reference's or the library's own.
-CONVENTIONS = ("reference", "library")
-
-
-def convention_name(base: str, **options: str) -> str:
-    """Display name of an adapter with convention options (each one of CONVENTIONS):
-    ``base`` if all are "reference", else the non-default ones in parentheses.
-
-    >>> convention_name("gpytoolbox", boundary="library", dihedral="reference")
-    "gpytoolbox(boundary='library')"
-    >>> convention_name("gpytoolbox", boundary="lib")
-    Traceback (most recent call last):
-    ...
-    ValueError: boundary must be one of ('reference', 'library'), got 'lib'
-    """
-    for key, value in options.items():
-        if value not in CONVENTIONS:
-            raise ValueError(f"{key} must be one of {CONVENTIONS}, got {value!r}")
-    chosen = [f"{k}={v!r}" for k, v in options.items() if v != "reference"]
-    return f"{base}({', '.join(chosen)})" if chosen else base
-
+#: The pip extra that installs each built-in adapter's library (reference and scipy: core).
+EXTRAS: dict[str, str] = {"libigl": "libigl", "pymeshlab": "pymeshlab", "gpytoolbox": "peers",
+                          "robust_laplacian": "peers", "potpourri3d": "peers"}
 
 _OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
 
@@ -103,7 +68,11 @@ def load_implementation(spec: str):
     """An implementation object from a built-in name or ``module:object``, with options.
 
     A class is instantiated with the spec's options (none: no arguments); any
-    other object is used as is (and takes no options).
+    other object is used as is (and takes no options).  ``module`` resolves as
+    Python resolves it, with the current directory *appended* to ``sys.path``
+    (so a user's module next to where they run is found, and never shadows an
+    installed package).  Any failure to import it is
+    :class:`ImplementationNotFound` ("cannot import your module ...").
     """
     base, options = parse_spec(spec)
     target = BUILTIN.get(base, base)
@@ -111,15 +80,24 @@ def load_implementation(spec: str):
     if not sep or not module or not qual:
         raise ImplementationNotFound(
             f"unknown implementation {spec!r}: use one of {', '.join(BUILTIN)} or module:object")
-    if spec not in BUILTIN and os.getcwd() not in sys.path:
-        # like `python -m` and pytest: the user's own modules resolve from where they run
-        sys.path.insert(0, os.getcwd())
+    builtin = base in BUILTIN
+    if not builtin and os.getcwd() not in sys.path and "" not in sys.path:
+        # like `python -m` and pytest, the user's modules resolve from where they run;
+        # appended, so nothing of theirs can replace an installed module
+        sys.path.append(os.getcwd())
     try:
         obj = importlib.import_module(module)
+    except Exception as e:  # noqa: BLE001  (a user module may fail in any way: say which)
+        if builtin:
+            raise ImplementationNotFound(
+                f"{base} is not installed ({type(e).__name__}: {e}); "
+                f"pip install 'ddg-oracle[{EXTRAS.get(base, 'all')}]'") from None
+        raise ImplementationNotFound(
+            f"cannot import your module {module!r} (for {spec!r}): {type(e).__name__}: {e}"
+        ) from None
+    try:
         for part in qual.split("."):
             obj = getattr(obj, part)
-    except ImportError as e:
-        raise ImplementationNotFound(f"cannot import {module!r} for {spec!r}: {e}") from None
     except AttributeError:
         raise ImplementationNotFound(f"{module!r} has no {qual!r} (from {spec!r})") from None
     if not isinstance(obj, type):
@@ -150,11 +128,15 @@ def convention_counterpart(spec: str) -> tuple[str, str] | None:
 
 def available() -> list[str]:
     """Built-in implementations whose libraries import on this machine."""
-    names = []
+    return [name for name in BUILTIN if name not in missing()]
+
+
+def missing() -> dict[str, str]:
+    """{built-in name: why it cannot be loaded here}, e.g. a library that is not installed."""
+    out = {}
     for name in BUILTIN:
         try:
             load_implementation(name)
-        except ImplementationNotFound:
-            continue
-        names.append(name)
-    return names
+        except ImplementationNotFound as e:
+            out[name] = str(e)
+    return out

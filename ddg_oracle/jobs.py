@@ -6,7 +6,7 @@ Each task is independent: a property's Hypothesis run on one implementation
 process runs it), or every applicable property on one mesh file.  With
 ``workers > 1`` tasks go to a pool of spawned processes; in every process the
 exact reference runs in-process and each other implementation in its own
-isolated worker (:class:`oracles.isolation.Isolated`: a crash or a hang is a
+isolated worker (:class:`ddg_oracle.isolation.Isolated`: a crash or a hang is a
 reported result), created once per process and reused.  Results come back in
 completion order; :func:`run_tasks` returns them in task order, so the report
 does not depend on scheduling.
@@ -50,10 +50,10 @@ def implementation(spec: str, timeout: float):
     impls = _STATE["impls"]
     if spec not in impls:
         if spec in IN_PROCESS:
-            from oracles.implementations import load_implementation
+            from ddg_oracle.implementations import load_implementation
             impls[spec] = load_implementation(spec)
         else:
-            from oracles.isolation import Isolated
+            from ddg_oracle.isolation import Isolated
             impls[spec] = Isolated(spec, timeout=timeout)
     return impls[spec]
 
@@ -72,7 +72,7 @@ def close_all() -> None:
 
 
 def _counterpart(spec: str):
-    from oracles.implementations import convention_counterpart
+    from ddg_oracle.implementations import convention_counterpart
     opts = _STATE["options"]
     found = convention_counterpart(spec) if opts.expect_conventions else None
     if found is None:
@@ -83,9 +83,9 @@ def _counterpart(spec: str):
 
 def run_task(task: Task) -> list:
     """The results of one task (in this process)."""
-    from properties.profiles import profile
-    from properties.registry import PROPERTIES, all_properties
-    from properties.runner import run_property
+    from ddg_oracle.properties.profiles import profile
+    from ddg_oracle.properties.registry import PROPERTIES, all_properties
+    from ddg_oracle.properties.runner import run_property
 
     opts = _STATE["options"]
     all_properties()
@@ -94,7 +94,7 @@ def run_task(task: Task) -> list:
     if task.mesh is None:
         return [run_property(PROPERTIES[task.property_id], impl, profile(opts.profile), opts.seed,
                              counterpart=counterpart, convention=convention)]
-    from oracles.compare import MeshExamples, run_mesh_properties
+    from ddg_oracle.compare import MeshExamples, run_mesh_properties
     examples = _STATE["examples"]
     if task.mesh not in examples:
         examples.clear()                 # one mesh's exact values at a time
@@ -103,8 +103,8 @@ def run_task(task: Task) -> list:
 
 
 def _crashed(task: Task, why: str) -> list:
-    from properties.registry import PROPERTIES
-    from properties.runner import CRASHED, Result
+    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties.runner import CRASHED, Result
     p = PROPERTIES.get(task.property_id)
     return [Result(task.property_id or "-", p.name if p else "-", task.spec, CRASHED,
                    error=why, source="generated" if task.mesh is None else f"mesh {task.mesh}")]

@@ -2,7 +2,7 @@
 
 matplotlib with the Agg backend (no display needed), a 3D view of the faces;
 the element -- a vertex, an edge, a face or a corner, see
-:func:`oracles.report.element_ids` -- is drawn in red.  Small meshes get vertex
+:func:`ddg_oracle.report.element_ids` -- is drawn in red.  Small meshes get vertex
 numbers.  A large mesh is cut down to the faces within two rings of the
 element, so the picture shows where the problem is.
 """

@@ -1,10 +1,13 @@
-"""``ddg-oracle``: check implementations against the exact reference; compare on one mesh;
-print the catalog.
+"""The ddg-oracle command: check implementations against the exact reference, compare
+them on given meshes, print the catalog.
 
-Exit codes: 0 all good (passes, not applicable, tie disagreements, expected
-conventions), 1 a property failed or an implementation crashed (or the table
-is not true, or compare found a difference), 2 bad usage or bad input (one
-line on stderr, no traceback).
+Exit codes (the same for every subcommand, so CI can tell a finding from a broken tool):
+
+- 0: no failure (passes, not applicable, tie disagreements, expected conventions);
+- 1: a property failed or a checked implementation crashed (or, for ``theorems
+  --check``, the table is not true; for ``compare``, an implementation differs);
+- 2: bad usage or bad input (one line on stderr, no traceback);
+- 3: ddg-oracle itself failed (its traceback, and a request for a bug report).
 """
 
 from __future__ import annotations
@@ -13,28 +16,80 @@ import argparse
 import concurrent.futures as cf
 import os
 import sys
+import textwrap
 import time
+import traceback
 
-from reference.errors import InputError
+from ddg_oracle import __version__
+from ddg_oracle.reference.errors import InputError
 
 DEFAULT_WORKERS = 2
+EXIT_OK, EXIT_FINDINGS, EXIT_USAGE, EXIT_TOOL = 0, 1, 2, 3
+BUG_REPORT = ("ddg-oracle: internal error (exit 3): this is a bug in ddg-oracle, not in the "
+              "checked code; please report it with the command line and the traceback above")
+EXIT_CODES = """\
+exit codes:
+  0  no failure (passes, not applicable, tie disagreements, expected conventions)
+  1  a property failed or a checked implementation crashed
+  2  bad usage or bad input (one line on stderr)
+  3  ddg-oracle itself failed (traceback; please report it)"""
+
+
+class UsageError(InputError):
+    """A command line that cannot be run as given (exit 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors in one line, as every other error of ours (no usage block)."""
+
+    def error(self, message):
+        self.exit(EXIT_USAGE, f"ddg-oracle: error: {message} (see: {self.prog} --help)\n")
 
 
 def _default_workers() -> int:
     return max(1, min(DEFAULT_WORKERS, os.cpu_count() or 1))
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="ddg-oracle", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
+def _epilog(examples: str, codes: str = EXIT_CODES) -> str:
+    return "examples:\n" + textwrap.indent(textwrap.dedent(examples).strip(), "  ") + "\n\n" + codes
 
-    c = sub.add_parser("check", help="run every property against implementations")
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser of ``ddg-oracle`` (plain-text help, examples, exit codes)."""
+    fmt = argparse.RawDescriptionHelpFormatter
+    top = _Parser(
+        prog="ddg-oracle", formatter_class=fmt,
+        description="Check discrete differential geometry code against an exact reference "
+                    "of Bobenko's notes.",
+        epilog=_epilog("""
+            ddg-oracle check                          every installed library, every property
+            ddg-oracle check --impl mymodule:MyImpl   your own implementation
+            ddg-oracle compare bunny.obj              every quantity on one mesh
+            ddg-oracle theorems --check               is the traceability table true?"""))
+    top.add_argument("--version", action="version", version=f"ddg-oracle {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                             parser_class=_Parser)
+
+    c = sub.add_parser(
+        "check", formatter_class=fmt, help="run every property against implementations",
+        description="Run every applicable property (one per catalog ID) on generated meshes, "
+                    "or on given mesh files, against each implementation, and print a table "
+                    "and every counterexample.",
+        epilog=_epilog("""
+            ddg-oracle check
+            ddg-oracle check --impl mypkg.geometry:MyImpl --profile ci
+            ddg-oracle check --impl libigl --only D3.1 L4.3 --report out/
+            ddg-oracle check --mesh bunny.obj --impl 'libigl(boundary=library)'"""))
     c.add_argument("--impl", action="append", metavar="NAME|module:object",
                    help="implementation to check (repeatable; default: every installed one); "
-                        "options in parentheses, e.g. 'libigl(boundary=library)'")
-    c.add_argument("--profile", default="default", help="Hypothesis profile: default, ci, thorough")
+                        "options in parentheses, e.g. 'libigl(boundary=library)'; module:object "
+                        "imports your module as Python does, the current directory included")
+    c.add_argument("--profile", default="default", choices=("default", "ci", "thorough"),
+                   help="Hypothesis profile (ci: derandomized, more examples; default: default)")
     c.add_argument("--seed", type=int, default=None, help="Hypothesis seed")
-    c.add_argument("--only", action="append", metavar="ID", help="only these catalog IDs")
+    c.add_argument("--only", action="extend", nargs="+", metavar="ID",
+                   help="only these catalog IDs (several, or comma-separated; any part of a "
+                        "joint ID: L4.3 selects 'L4.3 / P4.4')")
     c.add_argument("--timeout", type=float, default=60.0,
                    help="seconds per call of a checked implementation before it is killed "
                         "and reported as hanging (default 60)")
@@ -44,7 +99,8 @@ def main(argv=None) -> int:
                         "'pymeshlab:NAME' one of them")
     c.add_argument("--report", metavar="DIR",
                    help="write results.json, summary.md, timings.json and, per failure, the "
-                        "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR")
+                        "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
+                        "(a new or empty directory)")
     c.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"worker processes (default {_default_workers()}: "
                         f"min({DEFAULT_WORKERS}, number of CPUs)); 1 runs in this process")
@@ -53,39 +109,66 @@ def main(argv=None) -> int:
                         "(e.g. 'libigl(boundary=library)') that the reference-convention adapter "
                         "passes is reported as 'convention', not as a failure")
 
-    m = sub.add_parser("compare", help="every quantity on one mesh: reference vs implementations")
+    m = sub.add_parser(
+        "compare", formatter_class=fmt,
+        help="every quantity on given meshes: reference vs implementations",
+        description="For each mesh, every protocol quantity of every implementation against "
+                    "the exact reference: agrees or DIFFERS, the largest error in units of "
+                    "the derived bound, and where.",
+        epilog=_epilog("""
+            ddg-oracle compare bunny.obj
+            ddg-oracle compare pymeshlab:bunny10k_textured.obj --impl libigl
+            ddg-oracle compare a.off b.ply --impl mymodule:MyImpl""",
+                       EXIT_CODES.replace("a property failed or a checked implementation "
+                                          "crashed", "an implementation differs or crashed")))
     m.add_argument("mesh", nargs="+", metavar="MESH",
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes)")
     m.add_argument("--impl", action="append", metavar="NAME|module:object",
                    help="implementation to compare (repeatable; default: every installed one)")
     m.add_argument("--timeout", type=float, default=60.0, help="seconds per call (default 60)")
 
-    t = sub.add_parser("theorems", help="print the traceability table")
+    t = sub.add_parser(
+        "theorems", formatter_class=fmt, help="print the traceability table",
+        description="Print the traceability table: catalog ID, status, reference function "
+                    "and property.",
+        epilog=_epilog("""
+            ddg-oracle theorems
+            ddg-oracle theorems --check""",
+                       EXIT_CODES.replace("a property failed or a checked implementation "
+                                          "crashed", "--check: the table is not true")))
     t.add_argument("--check", action="store_true",
                    help="exit 1 unless every named function, property and test exists "
                         "and every row of a claimed chapter is verified")
+    return top
 
-    args = parser.parse_args(argv)
-    if os.getcwd() not in sys.path and "" not in sys.path:
-        # module:object specs import from the current directory, as with python -m
-        # (worker processes inherit sys.path)
-        sys.path.insert(0, os.getcwd())
+
+def main(argv=None) -> int:
+    try:
+        args = parser().parse_args(argv)
+    except SystemExit as e:                # --help, --version (0) or a bad command line (2)
+        return e.code if isinstance(e.code, int) else EXIT_USAGE
+    from ddg_oracle.implementations import ImplementationNotFound
+    from ddg_oracle.properties.protocol import NotAnImplementation
     try:
         if args.command == "check":
             return _check(args, argv)
         if args.command == "compare":
             return _compare(args)
         return _theorems(args)
-    except (InputError, ValueError) as e:
+    except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)
-        return 2
+        return EXIT_USAGE
     except BrokenPipeError:                  # e.g. piped into head: stop quietly
         sys.stdout = open(os.devnull, "w")
-        return 1
+        return EXIT_FINDINGS
+    except Exception:  # noqa: BLE001  (anything else is a bug of ours: say so, distinctly)
+        traceback.print_exc()
+        print(BUG_REPORT, file=sys.stderr)
+        return EXIT_TOOL
 
 
 def _theorems(args) -> int:
-    from properties import traceability
+    from ddg_oracle import traceability
     claimed, entries = traceability.load()
     width = max(len(e.id) for e in entries)
     print(f"{'ID'.ljust(width)}  {'status':9}  reference / property")
@@ -107,6 +190,13 @@ def _theorems(args) -> int:
     return 0
 
 
+def _refuse_used_report_dir(path: str) -> None:
+    """--report DIR must be a new or empty directory: refused before any work is done."""
+    if os.path.lexists(path) and not (os.path.isdir(path) and not os.listdir(path)):
+        what = "a directory that is not empty" if os.path.isdir(path) else "an existing file"
+        raise UsageError(f"--report {path}: is {what}; name a new or empty directory")
+
+
 def _warn(message: str) -> None:
     print(f"ddg-oracle: note: {message}", file=sys.stderr)
 
@@ -114,8 +204,8 @@ def _warn(message: str) -> None:
 def _start(specs, timeout):
     """{spec: implementation}: the reference in this process, the others isolated, started
     in parallel; an unloadable spec raises ImplementationNotFound (exit 2)."""
-    from oracles.implementations import load_implementation
-    from oracles.isolation import Isolated
+    from ddg_oracle.implementations import load_implementation
+    from ddg_oracle.isolation import Isolated
 
     def one(spec):
         return load_implementation(spec) if spec == "reference" else Isolated(spec, timeout=timeout)
@@ -161,37 +251,38 @@ class Progress:
 
 
 def _check(args, argv) -> int:
-    from oracles import jobs
-    from oracles.implementations import available
-    from properties.profiles import profile
-    from properties.registry import all_properties
-    from properties.runner import describe
+    from ddg_oracle import jobs
+    from ddg_oracle.implementations import available, missing
+    from ddg_oracle.properties.registry import select_properties
+    from ddg_oracle.properties.runner import describe
 
-    profile(args.profile)                              # a typo is a usage error, before work
     if args.workers is not None and args.workers < 1:
-        raise ValueError(f"--workers must be >= 1, got {args.workers}")
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
     workers = args.workers or _default_workers()
-    only = set(args.only) if args.only else None
-    props = [p for p in all_properties() if only is None or p.id in only]
-    if only:
-        unknown = only - {p.id for p in props}
-        if unknown:
-            raise ValueError(f"no property for catalog ID(s) {', '.join(sorted(unknown))}")
+    try:
+        props = select_properties(args.only)
+    except ValueError as e:
+        raise UsageError(str(e)) from None
+    only = frozenset(p.id for p in props) if args.only else None
+    if args.report:
+        _refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
-        from oracles.compare import FILE_PROPERTIES, load_all
+        from ddg_oracle.compare import FILE_PROPERTIES, load_all
         meshes = load_all(args.mesh, warn=_warn)
         if not meshes:
             raise InputError("no usable mesh among " + ", ".join(args.mesh))
         if only and not only & set(FILE_PROPERTIES):
-            raise ValueError(f"none of {', '.join(sorted(only))} applies to a mesh file; "
+            raise UsageError(f"none of {', '.join(sorted(only))} applies to a mesh file; "
                              f"those that do: {', '.join(FILE_PROPERTIES)}")
+    if not args.impl:
+        for name, why in missing().items():
+            _warn(f"not checked: {why}")
     specs = list(dict.fromkeys(args.impl or available()))
     t0 = time.perf_counter()
     started = _start(specs, args.timeout)
     names = {s: getattr(i, "name", s) for s, i in started.items()}
-    options = jobs.Options(args.profile, args.seed, args.timeout, args.expect_conventions,
-                           frozenset(only) if only else None)
+    options = jobs.Options(args.profile, args.seed, args.timeout, args.expect_conventions, only)
     if meshes:
         tasks = [jobs.Task(s, None, k) for k in range(len(meshes)) for s in specs]
     else:
@@ -211,7 +302,7 @@ def _check(args, argv) -> int:
         jobs.close_all()
     seconds = time.perf_counter() - t0
 
-    from oracles.report import counts, table, write_report
+    from ddg_oracle.report import counts, table, write_report
     print(table(results))
     bad = [r for r in results if not r.ok]
     shown = [r for r in results if r.failure is not None or r.error]
@@ -238,9 +329,9 @@ def _check(args, argv) -> int:
 
 
 def _compare(args) -> int:
-    from oracles.compare import format_comparisons, load_all, compare_mesh
-    from oracles.exact_reference import ReferenceImplementation
-    from oracles.implementations import available
+    from ddg_oracle.compare import format_comparisons, load_all, compare_mesh
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from ddg_oracle.implementations import available
 
     meshes = load_all(args.mesh, warn=_warn)
     if not meshes:

@@ -26,7 +26,8 @@ import resource
 import signal
 import traceback
 
-from properties.protocol import METHODS, OutsideDomain, machine_epsilon
+from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
+                                           machine_epsilon, require_protocol)
 
 
 class ImplementationCrashed(RuntimeError):
@@ -64,7 +65,7 @@ def memory_limit(spec: str | None = None) -> int | None:
     except ValueError:
         n = -1
     if not n > 0:
-        from reference.errors import InputError
+        from ddg_oracle.reference.errors import InputError
         raise InputError(f"memory limit {raw!r}: use a positive size such as 4G, 512M or "
                          f"1073741824 bytes, or none (from {MEMORY_ENV} or Isolated(memory=...))")
     return int(n)
@@ -77,13 +78,19 @@ def _size(n: int) -> str:
 def _worker(spec: str, memory_bytes: int | None, conn) -> None:
     if memory_bytes:
         resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
-    from oracles.implementations import load_implementation
+    from ddg_oracle.implementations import ImplementationNotFound, load_implementation
     try:
         impl = load_implementation(spec)
-        conn.send(("ready", sorted(m for m in METHODS if callable(getattr(impl, m, None))),
-                   (getattr(impl, "name", spec), machine_epsilon(impl))))
-    except BaseException as e:  # noqa: BLE001  (report any import failure to the parent)
-        conn.send(("error", f"{type(e).__name__}: {e}", None))
+        methods = sorted(require_protocol(impl))
+        conn.send(("ready", methods, (getattr(impl, "name", spec), machine_epsilon(impl))))
+    except NotAnImplementation as e:
+        conn.send(("not-an-implementation", str(e), None))
+        return
+    except ImplementationNotFound as e:
+        conn.send(("error", str(e), None))
+        return
+    except BaseException as e:  # noqa: BLE001  (report any other failure to the parent)
+        conn.send(("error", f"{spec}: {type(e).__name__}: {e}", None))
         return
     while True:
         try:
@@ -136,9 +143,13 @@ class Isolated:
             status, payload, name = parent.recv()
         except EOFError:
             raise ImplementationCrashed(self.spec, "load", self._how_it_died()) from None
+        if status == "not-an-implementation":
+            self._kill()
+            raise NotAnImplementation(payload)
         if status != "ready":
-            from oracles.implementations import ImplementationNotFound
-            raise ImplementationNotFound(f"{self.spec}: {payload}")
+            from ddg_oracle.implementations import ImplementationNotFound
+            self._kill()
+            raise ImplementationNotFound(payload)
         self.methods = frozenset(payload)
         self.name, self.machine_epsilon = name
 

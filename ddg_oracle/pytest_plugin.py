@@ -1,0 +1,86 @@
+"""pytest plugin: ``pytest --ddg-impl mylib.geometry:Impl`` checks an implementation.
+
+Inert unless asked: loading it (every pytest run in an environment where
+ddg-oracle is installed, entry point ``pytest11``) adds the options below and
+nothing else: no import of the properties, no Hypothesis profile registered or
+loaded, nothing on ``sys.path``.  With ``--ddg-impl`` every registered
+property becomes one test item ``ddg[<impl>][<catalog ID>]``; a property
+whose protocol methods the implementation lacks is skipped, naming them.  The
+items run under our own profile (``--ddg-profile default|ci|thorough``,
+Hypothesis profile ``ddg-oracle-<name>``), so the user's own Hypothesis
+profile is neither changed nor used by them.
+"""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+
+def pytest_addoption(parser):
+    group = parser.getgroup("ddg-oracle")
+    group.addoption("--ddg-impl", action="append", default=[], metavar="module:object",
+                    help="check this implementation with every ddg-oracle property (repeatable)")
+    group.addoption("--ddg-only", action="append", default=[], metavar="ID",
+                    help="only the properties of these catalog IDs (any part of a joint ID "
+                         "such as 'L4.3' of 'L4.3 / P4.4')")
+    group.addoption("--ddg-profile", default=None, metavar="NAME",
+                    help="ddg-oracle's Hypothesis profile for its items: default, ci, thorough "
+                         "(default: ci when $CI is set, else default)")
+
+
+class PropertyItem(pytest.Item):
+    def __init__(self, *, prop, impl, spec, profile, **kw):
+        super().__init__(**kw)
+        self.prop, self.impl, self.spec, self.profile = prop, impl, spec, profile
+
+    def runtest(self):
+        from ddg_oracle.properties.runner import (CRASHED, FAILED, NOT_APPLICABLE, UNDECIDED,
+                                                  describe, run_property)
+        r = run_property(self.prop, self.impl, self.profile)
+        if r.status == NOT_APPLICABLE:
+            pytest.skip(f"{self.spec} {r.note}")
+        if r.status == UNDECIDED:            # the exact reference hit a guard: nothing checked
+            pytest.skip(f"undecided: {r.error}")
+        if r.status in (FAILED, CRASHED):
+            raise PropertyCheckFailed(describe(r))
+
+    def repr_failure(self, excinfo):
+        if isinstance(excinfo.value, PropertyCheckFailed):
+            return str(excinfo.value)
+        return super().repr_failure(excinfo)
+
+    def reportinfo(self):
+        return self.spec, None, f"ddg[{self.spec}][{self.prop.id}] {self.prop.statement}"
+
+
+class PropertyCheckFailed(AssertionError):
+    pass
+
+
+def pytest_collection_modifyitems(session, config, items):
+    specs = config.getoption("ddg_impl")
+    if not specs:
+        return
+    from ddg_oracle.implementations import ImplementationNotFound, load_implementation
+    from ddg_oracle.properties.profiles import profile
+    from ddg_oracle.properties.protocol import NotAnImplementation, require_protocol
+    from ddg_oracle.properties.registry import select_properties
+
+    name = config.getoption("ddg_profile") or ("ci" if os.environ.get("CI") else "default")
+    try:
+        settings = profile(name)
+        props = select_properties(config.getoption("ddg_only") or None)
+    except ValueError as e:
+        raise pytest.UsageError(f"ddg-oracle: {e}") from None
+    for spec in specs:
+        try:
+            impl = load_implementation(spec)
+            require_protocol(impl)
+        except (ImplementationNotFound, NotAnImplementation) as e:
+            raise pytest.UsageError(f"ddg-oracle: {e}") from None
+        for p in props:
+            items.append(PropertyItem.from_parent(
+                session, name=f"ddg[{spec}][{p.id}]", prop=p, impl=impl, spec=spec,
+                profile=settings))
