@@ -9,7 +9,8 @@ from ddg_oracle.reference.cotan_fast import CotanSum, cotan_laplacian_fast, cota
 from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces)
 from ddg_oracle.reference.exact import pi
-from ddg_oracle.reference.laplacian import cotan_laplacian_from_weights, cotan_weights
+from ddg_oracle.reference.laplacian import (cotan_laplacian_from_weights, cotan_weights,
+                                            cotan_weights_from_corners)
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import meshes, peers
@@ -43,7 +44,8 @@ PEERS = [
      None),
     ("reference fast path", "Laplacian, canonical forms", laplacian_canonical,
      (10 ** 6, 10 ** 4), None),
-    ("reference definition", "weights", cotan_weights, (6000, 1300), None),
+    ("reference public cotan_weights", "weights", cotan_weights, (10 ** 6, 10 ** 4), None),
+    ("reference definition", "weights", cotan_weights_from_corners, (6000, 1300), None),
     ("reference definition", "Laplacian", cotan_laplacian_from_weights, (6000, 1300), None),
     ("reference input", "PolyhedralSurface.from_arrays", None, (10 ** 6, 10 ** 4), None),
     ("Fraction pairs", "weights", peers.weights_fractions, (6000, 1300), None),

@@ -16,14 +16,14 @@ PROPERTY = "D3.1"        # cotan_laplacian equals the exact cotan weights, withi
 def run_hypothesis(mode: Mode) -> dict:
     from hypothesis import settings
 
-    import ddg_oracle.properties.profiles  # noqa: F401  (registers the profiles)
+    from ddg_oracle.properties.profiles import profile
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     from ddg_oracle.oracles.libigl import Libigl
     from ddg_oracle.properties.registry import PROPERTIES
     from ddg_oracle.properties.runner import run_property
 
     n = 25 if mode.quick else 200
-    s = settings(settings.get_profile("ci"), max_examples=n)
+    s = settings(profile("ci"), max_examples=n)
     rows = []
     for impl in (Libigl(), ReferenceImplementation()):
         t0, c0 = time.perf_counter(), time.process_time()
@@ -39,10 +39,10 @@ def run_hypothesis(mode: Mode) -> dict:
 
 COMMANDS = [
     ("test suite, default profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
-                                     "-p", "no:cacheprovider", "reference", "tests"], {}),
+                                     "-p", "no:cacheprovider", "tests"], {}),
     ("test suite, ci profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
-                                "-p", "no:cacheprovider", "reference", "tests"], {"CI": "true"}),
-    ("ddg-oracle check (default)", [sys.executable, "-m", "ddg_oracle.cli", "check"], {}),
+                                "-p", "no:cacheprovider", "tests"], {"CI": "true"}),
+    ("ddg-oracle check (default)", [sys.executable, "-m", "ddg_oracle", "check"], {}),
 ]
 
 

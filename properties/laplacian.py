@@ -5,7 +5,7 @@ for L3.7, ``vertex_areas_voronoi`` / ``vertex_areas_barycentric``), V float64
 n x 3 and F int m x 3, in the reference's conventions: ``(L f)(i) = sum_j nu(ij)
 (f(i) - f(j))``, positive semidefinite, ``nu = 1/2 (cot a + cot b)``, boundary
 ``1/2 cot a`` (see ``properties/protocol.py``).  The truth comes from the exact
-reference (``ddg_oracle.reference.laplacian``, ``ddg_oracle.reference.area``) evaluated on the very
+reference (``ddg_oracle.reference.laplacian``, ``ddg_oracle.reference.areas``) evaluated on the very
 floats the implementation received (every float is a dyadic rational, taken
 exactly), or from how the example was built.
 
@@ -45,7 +45,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.area import area_gradient
+from ddg_oracle.reference.areas import area_gradient
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.dirichlet import directional_derivative
 from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,

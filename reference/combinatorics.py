@@ -1161,9 +1161,25 @@ class _Builder:
 # --- connected sum -------------------------------------------------------------------
 
 
-def connected_sum(a: Triangulation, b: Triangulation, face_a: int = -1,
-                  face_b: int = -1) -> Triangulation:
+def _combinatorics_of(x, name: str) -> Triangulation:
+    """The triangulation of ``x``: itself, or a surface's ``.triangulation``; TypeError else."""
+    if isinstance(x, Triangulation):
+        return x
+    t = getattr(x, "triangulation", None)
+    if isinstance(t, Triangulation):
+        return t
+    raise TypeError(f"connected_sum: {name} is a {type(x).__name__}; pass a Triangulation, or a "
+                    f"surface (PolyhedralSurface, PiecewiseFlatSurface) whose triangulation is "
+                    f"summed")
+
+
+def connected_sum(a, b, face_a: int = -1, face_b: int = -1) -> Triangulation:
     """CS: the connected sum ``a # b``; chi(a # b) = chi(a) + chi(b) - 2.
+
+    Combinatorial: ``a`` and ``b`` are Triangulations, or surfaces of any type
+    (:class:`~ddg_oracle.reference.polyhedral.PolyhedralSurface`, ...) whose
+    triangulations are summed; the result is a :class:`Triangulation` (positions
+    have no canonical connected sum).
 
     Removes face ``face_a`` of ``a`` and ``face_b`` of ``b`` (default: the last
     face of each; negative indices count from the end) and glues the two
@@ -1180,7 +1196,11 @@ def connected_sum(a: Triangulation, b: Triangulation, face_a: int = -1,
     >>> s = connected_sum(Triangulation.from_faces(tet), Triangulation.from_faces(tet))
     >>> s.n_vertices, s.n_faces, s.euler_characteristic()
     (5, 6, 2)
+    >>> from ddg_oracle.reference import surfaces
+    >>> connected_sum(surfaces.torus(3, 4), surfaces.genus_surface(2)).classify().genus
+    3
     """
+    a, b = _combinatorics_of(a, "a"), _combinatorics_of(b, "b")
     fa = _index(face_a, a.n_faces, "face", allow_negative=True)
     fb = _index(face_b, b.n_faces, "face", allow_negative=True)
     for name, tri, f in (("a", a, fa), ("b", b, fb)):

@@ -596,7 +596,9 @@ def face_cotangents(surface) -> list[tuple]:
 
 
 def cotan_weights_fast(surface) -> dict:
-    """(3.3): the cotan weights, equal to :func:`ddg_oracle.reference.laplacian.cotan_weights`.
+    """(3.3): the cotan weights, equal to the definition
+    :func:`ddg_oracle.reference.laplacian.cotan_weights_from_corners` (the route
+    :func:`~ddg_oracle.reference.laplacian.cotan_weights` takes where it applies).
 
     Same keys (every edge id) and values (``==``), Fractions where rational,
     irrational ones as :class:`CotanSum` (Surds whose canonical form is computed
@@ -604,9 +606,9 @@ def cotan_weights_fast(surface) -> dict:
     :func:`applies` rejects, use the definition.
 
     >>> from ddg_oracle.reference import surfaces
-    >>> from ddg_oracle.reference.laplacian import cotan_weights
+    >>> from ddg_oracle.reference.laplacian import cotan_weights_from_corners
     >>> s = surfaces.icosahedron()
-    >>> cotan_weights_fast(s) == cotan_weights(s)
+    >>> cotan_weights_fast(s) == cotan_weights_from_corners(s)
     True
     """
     t = surface.triangulation

@@ -42,7 +42,7 @@ from .metric import PiecewiseFlatSurface, as_metric
 from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix, _normal, exact_number, exact_sum
 
-__all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weighted_edges",
+__all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weights_from_corners", "cotan_weighted_edges",
            "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
            "dirichlet_inner_product_pl",
            "gradient_pl", "vertex_areas_barycentric", "vertex_areas_voronoi",
@@ -111,12 +111,37 @@ def cotan_weights(surface) -> dict[int, Surd]:
     """(3.3): the cotan weight of every edge, keyed by edge id (boundary edges included).
 
     ``nu(e) = 1/2 (cot alpha + cot alpha')`` for an interior edge, ``1/2 cot alpha``
+    for a boundary edge, alpha, alpha' the corner angles opposite the edge; a
+    loop edge gets its weight too.  Exact: Surds, or Fractions where rational.
+
+    The definition is :func:`cotan_weights_from_corners`.  For a polyhedral
+    surface, or a piecewise flat one with rational squared lengths, this
+    returns the equal weights computed by
+    :func:`ddg_oracle.reference.cotan_fast.cotan_weights_fast` (integer arithmetic,
+    canonical forms on demand; equality tested edge by edge).
+
+    >>> from ddg_oracle.reference import surfaces
+    >>> w = cotan_weights(surfaces.grid(1, 1))
+    >>> sorted(str(x) for x in w.values())
+    ['0', '1/2', '1/2', '1/2', '1/2']
+    """
+    if cotan_fast.applies(surface):
+        return cotan_fast.cotan_weights_fast(surface)
+    return cotan_weights_from_corners(surface)
+
+
+def cotan_weights_from_corners(surface) -> dict[int, Surd]:
+    """The definition of :func:`cotan_weights` (3.3), corner by corner: accepts every
+    surface (irrational squared lengths too).  The cotan weight of every edge, keyed by
+    edge id (boundary edges included).
+
+    ``nu(e) = 1/2 (cot alpha + cot alpha')`` for an interior edge, ``1/2 cot alpha``
     for a boundary edge, alpha, alpha' the corner angles opposite the edge.  A
     loop edge gets its weight too (it is an edge of the triangulation); only the
     matrix ignores it.  Exact: Surds, or Fractions where rational.
 
     >>> from ddg_oracle.reference import surfaces
-    >>> w = cotan_weights(surfaces.grid(1, 1))
+    >>> w = cotan_weights_from_corners(surfaces.grid(1, 1))
     >>> sorted(str(x) for x in w.values())
     ['0', '1/2', '1/2', '1/2', '1/2']
     """
@@ -165,7 +190,7 @@ def cotan_laplacian(surface) -> SparseMatrix:
 
 
 def cotan_laplacian_from_weights(surface) -> SparseMatrix:
-    """Definition 3.2 as written: the cotan weights (:func:`cotan_weights`) added
+    """Definition 3.2 as written: the cotan weights (:func:`cotan_weights_from_corners`) added
     edge by edge into the matrix.  The definition :func:`cotan_laplacian` is
     tested against; it accepts every surface (irrational squared lengths too).
 
@@ -176,7 +201,7 @@ def cotan_laplacian_from_weights(surface) -> SparseMatrix:
     m = metric_of_surface(surface)
     t = m.triangulation
     n = t.n_vertices
-    w = cotan_weights(m)
+    w = cotan_weights_from_corners(m)
     rows: dict[int, dict[int, object]] = {}
     diag: list = [None] * n
     for e, we in w.items():

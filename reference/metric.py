@@ -19,6 +19,8 @@ from .combinatorics import Triangulation
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, rational, sqrt
 
+__all__ = ["PiecewiseFlatSurface", "area", "as_metric", "metric_of", "heron16"]
+
 
 def heron16(a: Fraction, b: Fraction, c: Fraction) -> Fraction:
     """16 A^2 of a triangle with squared side lengths a, b, c (Heron, exact).
@@ -178,6 +180,19 @@ def as_metric(surface) -> PiecewiseFlatSurface:
         raise InputError(f"expected a PolyhedralSurface or a PiecewiseFlatSurface, "
                          f"got {type(surface).__name__}")
     return metric()    # raises DegenerateFace naming a zero-area face
+
+
+def area(surface) -> Surd:
+    """The total area of a surface, the sum of its face areas (Heron's formula on the exact
+    squared lengths, D2.6): exact (a Surd, a Fraction where rational).  Accepts a
+    PolyhedralSurface or a PiecewiseFlatSurface; the protocol's ``area``.
+
+    >>> from ddg_oracle.reference import surfaces
+    >>> area(surfaces.cube()), area(surfaces.tetrahedron().metric()) == area(surfaces.tetrahedron())
+    (Fraction(6, 1), True)
+    """
+    a = as_metric(surface).total_area()
+    return a.as_fraction() if a.is_rational() else a
 
 
 def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:

@@ -16,6 +16,8 @@ from .errors import BadShape, EmptyMesh, IndexOutOfRange, InputError, Unreferenc
 from .exact.rationals import rational
 from .metric import PiecewiseFlatSurface, metric_of
 
+__all__ = ["PolyhedralSurface"]
+
 
 class PolyhedralSurface:
     """A triangulation plus exact positions, one point of R^n (n >= 2) per vertex.

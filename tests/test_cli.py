@@ -416,3 +416,104 @@ def test_every_hostile_mesh_file_is_one_line_and_exit_2(capsys, tmp_path, case):
         assert "Traceback" not in err
         low = err.lower()
         assert any(w.lower() in low for w in case.words), (case.words, err)
+
+
+# --- exit codes CI can rely on, help, version, selection ---------------------------------------
+
+
+def test_a_crash_of_the_tool_itself_is_exit_3_with_its_traceback(capsys, monkeypatch):
+    import ddg_oracle.cli as cli
+
+    def broken(args):
+        raise ValueError("an internal bug, not a usage error")
+    monkeypatch.setattr(cli, "_theorems", broken)
+    rc, _, err = _run(capsys, "theorems")
+    assert rc == cli.EXIT_TOOL == 3
+    assert "Traceback" in err and "an internal bug" in err and "bug in ddg-oracle" in err
+
+
+def test_report_into_a_used_path_is_refused_before_the_run(capsys, tmp_path):
+    used = tmp_path / "used"
+    used.mkdir()
+    (used / "results.json").write_text("{}")
+    a_file = tmp_path / "a-file"
+    a_file.write_text("x")
+    for path in (used, a_file):
+        rc, out, err = _run(capsys, "check", "--impl", "reference", "--only", "D1.6",
+                            "--workers", "1", "--report", str(path))
+        assert rc == 2 and out == "" and "new or empty directory" in err, err
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    rc, _, _ = _run(capsys, "check", "--impl", "reference", "--only", "D1.6", "--workers", "1",
+                    "--report", str(empty))
+    assert rc == 0 and (empty / "results.json").is_file()
+
+
+def test_only_takes_several_ids_and_any_part_of_a_joint_id(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--workers", "1",
+                      "--only", "D1.6", "L4.3,R1.5")
+    assert rc == 0
+    assert re.search(r"^D1\.6 ", out, re.M) and re.search(r"^L4\.3 / P4\.4 ", out, re.M)
+    assert re.search(r"^R1\.5", out, re.M)
+    rc, _, err = _run(capsys, "check", "--impl", "reference", "--only", "D1.7")
+    assert rc == 2 and "did you mean" in err and "D1.6" in err
+
+
+def test_version_and_help_are_plain_text_with_examples_and_exit_codes(capsys):
+    from ddg_oracle import __version__
+    rc, out, _ = _run(capsys, "--version")
+    assert rc == 0 and out.strip() == f"ddg-oracle {__version__}"
+    for command in ("check", "compare", "theorems"):
+        rc, out, _ = _run(capsys, command, "--help")
+        assert rc == 0
+        assert "examples:" in out and f"ddg-oracle {command}" in out and "exit codes:" in out
+        assert "``" not in out and ":func:" not in out and ":mod:" not in out
+
+
+class Typo:
+    """Protocol methods misspelt: would pass every property vacuously."""
+
+    def angle_defect(self, V, F):
+        return np.zeros(len(V))
+
+    def cotmatrix(self, V, F):
+        return None
+
+
+def test_an_object_without_protocol_methods_is_refused_with_did_you_mean(capsys, tmp_path,
+                                                                         monkeypatch):
+    from ddg_oracle.properties import check_implementation
+    from ddg_oracle.properties.protocol import NotAnImplementation
+
+    with pytest.raises(NotAnImplementation, match="did you mean `angle_defects` for "
+                                                  "`angle_defect`, `cotan_laplacian` for `cotmatrix`"):
+        check_implementation(Typo())
+    (tmp_path / "typo_impl.py").write_text("class Typo:\n    def angle_defect(self, V, F):\n"
+                                           "        return None\n")
+    monkeypatch.chdir(tmp_path)
+    rc, out, err = _run(capsys, "check", "--impl", "typo_impl:Typo", "--workers", "1")
+    assert rc == 2 and "did you mean `angle_defects`" in err and err.count("\n") == 1, err
+
+
+def test_a_user_module_that_fails_to_import_is_a_usage_error(capsys, tmp_path, monkeypatch):
+    (tmp_path / "broken_impl.py").write_text("import no_such_dependency_anywhere\n")
+    monkeypatch.chdir(tmp_path)
+    rc, _, err = _run(capsys, "check", "--impl", "broken_impl:Impl", "--workers", "1")
+    assert rc == 2
+    assert "cannot import your module 'broken_impl'" in err and "no_such_dependency" in err
+    assert "crash" not in err.lower()
+
+
+def test_the_current_directory_never_shadows_an_installed_module(tmp_path, monkeypatch):
+    import ddg_oracle.implementations as impls
+
+    (tmp_path / "mine_impl.py").write_text("class Impl:\n    def genus(self, V, F):\n"
+                                           "        return 0\n")
+    (tmp_path / "json.py").write_text("raise RuntimeError('shadowed the standard library')\n")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(tmp_path))])
+    impl = impls.load_implementation("mine_impl:Impl")
+    assert impl.genus(None, None) == 0
+    assert sys.path[-1] == str(tmp_path)            # appended, not put first
+    import importlib
+    assert importlib.import_module("json").__name__ == "json"

@@ -12,9 +12,9 @@ import pytest
 
 # each subpackage walked by its own path: in an editable install they live apart
 PACKAGES = ("ddg_oracle", "ddg_oracle.reference", "ddg_oracle.properties", "ddg_oracle.oracles")
-MODULES = sorted({m.name for pkg in PACKAGES
-                  for m in pkgutil.walk_packages(importlib.import_module(pkg).__path__, pkg + ".")}
-                 | set(PACKAGES))
+MODULES = sorted(({m.name for pkg in PACKAGES
+                   for m in pkgutil.walk_packages(importlib.import_module(pkg).__path__, pkg + ".")}
+                  | set(PACKAGES)) - {"ddg_oracle.__main__"})   # importing it runs the command
 # adapters of libraries not installed here import nothing useful: their doctests need them
 OPTIONAL = {"ddg_oracle.oracles.libigl": "igl", "ddg_oracle.oracles.pymeshlab": "pymeshlab",
             "ddg_oracle.oracles.gpytoolbox": "gpytoolbox",

@@ -32,7 +32,8 @@ from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_de
 from ddg_oracle.reference.errors import DegenerateFace, NotFlippable
 from ddg_oracle.reference.exact import Surd, pi, sqrt
 from ddg_oracle.reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
-from ddg_oracle.reference.laplacian import cotan_laplacian, cotan_laplacian_from_weights, cotan_weights
+from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_laplacian_from_weights,
+                                            cotan_weights_from_corners as cotan_weights)
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from tests.test_delaunay import flat_torus, random_flips

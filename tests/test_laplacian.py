@@ -18,7 +18,7 @@ from tests.property_checks import assert_caught, assert_passes_well_inside
 from ddg_oracle.properties.registry import PROPERTIES
 from ddg_oracle.properties.runner import PASSED, run_property
 from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.area import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,
+from ddg_oracle.reference.areas import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,
                             area_gradient_cotan, area_gradient_cross, area_gradient_direct,
                             area_length_derivatives, heron_partial_derivatives,
                             laplacian_of_positions, triangle_area_heron, triangle_cotangents)

@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, Phase, settings
 from hypothesis.extra.redis import RedisExampleDatabase
 
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.profiles import DATABASE_ENV, database_from, use_database
+from ddg_oracle.properties.profiles import DATABASE_ENV, database_from, profile, use_database
 from ddg_oracle.properties.runner import FAILED, run_property
 from tests.planted_bugs import ChiIgnoresBoundary
 
@@ -146,20 +146,19 @@ def test_use_database_switches_every_profile_and_ci_trades_derandomize_for_it(re
         db = use_database(redis_server.url)
         assert isinstance(db, RedisExampleDatabase)
         for name in ("default", "ci", "thorough"):
-            assert settings.get_profile(name).database == db
-        assert not settings.get_profile("ci").derandomize
+            assert profile(name).database == db
+        assert not profile("ci").derandomize
         use_database("none")
-        assert settings.get_profile("default").database is None
-        assert settings.get_profile("ci").derandomize
+        assert profile("default").database is None
+        assert profile("ci").derandomize
     finally:
         use_database(os.environ.get(DATABASE_ENV))     # as this session started
 
 
 def test_environment_variable_selects_redis_in_a_fresh_process(redis_server):
-    code = ("import ddg_oracle.properties.profiles\n"
-            "from hypothesis import settings\n"
-            "p = settings.get_profile('ci')\n"
-            "print(type(settings.get_profile('default').database).__name__, p.derandomize)\n")
+    code = ("from ddg_oracle.properties.profiles import profile\n"
+            "p = profile('ci')\n"
+            "print(type(profile('default').database).__name__, p.derandomize)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env={**os.environ, DATABASE_ENV: redis_server.url}, timeout=120)
     assert out.returncode == 0, out.stderr

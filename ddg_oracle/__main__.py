@@ -1,0 +1,7 @@
+"""``python -m ddg_oracle``: the ``ddg-oracle`` command."""
+
+import sys
+
+from ddg_oracle.cli import main
+
+sys.exit(main())
