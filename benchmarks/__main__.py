@@ -1,4 +1,7 @@
-"""``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``."""
+"""``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``.
+
+Groups: cotan, flips, r3, hypothesis (the default set), suite (the test suite and one
+check), main (``ddg-oracle check`` three times and with ci: the main job's time)."""
 
 from __future__ import annotations
 
@@ -14,6 +17,7 @@ GROUPS = {
     "r3": flips.run_r3,
     "hypothesis": suite.run_hypothesis,
     "suite": suite.run_suite,
+    "main": suite.run_main,
 }
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 

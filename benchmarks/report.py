@@ -21,6 +21,7 @@ python -m benchmarks              # cotan, curvature, flips, r3, hypothesis: ~5 
 python -m benchmarks --quick      # the same, smaller and fewer runs: under a minute
 python -m benchmarks flips r3     # some groups only (the others keep their last results)
 python -m benchmarks suite        # test suite and `ddg-oracle check` wall times (minutes)
+python -m benchmarks main         # `ddg-oracle check`: 3 default runs and a ci run
 python -m benchmarks --all        # everything
 ```
 
@@ -123,6 +124,18 @@ SUITE = """\
 ## 4. Test suite and `ddg-oracle check`
 
 Wall time on 2 workers (`pytest -n 2`), one run each.
+"""
+
+MAIN = """\
+## 6. The main job: `ddg-oracle check`
+
+README command 1's `ddg-oracle check` (every installed implementation, 2
+workers, with `--report` into a temporary directory), `python -m benchmarks
+main`: the default profile three times (a random seed each run: the examples
+differ), then `--profile ci` once.  *slowest task*: one property on one
+implementation, from the report's `timings.json`; every task runs under its
+budget (`properties/budget.py`: 20 s and 6 crashes with `default`, 60 s and 12
+with `ci`).  Load: the 1-minute load average before the run.
 """
 
 HYPOTHESIS = """\
@@ -254,7 +267,7 @@ def write(results: dict) -> None:
     out = [INTRO]
     summary = _targets(results)
     if summary:
-        out += ["## Targets (issue 7)", "", *summary, ""]
+        out += ["## Targets", "", *summary, ""]
     if "cotan" in results:
         res = results["cotan"]
         out += [COTAN, _meta(res), *_cotan_table(res), ""]
@@ -306,6 +319,11 @@ _TABLES = [
     ("suite", SUITE, [("command", lambda r: r["command"]),
                       ("wall seconds", lambda r: f"{r['wall']:.0f}"),
                       ("exit", lambda r: str(r["exit"])), ("last line", lambda r: r["summary"])]),
+    ("main", MAIN, [("profile", lambda r: r["profile"]), ("run", lambda r: str(r["run"])),
+                    ("wall seconds", lambda r: f"{r['wall']:.1f}"),
+                    ("exit", lambda r: str(r["exit"])), ("load before", lambda r: str(r["load"])),
+                    ("checks", lambda r: str(r["checks"])),
+                    ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.1f} s)")]),
     ("hypothesis", HYPOTHESIS, [("implementation", lambda r: r["implementation"]),
                                 ("status", lambda r: r["status"]),
                                 ("examples", lambda r: str(r["examples"])),
@@ -355,6 +373,15 @@ def _targets(results: dict) -> list[str]:
         t = flips[0]["seconds"]
         lines.append(f"| 20,000-face rational-metric surface to Delaunay < 10 s | {t:.1f} s | "
                      f"{'yes' if t < 10 else 'no'} |")
+    main = results.get("main")
+    if main:
+        m, slow, ci = main["median_default"], main["slowest_default"], main["ci"]
+        lines.append(f"| `ddg-oracle check` default, median of 3 runs, <= 60 s | {m:.1f} s | "
+                     f"{'yes' if m <= 60 else 'no'} |")
+        lines.append(f"| no task over 20 s (default) | slowest {slow:.1f} s | "
+                     f"{'yes' if slow <= 20.5 else 'no'} |")
+        lines.append(f"| `ddg-oracle check --profile ci` <= 120 s | {ci:.1f} s | "
+                     f"{'yes' if ci <= 120 else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None

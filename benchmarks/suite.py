@@ -58,3 +58,37 @@ def run_suite(mode: Mode) -> dict:
         rows.append({"command": label, "wall": wall, "exit": p.returncode, "summary": last})
         say(f"  suite {label:30} {wall:8.1f} s exit {p.returncode}: {last}")
     return {"rows": rows}
+
+
+MAIN_RUNS = 3
+
+
+def run_main(mode: Mode) -> dict:
+    """``ddg-oracle check`` as README command 1 runs it (every installed implementation),
+    default profile ``MAIN_RUNS`` times and ci once: wall time of each run, its median, and
+    the slowest task (from the report's timings.json); the load average before each run."""
+    import json
+    import statistics
+    import tempfile
+
+    rows = []
+    plan = [("default", k) for k in range(1 if mode.quick else MAIN_RUNS)] + [("ci", 0)]
+    for profile, k in plan:
+        with tempfile.TemporaryDirectory() as tmp:
+            load = round(os.getloadavg()[0], 1)
+            report = os.path.join(tmp, "report")
+            t0 = time.perf_counter()
+            p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--profile", profile,
+                                "--report", report], cwd=ROOT, capture_output=True, text=True)
+            wall = time.perf_counter() - t0
+            timings = json.loads(open(os.path.join(report, "timings.json")).read())
+        slow = max(timings["results"], key=lambda r: r["seconds"])
+        rows.append({"profile": profile, "run": k + 1, "wall": wall, "exit": p.returncode,
+                     "load": load, "slowest": f"{slow['property_id']} / {slow['implementation']}",
+                     "slowest_seconds": slow["seconds"], "checks": len(timings["results"])})
+        say(f"  main {profile} run {k + 1}: {wall:.1f} s exit {p.returncode}, slowest "
+            f"{rows[-1]['slowest']} {slow['seconds']:.1f} s (load {load})")
+    default = [r["wall"] for r in rows if r["profile"] == "default"]
+    return {"rows": rows, "median_default": statistics.median(default),
+            "slowest_default": max(r["slowest_seconds"] for r in rows if r["profile"] == "default"),
+            "ci": next(r["wall"] for r in rows if r["profile"] == "ci")}

@@ -15,10 +15,13 @@ from __future__ import annotations
 import argparse
 import concurrent.futures as cf
 import os
+import random
 import sys
+import tempfile
 import textwrap
 import time
 import traceback
+from pathlib import Path
 
 from ddg_oracle import __version__
 from ddg_oracle.reference.errors import InputError
@@ -86,7 +89,13 @@ def parser() -> argparse.ArgumentParser:
                         "imports your module as Python does, the current directory included")
     c.add_argument("--profile", default="default", choices=("default", "ci", "thorough"),
                    help="Hypothesis profile (ci: derandomized, more examples; default: default)")
-    c.add_argument("--seed", type=int, default=None, help="Hypothesis seed")
+    c.add_argument("--seed", type=int, default=None,
+                   help="Hypothesis seed (default: derandomized under ci, else one random seed "
+                        "for the run, printed; every implementation sees the same examples)")
+    c.add_argument("--budget", type=float, default=None, metavar="SECONDS",
+                   help="wall-clock seconds per task (one property on one implementation), "
+                        "shrinking included; a call still running then is a hang; 0: none "
+                        "(default: 20 with --profile default, 60 with ci, none with thorough)")
     c.add_argument("--only", action="extend", nargs="+", metavar="ID",
                    help="only these catalog IDs (several, or comma-separated; any part of a "
                         "joint ID: L4.3 selects 'L4.3 / P4.4')")
@@ -104,6 +113,11 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"worker processes (default {_default_workers()}: "
                         f"min({DEFAULT_WORKERS}, number of CPUs)); 1 runs in this process")
+    c.add_argument("--wide", action="store_true",
+                   help="print the full grid (property x implementation) instead of the "
+                        "compact report")
+    c.add_argument("--width", type=int, default=100, metavar="COLUMNS",
+                   help="columns of the compact report (default 100)")
     c.add_argument("--expect-conventions", action="store_true",
                    help="a failure of an implementation using a documented library convention "
                         "(e.g. 'libigl(boundary=library)') that the reference-convention adapter "
@@ -190,6 +204,19 @@ def _theorems(args) -> int:
     return 0
 
 
+def _budget(args):
+    """The task budget of ``check``: the profile's, or ``--budget`` seconds (0: none)."""
+    from ddg_oracle.properties.budget import Budget
+    from ddg_oracle.properties.profiles import profile_budget
+
+    budget = profile_budget(args.profile)
+    if args.budget is None:
+        return budget
+    if args.budget < 0 or args.budget != args.budget:
+        raise UsageError(f"--budget must be >= 0 seconds (0: none), got {args.budget}")
+    return Budget(args.budget or None, budget.crashes if args.budget else None)
+
+
 def _refuse_used_report_dir(path: str) -> None:
     """--report DIR must be a new or empty directory: refused before any work is done."""
     if os.path.lexists(path) and not (os.path.isdir(path) and not os.listdir(path)):
@@ -226,26 +253,51 @@ def _start(specs, timeout):
 
 
 class Progress:
-    """A one-line bar on stderr when it is a terminal; otherwise silent until the end."""
+    """Signs of life on stderr.  On a terminal, a one-line bar.  Otherwise (a CI log, a
+    pipe) one line per finished task that was applicable, and every ``every`` seconds a
+    line with how far the run is, so a log never goes quiet for long."""
 
-    def __init__(self, total: int, stream=None):
+    def __init__(self, total: int, stream=None, every: float = 10.0):
+        import threading
+
         self.total, self.done = total, 0
         self.stream = stream or sys.stderr
         self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
         self.t0 = time.perf_counter()
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._ticker = None
+        if not self.tty and every > 0:
+            self._ticker = threading.Thread(target=self._tick, args=(every,), daemon=True)
+            self._ticker.start()
+
+    def _tick(self, every: float) -> None:
+        while not self._stop.wait(every):
+            with self._lock:
+                print(f"ddg-oracle: {self.done}/{self.total} tasks done, "
+                      f"{time.perf_counter() - self.t0:.0f} s", file=self.stream, flush=True)
 
     def __call__(self, task, results) -> None:
-        self.done += 1
-        if not self.tty:
-            return
-        bar = "#" * (24 * self.done // max(self.total, 1))
-        what = task.property_id or f"mesh {task.mesh}"
-        bad = sum(not r.ok for r in results)
-        print(f"\r[{bar:<24}] {self.done}/{self.total} {time.perf_counter() - self.t0:5.0f} s  "
-              f"{task.spec[:24]}: {what[:14]:<14}{' FAIL' if bad else '     '}",
-              end="", file=self.stream, flush=True)
+        from ddg_oracle.properties.runner import NOT_APPLICABLE
+
+        with self._lock:
+            self.done += 1
+            what = task.property_id or f"mesh {task.mesh}"
+            elapsed = time.perf_counter() - self.t0
+            if not self.tty:
+                for r in results:
+                    if r.status != NOT_APPLICABLE:
+                        print(f"[{self.done}/{self.total} {elapsed:.0f} s] {r.property_id} "
+                              f"{r.implementation}: {r.summary()}", file=self.stream, flush=True)
+                return
+            bar = "#" * (24 * self.done // max(self.total, 1))
+            bad = sum(not r.ok for r in results)
+            print(f"\r[{bar:<24}] {self.done}/{self.total} {elapsed:5.0f} s  "
+                  f"{task.spec[:24]}: {what[:14]:<14}{' FAIL' if bad else '     '}",
+                  end="", file=self.stream, flush=True)
 
     def finish(self) -> None:
+        self._stop.set()
         if self.tty:
             print(file=self.stream)
 
@@ -253,6 +305,7 @@ class Progress:
 def _check(args, argv) -> int:
     from ddg_oracle import jobs
     from ddg_oracle.implementations import available, missing
+    from ddg_oracle.properties.profiles import profile
     from ddg_oracle.properties.registry import select_properties
     from ddg_oracle.properties.runner import describe
 
@@ -264,6 +317,11 @@ def _check(args, argv) -> int:
     except ValueError as e:
         raise UsageError(str(e)) from None
     only = frozenset(p.id for p in props) if args.only else None
+    budget = _budget(args)
+    seed = args.seed
+    if seed is None and not profile(args.profile).derandomize:
+        # one seed for the run: every implementation of a property sees the same examples
+        seed = random.SystemRandom().getrandbits(32)
     if args.report:
         _refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
@@ -282,7 +340,7 @@ def _check(args, argv) -> int:
     t0 = time.perf_counter()
     started = _start(specs, args.timeout)
     names = {s: getattr(i, "name", s) for s, i in started.items()}
-    options = jobs.Options(args.profile, args.seed, args.timeout, args.expect_conventions, only)
+    options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget)
     if meshes:
         tasks = [jobs.Task(s, None, k) for k in range(len(meshes)) for s in specs]
     else:
@@ -302,29 +360,41 @@ def _check(args, argv) -> int:
         jobs.close_all()
     seconds = time.perf_counter() - t0
 
-    from ddg_oracle.report import counts, table, write_report
-    print(table(results))
+    from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
+    from ddg_oracle.report import write_report
     bad = [r for r in results if not r.ok]
-    shown = [r for r in results if r.failure is not None or r.error]
-    for r in shown:
-        print("\n" + describe(r))
-    c = counts(results)
-    print(f"\n{len(results)} checks in {seconds:.1f} s with {workers} worker"
-          f"{'s' if workers != 1 else ''} (profile {args.profile}): "
-          + ", ".join(f"{n} {s}" for s, n in c.items() if n))
+    spec_of = {n: s for s, n in names.items()}
     if args.report:
-        command = {"profile": args.profile, "seed": args.seed, "implementations": specs,
+        command = {"profile": args.profile, "seed": seed, "implementations": specs,
                    "only": sorted(only) if only else None,
                    "meshes": [m.name for m in meshes] or None,
                    "expect_conventions": args.expect_conventions,
                    "argv": [a for a in (argv if argv is not None else sys.argv[2:])]}
-        spec_of = {n: s for s, n in names.items()}
         timings = {"seconds": round(seconds, 3), "workers": workers,
                    "results": [{"property_id": r.property_id, "implementation": r.implementation,
                                 "source": r.source, "seconds": round(r.seconds, 4)}
                                for r in results]}
-        d = write_report(args.report, results, command, spec_of, timings)
-        print(f"report: {d / 'summary.md'}")
+        where = Path(args.report)
+        files = write_report(where, results, command, spec_of, timings)
+    else:
+        # the whole mesh and the snippet of each counterexample, for those the terminal elides
+        where = Path(tempfile.mkdtemp(prefix="ddg-oracle-counterexamples-"))
+        files = write_counterexamples(where, results, spec_of)
+        if not files:
+            where.rmdir()
+    folders = {k: str(where / Path(f["obj"]).parent) for k, f in files.items()}
+    if args.wide:
+        print(table(results))
+        for k, r in enumerate(results):
+            if r.failure is not None or r.error:
+                print("\n" + describe(r, files=folders.get(k)))
+    else:
+        print(terminal_report(results, width=args.width, files=folders))
+    print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed), args.width))
+    if args.report:
+        print(f"report: {where / 'summary.md'}")
+    elif files:
+        print(f"counterexample files (mesh.obj, reproduce.py): {where}")
     return 1 if bad else 0
 
 

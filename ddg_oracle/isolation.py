@@ -26,6 +26,7 @@ import resource
 import signal
 import traceback
 
+from ddg_oracle.properties.budget import check_time_left, time_left
 from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
                                            machine_epsilon, require_protocol)
 
@@ -170,6 +171,10 @@ class Isolated:
         return f"exited with code {code}"
 
     def call(self, method: str, *args):
+        # inside a check task, wait at most what its budget has left (properties.budget)
+        check_time_left(f"{self.name}.{method}")
+        left = time_left()
+        wait = self.timeout if left is None else min(self.timeout, left)
         if self._proc is None or not self._proc.is_alive():
             self._start()
         try:
@@ -179,7 +184,7 @@ class Isolated:
             self._start()
             raise ImplementationCrashed(self.name, method, how) from None
         try:
-            done = self._conn.poll(self.timeout)
+            done = self._conn.poll(wait)
         except BaseException:
             # interrupted while waiting (Ctrl-C, the time limit of a property
             # example): the worker still owes an answer, so it cannot be reused
@@ -189,6 +194,11 @@ class Isolated:
         if not done:
             self._kill()
             self._start()
+            if wait < self.timeout:
+                raise ImplementationCrashed(
+                    self.name, method, f"did not return within {wait:.3g} s, the rest of the "
+                    f"check task's time budget (killed); a longer budget: ddg-oracle check "
+                    f"--budget SECONDS")
             raise ImplementationCrashed(self.name, method,
                                         f"did not return within {self.timeout:g} s (killed); "
                                         "raise the limit with Isolated(timeout=...) or "

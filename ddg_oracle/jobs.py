@@ -28,6 +28,7 @@ class Options:
     timeout: float = 60.0
     expect_conventions: bool = False
     only: frozenset | None = None
+    budget: object = None           # properties.budget.Budget of each task; None: the profile's
 
 
 @dataclass(frozen=True)
@@ -83,7 +84,7 @@ def _counterpart(spec: str):
 
 def run_task(task: Task) -> list:
     """The results of one task (in this process)."""
-    from ddg_oracle.properties.profiles import profile
+    from ddg_oracle.properties.profiles import profile, profile_budget
     from ddg_oracle.properties.registry import PROPERTIES, all_properties
     from ddg_oracle.properties.runner import run_property
 
@@ -92,8 +93,9 @@ def run_task(task: Task) -> list:
     impl = implementation(task.spec, opts.timeout)
     counterpart, convention = _counterpart(task.spec)
     if task.mesh is None:
+        budget = opts.budget if opts.budget is not None else profile_budget(opts.profile)
         return [run_property(PROPERTIES[task.property_id], impl, profile(opts.profile), opts.seed,
-                             counterpart=counterpart, convention=convention)]
+                             counterpart=counterpart, convention=convention, budget=budget)]
     from ddg_oracle.compare import MeshExamples, run_mesh_properties
     examples = _STATE["examples"]
     if task.mesh not in examples:

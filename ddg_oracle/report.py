@@ -2,6 +2,8 @@
 
 ``ddg-oracle check --report DIR`` writes:
 
+* ``index.html``: one self-contained page (:mod:`ddg_oracle.html_report`): the
+  table with filters and, per non-passing result, a view of its mesh;
 * ``results.json``: every result (schema below), deterministic: no times, no
   paths outside DIR, keys sorted, floats as Python's shortest round-trip repr;
   two runs of the derandomized ``ci`` profile give identical bytes;
@@ -10,8 +12,8 @@
 * ``failures/NN-<ID>-<implementation>/``: for each result that is not a pass
   (FAILED, crashed, tie disagreement, convention) with a mesh: ``mesh.obj``
   (the shrunk mesh), ``mesh.png`` (the element in red) and ``reproduce.py``
-  (imports the implementation, builds V and F, calls the methods the property
-  needs and prints them next to the exact reference's, at the element).
+  (replays the example on the implementation, from any directory:
+  :mod:`ddg_oracle.properties.counterexample`).
 
 results.json::
 
@@ -23,8 +25,9 @@ results.json::
                   "source", "status", "ok", "examples", "ties", "note", "crash", "also",
                   "failure": null | {"message", "element", "element_ids", "expected",
                                      "observed", "error", "bound", "error_in_bounds"},
-                  "mesh": null | {"V", "F"} | {"file", "vertices", "faces"},
-                  "files": null | {"obj", "png", "snippet"}}]}
+                  "mesh": null | {"V", "F", "exact_V"?} | {"file", "vertices", "faces"},
+                  "files": null | {"obj", "png", "snippet"},
+                  "replay": null | "ddg1:..." (the example, for counterexample.replay)}]}
 
 ``error_in_bounds`` is the observed error in units of the property's derived
 bound (> 1 is a failure), where the property states a bound.
@@ -37,11 +40,11 @@ import math
 import numbers
 import re
 import sys
+import textwrap
 from fractions import Fraction
 from pathlib import Path
 
-SCHEMA = 1
-INLINE_LIMIT = 200          # vertices up to which a snippet carries V and F inline
+SCHEMA = 2
 VERSIONED = ("numpy", "scipy", "hypothesis", "libigl", "pymeshlab", "matplotlib")
 
 
@@ -146,7 +149,10 @@ def _mesh_record(r) -> dict | None:
     V, F = r.mesh
     if r.source != "generated":
         return {"file": r.source, "vertices": len(V), "faces": len(F)}
-    return {"V": jsonable(V), "F": jsonable(F)}
+    record = {"V": jsonable(V), "F": jsonable(F)}
+    if r.exact is not None:
+        record["exact_V"] = r.exact          # the floats of V round these rationals
+    return record
 
 
 def result_record(r, statement: str, spec: str, files: dict | None = None) -> dict:
@@ -155,7 +161,8 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
             "statement": statement, "implementation": r.implementation, "spec": spec,
             "source": r.source, "status": r.status, "ok": r.ok, "examples": r.examples,
             "ties": r.ties, "note": r.note, "crash": r.error, "also": list(r.also),
-            "failure": _failure_record(r.failure), "mesh": _mesh_record(r), "files": files}
+            "failure": _failure_record(r.failure), "mesh": _mesh_record(r), "files": files,
+            "replay": r.replay}
 
 
 def counts(results) -> dict:
@@ -190,80 +197,176 @@ def table(results, markdown: bool = False) -> str:
     return "\n\n".join(blocks)
 
 
+# --- the terminal report -------------------------------------------------------------------
+
+
+def _base(implementation: str) -> str:
+    """The library of an implementation's display name: 'libigl(boundary=...)' -> 'libigl'."""
+    return implementation.split("(")[0].strip().lower().replace("-", "_")
+
+
+def known_findings() -> list[dict]:
+    """The summary table of docs/findings.md (installed as package data): per finding its
+    id, library, kind and the property IDs that find it."""
+    path = Path(__file__).with_name("data") / "findings.md"
+    rows = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        m = re.match(r"^\| \[([A-Z]+\d+)\]\(#[a-z0-9]+\) \| (\S+)[^|]*\| ([^|(]*)[^|]*\|[^|]*\|"
+                     r" ([^|]*)\|$", line)
+        if not m:
+            continue
+        ident, library, kind, found_by = m.groups()
+        ids = set()
+        for group in re.findall(r"propert(?:y|ies) ((?:[A-Z][\w.]*(?: / [A-Z][\w.]*)*"
+                                r"(?:, )?)+)", found_by):
+            for part in re.split(r",\s*|\s*/\s*", group):
+                if part:
+                    ids.add(part.strip())
+        rows.append({"id": ident, "library": _base(re.sub(r"('s|[^\w-])+$", "", library)),
+                     "kind": kind.strip(),
+                     "properties": ids})
+    return rows
+
+
+def known_finding(r, findings) -> str | None:
+    """The id of the documented finding a non-passing result is, if any."""
+    from ddg_oracle.properties.runner import TIE
+
+    parts = {x.strip() for x in r.property_id.split("/")}
+    hits = [f for f in findings
+            if f["library"] == _base(r.implementation) and parts & f["properties"]]
+    # a tie is a precision limit; a failure or crash a bug or convention
+    tie_kind = [f for f in hits if (f["kind"] == "precision limit") == (r.status == TIE)]
+    return (tie_kind or hits or [{"id": None}])[0]["id"]
+
+
+def fit(text: str, width: int) -> str:
+    """Every line at most ``width`` columns: long lines wrapped, keeping their indent."""
+    out = []
+    for line in text.splitlines():
+        if len(line) <= width:
+            out.append(line)
+            continue
+        indent = " " * (len(line) - len(line.lstrip()) + 2)
+        out.extend(textwrap.wrap(line, width, subsequent_indent=indent,
+                                 break_long_words=True, break_on_hyphens=False))
+    return "\n".join(out)
+
+
+def terminal_report(results, width: int = 100, files: dict | None = None) -> str:
+    """What ``ddg-oracle check`` prints: at most ``width`` columns.  Failures and crashes
+    first (one line each, with the known finding it is), then ties and conventions, then
+    the passes per implementation, the not-applicable ones in one line per
+    implementation, then every non-passing result in full (``files``: result index ->
+    where its whole mesh and snippet are)."""
+    from ddg_oracle.properties.runner import CONVENTION, CRASHED, FAILED, NOT_APPLICABLE, PASSED
+    from ddg_oracle.properties.runner import TIE, UNDECIDED, describe
+
+    findings = known_findings()
+    impls = list(dict.fromkeys(r.implementation for r in results))
+    lines = []
+    sources = list(dict.fromkeys(r.source for r in results))
+
+    def row(r):
+        what = (r.failure.message if r.failure is not None else (r.error or r.status)).splitlines()[0]
+        known = known_finding(r, findings)
+        where = "" if r.source == "generated" else f" [{r.source}]"
+        head = f"  {r.property_id:<14} {r.implementation[:22]:<22} "
+        tail = f"  (known: {known})" if known else ""
+        room = max(10, width - len(head) - len(tail) - len(where))
+        what = what if len(what) <= room else what[:room - 3] + "..."
+        return head + what + where + tail
+
+    for title, statuses in (("FAILED", (FAILED,)), ("crashed", (CRASHED,)),
+                            ("tie disagreements", (TIE,)), ("conventions", (CONVENTION,)),
+                            ("undecided", (UNDECIDED,))):
+        chosen = [r for r in results if r.status in statuses]
+        if chosen:
+            lines.append(f"{title} ({len(chosen)})")
+            lines.extend(row(r) for r in chosen)
+    passed = [(n, sum(r.status == PASSED for r in results if r.implementation == n),
+               sum(r.status != NOT_APPLICABLE for r in results if r.implementation == n))
+              for n in impls]
+    lines.append("passed (of the applicable checks" + (
+        f", {len(sources)} sources" if len(sources) > 1 else "") + ")")
+    lines.append(fit("  " + ", ".join(f"{n} {k}/{m}" for n, k, m in passed), width))
+    na = [(n, sum(r.status == NOT_APPLICABLE for r in results if r.implementation == n))
+          for n in impls]
+    if any(k for _, k in na):
+        lines.append("not applicable (the implementation lacks a method the property needs)")
+        lines.append(fit("  " + ", ".join(f"{n} {k}" for n, k in na if k), width))
+    shown = [(k, r) for k, r in enumerate(results) if r.status not in (PASSED, NOT_APPLICABLE)]
+    for k, r in shown:
+        where = (files or {}).get(k)
+        lines.append("")
+        lines.append(fit(describe(r, limit=12, snippet_lines=14, files=where), width))
+    return "\n".join(lines)
+
+
+def closing_line(results, seconds: float, workers: int, profile: str, seed) -> str:
+    """The last lines: counts, what the exit code means, what to run next."""
+    from ddg_oracle.properties.runner import CRASHED, FAILED
+
+    c = counts(results)
+    findings = known_findings()
+    bad = [r for r in results if r.status in (FAILED, CRASHED)]
+    known = sorted({k for r in bad if (k := known_finding(r, findings))})
+    head = (f"{len(results)} checks in {seconds:.1f} s, {workers} worker"
+            f"{'s' if workers != 1 else ''}, profile {profile}"
+            + (f", seed {seed} (rerun: --seed {seed})" if seed is not None else "") + ": "
+            + ", ".join(f"{n} {s}" for s, n in c.items() if n))
+    if bad:
+        unknown = len(bad) - sum(1 for r in bad if known_finding(r, findings))
+        meaning = (f"exit 1: {len(bad)} check{'s' if len(bad) != 1 else ''} failed or crashed"
+                   + (f"; known findings {', '.join(known)} (docs/findings.md)" if known else "")
+                   + (f"; {unknown} not documented" if unknown and known else ""))
+    else:
+        meaning = "exit 0: no failure"
+    return (head + "\n" + meaning + "\nnext: ddg-oracle check --impl module:Class checks your "
+            "own code; --report DIR writes every counterexample; --wide shows the full grid")
+
+
 # --- files per failure ----------------------------------------------------------------------------
 
 
 _SNIPPET = '''"""Reproduce: {title}
 
-Found by `ddg-oracle check`{how}.  Run from a checkout of ddg-oracle, in its
-environment (pip install -e .):  python {name}
-
-It calls the methods the property needs on the mesh below, with the checked
-implementation and with the exact reference, and prints both{at}.
+Found by `ddg-oracle check`{how}.  Run it wherever ddg-oracle and the checked
+implementation are installed:  python {name}
+It runs the property once more on the same example and raises the same failure
+(or the implementation's crash); it prints "passes now" if the failure is gone.
 """
 
-import os
+{code}
+print("passes now")
+'''
+
+_SNIPPET_FILE = '''"""Reproduce: {title}
+
+Found by `ddg-oracle check`{how}: a mesh too large to replay inline; this runs
+the same check on mesh.obj beside this file.  Run:  python {name}
+"""
+
+import subprocess
 import sys
+from pathlib import Path
 
-import numpy as np
-
-sys.path.insert(0, os.getcwd())     # a module:object implementation imports from here, as in the CLI
-from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
-from ddg_oracle.implementations import load_implementation  # noqa: E402
-{mesh}
-ELEMENT = {element!r}
-EXPECTED, OBSERVED = {expected!r}, {observed!r}     # as the property reported them
-
-
-def at(x):
-    """x at ELEMENT: a vertex, edge, face or corner of a per-element result."""
-    if ELEMENT is None or np.isscalar(x) or isinstance(x, (bool, int, float)):
-        return x
-    if isinstance(x, dict):
-        key = tuple(sorted(ELEMENT.get("edge", ())))
-        return x.get(key, f"{{len(x)}} entries, none at {{key}}")
-    if hasattr(x, "toarray"):
-        x = x.toarray()
-    x = np.asarray(x)
-    if "edge" in ELEMENT and x.ndim == 2 and x.shape[0] == x.shape[1] == len(V):
-        i, j = ELEMENT["edge"]
-        return x[i, j]
-    if "vertex" in ELEMENT and x.ndim >= 1 and len(x) == len(V):
-        return x[ELEMENT["vertex"]]
-    if "face" in ELEMENT and x.ndim >= 1 and len(x) == len(F):
-        return x[ELEMENT["face"]] if "corner" not in ELEMENT else x[ELEMENT["face"], ELEMENT["corner"]]
-    return x
-
-
-impl = load_implementation({spec!r})
-reference = ReferenceImplementation()
-for method in {methods!r}:
-    print(method)
-    expected = at(getattr(reference, method)(V, F))
-    print("  reference:     ", expected)
-    observed = at(getattr(impl, method)(V, F))      # a crash here reproduces a crash
-    print("  implementation:", observed)
+mesh = str(Path(__file__).with_name("mesh.obj"))
+sys.exit(subprocess.call([sys.executable, "-m", "ddg_oracle", "check", "--mesh", mesh,
+                          "--impl", {spec!r}, "--only", {pid!r}, "--workers", "1"]))
 '''
 
 
-def snippet(r, spec: str, methods, name: str = "reproduce.py") -> str:
+def snippet(r, spec: str, name: str = "reproduce.py") -> str:
     """The Python file that reproduces result ``r`` (see the module doc)."""
-    V, F = r.mesh
-    if len(V) <= INLINE_LIMIT:
-        mesh = ("\nV = np.array(" + repr([[float(x) for x in p] for p in V]) + ", dtype=np.float64)"
-                "\nF = np.array(" + repr([[int(i) for i in f] for f in F]) + ", dtype=np.int64)\n")
-    else:
-        mesh = ("from pathlib import Path  # noqa: E402\n\nfrom ddg_oracle.meshfiles import read_mesh  # noqa: E402\n\n"
-                "V, F = (np.array(a) for a in read_mesh(Path(__file__).with_name(\"mesh.obj\")))\n")
-    f = r.failure
-    ids = element_ids(f.element) if f is not None else None
+    from ddg_oracle.properties.counterexample import snippet as replay_snippet
+
     title = describe_line(r)
     how = "" if r.source == "generated" else f" on {r.source}"
-    return _SNIPPET.format(title=title, how=how, name=name, mesh=mesh, element=ids,
-                           expected=jsonable(f.expected) if f else None,
-                           observed=jsonable(f.observed) if f else None,
-                           spec=spec, methods=sorted(methods),
-                           at=f" at {ids}" if ids else "")
+    if r.replay is not None:
+        return _SNIPPET.format(title=title, how=how, name=name,
+                               code=replay_snippet(r.property_id, r.spec or spec, r.replay))
+    return _SNIPPET_FILE.format(title=title, how=how, name=name, spec=spec, pid=r.property_id)
 
 
 def describe_line(r) -> str:
@@ -276,45 +379,72 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9.]+", "_", text).strip("_")[:60]
 
 
-def write_failure_files(directory: Path, k: int, r, spec: str, methods) -> dict:
-    """mesh.obj, mesh.png and reproduce.py of result ``r``; their paths relative to the report."""
+def write_failure_files(directory: Path, k: int, r, spec: str, picture: bool = True) -> dict:
+    """mesh.obj, mesh.png (with the ``pictures`` extra) and reproduce.py of result ``r``;
+    their paths relative to ``directory``."""
     from .meshfiles import write_obj
-    from .render import render_mesh
 
     sub = Path("failures") / f"{k:02d}-{_slug(r.property_id)}-{_slug(r.implementation)}"
     d = directory / sub
     d.mkdir(parents=True, exist_ok=True)
     V, F = r.mesh
-    write_obj(d / "mesh.obj", V, F)
-    ids = element_ids(r.failure.element) if r.failure is not None else None
-    render_mesh(d / "mesh.png", V, F, ids, title=describe_line(r)[:240])
-    (d / "reproduce.py").write_text(snippet(r, spec, methods), encoding="utf-8")
-    return {"obj": f"{sub.as_posix()}/mesh.obj", "png": f"{sub.as_posix()}/mesh.png",
-            "snippet": f"{sub.as_posix()}/reproduce.py"}
+    write_obj(d / "mesh.obj", [[float(c) for c in (list(p) + [0] * (3 - len(p)))] for p in V], F)
+    out = {"obj": f"{sub.as_posix()}/mesh.obj", "snippet": f"{sub.as_posix()}/reproduce.py"}
+    if picture and _has_matplotlib():
+        from .render import render_mesh
+        ids = element_ids(r.failure.element) if r.failure is not None else None
+        render_mesh(d / "mesh.png", V, F, ids, title=describe_line(r)[:240])
+        out["png"] = f"{sub.as_posix()}/mesh.png"
+    (d / "reproduce.py").write_text(snippet(r, spec), encoding="utf-8")
+    return out
 
 
-def write_report(directory, results, command: dict, spec_of: dict, timings: dict) -> Path:
-    """Write results.json, timings.json, summary.md and the failure files into ``directory``."""
+def _has_matplotlib() -> bool:
+    import importlib.util
+    return importlib.util.find_spec("matplotlib") is not None
+
+
+def write_counterexamples(directory, results, spec_of: dict, picture: bool = False) -> dict:
+    """The failure files of every non-passing result with a mesh; {result index: its folder}."""
+    from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED
+
+    directory = Path(directory)
+    out, k = {}, 0
+    for i, r in enumerate(results):
+        if r.status in (PASSED, NOT_APPLICABLE) or r.mesh is None:
+            continue
+        k += 1
+        files = write_failure_files(directory, k, r, spec_of.get(r.implementation,
+                                                                   r.implementation), picture)
+        out[i] = files
+    return out
+
+
+def write_report(directory, results, command: dict, spec_of: dict, timings: dict) -> dict:
+    """Write results.json, index.html, timings.json, summary.md and the failure files into
+    ``directory``;
+    returns {result index: its failure files} (paths relative to ``directory``)."""
     from ddg_oracle.properties.registry import PROPERTIES
     from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
 
+    from .html_report import write_html
+
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
+    failure_files = write_counterexamples(directory, results, spec_of, picture=True)
     records, sections = [], []
-    k = 0
-    for r in results:
+    for i, r in enumerate(results):
         p = PROPERTIES.get(r.property_id)
         spec = spec_of.get(r.implementation, r.implementation)
-        files = None
+        files = failure_files.get(i)
         if r.status not in (PASSED, NOT_APPLICABLE):
-            if r.mesh is not None:
-                k += 1
-                files = write_failure_files(directory, k, r, spec, p.needs if p else ())
             sections.append((r, files))
         records.append(result_record(r, p.statement if p else "", spec, files))
     doc = {"schema": SCHEMA, "command": jsonable({k: v for k, v in command.items() if k != "argv"}),
            "versions": versions(), "counts": counts(results), "results": records}
-    (directory / "results.json").write_text(dumps(doc), encoding="utf-8")
+    text = dumps(doc)
+    (directory / "results.json").write_text(text, encoding="utf-8")
+    write_html(directory, text)
     (directory / "timings.json").write_text(json.dumps(timings, indent=1, sort_keys=True) + "\n",
                                             encoding="utf-8")
     c = counts(results)
@@ -328,8 +458,9 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
                + ("" if r.source == "generated" else f" on {r.source}"), "",
                "```", describe(r), "```", ""]
         if files:
-            md += [f"![{r.property_id} {r.implementation}]({files['png']})", "",
-                   f"Mesh: [{files['obj']}]({files['obj']}); reproduce: "
+            if "png" in files:
+                md += [f"![{r.property_id} {r.implementation}]({files['png']})", ""]
+            md += [f"Mesh: [{files['obj']}]({files['obj']}); reproduce: "
                    f"`python {files['snippet']}`", ""]
     (directory / "summary.md").write_text("\n".join(md), encoding="utf-8")
-    return directory
+    return failure_files

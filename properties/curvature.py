@@ -85,6 +85,11 @@ class CurvatureCase:
                                      np.array(F, dtype=np.int64).reshape(-1, 3))
         return self._cache["arrays"]
 
+    def __getstate__(self):
+        # the cache (float arrays, exact values) is rebuilt on demand: not pickled, so a
+        # replayable counterexample stays short
+        return {**self.__dict__, "_cache": {}}
+
     def __repr__(self) -> str:
         t = self.triangulation
         return f"CurvatureCase({self.recipe}; V={t.n_vertices}, F={t.n_faces}, F={self.mesh[1]})"

@@ -49,6 +49,8 @@ from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 
 from ddg_oracle.reference.errors import InputError, TimeLimitExceeded
 
+from .budget import BUDGETS, Budget, BudgetExceeded, time_left
+
 PROFILES = ("default", "ci", "thorough")
 #: Hypothesis profile name of each of ours: a prefix no user or Hypothesis profile has.
 PREFIX = "ddg-oracle-"
@@ -139,6 +141,22 @@ def register_profiles() -> None:
         _register(database_from(os.environ.get(DATABASE_ENV)))
 
 
+def _short(name: str) -> str:
+    short = name[len(PREFIX):] if name.startswith(PREFIX) else name
+    if short not in PROFILES:
+        raise ValueError(f"unknown Hypothesis profile {name!r}; choose one of {', '.join(PROFILES)}")
+    return short
+
+
+def profile_budget(name: str) -> Budget:
+    """The task budget (:mod:`.budget`) that goes with one of our profiles.
+
+    >>> profile_budget("ddg-oracle-thorough")
+    Budget(seconds=None, crashes=None)
+    """
+    return BUDGETS[_short(name)]
+
+
 def profile(name: str) -> settings:
     """The settings of one of our profiles, by short name (``"ci"``) or Hypothesis name
     (``"ddg-oracle-ci"``), with a clear error for a typo.
@@ -146,9 +164,7 @@ def profile(name: str) -> settings:
     >>> profile("ci").derandomize or profile("ci").database is not None
     True
     """
-    short = name[len(PREFIX):] if name.startswith(PREFIX) else name
-    if short not in PROFILES:
-        raise ValueError(f"unknown Hypothesis profile {name!r}; choose one of {', '.join(PROFILES)}")
+    short = _short(name)
     register_profiles()
     return settings.get_profile(PREFIX + short)
 
@@ -173,12 +189,16 @@ def time_limit_seconds() -> float | None:
 
 @contextmanager
 def example_time_limit(what: str, seconds: float | None = -1.0):
-    """Raise :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` if the block runs over ``seconds``.
+    """Raise :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` if the block runs over
+    ``seconds``.
 
     ``what`` names the property and implementation in the message; ``seconds``
-    defaults to :func:`time_limit_seconds`, None means no limit.  Uses
-    SIGALRM, so it only acts in the main thread on Unix (elsewhere, and inside
-    an outer timer that fires sooner, the block runs without it).
+    defaults to :func:`time_limit_seconds`, None means no limit.  Inside a task
+    budget (:mod:`.budget`) the block gets at most the time the task has left,
+    and running out of that raises :class:`~.budget.BudgetExceeded` instead
+    (the task stops; the example is not a failure).  Uses SIGALRM, so it only
+    acts in the main thread on Unix (elsewhere, and inside an outer timer that
+    fires sooner, the block runs without it).
 
     >>> with example_time_limit("[D1.6] demo", seconds=5):
     ...     1 + 1
@@ -186,6 +206,12 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
     """
     if seconds is not None and seconds < 0:
         seconds = time_limit_seconds()
+    left = time_left()
+    if left is not None and left <= 0:
+        raise BudgetExceeded(f"{what}: the task's time budget is used up")
+    by_budget = left is not None and (not seconds or left < seconds)
+    if by_budget:
+        seconds = max(left, 1e-3)
     if (not seconds or not hasattr(signal, "setitimer")
             or threading.current_thread() is not threading.main_thread()):
         yield
@@ -196,6 +222,8 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
         return
 
     def overrun(signum, frame):
+        if by_budget:
+            raise BudgetExceeded(f"{what}: the task's time budget ran out during an example")
         raise TimeLimitExceeded(
             f"{what}: one example ran longer than the time limit of {seconds:g} s per "
             f"property example. If it is just slow, raise the limit with the environment "

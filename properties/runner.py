@@ -29,17 +29,21 @@ Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
 
 from __future__ import annotations
 
+import textwrap
 import time
-import traceback
 from dataclasses import dataclass, field, replace
+from fractions import Fraction
 
 from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
 from ddg_oracle.reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
-from .profiles import profile as named_profile
+from .budget import Budget, BudgetExceeded, task_budget
+from .counterexample import (encode_example, exact_mesh, float_mesh, implementation_spec,
+                             mesh_text, snippet)
+from .profiles import profile as named_profile, profile_budget
 from .protocol import OutsideDomain, capabilities, implementation_name, require_protocol
-from .registry import Property, PropertyFailure, TieDisagreement, faces_text, select_properties
+from .registry import Property, PropertyFailure, TieDisagreement, select_properties
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
@@ -63,6 +67,9 @@ class Result:
     note: str | None = None           # why: not applicable, or which convention explains it
     source: str = "generated"         # "generated" (Hypothesis) or the name of a mesh file
     also: list = field(default_factory=list)   # other distinct failures Hypothesis reported
+    replay: str | None = None         # the example, encoded (counterexample.encode_example)
+    spec: str | None = None           # how to load the implementation again (None: unknown)
+    exact: list | None = None         # exact coordinates (str) where the floats round them
 
     @property
     def ok(self) -> bool:
@@ -83,20 +90,23 @@ class Result:
 
 
 def example_mesh(example):
-    """(V, F) as nested lists of a property example (``.mesh``, or ``.vertices`` and
-    ``.faces``; the first such part of a tuple), or None."""
+    """(V, F) as nested lists of floats of a property example (``.mesh``, ``.vertices`` and
+    ``.faces``, or exact positions and faces: :func:`~.counterexample.exact_mesh`; the
+    first such part of a tuple), or None."""
     if isinstance(example, tuple):
         for part in example:
             m = example_mesh(part)
             if m is not None:
                 return m
-        return None
+        m = exact_mesh(example)
+        return float_mesh(m) if m is not None else None
     mesh = getattr(example, "mesh", None)
     if isinstance(mesh, tuple) and len(mesh) == 2:
         return mesh
     if hasattr(example, "vertices") and hasattr(example, "faces"):
         return (example.vertices, example.faces)
-    return None
+    m = exact_mesh(example)
+    return float_mesh(m) if m is not None else None
 
 
 def _flatten(e: BaseException) -> list[BaseException]:
@@ -106,7 +116,24 @@ def _flatten(e: BaseException) -> list[BaseException]:
 
 
 def _crash_text(e: BaseException) -> str:
-    return "".join(traceback.format_exception_only(type(e), e)).strip()
+    """``module.Type: message`` of what the implementation raised, without the notes
+    Hypothesis attaches (its seed, "Failing test case: body(...)", explanations): the
+    input is reported on its own, as a mesh."""
+    name = type(e).__qualname__
+    module = type(e).__module__
+    if module not in ("builtins", "__main__"):
+        name = f"{module}.{name}"
+    text = str(e)
+    return f"{name}: {text}" if text else name
+
+
+def _keep_smallest(state: dict, key: str, e: BaseException, example) -> None:
+    """Remember the smallest failing (``key="failure"``) or crashing example seen, in case
+    the budget stops the search before Hypothesis has replayed its shrunk one."""
+    mesh = getattr(e, "mesh", None) or example_mesh(example)
+    best = state[key]
+    if best is None or _size(mesh) <= _size(best[2]):
+        state[key] = (e, example, mesh)
 
 
 def _size(mesh) -> int:
@@ -140,13 +167,21 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dic
 
 
 def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
-                 counterpart=None, convention: str | None = None) -> Result:
+                 counterpart=None, convention: str | None = None,
+                 budget: Budget | None = None) -> Result:
     """Run one property on one implementation; never raises for a failing impl.
 
     ``counterpart``: the same library with its documented conventions mapped
     onto the reference's (e.g. ``Libigl()`` for ``Libigl(boundary="library")``).
     If ``impl`` fails and the counterpart passes the same (shrunk) example, the
     result is ``convention`` and ``note`` says which (``convention``).
+
+    ``budget`` (:class:`~.budget.Budget`): wall-clock seconds and crash outcomes
+    the whole run may take, shrinking included; when it runs out the search stops
+    and the smallest failing (or crashing) example seen so far is the result, with
+    a note.  Every implementation of a property sees the same examples (the
+    derandomized stream, or the same ``seed``): results are comparable across
+    libraries.
     """
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
@@ -155,7 +190,9 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                       note=f"lacks {', '.join(missing)} (protocol method"
                            f"{'s' if len(missing) > 1 else ''} this property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
-             "why": None, "abort": False}
+             "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
+             "stopped": None}
+    max_crashes = budget.crashes if budget is not None else None
     # examples the implementation declines are counted, not checked; the check is wrapped
     # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
     prop, p = p, replace(p, check=_in_domain(p.check, state))
@@ -176,35 +213,58 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                 raise                               # the second pass: shrink the tie
             # not an error: keep going (a tie never hides a failure)
             state["ties"] += 1
-        except PropertyFailure:
-            raise
-        except BaseException:
+        except PropertyFailure as e:
             if not state["ties_raise"]:
+                _keep_smallest(state, "failure", e, example)
+            raise
+        except BudgetExceeded:
+            raise
+        except BaseException as e:
+            if not state["ties_raise"]:
+                if not isinstance(e, (KeyboardInterrupt, SystemExit)):
+                    _keep_smallest(state, "crash", e, example)
+                    state["crashes"] += 1
+                    if max_crashes is not None and state["crashes"] > max_crashes:
+                        raise BudgetExceeded(f"{max_crashes} crashes or hangs of the "
+                                             "implementation") from None
                 raise
             # the second pass only shrinks a tie: a crash or hang on one of its simpler
             # candidates is not chased (each hang costs the call timeout); stop here, the
             # smallest tie seen so far stands
             state["abort"] = True
 
-    # each (property, implementation) its own database key and derandomized seed: Hypothesis
-    # derives both from the test function, the same `body` for every property (as its pytest
-    # plugin does for parametrized tests)
-    body._hypothesis_internal_add_digest = f"{p.id}|{name}".encode()
+    # each property its own database key and derandomized seed, the same for every
+    # implementation (one example stream per property: results comparable across libraries,
+    # a failing example saved for one library replayed on the others).  Hypothesis derives
+    # both from the test function, the same `body` for every property; this is the hook
+    # its pytest plugin uses for parametrized tests (no public API exists for it)
+    body._hypothesis_internal_add_digest = p.id.encode()
     t0 = time.perf_counter()
-    errors, run = _search(body, p, settings, seed)
-    if not errors and state["tie"] is not None:
-        errors = _shrink_tie(body, p, settings, seed, run, state)
+    with task_budget(budget.seconds if budget is not None else None):
+        errors, run = _search(body, p, settings, seed, state=state)
+        if not errors and state["tie"] is not None and state["stopped"] is None:
+            errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
     r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
                seconds=time.perf_counter() - t0, ties=state["ties"], example=state["last"], **out)
     _note_outside(r, state)
+    _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
+    if state["stopped"] is not None:
+        what = ("shrinking stopped early" if r.status in (FAILED, CRASHED)
+                else f"search stopped after {r.examples} examples")
+        r.note = "; ".join(filter(None, [r.note, f"{what}: the task's budget ran out "
+                                                 f"({state['stopped']})"]))
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, prop, counterpart, convention)
     return r
 
 
-def _search(body, p: Property, settings: Settings, seed, **changes):
-    """Run Hypothesis on ``body``: (what it raised, flattened; the wrapped test)."""
+def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
+    """Run Hypothesis on ``body``: (what it raised, flattened; the wrapped test).
+
+    A :class:`~.budget.BudgetExceeded` stops the search: what it raised is then
+    the smallest failure (else crash) ``state`` recorded, and ``state["stopped"]``
+    says why."""
     # one failure per property, the shrunk one: several distinct failures would come
     # back as an ExceptionGroup and read as a crash
     run = Settings(settings, report_multiple_bugs=False, **changes)(given(p.strategy())(body))
@@ -212,6 +272,15 @@ def _search(body, p: Property, settings: Settings, seed, **changes):
         run = hypothesis_seed(seed)(run)
     try:
         run()
+    except BudgetExceeded as e:
+        if state is None:
+            raise
+        state["stopped"] = str(e)
+        best = state["failure"] or state["crash"]
+        if best is None:
+            return [], run
+        state["last"] = best[1]
+        return [best[0]], run
     except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
         if isinstance(e, (KeyboardInterrupt, SystemExit)):
             raise
@@ -233,12 +302,36 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     state["ties_raise"] = True
     try:
         errors, _ = _search(body, p, settings, seed, database=None, max_examples=n)
+    except BudgetExceeded:
+        errors = []                      # out of time: the smallest tie so far stands
     finally:
         state.update(n=n, ties=ties, outside=outside, ties_raise=False, abort=False)
     state["last"] = state["tie"][1]                 # body kept the smallest tie of both passes
     # a real failure on a simpler example the first pass missed is a result too
     return [e for e in errors if isinstance(e, PropertyFailure)
             and not isinstance(e, TieDisagreement)]
+
+
+#: generated examples up to this many faces are encoded for replay (a mesh file's are
+#: not: its snippet checks the file again)
+REPLAY_FACES = 2000
+
+
+def _attach_counterexample(r: Result, impl, example) -> None:
+    """What a user needs to act on a non-passing result: the implementation's spec, the
+    exact coordinates where its floats round them, the example encoded for replay."""
+    if r.status in (PASSED, NOT_APPLICABLE) or example is None:
+        return
+    r.spec = implementation_spec(impl)
+    exact = exact_mesh(example)
+    if exact is not None and any(Fraction(float(c)) != c for p in exact[0] for c in p):
+        r.exact = [[str(Fraction(c)) for c in p] for p in exact[0]]
+    if r.source != "generated" or (r.mesh is not None and len(r.mesh[1]) > REPLAY_FACES):
+        return                                  # a mesh file's snippet checks the file again
+    try:
+        r.replay = encode_example(example)
+    except Exception:  # noqa: BLE001  (an example that does not pickle: no replay line)
+        r.replay = None
 
 
 def _in_domain(check, state: dict):
@@ -301,6 +394,7 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     r = Result(p.id, p.name, name, examples=1 - state["outside"], seconds=time.perf_counter() - t0,
                ties=state["ties"], example=example, source=source, **out)
     _note_outside(r, state)
+    _attach_counterexample(r, impl, example)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, p, counterpart, convention)
     return r
@@ -312,10 +406,10 @@ def run_properties(impl, profile: str = "default", only=None, seed: int | None =
     included) on ``impl``; :class:`~.protocol.NotAnImplementation` if ``impl`` defines
     none of the protocol's methods (every property would pass vacuously)."""
     require_protocol(impl)
-    s = named_profile(profile)
+    s, budget = named_profile(profile), profile_budget(profile)
     results = []
     for p in select_properties(only):
-        r = run_property(p, impl, s, seed)
+        r = run_property(p, impl, s, seed, budget=budget)
         results.append(r)
         if on_result is not None:
             on_result(r)
@@ -338,23 +432,41 @@ def check_implementation(impl, profile: str = "default", only=None,
     return results
 
 
-def describe(r: Result) -> str:
-    """A failure, crash, tie or convention, as a user reads it."""
+def describe(r: Result, limit: int | None = None, snippet_lines: int | None = None,
+             files: str | None = None) -> str:
+    """A failure, crash, tie or convention, as a user reads it: what, where, expected vs
+    observed, the bound, the whole mesh (``V`` as round-tripping floats, the exact
+    coordinates where the floats round them, ``F``) and a snippet that replays it.
+
+    ``limit``: vertices and faces shown before eliding (default
+    :data:`~.counterexample.INLINE_VERTICES`); ``snippet_lines``: a longer snippet is
+    not shown but pointed to in ``files`` (where the full mesh and snippet are)."""
     if r.failure is not None:
-        text = str(r.failure)
+        # the failure's one-line mesh summary is replaced by the whole mesh below
+        text = "\n".join(line for line in str(r.failure).splitlines()
+                         if not line.startswith("  mesh: "))
     else:
         text = f"[{r.property_id}] {r.implementation}: {r.status}"
         if r.error:
-            text += f"\n  {r.error}"
-        if r.mesh is not None:
-            V, F = r.mesh
-            text += f"\n  mesh: {len(V)} vertices, {len(F)} faces; F = {faces_text(F)}"
-        elif r.example is not None:
+            text += "\n  " + r.error.replace("\n", "\n  ")
+        if r.mesh is None and r.example is not None:
             text += f"\n  input: {r.example!r}"
     if r.source != "generated":
         text += f"\n  on: {r.source}"
-    if r.note and r.status in (CONVENTION,):
-        text += f"\n  {r.note}"
+    if r.note and r.status not in (PASSED, NOT_APPLICABLE):
+        text += f"\n  note: {r.note}"
     for other in r.also:
         text += "\n  also: " + other.replace("\n", "\n  ")
+    if r.mesh is not None:
+        exact = (r.exact, r.mesh[1]) if r.exact is not None else None
+        text += "\n" + mesh_text(r.mesh, exact, **({"limit": limit} if limit else {}))
+        if files and (len(r.mesh[0]) > (limit or 24) or len(r.mesh[1]) > (limit or 24)):
+            text += f"\n  the whole mesh: {files}"
+    if r.replay is not None:
+        code = snippet(r.property_id, r.spec, r.replay)
+        if snippet_lines is not None and code.count("\n") + 1 > snippet_lines:
+            text += f"\n  reproduce: the snippet is {code.count(chr(10)) + 1} lines" + (
+                f", in {files}" if files else "; see results.json of --report DIR")
+        else:
+            text += "\n  reproduce (raises the same failure):\n" + textwrap.indent(code, "    ")
     return text

@@ -274,6 +274,12 @@ class Triangulation:
         self._check_gluings()
         self._check_vertices()
 
+    def __reduce__(self):
+        # pickled as its defining data (faces, gluings, vertex count), not its tables:
+        # replayable counterexamples stay short
+        gluings = tuple((a, b, self._rev[a]) for a, b in self._edges)
+        return (Triangulation._trusted, (self._faces, self._n, gluings))
+
     @classmethod
     def _trusted(cls, faces, n_vertices: int, gluings) -> "Triangulation":
         """Internal constructor from already valid data (operations build these)."""

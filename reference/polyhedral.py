@@ -53,6 +53,10 @@ class PolyhedralSurface:
         self.positions = rows
         self._metric = None
 
+    def __reduce__(self):
+        # pickled as its defining data, without the cached metric
+        return (PolyhedralSurface, (self.triangulation, self.positions))
+
     @classmethod
     def from_arrays(cls, V, F) -> "PolyhedralSurface":
         """Build from a (n_vertices x dim) position array and an (n_faces x 3) face array.

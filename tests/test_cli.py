@@ -53,7 +53,7 @@ def _run(capsys, *argv):
 
 def test_check_passes_with_exit_0_and_prints_the_table(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "D1.6", "--only", "L2.4",
-                      "--workers", "1")
+                      "--workers", "1", "--wide")
     assert rc == 0
     assert re.search(r"^property\s+reference$", out, re.M)
     assert re.search(r"^D1\.6 \(euler_characteristic_of_known_surfaces\)\s+passed \(\d+ examples\)",
@@ -65,7 +65,8 @@ def test_failure_gives_exit_1_and_the_counterexample(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
                       "--only", "D1.6", "--workers", "1")
     assert rc == 1
-    assert re.search(r"^D1\.6 .*FAILED$", out, re.M)
+    assert re.search(r"^FAILED \(1\)\n  D1\.6 +chi-ignores-boundary +wrong Euler characteristic$",
+                     out, re.M)
     assert "expected: " in out and "observed: " in out and "mesh: " in out
 
 
@@ -101,7 +102,7 @@ def test_a_tie_decided_within_rounding_is_a_tie_disagreement_not_a_failure():
 
 def test_tie_disagreement_keeps_exit_0(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "tests.test_cli:RoundsFlatVertices",
-                      "--only", "L2.4", "--profile", "ci", "--workers", "1")
+                      "--only", "L2.4", "--profile", "ci", "--workers", "1", "--wide")
     assert rc == 0
     assert re.search(r"^L2\.4 .*tie disagreement \(\d+/60\)$", out, re.M)
     assert "tie disagreement: exactly flat vertex" in out
@@ -109,7 +110,7 @@ def test_tie_disagreement_keeps_exit_0(capsys):
 
 def test_expect_conventions_turns_a_documented_convention_into_an_expected_result(capsys):
     argv = ["check", "--impl", "libigl(boundary=library)", "--only", "R2.4", "--only", "D2.2",
-            "--profile", "ci", "--workers", "1"]
+            "--profile", "ci", "--workers", "1", "--wide"]
     rc, out, _ = _run(capsys, *argv)
     assert rc == 1 and re.search(r"^R2\.4 .*FAILED$", out, re.M)
     rc, out, _ = _run(capsys, *argv, "--expect-conventions")
@@ -144,12 +145,13 @@ def _report(tmp_path, name, workers, capsys):
 def test_report_files_and_json_schema(tmp_path, capsys):
     d = _report(tmp_path, "r", 2, capsys)
     doc = json.loads((d / "results.json").read_text())
-    assert doc["schema"] == 1
+    assert doc["schema"] == 2
     assert doc["command"]["profile"] == "ci" and "argv" not in doc["command"]
     assert doc["counts"]["FAILED"] == 1 and doc["counts"]["tie disagreement"] == 1
     assert set(doc["versions"]) >= {"python", "numpy", "hypothesis"}
     keys = {"property_id", "property_name", "statement", "implementation", "spec", "source",
-            "status", "ok", "examples", "ties", "note", "crash", "also", "failure", "mesh", "files"}
+            "status", "ok", "examples", "ties", "note", "crash", "also", "failure", "mesh", "files",
+            "replay"}
     assert len(doc["results"]) == 6 and all(set(r) == keys for r in doc["results"])
     failed = [r for r in doc["results"] if r["status"] == FAILED]
     assert len(failed) == 1
@@ -165,11 +167,14 @@ def test_report_files_and_json_schema(tmp_path, capsys):
     V, F = read_mesh(d / f["files"]["obj"])
     assert V == f["mesh"]["V"] and F == f["mesh"]["F"]
     assert (d / f["files"]["png"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert f["replay"].startswith("ddg1:") and tie["replay"].startswith("ddg1:")
+    assert all(r["replay"] is None for r in doc["results"] if r["status"] == "passed")
     out = subprocess.run([sys.executable, str(d / f["files"]["snippet"])], cwd=ROOT,
                          capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    ref, impl = re.findall(r"(?:reference|implementation):\s+(-?\d+)", out.stdout)
-    assert int(ref) == f["failure"]["expected"] and int(impl) == f["failure"]["observed"]
+    assert out.returncode == 1                             # the snippet raises the failure again
+    assert (f"expected: {f['failure']['expected']}\n  observed: {f['failure']['observed']}"
+            in out.stderr), out.stderr
+    assert (d / "index.html").is_file()
     summary = (d / "summary.md").read_text()
     assert "| D1.6 (euler_characteristic_of_known_surfaces) |" in summary
     assert f"]({f['files']['png']})" in summary
@@ -240,7 +245,7 @@ def disk_obj(tmp_path):
 def test_check_on_a_mesh_file(capsys, tetra_obj, disk_obj):
     rc, out, _ = _run(capsys, "check", "--mesh", str(tetra_obj), str(disk_obj),
                       "--impl", "reference", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
-                      "--workers", "2")
+                      "--workers", "2", "--wide")
     assert rc == 1
     assert f"property on {tetra_obj}" in out and f"property on {disk_obj}" in out
     assert re.search(r"^D2\.2 \(angle_defects_match_reference\)\s+passed \(1 example\)", out, re.M)
@@ -253,7 +258,7 @@ def test_check_on_a_mesh_file(capsys, tetra_obj, disk_obj):
 
 def test_sample_meshes_of_pymeshlab(capsys):
     rc, out, err = _run(capsys, "check", "--mesh", "pymeshlab:cube.obj", "--impl", "reference",
-                        "--only", "D2.2", "--only", "X1.4")
+                        "--only", "D2.2", "--only", "X1.4", "--wide")
     assert rc == 0 and "property on pymeshlab:cube.obj" in out
     from ddg_oracle.compare import resolve
     everything = [name for name, _, _ in resolve(["pymeshlab:"])]
@@ -367,11 +372,11 @@ def test_report_of_a_failure_on_a_large_mesh_file_reads_the_obj(tmp_path, capsys
     r = json.loads((d / "results.json").read_text())["results"][0]
     assert r["mesh"] == {"file": str(mesh), "vertices": 256, "faces": 450}
     snippet = (d / r["files"]["snippet"]).read_text()
-    assert 'read_mesh(Path(__file__).with_name("mesh.obj"))' in snippet
+    assert 'Path(__file__).with_name("mesh.obj")' in snippet
     out = subprocess.run([sys.executable, str(d / r["files"]["snippet"])], cwd=ROOT,
                          capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    assert re.search(r"reference:\s+1\n", out.stdout) and "implementation:" in out.stdout
+    assert out.returncode == 1, out.stderr               # the same check fails again
+    assert "wrong Euler characteristic" in out.stdout
 
 
 @pytest.mark.parametrize("element", [{"vertex": 3}, {"edge": [0, 5]}, {"face": 2, "corner": 1},
@@ -389,7 +394,7 @@ def test_render_writes_a_png_for_each_kind_of_element(tmp_path, element):
 
 def test_seed_and_timeout_options_are_accepted(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "reference", "--only", "X2.1", "--seed", "7",
-                      "--timeout", "30", "--workers", "1")
+                      "--timeout", "30", "--workers", "1", "--wide")
     assert rc == 0 and re.search(r"^X2\.1 .*passed \(\d+ examples\)$", out, re.M)
 
 
@@ -450,7 +455,7 @@ def test_report_into_a_used_path_is_refused_before_the_run(capsys, tmp_path):
 
 
 def test_only_takes_several_ids_and_any_part_of_a_joint_id(capsys):
-    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--workers", "1",
+    rc, out, _ = _run(capsys, "check", "--impl", "reference", "--workers", "1", "--wide",
                       "--only", "D1.6", "L4.3,R1.5")
     assert rc == 0
     assert re.search(r"^D1\.6 ", out, re.M) and re.search(r"^L4\.3 / P4\.4 ", out, re.M)
@@ -517,3 +522,25 @@ def test_the_current_directory_never_shadows_an_installed_module(tmp_path, monke
     assert sys.path[-1] == str(tmp_path)            # appended, not put first
     import importlib
     assert importlib.import_module("json").__name__ == "json"
+
+
+def test_the_compact_report_fits_100_columns_with_every_kind_of_result():
+    argv = [sys.executable, "-m", "ddg_oracle", "check", "--impl", "reference",
+            "--impl", "libigl", "--impl", "libigl(boundary=library)",
+            "--impl", "tests.misbehaving:SegfaultsOnBoundary",
+            "--impl", "tests.test_cli:RoundsFlatVertices", "--impl", "scipy",
+            "--only", "R1.6", "L2.4", "R2.4", "D1.6", "T1.1", "--expect-conventions",
+            "--profile", "ci", "--timeout", "20"]
+    out = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 1, out.stdout + out.stderr
+    lines = out.stdout.splitlines()
+    assert max(map(len, lines)) <= 100, max(lines, key=len)
+    for heading in ("FAILED (", "crashed (", "tie disagreements (", "conventions (",
+                    "passed (of the applicable checks)", "not applicable ("):
+        assert any(line.startswith(heading) for line in lines), heading
+    assert re.search(r"^  R1\.6 +libigl +wrong number of boundary loops +\(known: L1\)$",
+                     out.stdout, re.M)
+    assert any(re.match(r"exit 1: \d+ checks failed or crashed; known findings L1", line)
+               for line in lines[-6:]), lines[-6:]
+    # without a terminal: a line per finished applicable task on stderr
+    assert re.search(r"^\[\d+/\d+ \d+ s\] R1\.6 libigl: FAILED$", out.stderr, re.M)

@@ -1,0 +1,204 @@
+"""Counterexamples a user can act on: the full mesh, and a snippet that reproduces them.
+
+A property's example is what its strategy built (a mesh with exact positions,
+perhaps a function on it, boundary data, a point set); the implementation saw
+its float arrays ``V``, ``F``.  Wherever a failure, crash or tie is shown (the
+terminal, ``check_implementation``'s AssertionError, a pytest failure,
+``results.json``) it carries:
+
+- ``V`` as floats whose ``repr`` round-trips (the implementation's exact input),
+  the exact rationals the example was built from where they differ, and ``F``;
+- a snippet of a few lines that runs the property once more on the very same
+  example, with only ddg-oracle and the user's module installed::
+
+      from ddg_oracle.properties.counterexample import replay
+      from ddg_oracle.implementations import load_implementation
+      replay("D1.6", load_implementation("mymod:Impl"), "eNqr...")
+
+  :func:`replay` raises what the check raised (the PropertyFailure, or the
+  implementation's own exception), or returns None if it now passes.  The last
+  argument is the example itself, pickled, compressed and base64-encoded
+  (:func:`encode_example`): examples hold exact surfaces that no short text
+  would rebuild.  It is decoded only by :func:`replay` in the user's own
+  process, from a snippet ddg-oracle wrote for them.
+"""
+
+from __future__ import annotations
+
+import base64
+import importlib.util
+import pickle
+import sys
+import sysconfig
+import textwrap
+import zlib
+from fractions import Fraction
+from pathlib import Path
+
+#: vertices and faces shown inline; a longer mesh is elided (its file says the rest)
+INLINE_VERTICES = 24
+PREFIX = "ddg1:"                     # version of the encoding
+
+
+def encode_example(example) -> str:
+    """The example as text: ``ddg1:`` + base64 of the zlib-compressed pickle.
+
+    >>> decode_example(encode_example((1, Fraction(1, 3))))
+    (1, Fraction(1, 3))
+    """
+    return PREFIX + base64.b64encode(zlib.compress(pickle.dumps(example, protocol=4), 9)).decode()
+
+
+def decode_example(text: str):
+    """The example :func:`encode_example` encoded."""
+    if not text.startswith(PREFIX):
+        raise ValueError(f"not a ddg-oracle example (expected text starting {PREFIX!r})")
+    return pickle.loads(zlib.decompress(base64.b64decode(text[len(PREFIX):])))
+
+
+def replay(property_id: str, impl, example):
+    """Run property ``property_id`` once on ``impl`` with ``example`` (an example, or the
+    text of :func:`encode_example`); raises what the check raises, None if it passes."""
+    from .registry import PROPERTIES, all_properties
+
+    all_properties()
+    if property_id not in PROPERTIES:
+        raise KeyError(f"no property {property_id!r}")
+    if isinstance(example, str):
+        example = decode_example(example)
+    PROPERTIES[property_id].check(impl, example)
+
+
+# --- the mesh of an example ---------------------------------------------------------------
+
+
+def _is_points(x) -> bool:
+    return (isinstance(x, (tuple, list)) and len(x) > 0
+            and all(isinstance(p, (tuple, list)) and len(p) in (2, 3) for p in x)
+            and all(isinstance(c, (int, float, Fraction)) for p in x for c in p))
+
+
+def _is_faces(x) -> bool:
+    return (isinstance(x, (tuple, list)) and len(x) > 0
+            and all(isinstance(f, (tuple, list)) and len(f) == 3
+                    and all(isinstance(i, int) for i in f) for f in x))
+
+
+def exact_mesh(example):
+    """(points as exact coordinates, faces) of an example, or None: ``.positions`` /
+    ``.surface.positions`` with ``.faces`` / a triangulation, or a (points, faces, ...)
+    tuple such as the planar examples; the first such part of a tuple otherwise."""
+    if isinstance(example, tuple):
+        if len(example) >= 2 and _is_points(example[0]) and _is_faces(example[1]):
+            return [list(p) for p in example[0]], [list(f) for f in example[1]]
+        for part in example:
+            m = exact_mesh(part)
+            if m is not None:
+                return m
+        return None
+    surface = getattr(example, "surface", None)
+    holder = surface if surface is not None and not callable(surface) else example
+    positions = getattr(holder, "positions", None)
+    if positions is None:
+        return None
+    faces = getattr(example, "faces", None)
+    if faces is None or callable(faces):
+        t = getattr(holder, "triangulation", None)
+        faces = getattr(t, "faces", None)
+    if faces is None:
+        return None
+    return [list(p) for p in positions], [list(f) for f in faces]
+
+
+def float_mesh(mesh):
+    """(V, F) with every coordinate a float, every z present (planar points get z = 0)."""
+    V, F = mesh
+    V = [[float(c) for c in (list(p) + [0] * (3 - len(p)))] for p in V]
+    return V, [[int(i) for i in f] for f in F]
+
+
+def _inexact(exact) -> bool:
+    """Whether some coordinate is not exactly its float (the float view rounds it)."""
+    return any(Fraction(float(c)) != c for p in exact for c in p
+               if isinstance(c, (int, Fraction)))
+
+
+def mesh_text(mesh, exact=None, limit: int = INLINE_VERTICES, indent: str = "  ") -> str:
+    """``V = [...]`` (floats, repr round-trips), ``F = [...]``, and the exact rationals where
+    the floats round them; elided past ``limit`` vertices or faces."""
+    V, F = float_mesh(mesh)
+    lines = [f"mesh: {len(V)} vertices, {len(F)} faces"]
+
+    def listing(name, rows):
+        shown = rows if len(rows) <= limit else rows[:limit]
+        body = ",\n".join(f"{indent}  {r!r}" for r in shown)
+        more = "" if len(rows) <= limit else f",\n{indent}  ... ({len(rows) - limit} more)"
+        return f"{name} = [\n{body}{more}]"
+
+    lines.append(listing("V", V))
+    lines.append(listing("F", F))
+    if exact is not None and _inexact(exact[0]):
+        rows = [[str(Fraction(c)) for c in p] for p in exact[0]]
+        lines.append(listing("exact V (the floats above round these)", rows))
+    return textwrap.indent("\n".join(lines), indent)
+
+
+# --- the snippet ---------------------------------------------------------------------------
+
+
+def implementation_spec(impl) -> str | None:
+    """How :func:`ddg_oracle.implementations.load_implementation` loads ``impl`` again: its
+    ``spec`` (an isolated or built-in implementation), else ``module:Class`` of its class;
+    None for an object no import can rebuild (a class defined in a function, ``__main__``)."""
+    spec = getattr(impl, "spec", None)
+    if isinstance(spec, str):
+        return spec
+    cls = type(impl)
+    if cls.__module__ == "__main__" or "<locals>" in cls.__qualname__:
+        return None
+    return f"{cls.__module__}:{cls.__qualname__}"
+
+
+def _module_dir(spec: str) -> str | None:
+    """The directory to append to sys.path for ``spec``'s module, when it is not installed
+    (a user's module next to their tests), else None."""
+    module = spec.split("(")[0].partition(":")[0]
+    if ":" not in spec.split("(")[0]:
+        return None                                       # a built-in name
+    try:
+        found = importlib.util.find_spec(module.split(".")[0])
+    except (ImportError, ValueError):
+        return None
+    if found is None or not found.origin:
+        return None
+    path = Path(found.origin).resolve().parent
+    if found.submodule_search_locations:                  # a package: its parent
+        path = path.parent
+    installed = {Path(p).resolve() for p in (sysconfig.get_paths()["purelib"],
+                                             sysconfig.get_paths()["platlib"], sys.prefix)}
+    if any(path == p or p in path.parents for p in installed):
+        return None
+    return str(path)
+
+
+def snippet(property_id: str, spec: str | None, encoded: str, width: int = 88) -> str:
+    """A few lines of Python that replay the example on the implementation ``spec``."""
+    lines = []
+    where = _module_dir(spec) if spec else None
+    if where is not None:
+        lines.append(f"import sys; sys.path.append({where!r})  # where your module was found")
+    lines.append("from ddg_oracle.properties.counterexample import replay")
+    if spec is None:
+        lines.append("impl = ...  # your implementation object (its class could not be imported)")
+    else:
+        lines.append("from ddg_oracle.implementations import load_implementation")
+        lines.append(f"impl = load_implementation({spec!r})")
+    chunk = width - 8
+    parts = [encoded[k:k + chunk] for k in range(0, len(encoded), chunk)] or [""]
+    if len(parts) == 1:
+        lines.append(f"replay({property_id!r}, impl, {encoded!r})")
+    else:
+        lines.append(f"replay({property_id!r}, impl, (")
+        lines.extend(f"    {p!r}" for p in parts)
+        lines.append("))")
+    return "\n".join(lines)
