@@ -134,7 +134,7 @@ workers, with `--report` into a temporary directory), `python -m benchmarks
 main`: the default profile three times (a random seed each run: the examples
 differ), then `--profile ci` once.  *slowest task*: one property on one
 implementation, from the report's `timings.json`; every task runs under its
-budget (`properties/budget.py`: 20 s and 6 crashes with `default`, 60 s and 12
+budget (`properties/budget.py`: 18 s and 6 crashes with `default`, 40 s and 12
 with `ci`).  Load: the 1-minute load average before the run.
 """
 

@@ -95,7 +95,7 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--budget", type=float, default=None, metavar="SECONDS",
                    help="wall-clock seconds per task (one property on one implementation), "
                         "shrinking included; a call still running then is a hang; 0: none "
-                        "(default: 20 with --profile default, 60 with ci, none with thorough)")
+                        "(default: 18 with --profile default, 40 with ci, none with thorough)")
     c.add_argument("--only", action="extend", nargs="+", metavar="ID",
                    help="only these catalog IDs (several, or comma-separated; any part of a "
                         "joint ID: L4.3 selects 'L4.3 / P4.4')")
@@ -110,6 +110,10 @@ def parser() -> argparse.ArgumentParser:
                    help="write results.json, summary.md, timings.json and, per failure, the "
                         "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
                         "(a new or empty directory)")
+    c.add_argument("--resume", metavar="DIR",
+                   help="finish an interrupted run from its report directory (the tasks "
+                        "already in DIR/results.jsonl are not run again; the same command "
+                        "line and seed)")
     c.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"worker processes (default {_default_workers()}: "
                         f"min({DEFAULT_WORKERS}, number of CPUs)); 1 runs in this process")
@@ -172,6 +176,9 @@ def main(argv=None) -> int:
     except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)
         return EXIT_USAGE
+    except KeyboardInterrupt:                # before or after the run itself: no traceback
+        print("ddg-oracle: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:                  # e.g. piped into head: stop quietly
         sys.stdout = open(os.devnull, "w")
         return EXIT_FINDINGS
@@ -257,10 +264,10 @@ class Progress:
     pipe) one line per finished task that was applicable, and every ``every`` seconds a
     line with how far the run is, so a log never goes quiet for long."""
 
-    def __init__(self, total: int, stream=None, every: float = 10.0):
+    def __init__(self, total: int, stream=None, every: float = 10.0, already: int = 0):
         import threading
 
-        self.total, self.done = total, 0
+        self.total, self.done = total, already
         self.stream = stream or sys.stderr
         self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
         self.t0 = time.perf_counter()
@@ -308,7 +315,16 @@ def _check(args, argv) -> int:
     from ddg_oracle.properties.profiles import profile
     from ddg_oracle.properties.registry import select_properties
     from ddg_oracle.properties.runner import describe
+    from ddg_oracle.report import ResultStream
 
+    stream_done: dict = {}
+    if args.resume:
+        # the interrupted run's own command line, seed included: the same tasks, the same
+        # examples; only the tasks not in its results.jsonl run
+        stored = ResultStream.command_of(args.resume)
+        args = parser().parse_args(["check", *stored["argv"]])
+        args.report, args.resume, args.seed = stored["report"], stored["report"], stored["seed"]
+        argv = stored["argv"]
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
     workers = args.workers or _default_workers()
@@ -322,7 +338,7 @@ def _check(args, argv) -> int:
     if seed is None and not profile(args.profile).derandomize:
         # one seed for the run: every implementation of a property sees the same examples
         seed = random.SystemRandom().getrandbits(32)
-    if args.report:
+    if args.report and not args.resume:
         _refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
@@ -352,12 +368,30 @@ def _check(args, argv) -> int:
     else:
         for impl in started.values():
             getattr(impl, "close", lambda: None)()
-    progress = Progress(len(tasks))
+    stream = None
+    if args.report:
+        given = [a for a in (argv if argv is not None else sys.argv[2:])]
+        stream = ResultStream(args.report, tasks, {"argv": given, "seed": seed,
+                                                   "report": str(Path(args.report).resolve())})
+        stream_done = stream.finished()                 # a resumed run's finished tasks
+    progress = Progress(len(tasks), already=len(stream_done))
+
+    def on_done(k, task, results):
+        if stream is not None:
+            stream.add(k, results)
+        progress(task, results)
+
+    interrupted = None
     try:
-        results = jobs.run_tasks(tasks, options, meshes, workers, on_done=progress)
+        results = jobs.run_tasks(tasks, options, meshes, workers, on_done=on_done,
+                                 done=stream_done)
+    except jobs.Interrupted as e:
+        interrupted, results = e, e.done
     finally:
         progress.finish()
         jobs.close_all()
+        if stream is not None:
+            stream.close()
     seconds = time.perf_counter() - t0
 
     from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
@@ -375,7 +409,8 @@ def _check(args, argv) -> int:
                                 "source": r.source, "seconds": round(r.seconds, 4)}
                                for r in results]}
         where = Path(args.report)
-        files = write_report(where, results, command, spec_of, timings)
+        files = write_report(where, results, command, spec_of, timings,
+                             interrupted=interrupted is not None)
     else:
         # the whole mesh and the snippet of each counterexample, for those the terminal elides
         where = Path(tempfile.mkdtemp(prefix="ddg-oracle-counterexamples-"))
@@ -395,6 +430,13 @@ def _check(args, argv) -> int:
         print(f"report: {where / 'summary.md'}")
     elif files:
         print(f"counterexample files (mesh.obj, reproduce.py): {where}")
+    if interrupted is not None:
+        name = "SIGINT" if interrupted.code == 130 else "SIGTERM"
+        print(f"ddg-oracle: interrupted by {name}: {len(results)} results of the finished tasks "
+              + (f"kept in {args.report}; finish with: ddg-oracle check --resume {args.report}"
+                 if args.report else "shown above (--report DIR keeps them for --resume)"),
+              file=sys.stderr)
+        return interrupted.code
     return 1 if bad else 0
 
 

@@ -24,6 +24,7 @@ import multiprocessing as mp
 import os
 import resource
 import signal
+import tempfile
 import traceback
 
 from ddg_oracle.properties.budget import check_time_left, time_left
@@ -76,7 +77,13 @@ def _size(n: int) -> str:
     return f"{n / (1 << 30):g} GiB" if n >= 1 << 30 else f"{n / (1 << 20):g} MiB"
 
 
-def _worker(spec: str, memory_bytes: int | None, conn) -> None:
+def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None = None) -> None:
+    if stderr_path:
+        # what the library prints before it dies (an assertion, an abort message) is kept
+        # for the report; the parent reads the tail of this file
+        fd = os.open(stderr_path, os.O_WRONLY | os.O_APPEND)
+        os.dup2(fd, 2)
+        os.close(fd)
     if memory_bytes:
         resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
     from ddg_oracle.implementations import ImplementationNotFound, load_implementation
@@ -126,13 +133,18 @@ class Isolated:
         self._ctx = mp.get_context("spawn")     # no fork of a parent holding threads
         self._proc = None
         self._conn = None
+        fd, self._stderr = tempfile.mkstemp(prefix="ddg-oracle-worker-", suffix=".stderr")
+        os.close(fd)
         self._start()
 
     def _start(self) -> None:
         if self._conn is not None:
             self._conn.close()
         parent, child = self._ctx.Pipe()
-        self._proc = self._ctx.Process(target=_worker, args=(self.spec, self.memory, child),
+        with open(self._stderr, "w"):
+            pass                                # a fresh worker: a fresh stderr
+        self._proc = self._ctx.Process(target=_worker,
+                                       args=(self.spec, self.memory, child, self._stderr),
                                        daemon=True)
         self._proc.start()
         child.close()
@@ -165,10 +177,26 @@ class Isolated:
         code = self._proc.exitcode
         if code is not None and code < 0:
             try:
-                return f"crashed with signal {signal.Signals(-code).name}"
+                how = f"crashed with signal {signal.Signals(-code).name}"
             except ValueError:
-                return f"crashed with signal {-code}"
-        return f"exited with code {code}"
+                how = f"crashed with signal {-code}"
+        else:
+            how = f"exited with code {code}"
+        said = self.stderr_tail()
+        return f"{how}; it printed: {said}" if said else how
+
+    def stderr_tail(self, lines: int = 3, chars: int = 400) -> str:
+        """The last lines the worker wrote to stderr (its library's own message), or ''."""
+        try:
+            with open(self._stderr, "rb") as fh:
+                fh.seek(0, 2)
+                fh.seek(max(0, fh.tell() - 4 * chars))
+                text = fh.read().decode("utf-8", "replace")
+        except OSError:
+            return ""
+        tail = " | ".join(line.strip() for line in text.strip().splitlines()[-lines:]
+                          if line.strip())
+        return tail[-chars:]
 
     def call(self, method: str, *args):
         # inside a check task, wait at most what its budget has left (properties.budget)
@@ -234,6 +262,10 @@ class Isolated:
         if self._conn is not None:
             self._conn.close()
         self._kill()
+        try:
+            os.unlink(self._stderr)
+        except OSError:
+            pass
 
     def __enter__(self):
         return self

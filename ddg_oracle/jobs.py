@@ -14,7 +14,6 @@ does not depend on scheduling.
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import multiprocessing as mp
 from dataclasses import dataclass
 
@@ -112,27 +111,227 @@ def _crashed(task: Task, why: str) -> list:
                    error=why, source="generated" if task.mesh is None else f"mesh {task.mesh}")]
 
 
-def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 1,
-              on_done=None) -> list:
-    """Every task's results, in task order; ``on_done(task, results)`` as each finishes."""
-    out: list = [None] * len(tasks)
-    if workers <= 1 or len(tasks) <= 1:
-        _STATE.update(options=options, meshes=meshes, examples={})
-        for k, t in enumerate(tasks):
-            out[k] = run_task(t)
-            if on_done is not None:
-                on_done(t, out[k])
-        return [r for rs in out for r in rs]
-    ctx = mp.get_context("spawn")       # no fork of a parent holding threads
-    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init,
-                                initargs=(options, meshes)) as pool:
-        futures = {pool.submit(run_task, t): k for k, t in enumerate(tasks)}
-        for fut in cf.as_completed(futures):
-            k = futures[fut]
+class Interrupted(BaseException):
+    """SIGINT or SIGTERM stopped the run; ``signal`` is which, ``code`` the exit code
+    (130, 143); ``done`` the results of the tasks that had finished, in task order."""
+
+    def __init__(self, signum: int, done: list | None = None):
+        self.signal, self.code, self.done = signum, 128 + signum, done or []
+        super().__init__(f"interrupted by signal {signum}")
+
+
+def descendants(pid: int | None = None) -> list[int]:
+    """Every process below ``pid`` (default: this one), children first, read from /proc
+    (Linux; elsewhere an empty list)."""
+    import os
+    pid = os.getpid() if pid is None else pid
+    children: dict[int, list[int]] = {}
+    try:
+        entries = os.listdir("/proc")
+    except OSError:
+        return []
+    for entry in entries:
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as fh:
+                fields = fh.read().rsplit(b")", 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(entry))
+    out, todo = [], list(children.get(pid, []))
+    while todo:
+        p = todo.pop(0)
+        out.append(p)
+        todo.extend(children.get(p, []))
+    return out
+
+
+def kill_descendants(grace: float = 1.0) -> None:
+    """SIGTERM every descendant process, then SIGKILL those still there after ``grace`` s:
+    no worker or library process outlives an interrupted run."""
+    import os
+    import signal
+    import time
+    procs = descendants()
+    for p in procs:
+        try:
+            os.kill(p, signal.SIGTERM)
+        except OSError:
+            pass
+    deadline = time.monotonic() + grace
+    while time.monotonic() < deadline and any(_alive(p) for p in procs):
+        time.sleep(0.05)
+    for p in procs + descendants():
+        try:
+            os.kill(p, signal.SIGKILL)
+        except OSError:
+            pass
+
+
+def _alive(pid: int) -> bool:
+    import os
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"
+    except OSError:
+        return False
+
+
+def _worker_main(options: Options, meshes: list, conn) -> None:
+    """A pool worker: run the tasks it is sent, one at a time, answer each with its results.
+    On SIGTERM it closes its isolated library workers first (no orphan)."""
+    import signal
+    import sys
+
+    def stop(signum, frame):
+        close_all()
+        sys.exit(128 + signum)
+
+    signal.signal(signal.SIGTERM, stop)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)      # the parent decides what an interrupt does
+    _init(options, meshes)
+    try:
+        while True:
             try:
-                out[k] = fut.result()
-            except cf.process.BrokenProcessPool as e:
-                out[k] = _crashed(tasks[k], f"the worker process running it died: {e}")
-            if on_done is not None:
-                on_done(tasks[k], out[k])
-    return [r for rs in out for r in rs]
+                k, task = conn.recv()
+                results = run_task(task)
+                conn.send((k, results))
+            except (EOFError, BrokenPipeError, ConnectionResetError):
+                return                      # the parent is gone or stopped the run
+    finally:
+        close_all()
+
+
+#: how often a task whose pool worker died is run again in a fresh worker
+RETRIES = 1
+
+
+def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 1,
+              on_done=None, done: dict | None = None) -> list:
+    """Every task's results, in task order; ``on_done(k, task, results)`` as each finishes.
+
+    ``done``: {task index: results} already known (a resumed run): not run again.
+    With ``workers > 1`` each task runs in one of ``workers`` spawned processes; a process
+    that dies while running a task (killed, out of memory) is replaced and the task run
+    once more (:data:`RETRIES`), then reported as ``crashed``; no other task's result is
+    lost.  SIGINT / SIGTERM raise :class:`Interrupted` carrying the finished results, after
+    every worker and library process is gone."""
+    import signal
+
+    out: dict = dict(done or {})
+    todo = [k for k in range(len(tasks)) if k not in out]
+
+    def finish(k, results):
+        out[k] = results
+        if on_done is not None:
+            on_done(k, tasks[k], results)
+
+    def terminate(signum, frame):
+        raise Interrupted(signum)
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        if workers <= 1 or len(todo) <= 1:
+            _STATE.update(options=options, meshes=meshes, examples={})
+            for k in todo:
+                finish(k, run_task(tasks[k]))
+        else:
+            _run_pool(tasks, todo, options, meshes, workers, finish)
+    except (KeyboardInterrupt, Interrupted) as e:
+        kill_descendants()
+        signum = e.signal if isinstance(e, Interrupted) else signal.SIGINT
+        raise Interrupted(signum, [r for k in sorted(out) for r in out[k]]) from None
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    return [r for k in range(len(tasks)) for r in out[k]]
+
+
+def _run_pool(tasks, todo, options, meshes, workers, finish) -> None:
+    from multiprocessing.connection import wait
+
+    ctx = mp.get_context("spawn")       # no fork of a parent holding threads
+    queue = list(todo)
+    attempts: dict[int, int] = {}
+    running: dict = {}                  # connection -> (process, task index or None)
+    why_died: dict[int, str] = {}
+
+    def start():
+        parent, child = ctx.Pipe()
+        # not a daemon: it starts the isolated library workers; when this process dies its
+        # pipe closes, and the worker, reading EOF, closes them and exits
+        proc = ctx.Process(target=_worker_main, args=(options, meshes, child), daemon=False)
+        proc.start()
+        child.close()
+        running[parent] = (proc, None)
+
+    def feed(conn):
+        proc, _ = running[conn]
+        if queue:
+            k = queue.pop(0)
+            try:
+                conn.send((k, tasks[k]))
+            except (BrokenPipeError, OSError):
+                # the worker died between tasks: k never reached it; a fresh worker takes it
+                queue.insert(0, k)
+                running[conn] = (proc, None)
+                return
+            attempts[k] = attempts.get(k, 0) + 1
+            running[conn] = (proc, k)
+        else:
+            conn.close()
+            proc.join(5)
+            del running[conn]
+
+    try:
+        for _ in range(min(workers, len(queue))):
+            start()
+        for conn in list(running):
+            feed(conn)
+        while running:
+            sentinels = {running[c][0].sentinel: c for c in running}
+            for ready in wait(list(running) + list(sentinels)):
+                conn = sentinels.get(ready, ready)
+                if conn not in running:
+                    continue
+                proc, k = running[conn]
+                try:
+                    got, results = conn.recv()
+                except (EOFError, OSError):
+                    # the worker died while running task k: a fresh worker, and k once more
+                    proc.join(5)
+                    del running[conn]
+                    conn.close()
+                    how = _exit_text(proc.exitcode)
+                    if k is not None:
+                        why_died[k] = how
+                        if attempts[k] <= RETRIES:
+                            queue.insert(0, k)
+                        else:
+                            finish(k, _crashed(tasks[k], f"the worker process running it died "
+                                                         f"{attempts[k]} times ({how})"))
+                    if queue:
+                        start()
+                        feed(list(running)[-1])
+                    continue
+                finish(got, results)
+                feed(conn)
+    finally:
+        for conn, (proc, _) in list(running.items()):
+            if proc.is_alive():
+                proc.terminate()            # SIGTERM: it closes its library workers first
+        for conn, (proc, _) in list(running.items()):
+            proc.join(5)
+            if proc.is_alive():
+                proc.kill()
+            conn.close()
+
+
+def _exit_text(code) -> str:
+    import signal
+    if code is not None and code < 0:
+        try:
+            return f"signal {signal.Signals(-code).name}"
+        except ValueError:
+            return f"signal {-code}"
+    return f"exit code {code}"

@@ -23,6 +23,8 @@ and mutated files (tests/test_fuzz_readers.py).
 from __future__ import annotations
 
 import math
+import os
+import stat
 import struct
 from pathlib import Path
 
@@ -33,13 +35,55 @@ class MeshFileError(InputError):
     """A mesh file that cannot be read: which file, where, and why."""
 
 
+#: Environment variable: the largest mesh file read, in bytes (``2G``, ``500M``, ...).
+SIZE_ENV = "DDG_MESH_SIZE_LIMIT"
+DEFAULT_SIZE_LIMIT = 2 << 30
+
+
+def size_limit() -> int:
+    """Bytes a mesh file may have: ``$DDG_MESH_SIZE_LIMIT`` (``2G``, ``500M``, ``123``), else
+    2 GiB."""
+    raw = os.environ.get(SIZE_ENV, "").strip().upper()
+    if not raw:
+        return DEFAULT_SIZE_LIMIT
+    units = {"K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
+    number, unit = (raw[:-1], units[raw[-1]]) if raw[-1] in units else (raw, 1)
+    try:
+        return int(float(number) * unit)
+    except ValueError:
+        raise MeshFileError(f"{SIZE_ENV}={raw!r} is not a size (use e.g. 2G, 500M)") from None
+
+
 def read_mesh(path) -> tuple[list[list[float]], list[list[int]]]:
-    """(V, F) of a mesh file, by its extension (.obj, .off, .ply, .stl)."""
+    """(V, F) of a mesh file, by its extension (.obj, .off, .ply, .stl).
+
+    Only regular files are read (a device such as /dev/urandom, a FIFO or a
+    directory is refused before it is opened: reading one may never end), and
+    only up to :func:`size_limit` bytes; the readers then make progress on every
+    line and check every count against the file's size before allocating."""
     path = Path(path)
     try:
-        data = path.read_bytes()
+        info = os.stat(path)
     except OSError as e:
         raise MeshFileError(f"{path}: cannot read: {e.strerror or e}") from None
+    if not stat.S_ISREG(info.st_mode):
+        kind = ("a directory" if stat.S_ISDIR(info.st_mode) else
+                "a FIFO (named pipe)" if stat.S_ISFIFO(info.st_mode) else
+                "a device" if stat.S_ISCHR(info.st_mode) or stat.S_ISBLK(info.st_mode) else
+                "a socket" if stat.S_ISSOCK(info.st_mode) else "not a regular file")
+        raise MeshFileError(f"{path}: cannot read: it is {kind}, not a regular mesh file")
+    limit = size_limit()
+    if info.st_size > limit:
+        raise MeshFileError(f"{path}: {info.st_size:,} bytes, over the limit of {limit:,} "
+                            f"(raise it with {SIZE_ENV}=SIZE)")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(limit + 1)          # a file that grew since stat is still bounded
+    except OSError as e:
+        raise MeshFileError(f"{path}: cannot read: {e.strerror or e}") from None
+    if len(data) > limit:
+        raise MeshFileError(f"{path}: over the size limit of {limit:,} bytes "
+                            f"(raise it with {SIZE_ENV}=SIZE)")
     readers = {".obj": _obj, ".off": _off, ".ply": _ply, ".stl": _stl}
     reader = readers.get(path.suffix.lower())
     if reader is None:
@@ -193,6 +237,9 @@ def _ply(data: bytes, name: str):
     if fmt not in ("ascii", "binary_little_endian", "binary_big_endian"):
         raise MeshFileError(f"{name}: unsupported PLY format {fmt!r}")
     for ename, count, props in elements:
+        if count and not props:
+            raise MeshFileError(f"{name}: element {ename!r} has {count} rows but no property: "
+                                "its rows take no bytes (malformed header)")
         kinds = {pname: (t, list_t) for pname, t, list_t in props}
         if ename == "vertex" and count:
             for axis in "xyz":

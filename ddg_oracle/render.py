@@ -1,6 +1,7 @@
 """A picture of a (counterexample) mesh with the offending element highlighted.
 
-matplotlib with the Agg backend (no display needed), a 3D view of the faces;
+matplotlib with the Agg backend (no display needed), a 3D view of the faces (a
+planar mesh: 2-D axes);
 the element -- a vertex, an edge, a face or a corner, see
 :func:`ddg_oracle.report.element_ids` -- is drawn in red.  Small meshes get vertex
 numbers.  A large mesh is cut down to the faces within two rings of the
@@ -53,40 +54,57 @@ def render_mesh(path, V, F, element: dict | None = None, title: str = "") -> Non
         title += f" (the {len(faces)} faces within two rings of the element, of {len(F)})"
     used = np.unique(F[faces])
     fig = plt.figure(figsize=(6, 6), dpi=100)
-    # drawn in order, so the element (added last) shows through the faces in front of it
-    ax = fig.add_subplot(projection="3d", computed_zorder=False)
-    polys = V[F[faces]]
-    colours = np.tile([0.80, 0.85, 0.92, 0.55], (len(faces), 1))
-    if "face" in element:
-        colours[faces == element["face"]] = [0.9, 0.2, 0.2, 0.8]
-    ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors=(0.3, 0.3, 0.4, 0.8),
-                                         linewidths=0.6))
+    red = [element["vertex"]] if "vertex" in element else []
+    if "corner" in element and "face" in element:
+        red.append(int(F[element["face"], element["corner"]]))
     lines = []
     if "edge" in element:
         lines.append(V[element["edge"]])
     if "face" in element and 0 <= element["face"] < len(F):
         a, b, c = F[element["face"]]
         lines += [V[[a, b]], V[[b, c]], V[[c, a]]]     # its outline shows through other faces
-    if lines:
-        ax.add_collection3d(Line3DCollection(lines, colors="red", linewidths=2.5, zorder=5))
-    red = [element["vertex"]] if "vertex" in element else []
-    if "corner" in element and "face" in element:
-        red.append(int(F[element["face"], element["corner"]]))
-    if red:
-        ax.scatter(*V[red].T, color="red", s=60, depthshade=False, zorder=6)
-    if len(used) <= LABEL_LIMIT:
-        for v in used:
-            ax.text(*V[v], f" {v}", fontsize=8, color="red" if v in red or v in seeds else "black")
-    lo, hi = V[used].min(axis=0), V[used].max(axis=0)
-    centre, half = (lo + hi) / 2, max(float((hi - lo).max()) / 2, 1e-300)
-    for set_lim, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-        set_lim(c - half, c + half)
+    colours = np.tile([0.80, 0.85, 0.92, 0.55], (len(faces), 1))
+    if "face" in element:
+        colours[faces == element["face"]] = [0.9, 0.2, 0.2, 0.8]
     if np.ptp(V[used][:, 2]) == 0:
-        ax.view_init(elev=90, azim=-90)      # a planar mesh: look from above
-        ax.set_zticks([])
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
+        # a planar mesh: 2-D axes, no z
+        from matplotlib.collections import LineCollection, PolyCollection
+        ax = fig.add_subplot()
+        ax.add_collection(PolyCollection(V[F[faces]][:, :, :2], facecolors=colours,
+                                         edgecolors=(0.3, 0.3, 0.4, 0.8), linewidths=0.6))
+        if lines:
+            ax.add_collection(LineCollection([seg[:, :2] for seg in lines], colors="red",
+                                             linewidths=2.5, zorder=5))
+        if red:
+            ax.scatter(*V[red][:, :2].T, color="red", s=60, zorder=6)
+        if len(used) <= LABEL_LIMIT:
+            for v in used:
+                ax.text(*V[v][:2], f" {v}", fontsize=8,
+                        color="red" if v in red or v in seeds else "black")
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+    else:
+        # drawn in order, so the element (added last) shows through the faces in front of it
+        ax = fig.add_subplot(projection="3d", computed_zorder=False)
+        ax.add_collection3d(Poly3DCollection(V[F[faces]], facecolors=colours,
+                                             edgecolors=(0.3, 0.3, 0.4, 0.8), linewidths=0.6))
+        if lines:
+            ax.add_collection3d(Line3DCollection(lines, colors="red", linewidths=2.5, zorder=5))
+        if red:
+            ax.scatter(*V[red].T, color="red", s=60, depthshade=False, zorder=6)
+        if len(used) <= LABEL_LIMIT:
+            for v in used:
+                ax.text(*V[v], f" {v}", fontsize=8,
+                        color="red" if v in red or v in seeds else "black")
+        lo, hi = V[used].min(axis=0), V[used].max(axis=0)
+        centre, half = (lo + hi) / 2, max(float((hi - lo).max()) / 2, 1e-300)
+        for set_lim, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+            set_lim(c - half, c + half)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel("z")
     ax.set_title("\n".join(textwrap.wrap(title, 80)), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, metadata={"Software": None})

@@ -20,7 +20,7 @@ results.json::
     {"schema": 1,
      "command": {"profile", "seed", "implementations", "only", "meshes", "expect_conventions"},
      "versions": {"python", "numpy", "scipy", "hypothesis", "libigl", "pymeshlab", ...},
-     "counts": {status: number},
+     "counts": {status: number}, "interrupted": false | true (a partial run),
      "results": [{"property_id", "property_name", "statement", "implementation", "spec",
                   "source", "status", "ok", "examples", "ties", "note", "crash", "also",
                   "failure": null | {"message", "element", "element_ids", "expected",
@@ -195,6 +195,75 @@ def table(results, markdown: bool = False) -> str:
                      for row in [head] + body]
         blocks.append("\n".join(lines))
     return "\n\n".join(blocks)
+
+
+# --- results as they finish ------------------------------------------------------------------
+
+
+class ResultStream:
+    """``DIR/results.jsonl``: one line per finished task, written and flushed as it
+    finishes, so an interrupted run keeps every finished result; ``DIR/run.json``: the
+    command line and seed, so ``--resume DIR`` runs the same tasks on the same examples.
+
+    Each line: ``{"task": [spec, property_id, mesh], "results": [record, ...],
+    "pickled": base64}`` (the records as in results.json, for people and other tools;
+    the pickled Result objects, for ``--resume``)."""
+
+    RUN, LINES = "run.json", "results.jsonl"
+
+    def __init__(self, directory, tasks, command: dict):
+        self.directory = Path(directory)
+        self.directory.mkdir(parents=True, exist_ok=True)
+        self.tasks = tasks
+        run = self.directory / self.RUN
+        if not run.exists():
+            run.write_text(json.dumps(command, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+        self._fh = open(self.directory / self.LINES, "a", encoding="utf-8")
+
+    @staticmethod
+    def _key(task) -> list:
+        return [task.spec, task.property_id, task.mesh]
+
+    @classmethod
+    def command_of(cls, directory) -> dict:
+        """The run.json of an interrupted run (a usage error if there is none)."""
+        from ddg_oracle.cli import UsageError
+        path = Path(directory) / cls.RUN
+        if not path.is_file():
+            raise UsageError(f"--resume {directory}: no {cls.RUN} there (not the report "
+                             "directory of an interrupted ddg-oracle check --report run)")
+        return json.loads(path.read_text(encoding="utf-8"))
+
+    def finished(self) -> dict:
+        """{task index: its results} of the lines already in results.jsonl."""
+        import base64
+        import pickle
+        index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}
+        out = {}
+        path = self.directory / self.LINES
+        for line in path.read_text(encoding="utf-8").splitlines():
+            try:
+                entry = json.loads(line)
+            except json.JSONDecodeError:
+                continue                    # a line cut short by the interruption
+            k = index.get(tuple(entry["task"]))
+            if k is not None:
+                out[k] = pickle.loads(base64.b64decode(entry["pickled"]))
+        return out
+
+    def add(self, k: int, results) -> None:
+        import base64
+        import pickle
+        from ddg_oracle.properties.registry import PROPERTIES
+        records = [result_record(r, getattr(PROPERTIES.get(r.property_id), "statement", ""),
+                                 self.tasks[k].spec) for r in results]
+        line = {"task": self._key(self.tasks[k]), "results": records,
+                "pickled": base64.b64encode(pickle.dumps(results)).decode()}
+        self._fh.write(json.dumps(line, sort_keys=True) + "\n")
+        self._fh.flush()
+
+    def close(self) -> None:
+        self._fh.close()
 
 
 # --- the terminal report -------------------------------------------------------------------
@@ -420,7 +489,8 @@ def write_counterexamples(directory, results, spec_of: dict, picture: bool = Fal
     return out
 
 
-def write_report(directory, results, command: dict, spec_of: dict, timings: dict) -> dict:
+def write_report(directory, results, command: dict, spec_of: dict, timings: dict,
+                 interrupted: bool = False) -> dict:
     """Write results.json, index.html, timings.json, summary.md and the failure files into
     ``directory``;
     returns {result index: its failure files} (paths relative to ``directory``)."""
@@ -441,14 +511,15 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
             sections.append((r, files))
         records.append(result_record(r, p.statement if p else "", spec, files))
     doc = {"schema": SCHEMA, "command": jsonable({k: v for k, v in command.items() if k != "argv"}),
-           "versions": versions(), "counts": counts(results), "results": records}
+           "versions": versions(), "counts": counts(results), "results": records,
+           "interrupted": interrupted}
     text = dumps(doc)
     (directory / "results.json").write_text(text, encoding="utf-8")
     write_html(directory, text)
     (directory / "timings.json").write_text(json.dumps(timings, indent=1, sort_keys=True) + "\n",
                                             encoding="utf-8")
     c = counts(results)
-    md = ["# ddg-oracle check", "",
+    md = ["# ddg-oracle check" + (" (interrupted: partial)" if interrupted else ""), "",
           "Command: `ddg-oracle check " + " ".join(command.get("argv", [])) + "`", "",
           ", ".join(f"{n} {s}" for s, n in c.items() if n), "", table(results, markdown=True), ""]
     if sections:

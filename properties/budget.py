@@ -39,7 +39,7 @@ class Budget:
 
 #: Per profile: the default run must stay within about a minute on 2 cores with every
 #: library installed; ci gets more room; thorough none.
-BUDGETS = {"default": Budget(20.0, 6), "ci": Budget(60.0, 12), "thorough": Budget(None, None)}
+BUDGETS = {"default": Budget(18.0, 6), "ci": Budget(40.0, 12), "thorough": Budget(None, None)}
 
 _deadline: contextvars.ContextVar[float | None] = contextvars.ContextVar(
     "ddg_task_deadline", default=None)

@@ -464,3 +464,37 @@ def write(case: FileCase, directory) -> Path:
     path = Path(directory) / case.filename
     path.write_bytes(case.content)
     return path
+
+
+# --- paths that must not hang or exhaust memory --------------------------------------------------
+# what `ddg-oracle check --mesh PATH` and `ddg-oracle compare PATH` must answer with one line on
+# stderr and exit 2, within seconds and a few hundred MB (tests/test_hostile.py)
+
+
+def hostile_paths(directory) -> dict[str, tuple[str, str]]:
+    """{what: (path, words the one-line error must contain)}, made in ``directory``."""
+    import os
+    directory = Path(directory)
+    fifo = directory / "pipe.obj"
+    os.mkfifo(fifo)
+    zero = directory / "x.obj"
+    zero.symlink_to("/dev/zero")
+    (directory / "dir.ply").mkdir()
+    empty = directory / "empty-elements.ply"
+    empty.write_bytes(b"ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                      b"property float y\nproperty float z\nelement face 0\n"
+                      b"property list uchar int vertex_indices\nend_header\n0 0 0\n3 0 1 2\n")
+    noprop = directory / "no-properties.ply"
+    noprop.write_bytes(b"ply\nformat ascii 1.0\nelement junk 50\nelement vertex 3\n"
+                       b"property float x\nproperty float y\nproperty float z\nend_header\n")
+    dup = directory / "duplicated-face.obj"
+    dup.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 2 1 3\n")
+    return {
+        "/dev/urandom": ("/dev/urandom", "a device"),
+        "a FIFO": (str(fifo), "a FIFO"),
+        "/dev/zero named x.obj": (str(zero), "a device"),
+        "a directory": (str(directory / "dir.ply"), "a directory"),
+        "empty PLY elements with a body": (str(empty), "no faces"),
+        "a PLY element with rows and no property": (str(noprop), "no property"),
+        "a duplicated (opposite) face": (str(dup), "faces 0 and 2 are one triangle"),
+    }

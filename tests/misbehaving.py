@@ -31,6 +31,16 @@ class AbortsAlways(ReferenceImplementation):
         os.abort()
 
 
+class AssertsInC(ReferenceImplementation):
+    """Like a C++ library's failed assert: a message on stderr (fd 2, not sys.stderr), then
+    abort."""
+    name = "asserts-in-c"
+
+    def euler_characteristic(self, V, F):
+        os.write(2, b"mesh.cpp:42: int Mesh::euler(): Assertion `halfedges.valid()' failed.\n")
+        os.abort()
+
+
 class HangsOnBoundary(ReferenceImplementation):
     name = "hangs-on-boundary"
 

@@ -25,7 +25,7 @@ from ddg_oracle.reference.errors import (DegenerateFace, InputError, TermLimitEx
                               TimeLimitExceeded)
 from ddg_oracle.reference.exact import limits, sqrt
 from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi
-from tests.hostile import (ARRAY_CASES, FILE_CASES, ICO_F, ICO_V, LENGTH_CASES,
+from tests.hostile import (ARRAY_CASES, FILE_CASES, ICO_F, ICO_V, LENGTH_CASES, hostile_paths,
                            MESH_FILE_CASES, TET_F, TET_V, TRIANGULATION_CASES, valid_files, write)
 
 
@@ -274,3 +274,69 @@ def test_reference_float_views_beyond_the_float_range_are_inf():
     assert list(r.vertex_areas_voronoi(V, F)) == [math.inf] * 3
     # scale-free views stay finite: three correctly rounded angles summing to pi
     assert abs(r.corner_angles(V, F).sum() - math.pi) <= 4 * np.finfo(float).eps * math.pi
+
+
+# --- paths that must not hang or exhaust memory (issue: readers with bounds) ----------------------
+
+def _ddg_oracle_bounded(args, seconds=5.0):
+    """Run ``ddg-oracle ARGS``: (exit code, stderr, wall seconds, peak RSS in MB); the child
+    is reaped with wait4 to read its own peak memory, and killed if it runs 6x too long."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+    import time
+    with tempfile.TemporaryFile("w+") as err_file:
+        t0 = time.monotonic()
+        p = subprocess.Popen([sys.executable, "-m", "ddg_oracle", *args],
+                             stdout=subprocess.DEVNULL, stderr=err_file)
+        while True:
+            pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.monotonic() - t0 > 6 * seconds:
+                p.kill()
+                pid, status, usage = os.wait4(p.pid, 0)
+                break
+            time.sleep(0.02)
+        p.returncode = os.waitstatus_to_exitcode(status)     # so Popen does not wait again
+        wall = time.monotonic() - t0
+        err_file.seek(0)
+        err = err_file.read()
+    return p.returncode, err, wall, usage.ru_maxrss / 1024
+
+
+@pytest.mark.parametrize("command", ["check", "compare"])
+def test_hostile_paths_are_one_line_and_exit_2_fast_and_small(tmp_path, command):
+    for what, (path, words) in hostile_paths(tmp_path).items():
+        args = ["check", "--mesh", path, "--impl", "reference", "--workers", "1"] \
+            if command == "check" else ["compare", path, "--impl", "reference"]
+        rc, err, wall, peak = _ddg_oracle_bounded(args)
+        assert rc == 2, (what, rc, err)
+        assert err.startswith("ddg-oracle: error:") and err.count("\n") == 1, (what, err)
+        assert words in err, (what, err)
+        assert wall < 5.0, (what, wall)
+        assert peak < 500, (what, peak)
+
+
+def test_a_mesh_file_over_the_size_limit_is_refused(tmp_path, monkeypatch):
+    from ddg_oracle.meshfiles import SIZE_ENV
+    path = tmp_path / "t.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    monkeypatch.setenv(SIZE_ENV, "20")
+    with pytest.raises(MeshFileError, match=f"over the limit of 20 .*{SIZE_ENV}"):
+        read_mesh(path)
+    monkeypatch.setenv(SIZE_ENV, "1K")
+    assert read_mesh(path)[1] == [[0, 1, 2]]
+
+
+def test_compare_answers_a_single_triangle(tmp_path):
+    import subprocess
+    import sys
+    path = tmp_path / "one.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    out = subprocess.run([sys.executable, "-m", "ddg_oracle", "compare", str(path),
+                          "--impl", "libigl"], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "edge_mean_curvature" in out.stdout and "no element to compare" in out.stdout
+    assert "DIFFERS" not in out.stdout and "Traceback" not in out.stderr

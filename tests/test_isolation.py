@@ -34,6 +34,17 @@ def test_abort_is_reported():
             impl.euler_characteristic(*_arrays(CLOSED))
 
 
+def test_a_crash_reports_what_the_library_printed_before_dying():
+    with Isolated("tests.misbehaving:AssertsInC", timeout=30) as impl:
+        with pytest.raises(ImplementationCrashed) as err:
+            impl.euler_characteristic(*_arrays(CLOSED))
+        assert "SIGABRT" in str(err.value)
+        assert "it printed: mesh.cpp:42: int Mesh::euler(): Assertion" in str(err.value)
+        path = impl._stderr
+    import os
+    assert not os.path.exists(path)                 # closed: its stderr file is gone
+
+
 def test_hang_is_killed_after_the_time_limit():
     with Isolated("tests.misbehaving:HangsOnBoundary", timeout=1.5) as impl:
         with pytest.raises(ImplementationCrashed, match="did not return within 1.5 s"):
