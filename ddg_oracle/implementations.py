@@ -1,4 +1,5 @@
-"""Finding implementations by name: built-in adapters or ``module:object``.
+"""Finding implementations by name: built-in adapters, ``module:object``, or
+``exec:COMMAND`` (a program speaking the executable protocol, docs/protocol.md).
 
 A spec may carry keyword options in parentheses, passed to the class:
 ``"libigl(boundary=library)"``, ``"pymeshlab(boundary=library, genus=library)"``,
@@ -74,6 +75,13 @@ def load_implementation(spec: str):
     installed package).  Any failure to import it is
     :class:`ImplementationNotFound` ("cannot import your module ...").
     """
+    if spec.startswith("exec:"):
+        # a program speaking the executable protocol (docs/protocol.md)
+        from ddg_oracle.oracles.executable import DriverFailed, Executable
+        try:
+            return Executable(spec[len("exec:"):])
+        except (DriverFailed, ValueError) as e:
+            raise ImplementationNotFound(f"cannot start {spec!r}: {e}") from None
     base, options = parse_spec(spec)
     target = BUILTIN.get(base, base)
     module, sep, qual = target.partition(":")

@@ -221,33 +221,46 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
 
     out: dict = dict(done or {})
     todo = [k for k in range(len(tasks)) if k not in out]
+    serial = workers <= 1 or len(todo) <= 1
+    caught: list[int] = []
 
     def finish(k, results):
         out[k] = results
         if on_done is not None:
             on_done(k, tasks[k], results)
 
-    def terminate(signum, frame):
-        raise Interrupted(signum)
+    def stop(signum, frame):
+        # remembered first: an exception raised here can be swallowed (a signal that
+        # arrives inside a garbage-collector callback), the flag cannot
+        caught.append(signum)
+        if serial:
+            raise Interrupted(signum)      # the task runs here: stop it now
 
-    previous = signal.signal(signal.SIGTERM, terminate)
+    def check():
+        if caught:
+            raise Interrupted(caught[0])
+
+    previous = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
-        if workers <= 1 or len(todo) <= 1:
+        if serial:
             _STATE.update(options=options, meshes=meshes, examples={})
             for k in todo:
+                check()
                 finish(k, run_task(tasks[k]))
+                check()
         else:
-            _run_pool(tasks, todo, options, meshes, workers, finish)
+            _run_pool(tasks, todo, options, meshes, workers, finish, check)
     except (KeyboardInterrupt, Interrupted) as e:
         kill_descendants()
         signum = e.signal if isinstance(e, Interrupted) else signal.SIGINT
         raise Interrupted(signum, [r for k in sorted(out) for r in out[k]]) from None
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
     return [r for k in range(len(tasks)) for r in out[k]]
 
 
-def _run_pool(tasks, todo, options, meshes, workers, finish) -> None:
+def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     from multiprocessing.connection import wait
 
     ctx = mp.get_context("spawn")       # no fork of a parent holding threads
@@ -289,8 +302,9 @@ def _run_pool(tasks, todo, options, meshes, workers, finish) -> None:
         for conn in list(running):
             feed(conn)
         while running:
+            check()                         # a signal: stop here, between two answers
             sentinels = {running[c][0].sentinel: c for c in running}
-            for ready in wait(list(running) + list(sentinels)):
+            for ready in wait(list(running) + list(sentinels), timeout=0.2):
                 conn = sentinels.get(ready, ready)
                 if conn not in running:
                     continue

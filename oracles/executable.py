@@ -1,0 +1,376 @@
+"""Any program as an implementation: the executable protocol (docs/protocol.md).
+
+``--impl 'exec:./my_driver --flag'`` starts the program once and keeps it
+running across examples (as Berkeley TestFloat drives a floating-point
+implementation, and an LSP client a language server).  Requests and answers
+are one JSON object per line on the program's stdin and stdout:
+
+- first the handshake: ``{"protocol": "ddg-oracle", "version": 1, "method": "hello"}``,
+  answered with ``{"name": ..., "methods": [...], "machine_epsilon": ...,
+  "conventions": {...}}`` (``methods``: the protocol methods the program
+  implements; the other two optional: float64 and the reference's conventions
+  by default);
+- then one request per call: ``{"id": 7, "method": "angle_defects", "V": [[x, y,
+  z], ...], "F": [[i, j, k], ...]}`` (``planar_delaunay``: ``"P": [[x, y], ...]``),
+  floats written so that they round-trip (read them with ``strtod``), answered
+  with ``{"id": 7, "value": ...}`` in the shape docs/protocol.md gives per
+  method, or ``{"id": 7, "error": {"kind": "outside_domain" | "failed",
+  "message": ...}}``.
+
+The program's failures are the implementation's: it dies, hangs (no answer
+within ``timeout`` seconds), writes a line that is not JSON, answers another
+id or the wrong shape: each raises :class:`DriverFailed` (a crash of the
+implementation, reported with its input; the program is restarted for the
+next call).  ``outside_domain`` raises :class:`~ddg_oracle.properties.protocol.OutsideDomain`.
+What the program printed on stderr is kept and quoted when it fails.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import selectors
+import shlex
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+import scipy.sparse
+
+from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain
+
+from .arrays import checked_arrays
+
+PROTOCOL_VERSION = 1
+#: seconds a program may take to answer the handshake (it may import a lot, or JIT)
+START_TIMEOUT = 60.0
+
+
+class DriverFailed(RuntimeError):
+    """The program died, hung, or answered something that is not a protocol answer."""
+
+
+def _as_sparse(value, method: str):
+    if not isinstance(value, dict) or not {"shape", "rows", "cols", "values"} <= set(value):
+        raise DriverFailed(f"{method}: expected a sparse matrix "
+                           '{"shape", "rows", "cols", "values"}, got ' + _short(value))
+    n, m = value["shape"]
+    return scipy.sparse.csr_matrix((np.asarray(value["values"], dtype=np.float64),
+                                    (np.asarray(value["rows"], dtype=np.int64),
+                                     np.asarray(value["cols"], dtype=np.int64))), shape=(n, m))
+
+
+def _array(value, method: str, shape: tuple, dtype) -> np.ndarray:
+    try:
+        a = np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError):
+        raise DriverFailed(f"{method}: expected an array of shape {shape}, got "
+                           f"{_short(value)}") from None
+    if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape)):
+        raise DriverFailed(f"{method}: expected shape {tuple('*' if s is None else s for s in shape)}"
+                           f", got {a.shape}")
+    return a
+
+
+def _short(value) -> str:
+    text = json.dumps(value)
+    return text if len(text) <= 120 else text[:117] + "..."
+
+
+def _decode(method: str, value, n: int, m: int):
+    """The protocol value of ``method`` from its JSON answer (docs/protocol.md)."""
+    if method in ("euler_characteristic", "genus"):
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise DriverFailed(f"{method}: expected an integer, got {_short(value)}")
+        return value
+    if method == "is_orientable":
+        if not isinstance(value, bool):
+            raise DriverFailed(f"{method}: expected true or false, got {_short(value)}")
+        return value
+    if method == "area":
+        if not isinstance(value, (int, float)) or isinstance(value, bool):
+            raise DriverFailed(f"{method}: expected a number, got {_short(value)}")
+        return float(value)
+    if method == "boundary_loops":
+        if not isinstance(value, list) or not all(isinstance(loop, list) for loop in value):
+            raise DriverFailed(f"{method}: expected a list of vertex lists, got {_short(value)}")
+        return [[int(v) for v in loop] for loop in value]
+    if method in ("angle_defects", "vertex_areas_barycentric", "vertex_areas_voronoi"):
+        return _array(value, method, (n,), np.float64)
+    if method == "corner_angles":
+        return _array(value, method, (m, 3), np.float64)
+    if method == "is_locally_delaunay":
+        return _array(value, method, (m, 3), bool)
+    if method == "edge_mean_curvature":
+        if not isinstance(value, list) or not all(isinstance(t, list) and len(t) == 3
+                                                 for t in value):
+            raise DriverFailed(f"{method}: expected a list of [i, j, H] triples, got "
+                               f"{_short(value)}")
+        return {(min(int(i), int(j)), max(int(i), int(j))): float(h) for i, j, h in value}
+    if method in ("cotan_laplacian", "intrinsic_delaunay_laplacian"):
+        L = _as_sparse(value, method)
+        if L.shape != (n, n):
+            raise DriverFailed(f"{method}: expected a {n} x {n} matrix, got {L.shape}")
+        return L
+    if method == "intrinsic_delaunay_triangulation":
+        if not isinstance(value, dict) or set(value) != {"F", "l2"}:
+            raise DriverFailed(f'{method}: expected {{"F": ..., "l2": ...}}, got {_short(value)}')
+        F2 = _array(value["F"], method, (None, 3), np.int64)
+        return F2, _array(value["l2"], method, (len(F2), 3), np.float64)
+    if method in ("planar_delaunay", "planar_flip_to_delaunay"):
+        return _array(value, method, (None, 3), np.int64)
+    raise DriverFailed(f"{method}: not a protocol method")
+
+
+class Executable:
+    """A program speaking the executable protocol, as an implementation object.
+
+    Only the methods the program lists in its handshake exist on the object (so
+    properties needing others are not applicable).  ``timeout``: seconds per call.
+    """
+
+    def __init__(self, command: str | list[str], timeout: float = 60.0, cwd=None):
+        argv = shlex.split(command) if isinstance(command, str) else list(command)
+        if not argv:
+            raise ValueError("exec: needs a command, e.g. exec:./my_driver")
+        # files named relative to here are made absolute, so the spec (and a replay
+        # snippet that loads it) works from any directory
+        base = cwd or os.getcwd()
+        self.argv = [os.path.abspath(os.path.join(base, a))
+                     if not os.path.isabs(a) and os.path.isfile(os.path.join(base, a)) else a
+                     for a in argv]
+        self.spec = "exec:" + shlex.join(self.argv)
+        self.timeout, self.cwd = timeout, cwd
+        self._proc = None
+        self._next_id = 0
+        self._buffer = b""
+        fd, self._stderr = tempfile.mkstemp(prefix="ddg-oracle-exec-", suffix=".stderr")
+        os.close(fd)
+        hello = self._start()
+        methods = hello.get("methods")
+        if not isinstance(methods, list) or not methods:
+            self.close()
+            raise DriverFailed(f"{self.spec}: the handshake lists no methods: {_short(hello)}")
+        unknown = sorted(set(methods) - set(METHODS))
+        if unknown:
+            self.close()
+            raise DriverFailed(f"{self.spec}: the handshake lists unknown methods {unknown}; "
+                               f"the protocol's are {', '.join(METHODS)}")
+        self.methods = frozenset(methods)
+        self.name = str(hello.get("name") or os.path.basename(self.argv[0]))
+        self.machine_epsilon = float(hello.get("machine_epsilon", FLOAT64_EPSILON))
+        self.conventions = dict(hello.get("conventions") or {})
+
+    # --- the process ------------------------------------------------------------------
+
+    def _start(self) -> dict:
+        with open(self._stderr, "w"):
+            pass
+        try:
+            self._proc = subprocess.Popen(self.argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                          stderr=open(self._stderr, "ab"), cwd=self.cwd,
+                                          start_new_session=True)
+        except OSError as e:
+            raise DriverFailed(f"{self.spec}: cannot start {self.argv[0]!r}: "
+                               f"{e.strerror or e}") from None
+        self._buffer = b""
+        self._send({"protocol": "ddg-oracle", "version": PROTOCOL_VERSION, "method": "hello"},
+                   "hello")
+        hello = self._receive("hello", START_TIMEOUT)
+        if not isinstance(hello, dict):
+            raise DriverFailed(f"{self.spec}: the handshake answer is not an object: "
+                               f"{_short(hello)}")
+        return hello
+
+    def _stop(self) -> None:
+        if self._proc is not None:
+            try:
+                os.killpg(self._proc.pid, 9)        # the program and anything it started
+            except OSError:
+                pass
+            self._proc.wait()
+            for stream in (self._proc.stdin, self._proc.stdout):
+                try:
+                    stream.close()
+                except OSError:
+                    pass
+        self._proc = None
+
+    def _fail(self, method: str, how: str) -> DriverFailed:
+        """Stop the program (a fresh one answers the next call) and say what went wrong."""
+        code = None
+        if self._proc is not None:
+            try:
+                code = self._proc.wait(timeout=0.5)   # it closed its output: let it finish dying
+            except subprocess.TimeoutExpired:
+                code = None                            # still running (hung, or garbage)
+        self._stop()
+        if code is not None and code < 0:
+            import signal
+            try:
+                how += f" (it died with signal {signal.Signals(-code).name})"
+            except ValueError:
+                how += f" (it died with signal {-code})"
+        elif code is not None:
+            how += f" (it exited with code {code})"
+        said = self.stderr_tail()
+        return DriverFailed(f"{self.name if hasattr(self, 'name') else self.spec}.{method}: "
+                            f"{how}" + (f"; it printed: {said}" if said else ""))
+
+    def stderr_tail(self, lines: int = 3, chars: int = 400) -> str:
+        """The last lines the program wrote to stderr, or ''."""
+        try:
+            text = open(self._stderr, "rb").read()[-4 * chars:].decode("utf-8", "replace")
+        except OSError:
+            return ""
+        return " | ".join(x.strip() for x in text.strip().splitlines()[-lines:] if x.strip())[-chars:]
+
+    def _send(self, obj, method: str) -> None:
+        try:
+            self._proc.stdin.write((json.dumps(obj) + "\n").encode())
+            self._proc.stdin.flush()
+        except (BrokenPipeError, OSError):
+            raise self._fail(method, "the program is not reading its input") from None
+
+    def _receive(self, method: str, timeout: float):
+        deadline = time.monotonic() + timeout
+        while b"\n" not in self._buffer:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise self._fail(method, f"no answer within {timeout:g} s (killed)")
+            with selectors.DefaultSelector() as sel:
+                sel.register(self._proc.stdout, selectors.EVENT_READ)
+                if not sel.select(left):
+                    continue
+            chunk = os.read(self._proc.stdout.fileno(), 1 << 16)
+            if not chunk:
+                raise self._fail(method, "the program closed its output (it died or exited)")
+            self._buffer += chunk
+            if len(self._buffer) > 1 << 30:
+                raise self._fail(method, "an answer line longer than 1 GiB")
+        line, self._buffer = self._buffer.split(b"\n", 1)
+        try:
+            return json.loads(line)
+        except (json.JSONDecodeError, UnicodeDecodeError):
+            text = line[:80].decode("utf-8", "replace")
+            raise self._fail(method, f"answered a line that is not JSON: {text!r}") from None
+
+    # --- calls ------------------------------------------------------------------------
+
+    def call(self, method: str, V, F=None):
+        if self._proc is None or self._proc.poll() is not None:
+            if self._proc is not None:
+                self._stop()
+            self._start()
+        self._next_id += 1
+        k = self._next_id
+        if method == "planar_delaunay":
+            P = np.asarray(V, dtype=np.float64)
+            request = {"id": k, "method": method, "P": P.tolist()}
+            n, m = len(P), 0
+        else:
+            V, F = checked_arrays(V, F)
+            request = {"id": k, "method": method, "V": V.tolist(), "F": F.tolist()}
+            n, m = len(V), len(F)
+        self._send(request, method)
+        answer = self._receive(method, self.timeout)
+        if not isinstance(answer, dict) or answer.get("id") != k:
+            raise self._fail(method, f"answered {_short(answer)} to request id {k}")
+        if "error" in answer:
+            err = answer["error"] if isinstance(answer["error"], dict) else {"message": answer["error"]}
+            message = str(err.get("message", ""))
+            if err.get("kind") == "outside_domain":
+                raise OutsideDomain(message)
+            raise DriverFailed(f"{self.name}.{method} failed: {message}")
+        if "value" not in answer:
+            raise self._fail(method, f"answered without a value: {_short(answer)}")
+        return _decode(method, answer["value"], n, m)
+
+    def __getattr__(self, method: str):
+        if method in METHODS and method in self.__dict__.get("methods", ()):
+            if method == "planar_delaunay":
+                return lambda P: self.call(method, P)
+            return lambda V, F: self.call(method, V, F)
+        raise AttributeError(method)
+
+    def close(self) -> None:
+        self._stop()
+        try:
+            os.unlink(self._stderr)
+        except OSError:
+            pass
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001  (interpreter shutdown)
+            pass
+
+
+# --- the other side: a program serving an implementation object ------------------------------
+
+
+def _encode(method: str, value):
+    """The JSON answer of a protocol value (the inverse of :func:`_decode`)."""
+    if scipy.sparse.issparse(value):
+        c = scipy.sparse.coo_matrix(value)
+        return {"shape": list(c.shape), "rows": c.row.tolist(), "cols": c.col.tolist(),
+                "values": c.data.tolist()}
+    if method == "edge_mean_curvature":
+        return [[int(i), int(j), float(h)] for (i, j), h in value.items()]
+    if method == "intrinsic_delaunay_triangulation":
+        F2, l2 = value
+        return {"F": np.asarray(F2).tolist(), "l2": np.asarray(l2).tolist()}
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (np.integer, np.floating, np.bool_)):
+        return value.item()
+    return value
+
+
+def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
+    """Answer protocol requests for the Python object ``impl`` until stdin ends: the
+    protocol's server side, for a Python program that wants to be checked as a process
+    (and the reference a driver in another language can be compared with).
+
+    >>> import io
+    >>> class Chi:
+    ...     def euler_characteristic(self, V, F):
+    ...         return len(V) - 3 + len(F)
+    >>> out = io.StringIO()
+    >>> serve(Chi(), io.StringIO('{"method": "hello"}\\n{"id": 1, "method": '
+    ...       '"euler_characteristic", "V": [[0,0,0],[1,0,0],[0,1,0]], "F": [[0,1,2]]}\\n'), out)
+    >>> print(out.getvalue().strip())
+    {"name": "Chi", "methods": ["euler_characteristic"], "machine_epsilon": 2.220446049250313e-16}
+    {"id": 1, "value": 1}
+    """
+    import sys
+    from ddg_oracle.properties.protocol import capabilities, implementation_name, machine_epsilon
+    stdin = stdin or sys.stdin
+    stdout = stdout or sys.stdout
+    for line in stdin:
+        if not line.strip():
+            continue
+        request = json.loads(line)
+        method = request.get("method")
+        if method == "hello":
+            answer = {"name": name or implementation_name(impl),
+                      "methods": sorted(capabilities(impl), key=list(METHODS).index),
+                      "machine_epsilon": machine_epsilon(impl)}
+        else:
+            k = request.get("id")
+            try:
+                if method == "planar_delaunay":
+                    value = impl.planar_delaunay(np.asarray(request["P"], dtype=np.float64))
+                else:
+                    value = getattr(impl, method)(np.asarray(request["V"], dtype=np.float64),
+                                                  np.asarray(request["F"], dtype=np.int64))
+                answer = {"id": k, "value": _encode(method, value)}
+            except OutsideDomain as e:
+                answer = {"id": k, "error": {"kind": "outside_domain", "message": str(e)}}
+            except Exception as e:  # noqa: BLE001  (the implementation's failure, reported)
+                answer = {"id": k, "error": {"kind": "failed",
+                                             "message": f"{type(e).__name__}: {e}"}}
+        stdout.write(json.dumps(answer) + "\n")
+        stdout.flush()

@@ -1,0 +1,145 @@
+"""The executable protocol: programs in any language checked through ``exec:COMMAND``.
+
+A C++ driver (examples/cpp/cotan_driver.cpp, built here with g++) passes the cotan
+properties and its planted bug is caught on one triangle, by ``ddg-oracle check`` and
+by the pytest plugin; the Python server (``serve``) round-trips every value shape; a
+driver that dies, segfaults, hangs, writes garbage or answers the wrong shape or id is
+reported as a crash with its input, and the run goes on.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.oracles.executable import DriverFailed, Executable
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.protocol import OutsideDomain
+from ddg_oracle.properties.runner import CRASHED, FAILED, PASSED, run_property
+from ddg_oracle.reference import surfaces
+
+ROOT = Path(__file__).resolve().parent.parent
+DRIVER = [sys.executable, str(ROOT / "tests" / "misbehaving_driver.py")]
+TET = surfaces.tetrahedron().to_arrays()
+
+
+def _misbehaving(mode: str, timeout: float = 10.0) -> Executable:
+    return Executable(DRIVER + [mode], timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def cpp_driver(tmp_path_factory):
+    compiler = shutil.which("g++") or shutil.which("c++")
+    if compiler is None:
+        pytest.skip("needs a C++ compiler")
+    exe = tmp_path_factory.mktemp("cpp") / "cotan_driver"
+    out = subprocess.run([compiler, "-O2", "-std=c++17", "-o", str(exe),
+                          str(ROOT / "examples" / "cpp" / "cotan_driver.cpp")],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    return exe
+
+
+def test_the_cpp_driver_agrees_with_the_reference(cpp_driver):
+    impl = Executable(str(cpp_driver))
+    assert impl.name == "cpp-cotan" and impl.methods == {"cotan_laplacian"}
+    V, F = TET
+    L = impl.cotan_laplacian(np.array(V, float), np.array(F))
+    ref = ReferenceImplementation().cotan_laplacian(np.array(V, float), np.array(F))
+    assert abs(L - ref).max() < 8 * np.finfo(float).eps
+    for pid in ("D3.1", "T3.6", "C3.3"):
+        assert run_property(PROPERTIES[pid], impl, profile("ci")).status == PASSED, pid
+    impl.close()
+
+
+def test_the_cpp_drivers_planted_bug_is_caught_on_one_triangle_by_the_cli(cpp_driver):
+    out = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--impl",
+                          f"exec:{cpp_driver} --bug=boundary", "--only", "D3.1", "--profile",
+                          "ci", "--workers", "1"], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600)
+    assert out.returncode == 1, out.stdout + out.stderr
+    assert "[D3.1] cpp-cotan-boundary-bug" in out.stdout
+    faces = int(re.search(r"mesh: \d+ vertices, (\d+) faces", out.stdout).group(1))
+    assert faces <= 2
+    where = re.search(r"counterexample files \(mesh.obj, reproduce.py\): (\S+)", out.stdout)
+    [snippet] = Path(where.group(1)).glob("failures/*/reproduce.py")
+    assert f"load_implementation('exec:{cpp_driver} --bug=boundary')" in snippet.read_text()
+    rerun = subprocess.run([sys.executable, str(snippet)], cwd="/", capture_output=True,
+                           text=True, timeout=120)
+    assert "PropertyFailure: [D3.1] cpp-cotan-boundary-bug" in rerun.stderr
+
+
+def test_the_cpp_driver_in_the_pytest_plugin(cpp_driver, tmp_path):
+    out = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-q",
+                          "--ddg-impl", f"exec:{cpp_driver} --bug=sign", "--ddg-only", "D3.1",
+                          "--ddg-profile", "ci"], cwd=tmp_path, capture_output=True, text=True,
+                         timeout=600)
+    assert out.returncode == 1, out.stdout + out.stderr
+    assert "1 failed" in out.stdout and "[D3.1] cpp-cotan-sign-bug" in out.stdout
+
+
+def test_the_python_server_round_trips_every_protocol_value():
+    impl = Executable([sys.executable, str(ROOT / "examples" / "exec_numpy_cotan.py")],
+                      timeout=30)
+    assert impl.name == "numpy-cotan" and impl.methods == {"cotan_laplacian"}
+    V, F = (np.array(a) for a in surfaces.disk(5).to_arrays())
+    from examples.numpy_cotan import NumpyCotan
+    assert abs(impl.cotan_laplacian(V.astype(float), F) - NumpyCotan().cotan_laplacian(V, F)).max() == 0
+    impl.close()
+
+
+@pytest.mark.parametrize("mode, words", [
+    ("dies", "closed its output"), ("segfault", "signal SIGSEGV"),
+    ("hangs", "no answer within 2 s"), ("garbage", "not JSON"),
+    ("wrong-shape", "expected a sparse matrix"), ("wrong-id", "to request id"),
+])
+def test_a_misbehaving_driver_is_a_crash_with_its_message(mode, words):
+    impl = _misbehaving(mode, timeout=2.0)
+    V, F = TET
+    assert impl.euler_characteristic(V, F) == 2 if mode in ("wrong-shape",) else True
+    with pytest.raises(DriverFailed, match=words) as err:
+        impl.cotan_laplacian(V, F)
+    if mode == "segfault":
+        assert "it printed: driver.c:17" in str(err.value)
+    impl.close()
+
+
+def test_a_driver_restarts_after_dying_and_declines_and_fails_are_answers():
+    flaky = _misbehaving("flaky")
+    V, F = TET
+    assert flaky.euler_characteristic(V, F) == 2
+    with pytest.raises(DriverFailed, match="exited with code 3"):
+        flaky.euler_characteristic(V, F)
+    assert flaky.euler_characteristic(V, F) == 2          # a fresh process
+    flaky.close()
+    with pytest.raises(OutsideDomain):
+        _misbehaving("outside").euler_characteristic(V, F)
+    with pytest.raises(DriverFailed, match="failed: not written yet"):
+        _misbehaving("fails").euler_characteristic(V, F)
+
+
+def test_a_crashing_driver_is_a_crashed_result_and_the_run_goes_on():
+    segfault = _misbehaving("segfault", timeout=5.0)
+    r = run_property(PROPERTIES["D3.1"], segfault, profile("default"))
+    assert r.status == CRASHED and "SIGSEGV" in r.error and r.mesh is not None
+    ok = _misbehaving("ok")
+    assert run_property(PROPERTIES["D1.6"], ok, profile("default")).status == PASSED
+    wrong = run_property(PROPERTIES["D3.1"], ok, profile("ci"))    # an empty matrix
+    assert wrong.status == FAILED
+    segfault.close()
+    ok.close()
+
+
+def test_an_unstartable_command_is_a_usage_error(capsys):
+    from ddg_oracle.cli import main
+    assert main(["check", "--impl", "exec:/no/such/driver", "--only", "D1.6"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot start" in err and "/no/such/driver" in err and err.count("\n") == 1

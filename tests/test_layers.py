@@ -1,0 +1,80 @@
+"""The layers of docs/ARCHITECTURE.md, kept true: who may import whom.
+
+reference -> the standard library and itself; properties -> reference (and numpy,
+scipy, hypothesis); oracles -> reference and properties (and the libraries they
+adapt); only the application (ddg_oracle/) imports everything.  Read from the
+import statements themselves (ast), so a lazy import inside a function counts too.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+LAYERS = {"reference": 0, "properties": 1, "oracles": 2, "application": 3}
+APPLICATION = {"cli", "jobs", "isolation", "report", "render", "meshfiles", "compare",
+               "implementations", "pytest_plugin", "traceability", "html_report", "__main__"}
+
+
+def _layer_of_module(name: str) -> str | None:
+    """The layer of an absolute module name of ours, or None for anything else."""
+    parts = name.split(".")
+    if parts[0] != "ddg_oracle":
+        return None
+    if len(parts) == 1 or parts[1] in APPLICATION:
+        return "application"
+    return parts[1] if parts[1] in LAYERS else None
+
+
+def _imports(path: Path, package: str) -> list[tuple[int, str]]:
+    """(line, absolute module name) of every import in ``path``."""
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            out += [(node.lineno, a.name) for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:                       # relative: resolve against the package
+                base = package.split(".")[:len(package.split(".")) - node.level + 1]
+                name = ".".join(base + ([node.module] if node.module else []))
+            else:
+                name = node.module or ""
+            out.append((node.lineno, name))
+            if node.module is None or name == "ddg_oracle":
+                out += [(node.lineno, f"{name}.{a.name}") for a in node.names]
+    return out
+
+
+def _files():
+    for folder, layer, package in (("reference", "reference", "ddg_oracle.reference"),
+                                   ("properties", "properties", "ddg_oracle.properties"),
+                                   ("oracles", "oracles", "ddg_oracle.oracles"),
+                                   ("ddg_oracle", "application", "ddg_oracle")):
+        for path in sorted((ROOT / folder).rglob("*.py")):
+            sub = ".".join(path.relative_to(ROOT / folder).with_suffix("").parts[:-1])
+            yield path, layer, package + (f".{sub}" if sub else "")
+
+
+@pytest.mark.parametrize("path, layer, package", list(_files()),
+                         ids=lambda x: str(x.relative_to(ROOT)) if isinstance(x, Path) else None)
+def test_every_import_goes_down_the_layers(path, layer, package):
+    for line, name in _imports(path, package):
+        other = _layer_of_module(name)
+        # (that the reference imports only the standard library besides itself is
+        # tests/test_project.py's test_reference_imports_only_the_standard_library)
+        if other is not None:
+            assert LAYERS[other] <= LAYERS[layer], (
+                f"{path.relative_to(ROOT)}:{line} imports {name} ({other} layer) from the "
+                f"{layer} layer")
+
+
+def test_the_layer_check_catches_an_upward_import(tmp_path):
+    bad = tmp_path / "bad.py"
+    bad.write_text("def f():\n    from ddg_oracle.cli import main\n")
+    [(line, name)] = _imports(bad, "ddg_oracle.properties")
+    assert (line, _layer_of_module(name)) == (2, "application")
+    rel = tmp_path / "rel.py"
+    rel.write_text("from ..oracles import libigl\n")
+    assert _imports(rel, "ddg_oracle.properties")[0][1] == "ddg_oracle.oracles"
