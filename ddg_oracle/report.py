@@ -285,6 +285,8 @@ def known_findings() -> list[dict]:
         if not m:
             continue
         ident, library, kind, found_by = m.groups()
+        # "with `libigl(boundary=library)`": the finding is that option's, not the default's
+        options = re.findall(r"with `?[\w-]+\(([^)`]*)\)", found_by)
         ids = set()
         for group in re.findall(r"propert(?:y|ies) ((?:[A-Z][\w.]*(?: / [A-Z][\w.]*)*"
                                 r"(?:, )?)+)", found_by):
@@ -292,8 +294,7 @@ def known_findings() -> list[dict]:
                 if part:
                     ids.add(part.strip())
         rows.append({"id": ident, "library": _base(re.sub(r"('s|[^\w-])+$", "", library)),
-                     "kind": kind.strip(),
-                     "properties": ids})
+                     "kind": kind.strip(), "properties": ids, "options": options})
     return rows
 
 
@@ -303,7 +304,10 @@ def known_finding(r, findings) -> str | None:
 
     parts = {x.strip() for x in r.property_id.split("/")}
     hits = [f for f in findings
-            if f["library"] == _base(r.implementation) and parts & f["properties"]]
+            if f["library"] == _base(r.implementation) and parts & f["properties"]
+            and (not f["options"]) == ("(" not in r.implementation)
+            and all(o.replace("=", "='") in r.implementation or o in r.implementation
+                    for o in f["options"])]
     # a tie is a precision limit; a failure or crash a bug or convention
     tie_kind = [f for f in hits if (f["kind"] == "precision limit") == (r.status == TIE)]
     return (tie_kind or hits or [{"id": None}])[0]["id"]

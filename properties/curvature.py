@@ -150,27 +150,74 @@ _WITH_BOUNDARY = {
 }
 
 
+def _reversed_faces(s: PolyhedralSurface, seed: int) -> tuple[PolyhedralSurface, int]:
+    """The surface with a random nonempty subset of its faces reversed (same vertices, same
+    metric: an orientable surface inconsistently oriented); (surface, faces reversed)."""
+    rng = random.Random(seed)
+    faces = [list(f) for f in s.triangulation.faces]
+    flip = [f for f in range(len(faces)) if rng.random() < 0.5] or [0]
+    for f in flip:
+        a, b, c = faces[f]
+        faces[f] = [a, c, b]
+    t = Triangulation.from_faces(faces, n_vertices=s.n_vertices)
+    return PolyhedralSurface(t, s.positions), len(flip)
+
+
+def _scaled_and_moved(s: PolyhedralSurface, k: int, e: int | None, signs: int) -> PolyhedralSurface:
+    """Every position times 2**k, then moved by 2**e times the (scaled) mesh size along
+    (+-1, +-1, +-1) (``signs``: three bits): exact, dyadic, so the reference stays exact."""
+    scale = Fraction(2) ** k
+    pts = [tuple(x * scale for x in p) for p in s.positions]
+    if e is not None:
+        size = max(abs(x) for p in pts for x in p)
+        log2 = size.numerator.bit_length() - size.denominator.bit_length()   # log2 |x|, +-1
+        unit = Fraction(2) ** (log2 + e)
+        shift = [-unit if signs >> d & 1 else unit for d in range(3)]
+        pts = [tuple(x + o for x, o in zip(p, shift)) for p in pts]
+    return s.with_positions(pts)
+
+
 @st.composite
-def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True):
-    """A constructor's surface (X1.4), maybe minus a face, maybe 1-to-4 subdivided, jittered.
+def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
+                      intrinsic: bool = False, far: bool = True):
+    """A constructor's surface (X1.4), maybe minus a face, maybe 1-to-4 subdivided, jittered,
+    maybe scaled by 2**k (k in -60..60) and moved far from the origin (2**e times its size,
+    e in 0..30).
 
     Draws a few small integers: which constructor and its size, whether to
     remove a face (chi - 1, a boundary loop), whether to subdivide (exact
     midpoints), the jitter level (0 = none) and seed, rational or float
-    offsets.  Coordinates end as floats.  Shrinks towards the tetrahedron.
+    offsets, the scale exponent and the offset exponent (both applied exactly:
+    powers of 2).  ``intrinsic=True`` (for properties of the metric alone:
+    angle defects, turning angles, corner angles) adds Möbius strips (non-
+    orientable, with boundary) and orientable surfaces with a random subset of
+    faces reversed (inconsistently oriented): same metric, other halfedges.
+    ``far=False`` leaves out scale and offset (for a property that moves the
+    surface itself: a rotated far-away surface rounded to floats can lose a face).
+    Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1,
+    at the origin, consistently oriented.
     """
     names = []
     if closed is not False:
         names += list(_CLOSED)
     if closed is not True:
         names += list(_WITH_BOUNDARY) + ["holed " + n for n in ("tetrahedron", "cube", "torus")]
-    name = draw(st.sampled_from(names))
+    # orientation first, so that it shrinks to the plain case: 0 consistently oriented,
+    # 1 a Möbius strip (non-orientable, with boundary), 2 some faces reversed
+    orientation = draw(st.integers(0, 2)) if intrinsic else 0
+    if orientation == 1 and closed is True:
+        orientation = 2
+    name = draw(st.sampled_from(names))      # drawn always: the choices stay aligned when
+    if orientation == 1:                      # orientation shrinks to 0
+        name = "moebius strip"
     a, b = draw(st.integers(0, 5)), draw(st.integers(0, 5))
     if name in _CLOSED:
         s, chi = _CLOSED[name](a, b), _CHI[name]
     elif name in _WITH_BOUNDARY:
         build, chi = _WITH_BOUNDARY[name]
         s = build(a, b)
+    elif name == "moebius strip":
+        s, chi = surfaces.mobius_strip(3 + a % 5), 0
     else:
         base = name.split(" ", 1)[1]
         s0 = _CLOSED[base](a, b)
@@ -186,7 +233,18 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True):
         seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
         s = _jittered(s, level, seed, floats)
         recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
-    return CurvatureCase(floated(s), chi, recipe)
+    if orientation == 2:
+        s, k = _reversed_faces(s, draw(st.integers(0, 1 << 16)))
+        recipe += f", {k} face(s) reversed"
+    k = draw(st.integers(-60, 60)) if far and draw(st.integers(0, 2)) == 2 else 0
+    e = draw(st.integers(0, 30)) if far and draw(st.integers(0, 3)) == 3 else None
+    if k or e is not None:
+        signs = draw(st.integers(0, 7)) if e is not None else 0
+        s = _scaled_and_moved(s, k, e, signs)
+        recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
+    params = (("scale exponent", k), ("offset exponent", e),
+              ("orientation", ("consistent", "moebius", "faces reversed")[orientation]))
+    return CurvatureCase(floated(s), chi, recipe, params=params)
 
 
 @st.composite
@@ -417,7 +475,7 @@ def _units(err: float, bound: float) -> str:
 
 @prop("D2.2", "angle_defects = 2 pi - angle sum at every interior vertex, as the exact reference, "
       "within the derived float bound",
-      needs={"angle_defects"}, strategy=jittered_surfaces)
+      needs={"angle_defects"}, strategy=lambda: jittered_surfaces(intrinsic=True))
 def angle_defects_match_reference(impl, case: CurvatureCase):
     K = _defects(impl, case, "D2.2")
     tol = vertex_tolerances(case, corner_tolerances(case))
@@ -431,7 +489,7 @@ def angle_defects_match_reference(impl, case: CurvatureCase):
 
 @prop("R2.4", "boundary vertices get the turning angle pi - angle sum; interior K plus turning "
       "angles sum to 2 pi chi", needs={"angle_defects"},
-      strategy=lambda: jittered_surfaces(closed=False))
+      strategy=lambda: jittered_surfaces(closed=False, intrinsic=True))
 def turning_angles_and_gauss_bonnet_with_boundary(impl, case: CurvatureCase):
     K = _defects(impl, case, "R2.4")
     tol = vertex_tolerances(case, corner_tolerances(case))
@@ -456,7 +514,8 @@ def _check_total(pid, impl, case, K, tol):
 
 
 @prop("T2.6", "Gauss-Bonnet: the angle defects of a closed surface sum to 2 pi chi, within the "
-      "derived bound", needs={"angle_defects"}, strategy=lambda: jittered_surfaces(closed=True))
+      "derived bound", needs={"angle_defects"},
+      strategy=lambda: jittered_surfaces(closed=True, intrinsic=True))
 def gauss_bonnet(impl, case: CurvatureCase):
     K = _defects(impl, case, "T2.6")
     tol = vertex_tolerances(case, corner_tolerances(case))
@@ -483,7 +542,8 @@ def cube_angle_defects(impl, example):
 
 @prop("T2.5", "Theorema Egregium: angle defects are unchanged by a rational rigid motion and a "
       "relabelling (within both bounds plus input rounding)", needs={"angle_defects"},
-      strategy=lambda: st.tuples(jittered_surfaces(), rational_motions(), st.integers(0, 1 << 16)))
+      strategy=lambda: st.tuples(jittered_surfaces(far=False), rational_motions(),
+                                 st.integers(0, 1 << 16)))
 def angle_defects_are_invariant(impl, example):
     case, (R, tr), key = example
     moved, perm = _relabel(ref.rigid_motion(case.surface, R, tr), key)
@@ -615,7 +675,7 @@ def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
 
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "
       "(the piecewise flat metric built from squared lengths alone)", needs={"corner_angles"},
-      strategy=jittered_surfaces)
+      strategy=lambda: jittered_surfaces(intrinsic=True))
 def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
     from ddg_oracle.reference.metric import PiecewiseFlatSurface
     m = case.surface.metric()

@@ -113,3 +113,66 @@ class LaplaceBeltramiWithoutHalf(ReferenceImplementation):
 
     def intrinsic_delaunay_laplacian(self, V, F):
         return 2 * super().intrinsic_delaunay_laplacian(V, F)
+
+
+# --- bugs that only inputs far from the plain case show (scale, offset, orientation) ---------
+
+
+def _numpy_corner_angles(V, F, squared_lengths):
+    """Corner angles by the law of cosines from per-corner squared edge lengths."""
+    import numpy as np
+    out = np.empty(F.shape)
+    for c in range(3):
+        i, j, k = F[:, c], F[:, (c + 1) % 3], F[:, (c + 2) % 3]
+        a2, b2, c2 = squared_lengths(V, i, j), squared_lengths(V, i, k), squared_lengths(V, j, k)
+        out[:, c] = np.arccos(np.clip((a2 + b2 - c2) / (2 * np.sqrt(a2 * b2)), -1, 1))
+    return out
+
+
+class BoundaryByMissingTwin(ReferenceImplementation):
+    """Boundary vertices found as the ends of halfedges i -> j whose twin j -> i is missing:
+    right on consistently oriented meshes, wrong on a Möbius strip or with a reversed face
+    (an interior edge listed twice in one direction looks like two boundary edges)."""
+
+    name = "boundary-by-missing-twin"
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        F = np.asarray(F)
+        sums = np.zeros(len(V))
+        np.add.at(sums, F, super().corner_angles(V, F))
+        halfedges = {(int(f[c]), int(f[(c + 1) % 3])) for f in F for c in range(3)}
+        boundary = {v for i, j in halfedges if (j, i) not in halfedges for v in (i, j)}
+        return np.array([(np.pi if v in boundary else 2 * np.pi) - sums[v]
+                         for v in range(len(V))])
+
+
+class AbsoluteZeroArea(ReferenceImplementation):
+    """Corner angles with a 'degenerate triangle' guard on an absolute threshold: a face of
+    |cross| < 1e-13 (any face of a mesh scaled below about 1e-7) gets angles pi/3."""
+
+    name = "absolute-zero-area"
+
+    def corner_angles(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        angles = super().corner_angles(V, F)
+        cross = np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1)
+        angles[cross < 1e-13] = np.pi / 3
+        return angles
+
+
+class OffsetCancellation(ReferenceImplementation):
+    """Squared edge lengths as |x|^2 + |y|^2 - 2 x.y: exact far from nothing, but far from
+    the origin the three terms cancel catastrophically (and the angles with them)."""
+
+    name = "offset-cancellation"
+
+    def corner_angles(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+
+        def squared(V, i, j):
+            x, y = V[i], V[j]
+            return (x * x).sum(1) + (y * y).sum(1) - 2 * (x * y).sum(1)
+        return _numpy_corner_angles(V, F, squared)
