@@ -354,14 +354,21 @@ def _check(args, argv) -> int:
             _warn(f"not checked: {why}")
     specs = list(dict.fromkeys(args.impl or available()))
     t0 = time.perf_counter()
-    started = _start(specs, args.timeout)
-    names = {s: getattr(i, "name", s) for s, i in started.items()}
     options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget)
     if meshes:
         tasks = [jobs.Task(s, None, k) for k in range(len(meshes)) for s in specs]
     else:
         tasks = [jobs.Task(s, p.id) for p in props for s in specs]
     workers = min(workers, len(tasks))
+    # Started here: what this process runs itself (one worker), or what must be seen to
+    # load before the run (a user's module, a program) so that a mistake is exit 2 at
+    # once.  With a pool, a built-in adapter whose library is installed is started by the
+    # pool's workers only: starting it here too would cost every library's import again.
+    from ddg_oracle.implementations import BUILTIN
+    plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
+    started = _start([s for s in specs if workers <= 1 or s not in plain], args.timeout)
+    names = {s: getattr(i, "name", s) for s, i in started.items()}
+    names.update({s: s for s in plain if s not in names})   # their display name is the name
     if workers <= 1:
         for s, impl in started.items():
             jobs.adopt(s, impl)
@@ -397,7 +404,9 @@ def _check(args, argv) -> int:
     from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
     from ddg_oracle.report import write_report
     bad = [r for r in results if not r.ok]
-    spec_of = {n: s for s, n in names.items()}
+    # display name -> spec: of the implementations started here, else as results say
+    spec_of = {r.implementation: r.spec for r in results if r.spec}
+    spec_of.update({n: s for s, n in names.items()})
     if args.report:
         command = {"profile": args.profile, "seed": seed, "implementations": specs,
                    "only": sorted(only) if only else None,

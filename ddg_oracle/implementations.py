@@ -134,17 +134,28 @@ def convention_counterpart(spec: str) -> tuple[str, str] | None:
     return base, "; ".join(documented[(k, v)] for k, v in options.items())
 
 
+#: The library each built-in adapter wraps (None: the core's own dependencies).
+LIBRARIES: dict[str, str | None] = {"reference": None, "libigl": "igl", "pymeshlab": "pymeshlab",
+                                    "scipy": "scipy", "gpytoolbox": "gpytoolbox",
+                                    "robust_laplacian": "robust_laplacian",
+                                    "potpourri3d": "potpourri3d"}
+
+
 def available() -> list[str]:
-    """Built-in implementations whose libraries import on this machine."""
-    return [name for name in BUILTIN if name not in missing()]
+    """Built-in implementations whose libraries are installed on this machine."""
+    gone = missing()
+    return [name for name in BUILTIN if name not in gone]
 
 
 def missing() -> dict[str, str]:
-    """{built-in name: why it cannot be loaded here}, e.g. a library that is not installed."""
+    """{built-in name: why it is not available}: its library is not installed.  Found
+    without importing it (``importlib.util.find_spec``): importing every library only to
+    see that it is there costs seconds, and the workers import it again anyway."""
+    import importlib.util
     out = {}
     for name in BUILTIN:
-        try:
-            load_implementation(name)
-        except ImplementationNotFound as e:
-            out[name] = str(e)
+        lib = LIBRARIES.get(name)
+        if lib is not None and importlib.util.find_spec(lib) is None:
+            out[name] = (f"{name} is not installed (no module {lib!r}); "
+                         f"pip install 'ddg-oracle[{EXTRAS.get(name, 'all')}]'")
     return out

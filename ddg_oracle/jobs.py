@@ -89,8 +89,11 @@ def run_task(task: Task) -> list:
 
     opts = _STATE["options"]
     all_properties()
-    impl = implementation(task.spec, opts.timeout)
-    counterpart, convention = _counterpart(task.spec)
+    try:
+        impl = implementation(task.spec, opts.timeout)
+        counterpart, convention = _counterpart(task.spec)
+    except Exception as e:  # noqa: BLE001  (installed but broken: a result, not a dead worker)
+        return _crashed(task, f"{task.spec} cannot be loaded: {e}")
     if task.mesh is None:
         budget = opts.budget if opts.budget is not None else profile_budget(opts.profile)
         return [run_property(PROPERTIES[task.property_id], impl, profile(opts.profile), opts.seed,

@@ -248,6 +248,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
                seconds=time.perf_counter() - t0, ties=state["ties"], example=state["last"], **out)
     _note_outside(r, state)
+    r.spec = implementation_spec(impl)
     _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
     if state["stopped"] is not None:
         what = ("shrinking stopped early" if r.status in (FAILED, CRASHED)

@@ -19,7 +19,7 @@ from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, run_property
 from tests.planted_bugs import AbsoluteZeroArea, BoundaryByMissingTwin, OffsetCancellation
 
-SEARCH = settings(max_examples=2000, database=None, deadline=None, derandomize=True,
+SEARCH = settings(max_examples=1000, database=None, deadline=None, derandomize=True,
                   suppress_health_check=list(HealthCheck))
 
 
