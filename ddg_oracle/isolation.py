@@ -23,10 +23,10 @@ from __future__ import annotations
 import multiprocessing as mp
 import os
 import resource
-import signal
 import tempfile
 import traceback
 
+from ddg_oracle.oracles.processes import exit_text, stderr_tail
 from ddg_oracle.properties.budget import check_time_left, time_left
 from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
                                            machine_epsilon, require_protocol)
@@ -175,28 +175,14 @@ class Isolated:
     def _how_it_died(self) -> str:
         self._proc.join(5)
         code = self._proc.exitcode
-        if code is not None and code < 0:
-            try:
-                how = f"crashed with signal {signal.Signals(-code).name}"
-            except ValueError:
-                how = f"crashed with signal {-code}"
-        else:
-            how = f"exited with code {code}"
+        how = (f"crashed with {exit_text(code)}" if code is not None and code < 0
+               else f"exited with code {code}")
         said = self.stderr_tail()
         return f"{how}; it printed: {said}" if said else how
 
-    def stderr_tail(self, lines: int = 3, chars: int = 400) -> str:
+    def stderr_tail(self) -> str:
         """The last lines the worker wrote to stderr (its library's own message), or ''."""
-        try:
-            with open(self._stderr, "rb") as fh:
-                fh.seek(0, 2)
-                fh.seek(max(0, fh.tell() - 4 * chars))
-                text = fh.read().decode("utf-8", "replace")
-        except OSError:
-            return ""
-        tail = " | ".join(line.strip() for line in text.strip().splitlines()[-lines:]
-                          if line.strip())
-        return tail[-chars:]
+        return stderr_tail(self._stderr)
 
     def call(self, method: str, *args):
         # inside a check task, wait at most what its budget has left (properties.budget)

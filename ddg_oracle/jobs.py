@@ -17,6 +17,8 @@ from __future__ import annotations
 import multiprocessing as mp
 from dataclasses import dataclass
 
+from ddg_oracle.oracles.processes import exit_text
+
 IN_PROCESS = ("reference",)      # specs run in the checking process itself
 
 
@@ -319,7 +321,7 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                     proc.join(5)
                     del running[conn]
                     conn.close()
-                    how = _exit_text(proc.exitcode)
+                    how = exit_text(proc.exitcode)
                     if k is not None:
                         why_died[k] = how
                         if attempts[k] <= RETRIES:
@@ -344,11 +346,3 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
             conn.close()
 
 
-def _exit_text(code) -> str:
-    import signal
-    if code is not None and code < 0:
-        try:
-            return f"signal {signal.Signals(-code).name}"
-        except ValueError:
-            return f"signal {-code}"
-    return f"exit code {code}"

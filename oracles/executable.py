@@ -41,6 +41,7 @@ import scipy.sparse
 from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain
 
 from .arrays import checked_arrays
+from .processes import exit_text, stderr_tail
 
 PROTOCOL_VERSION = 1
 #: seconds a program may take to answer the handshake (it may import a lot, or JIT)
@@ -206,25 +207,16 @@ class Executable:
             except subprocess.TimeoutExpired:
                 code = None                            # still running (hung, or garbage)
         self._stop()
-        if code is not None and code < 0:
-            import signal
-            try:
-                how += f" (it died with signal {signal.Signals(-code).name})"
-            except ValueError:
-                how += f" (it died with signal {-code})"
-        elif code is not None:
-            how += f" (it exited with code {code})"
+        if code is not None:
+            how += (f" (it died with {exit_text(code)})" if code < 0
+                    else f" (it exited with code {code})")
         said = self.stderr_tail()
         return DriverFailed(f"{self.name if hasattr(self, 'name') else self.spec}.{method}: "
                             f"{how}" + (f"; it printed: {said}" if said else ""))
 
-    def stderr_tail(self, lines: int = 3, chars: int = 400) -> str:
+    def stderr_tail(self) -> str:
         """The last lines the program wrote to stderr, or ''."""
-        try:
-            text = open(self._stderr, "rb").read()[-4 * chars:].decode("utf-8", "replace")
-        except OSError:
-            return ""
-        return " | ".join(x.strip() for x in text.strip().splitlines()[-lines:] if x.strip())[-chars:]
+        return stderr_tail(self._stderr)
 
     def _send(self, obj, method: str) -> None:
         try:

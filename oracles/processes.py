@@ -1,0 +1,40 @@
+"""What a child process that ran an implementation left behind: how it ended, what it said.
+
+Shared by the isolated Python workers (:mod:`ddg_oracle.isolation`), the programs of the
+executable protocol (:mod:`.executable`) and the pool of check workers
+(:mod:`ddg_oracle.jobs`), so that every report words a death the same way.
+"""
+
+from __future__ import annotations
+
+import signal
+
+
+def exit_text(code: int | None) -> str:
+    """How a process ended, from its exit code (negative: the signal that killed it).
+
+    >>> exit_text(-11), exit_text(3), exit_text(None)
+    ('signal SIGSEGV', 'exit code 3', 'no exit code (still running)')
+    """
+    if code is None:
+        return "no exit code (still running)"
+    if code < 0:
+        try:
+            return f"signal {signal.Signals(-code).name}"
+        except ValueError:
+            return f"signal {-code}"
+    return f"exit code {code}"
+
+
+def stderr_tail(path, lines: int = 3, chars: int = 400) -> str:
+    """The last ``lines`` non-empty lines of the file a process's stderr went to, joined
+    with ' | ' and cut to ``chars`` (a library's own message before it died), or ''."""
+    try:
+        with open(path, "rb") as fh:
+            fh.seek(0, 2)
+            fh.seek(max(0, fh.tell() - 4 * chars))
+            text = fh.read().decode("utf-8", "replace")
+    except OSError:
+        return ""
+    tail = [x.strip() for x in text.strip().splitlines() if x.strip()][-lines:]
+    return " | ".join(tail)[-chars:]
