@@ -117,7 +117,7 @@ def float_mesh(mesh):
     return V, [[int(i) for i in f] for f in F]
 
 
-def _inexact(exact) -> bool:
+def rounded_by_floats(exact) -> bool:
     """Whether some coordinate is not exactly its float (the float view rounds it)."""
     return any(Fraction(float(c)) != c for p in exact for c in p
                if isinstance(c, (int, Fraction)))
@@ -137,7 +137,7 @@ def mesh_text(mesh, exact=None, limit: int = INLINE_VERTICES, indent: str = "  "
 
     lines.append(listing("V", V))
     lines.append(listing("F", F))
-    if exact is not None and _inexact(exact[0]):
+    if exact is not None and rounded_by_floats(exact[0]):
         rows = [[str(Fraction(c)) for c in p] for p in exact[0]]
         lines.append(listing("exact V (the floats above round these)", rows))
     return textwrap.indent("\n".join(lines), indent)

@@ -39,8 +39,8 @@ from hypothesis import given, seed as hypothesis_seed, settings as Settings
 from ddg_oracle.reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
 from .budget import Budget, BudgetExceeded, task_budget
-from .counterexample import (encode_example, exact_mesh, float_mesh, implementation_spec,
-                             mesh_text, snippet)
+from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
+                             implementation_spec, mesh_text, rounded_by_floats, snippet)
 from .profiles import profile as named_profile, profile_budget
 from .protocol import OutsideDomain, capabilities, implementation_name, require_protocol
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
@@ -325,7 +325,7 @@ def _attach_counterexample(r: Result, impl, example) -> None:
         return
     r.spec = implementation_spec(impl)
     exact = exact_mesh(example)
-    if exact is not None and any(Fraction(float(c)) != c for p in exact[0] for c in p):
+    if exact is not None and rounded_by_floats(exact[0]):
         r.exact = [[str(Fraction(c)) for c in p] for p in exact[0]]
     if r.source != "generated" or (r.mesh is not None and len(r.mesh[1]) > REPLAY_FACES):
         return                                  # a mesh file's snippet checks the file again
@@ -461,7 +461,8 @@ def describe(r: Result, limit: int | None = None, snippet_lines: int | None = No
     if r.mesh is not None:
         exact = (r.exact, r.mesh[1]) if r.exact is not None else None
         text += "\n" + mesh_text(r.mesh, exact, **({"limit": limit} if limit else {}))
-        if files and (len(r.mesh[0]) > (limit or 24) or len(r.mesh[1]) > (limit or 24)):
+        shown = limit or INLINE_VERTICES
+        if files and (len(r.mesh[0]) > shown or len(r.mesh[1]) > shown):
             text += f"\n  the whole mesh: {files}"
     if r.replay is not None:
         code = snippet(r.property_id, r.spec, r.replay)
