@@ -1,14 +1,15 @@
 """``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``.
 
 Groups: cotan, flips, r3, hypothesis (the default set), suite (the test suite and one
-check), main (``ddg-oracle check`` three times and with ci: the main job's time)."""
+check), main (``ddg-oracle check`` three times and with ci: the main job's time), catch (the time
+to catch each planted bug under the default profile)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from . import cotan, flips, report, suite
+from . import catch, cotan, flips, report, suite
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -18,6 +19,7 @@ GROUPS = {
     "hypothesis": suite.run_hypothesis,
     "suite": suite.run_suite,
     "main": suite.run_main,
+    "catch": catch.run,
 }
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 

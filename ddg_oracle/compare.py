@@ -183,12 +183,12 @@ class MeshExamples:
         return self._get("surface_case", build)
 
     def curvature_case(self):
-        from ddg_oracle.properties.curvature import CurvatureCase
+        from ddg_oracle.properties.strategies import CurvatureCase
         return self._get("curvature_case", lambda: CurvatureCase(
             self.surface, self.facts["chi"], self.mesh.name))
 
     def mesh_case(self):
-        from ddg_oracle.properties.laplacian import MeshCase
+        from ddg_oracle.properties.strategies import MeshCase
         return self._get("mesh_case", lambda: MeshCase(
             self.surface.positions, tuple(tuple(f) for f in self.mesh.F), self.mesh.name))
 

@@ -175,7 +175,6 @@ def kill_descendants(grace: float = 1.0) -> None:
 
 
 def _alive(pid: int) -> bool:
-    import os
     try:
         with open(f"/proc/{pid}/stat", "rb") as fh:
             return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"

@@ -79,3 +79,50 @@ def checked_arrays(V, F) -> tuple[np.ndarray, np.ndarray]:
         raise NonFiniteValue(f"V has NaN or infinite coordinates: non-finite value {V[i, j]} "
                              f"at vertex {i}, coordinate {j}")
     return V, np.ascontiguousarray(F, dtype=np.int64)
+
+
+class Referenced:
+    """The vertices a face uses, for a library (or the reference) that refuses or drops the
+    others: ``V``, ``F`` compacted to them, ``keep[v]`` the input index of compact vertex v.
+
+    Answers are put back on the input's indices with the protocol's values at the
+    isolated vertices (:data:`ddg_oracle.properties.protocol.ISOLATED_VERTEX`).
+
+    >>> r = Referenced([[0, 0, 0], [5, 5, 5], [1, 0, 0], [0, 1, 0]], [[0, 2, 3]])
+    >>> r.keep.tolist(), r.F.tolist(), r.isolated
+    ([0, 2, 3], [[0, 1, 2]], 1)
+    >>> r.scatter([1.0, 2.0, 3.0], fill=9.0).tolist()
+    [1.0, 9.0, 2.0, 3.0]
+    """
+
+    def __init__(self, V, F):
+        V, F = checked_arrays(V, F)
+        self.n = V.shape[0]
+        self.keep = np.unique(F)
+        self.isolated = self.n - len(self.keep)
+        if self.isolated:
+            new = np.full(self.n, -1, dtype=np.int64)
+            new[self.keep] = np.arange(len(self.keep))
+            V, F = V[self.keep], new[F]
+        self.V, self.F = V, F
+
+    def scatter(self, values, fill: float) -> np.ndarray:
+        """Per compact vertex values -> per input vertex, ``fill`` at the isolated ones."""
+        values = np.asarray(values, dtype=np.float64)
+        if not self.isolated:
+            return values
+        out = np.full(self.n, fill, dtype=np.float64)
+        out[self.keep] = values
+        return out
+
+    def embed(self, M):
+        """A compact (k, k) sparse matrix -> (n, n), zero rows and columns at isolated vertices."""
+        if not self.isolated:
+            return M
+        import scipy.sparse as sp
+        C = sp.coo_matrix(M)
+        return sp.csr_matrix((C.data, (self.keep[C.row], self.keep[C.col])), shape=(self.n, self.n))
+
+    def index(self, v) -> int:
+        """The input index of compact vertex v."""
+        return int(self.keep[v])

@@ -15,6 +15,10 @@ from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.exact.measures import surd_sum
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from ddg_oracle.properties.protocol import ISOLATED_VERTEX
+
+from .arrays import Referenced
+
 
 def _view(x) -> float:
     """The correctly rounded float of an exact value; beyond the float range that is +-inf
@@ -26,22 +30,30 @@ def _view(x) -> float:
 
 
 class ReferenceImplementation:
+    """The reference on arrays.  A triangulated surface has no vertex outside its faces, so
+    vertices used by no face are set aside and given the protocol's values
+    (``ISOLATED_VERTEX``: angle defect 2 pi, area 0, a zero Laplacian row; each counts
+    1 in V - E + F); topology questions other than chi are asked of the rest."""
+
     name = "reference"
 
     @staticmethod
     def _t(V, F) -> Triangulation:
-        return Triangulation.from_faces(F, n_vertices=len(V))
+        r = Referenced(V, F)
+        return Triangulation.from_faces(r.F, n_vertices=len(r.V))
 
     @staticmethod
     def _s(V, F) -> PolyhedralSurface:
-        return PolyhedralSurface.from_arrays(V, F)
+        r = Referenced(V, F)
+        return PolyhedralSurface.from_arrays(r.V, r.F)
 
     # chapter 1
     def euler_characteristic(self, V, F) -> int:
-        return self._t(V, F).euler_characteristic()
+        return self._t(V, F).euler_characteristic() + Referenced(V, F).isolated
 
     def boundary_loops(self, V, F) -> list[list[int]]:
-        return self._t(V, F).boundary_loops()
+        r = Referenced(V, F)
+        return [[r.index(v) for v in loop] for loop in self._t(V, F).boundary_loops()]
 
     def is_orientable(self, V, F) -> bool:
         return self._t(V, F).is_orientable()
@@ -54,16 +66,16 @@ class ReferenceImplementation:
         return np.array([[float(a) for a in f] for f in curvature.corner_angles(self._s(V, F))])
 
     def angle_defects(self, V, F):
-        s = self._s(V, F)
-        K = np.zeros(len(V))
+        s, r = self._s(V, F), Referenced(V, F)
+        K = np.zeros(s.n_vertices)
         for v, k in {**curvature.angle_defects(s), **curvature.turning_angles(s)}.items():
             K[v] = float(k)
-        return K
+        return r.scatter(K, ISOLATED_VERTEX["angle_defects"])
 
     def edge_mean_curvature(self, V, F):
-        s = self._s(V, F)
+        s, r = self._s(V, F), Referenced(V, F)
         t = s.triangulation
-        return {tuple(sorted(t.edge_vertices(e))): float(h)
+        return {tuple(sorted(r.index(v) for v in t.edge_vertices(e))): float(h)
                 for e, h in curvature.mean_curvature(s).items()}
 
     def area(self, V, F) -> float:
@@ -71,13 +83,15 @@ class ReferenceImplementation:
 
     # chapter 3
     def cotan_laplacian(self, V, F):
-        return laplacian.cotan_laplacian(self._s(V, F)).to_scipy()
+        return Referenced(V, F).embed(laplacian.cotan_laplacian(self._s(V, F)).to_scipy())
 
     def vertex_areas_barycentric(self, V, F):
-        return np.array([_view(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))])
+        areas = [_view(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))]
+        return Referenced(V, F).scatter(areas, ISOLATED_VERTEX["vertex_areas_barycentric"])
 
     def vertex_areas_voronoi(self, V, F):
-        return np.array([_view(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))])
+        areas = [_view(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))]
+        return Referenced(V, F).scatter(areas, ISOLATED_VERTEX["vertex_areas_voronoi"])
 
     # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + (c+1) % 3)
     def is_locally_delaunay(self, V, F):
@@ -87,14 +101,15 @@ class ReferenceImplementation:
                           for c in range(3)] for f in range(t.n_faces)], dtype=bool)
 
     def intrinsic_delaunay_laplacian(self, V, F):
-        return delaunay.laplace_beltrami(self._s(V, F)).to_scipy()
+        return Referenced(V, F).embed(delaunay.laplace_beltrami(self._s(V, F)).to_scipy())
 
     def intrinsic_delaunay_triangulation(self, V, F):
         d, _ = delaunay.flip_to_delaunay(self._s(V, F).metric())
         t = d.triangulation
         l2 = [[_view(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
               for f in range(t.n_faces)]
-        return np.array(t.faces, dtype=np.int64), np.array(l2, dtype=float)
+        keep = Referenced(V, F).keep
+        return keep[np.array(t.faces, dtype=np.int64)], np.array(l2, dtype=float)
 
     def planar_delaunay(self, P):
         from ddg_oracle.reference.planar import delaunay_triangulation

@@ -21,14 +21,14 @@ or draw meshes for your own properties::
 
 from .registry import PROPERTIES, Property, PropertyFailure, TieDisagreement, all_properties
 from .runner import check_implementation, run_properties
-from .strategies import (SurfaceCase, closed_surfaces, named_surfaces, triangulated_surfaces)
-# mesh strategies of the chapter modules, for users' own tests (MeshCase: exact positions,
-# .arrays() gives the float64 V and int64 F an implementation receives)
-from .curvature import jittered_surfaces, rational_motions, vertex_stars
+from .strategies import (CurvatureCase, MeshCase, SurfaceCase, acute_meshes, any_meshes,
+                         closed_meshes, closed_surfaces, jittered_grids, jittered_surfaces,
+                         named_surfaces, obtuse_meshes, planar_meshes, scaled_meshes,
+                         single_triangles, surface_meshes, triangulated_surfaces, weighted_graphs,
+                         with_functions, with_isolated)
+# strategies that live beside the properties they serve (star kinds, Delaunay flips, flat tori)
+from .curvature import rational_motions, vertex_stars
 from .delaunay import delaunay_meshes, flipped_meshes, two_triangulations
-from .laplacian import (MeshCase, acute_meshes, any_meshes, closed_meshes, jittered_grids,
-                        obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
-                        weighted_graphs, with_functions)
 from .metrics import flat_tori, polycube_surfaces, randomly_flipped
 from .planar_points import integer_point_sets, integer_quadrilaterals, rational_point_sets
 
@@ -37,7 +37,8 @@ all_properties()        # registers every property, so PROPERTIES is complete on
 __all__ = ["PROPERTIES", "Property", "PropertyFailure", "TieDisagreement", "all_properties",
            "check_implementation", "run_properties", "SurfaceCase", "closed_surfaces", "named_surfaces",
            "triangulated_surfaces", "jittered_surfaces", "rational_motions", "vertex_stars",
-           "delaunay_meshes", "flipped_meshes", "two_triangulations", "MeshCase", "acute_meshes",
+           "delaunay_meshes", "flipped_meshes", "two_triangulations", "MeshCase", "CurvatureCase",
+           "surface_meshes", "with_isolated", "acute_meshes",
            "any_meshes", "closed_meshes", "jittered_grids", "obtuse_meshes", "planar_meshes",
            "scaled_meshes", "single_triangles", "weighted_graphs", "with_functions", "flat_tori",
            "polycube_surfaces", "randomly_flipped", "integer_point_sets", "integer_quadrilaterals",

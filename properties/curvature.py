@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass, field
+
 from fractions import Fraction
 
 import numpy as np
@@ -35,9 +35,11 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement, prop
+from .strategies import CurvatureCase, floated, jittered_surfaces
+from .variants import circle_point
 
-from .protocol import eps  # noqa: E402  (the checked implementation's epsilon)
 C_ANGLE = 16.0                               # see the module docstring
 
 
@@ -47,57 +49,6 @@ def gamma(n: int) -> float:
 
 
 # --- examples -------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class CurvatureCase:
-    """A polyhedral surface whose every coordinate is a float (so an implementation sees it
-    exactly), with what is known about it by construction.
-
-    ``chi`` is the Euler characteristic of the surface built (X1.4, CS), ``vertex``
-    and ``kind`` name the distinguished vertex of a vertex star and how it was
-    built ("convex", "planar", "saddle", "folded"), ``params`` what else the
-    construction fixed (e.g. the fold height).
-    """
-
-    surface: PolyhedralSurface
-    chi: int
-    recipe: str
-    vertex: int | None = None
-    kind: str | None = None
-    params: tuple = ()
-    _cache: dict = field(default_factory=dict, compare=False, repr=False)
-
-    @property
-    def triangulation(self) -> Triangulation:
-        return self.surface.triangulation
-
-    @property
-    def mesh(self):
-        return ([[float(x) for x in p] for p in self.surface.positions],
-                [list(f) for f in self.triangulation.faces])
-
-    def arrays(self):
-        """(V float64 n x 3, F int64 m x 3), exactly the reference's input."""
-        if "arrays" not in self._cache:
-            V, F = self.mesh
-            self._cache["arrays"] = (np.array(V, dtype=np.float64).reshape(-1, 3),
-                                     np.array(F, dtype=np.int64).reshape(-1, 3))
-        return self._cache["arrays"]
-
-    def __getstate__(self):
-        # the cache (float arrays, exact values) is rebuilt on demand: not pickled, so a
-        # replayable counterexample stays short
-        return {**self.__dict__, "_cache": {}}
-
-    def __repr__(self) -> str:
-        t = self.triangulation
-        return f"CurvatureCase({self.recipe}; V={t.n_vertices}, F={t.n_faces}, F={self.mesh[1]})"
-
-
-def floated(surface: PolyhedralSurface) -> PolyhedralSurface:
-    """The surface with every coordinate rounded to the nearest float (then taken exactly)."""
-    return surface.with_positions([[float(x) for x in p] for p in surface.positions])
 
 
 def _relabel(surface: PolyhedralSurface, key: int):
@@ -113,140 +64,6 @@ def _relabel(surface: PolyhedralSurface, key: int):
     return PolyhedralSurface(t, [surface.positions[inverse[w]] for w in range(n)]), perm
 
 
-def _subdivided(s: PolyhedralSurface) -> PolyhedralSurface:
-    t, mids = s.triangulation.subdivide_1to4()
-    x = s.positions
-    return PolyhedralSurface(t, list(x) + [tuple((a + b) / 2 for a, b in zip(x[i], x[j]))
-                                           for i, j in mids])
-
-
-def _jittered(s: PolyhedralSurface, level: int, seed: int, floats: bool) -> PolyhedralSurface:
-    """Every coordinate moved by at most 2**-(4 + level): k/2**(6+level) or a random float."""
-    if level == 0:
-        return s
-    rng = random.Random(seed)
-    scale = Fraction(1, 2 ** (6 + level))
-    if floats:
-        off = lambda: Fraction(rng.uniform(-4.0, 4.0)) * scale   # noqa: E731
-    else:
-        off = lambda: rng.randint(-4, 4) * scale                   # noqa: E731
-    return s.with_positions([tuple(x + off() for x in p) for p in s.positions])
-
-
-_CLOSED = {
-    "tetrahedron": lambda a, b: surfaces.tetrahedron(),
-    "octahedron": lambda a, b: surfaces.octahedron(),
-    "cube": lambda a, b: surfaces.cube(),
-    "icosahedron": lambda a, b: surfaces.icosahedron(),
-    "torus": lambda a, b: surfaces.torus(3 + a % 3, 3 + b % 2),
-    "double torus": lambda a, b: surfaces.genus_surface(2),
-}
-_CHI = {"tetrahedron": 2, "octahedron": 2, "cube": 2, "icosahedron": 2, "torus": 0,
-        "double torus": -2}
-_WITH_BOUNDARY = {
-    "disk": (lambda a, b: surfaces.disk(3 + a % 6), 1),
-    "annulus": (lambda a, b: surfaces.annulus(3 + a % 4), 0),
-    "grid": (lambda a, b: surfaces.grid(1 + a % 3, 1 + b % 3), 1),
-}
-
-
-def _reversed_faces(s: PolyhedralSurface, seed: int) -> tuple[PolyhedralSurface, int]:
-    """The surface with a random nonempty subset of its faces reversed (same vertices, same
-    metric: an orientable surface inconsistently oriented); (surface, faces reversed)."""
-    rng = random.Random(seed)
-    faces = [list(f) for f in s.triangulation.faces]
-    flip = [f for f in range(len(faces)) if rng.random() < 0.5] or [0]
-    for f in flip:
-        a, b, c = faces[f]
-        faces[f] = [a, c, b]
-    t = Triangulation.from_faces(faces, n_vertices=s.n_vertices)
-    return PolyhedralSurface(t, s.positions), len(flip)
-
-
-def _scaled_and_moved(s: PolyhedralSurface, k: int, e: int | None, signs: int) -> PolyhedralSurface:
-    """Every position times 2**k, then moved by 2**e times the (scaled) mesh size along
-    (+-1, +-1, +-1) (``signs``: three bits): exact, dyadic, so the reference stays exact."""
-    scale = Fraction(2) ** k
-    pts = [tuple(x * scale for x in p) for p in s.positions]
-    if e is not None:
-        size = max(abs(x) for p in pts for x in p)
-        log2 = size.numerator.bit_length() - size.denominator.bit_length()   # log2 |x|, +-1
-        unit = Fraction(2) ** (log2 + e)
-        shift = [-unit if signs >> d & 1 else unit for d in range(3)]
-        pts = [tuple(x + o for x, o in zip(p, shift)) for p in pts]
-    return s.with_positions(pts)
-
-
-@st.composite
-def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
-                      intrinsic: bool = False, far: bool = True):
-    """A constructor's surface (X1.4), maybe minus a face, maybe 1-to-4 subdivided, jittered,
-    maybe scaled by 2**k (k in -60..60) and moved far from the origin (2**e times its size,
-    e in 0..30).
-
-    Draws a few small integers: which constructor and its size, whether to
-    remove a face (chi - 1, a boundary loop), whether to subdivide (exact
-    midpoints), the jitter level (0 = none) and seed, rational or float
-    offsets, the scale exponent and the offset exponent (both applied exactly:
-    powers of 2).  ``intrinsic=True`` (for properties of the metric alone:
-    angle defects, turning angles, corner angles) adds Möbius strips (non-
-    orientable, with boundary) and orientable surfaces with a random subset of
-    faces reversed (inconsistently oriented): same metric, other halfedges.
-    ``far=False`` leaves out scale and offset (for a property that moves the
-    surface itself: a rotated far-away surface rounded to floats can lose a face).
-    Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1,
-    at the origin, consistently oriented.
-    """
-    names = []
-    if closed is not False:
-        names += list(_CLOSED)
-    if closed is not True:
-        names += list(_WITH_BOUNDARY) + ["holed " + n for n in ("tetrahedron", "cube", "torus")]
-    # orientation first, so that it shrinks to the plain case: 0 consistently oriented,
-    # 1 a Möbius strip (non-orientable, with boundary), 2 some faces reversed
-    orientation = draw(st.integers(0, 2)) if intrinsic else 0
-    if orientation == 1 and closed is True:
-        orientation = 2
-    name = draw(st.sampled_from(names))      # drawn always: the choices stay aligned when
-    if orientation == 1:                      # orientation shrinks to 0
-        name = "moebius strip"
-    a, b = draw(st.integers(0, 5)), draw(st.integers(0, 5))
-    if name in _CLOSED:
-        s, chi = _CLOSED[name](a, b), _CHI[name]
-    elif name in _WITH_BOUNDARY:
-        build, chi = _WITH_BOUNDARY[name]
-        s = build(a, b)
-    elif name == "moebius strip":
-        s, chi = surfaces.mobius_strip(3 + a % 5), 0
-    else:
-        base = name.split(" ", 1)[1]
-        s0 = _CLOSED[base](a, b)
-        f = draw(st.integers(0, 1 << 10)) % s0.triangulation.n_faces
-        s, chi = PolyhedralSurface(s0.triangulation.remove_face(f), s0.positions), _CHI[base] - 1
-        name = f"{name} (face {f})"
-    recipe = f"{name} [{a}, {b}]"
-    if subdivide and draw(st.integers(0, 3)) == 3 and s.triangulation.n_faces <= 100:
-        s = _subdivided(s)
-        recipe += ", 1-to-4"
-    level = draw(st.integers(0, 2))
-    if level:
-        seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
-        s = _jittered(s, level, seed, floats)
-        recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
-    if orientation == 2:
-        s, k = _reversed_faces(s, draw(st.integers(0, 1 << 16)))
-        recipe += f", {k} face(s) reversed"
-    k = draw(st.integers(-60, 60)) if far and draw(st.integers(0, 2)) == 2 else 0
-    e = draw(st.integers(0, 30)) if far and draw(st.integers(0, 3)) == 3 else None
-    if k or e is not None:
-        signs = draw(st.integers(0, 7)) if e is not None else 0
-        s = _scaled_and_moved(s, k, e, signs)
-        recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
-    params = (("scale exponent", k), ("offset exponent", e),
-              ("orientation", ("consistent", "moebius", "faces reversed")[orientation]))
-    return CurvatureCase(floated(s), chi, recipe, params=params)
-
-
 @st.composite
 def rational_motions(draw):
     """(R, t): a rational rotation (Cayley transform of a rational skew matrix, T2.5) and a
@@ -254,13 +71,6 @@ def rational_motions(draw):
     w = [Fraction(draw(st.integers(-4, 4)), draw(st.integers(1, 3))) for _ in range(3)]
     tr = tuple(Fraction(draw(st.integers(-6, 6)), 2) for _ in range(3))
     return ref.cayley_rotation(*w), tr
-
-
-def _circle_point(angle: float) -> tuple[Fraction, Fraction]:
-    """A rational point of the unit circle near ``angle`` (not at angle pi)."""
-    t = Fraction(math.tan(angle / 2)).limit_denominator(1000)
-    d = 1 + t * t
-    return (1 - t * t) / d, 2 * t / d
 
 
 def _signed_permutation(k: int):
@@ -315,7 +125,7 @@ def vertex_stars(draw, kind: str | None = None):
             acc += g
         dirs = []
         for a, l in zip(angles, lam):
-            c, s = _circle_point(a)
+            c, s = circle_point(a)
             dirs.append((l * c, l * s, -l * steep if kind == "convex" else 0))
         params = (n, tuple(gaps), str(steep)) if kind == "convex" else (n, tuple(gaps))
     elif kind == "saddle":
@@ -328,7 +138,7 @@ def vertex_stars(draw, kind: str | None = None):
         for g in gaps:
             half.append(math.pi * float(acc) / total)
             acc += g
-        base = [(*_circle_point(a), Fraction(z)) for a, z in zip(half, heights)]
+        base = [(*circle_point(a), Fraction(z)) for a, z in zip(half, heights)]
         if _dot3(base[0], _cross3(base[1], base[2])) == 0:
             # coplanar: lift the third; its foot is off the line of the first two, so det != 0
             base[2] = (*base[2][:2], base[2][2] + 1)
@@ -342,7 +152,7 @@ def vertex_stars(draw, kind: str | None = None):
         n = 2 * m
         dirs = []
         for j in range(n):
-            c, s = _circle_point(2 * math.pi * (j + Fraction(1, 3)) / n)
+            c, s = circle_point(2 * math.pi * (j + Fraction(1, 3)) / n)
             dirs.append((c, s, h if j % 2 == 0 else -h))
         params = (n, h)
     else:
@@ -380,7 +190,7 @@ def _geometry(case: CurvatureCase):
     dihedral angle theta and its two faces.  Expected values never come from here."""
     c = case._cache
     if "geometry" not in c:
-        V, F = case.arrays()
+        V, F = case.surface_arrays()
         X = V[F]
         cross = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
         twice_area = np.linalg.norm(cross, axis=1)
@@ -411,7 +221,7 @@ def _geometry(case: CurvatureCase):
 
 def _input_scale(case: CurvatureCase) -> np.ndarray:
     """Per corner: max |x| over the face's vertices / the shorter adjacent edge (input rounding)."""
-    V, F = case.arrays()
+    V, F = case.surface_arrays()
     X = V[F]                                               # (m, 3, 3)
     size = np.abs(X).max(axis=(1, 2))
     out = np.empty(F.shape, dtype=np.float64)
@@ -457,13 +267,28 @@ def _call(impl, method: str, case: CurvatureCase):
     return getattr(impl, method)(V, F)
 
 
+ISOLATED_ANGLE_DEFECT = ISOLATED_VERTEX["angle_defects"]     # README, Conventions
+#: highest valence of a surface that T2.5 rotates (see angle_defects_are_invariant)
+ROTATED_VALENCE = 12
+
+
 def _defects(impl, case: CurvatureCase, pid: str) -> np.ndarray:
+    """The implementation's angle defects, checked for shape and, at isolated vertices, for
+    the convention 2 pi; returned in the surface's indexing (the reference's)."""
     K = np.asarray(_call(impl, "angle_defects", case), dtype=np.float64).reshape(-1)
-    n = case.triangulation.n_vertices
+    at = case.layout
+    n = len(at) + len(case.isolated)
     if K.shape != (n,):
         raise PropertyFailure(pid, impl, "angle_defects must return one value per vertex",
                               mesh=case.mesh, expected=(n,), observed=K.shape)
-    return K
+    for i, _ in case.isolated:
+        bound = gamma(1) * ISOLATED_ANGLE_DEFECT     # 2 pi minus an empty sum: one rounding
+        if not abs(K[i] - ISOLATED_ANGLE_DEFECT) <= bound:
+            raise PropertyFailure(pid, impl, "a vertex used by no face has angle defect 2 pi "
+                                  "(the empty angle sum; README, Conventions)", mesh=case.mesh,
+                                  element=f"vertex {i} (isolated)",
+                                  expected=ISOLATED_ANGLE_DEFECT, observed=float(K[i]), bound=bound)
+    return K[at] if case.isolated else K
 
 
 def _units(err: float, bound: float) -> str:
@@ -542,9 +367,13 @@ def cube_angle_defects(impl, example):
 
 @prop("T2.5", "Theorema Egregium: angle defects are unchanged by a rational rigid motion and a "
       "relabelling (within both bounds plus input rounding)", needs={"angle_defects"},
-      strategy=lambda: st.tuples(jittered_surfaces(far=False), rational_motions(),
+      strategy=lambda: st.tuples(jittered_surfaces(far=False, max_valence=ROTATED_VALENCE),
+                                 rational_motions(),
                                  st.integers(0, 1 << 16)))
 def angle_defects_are_invariant(impl, example):
+    """The moved copy is rounded to floats: a nearly flat vertex of high valence then has
+    an angle sum over many independent square roots whose exact zero test the reference
+    cannot finish yet (issue 18), so stars stay at valence <= ROTATED_VALENCE here."""
     case, (R, tr), key = example
     moved, perm = _relabel(ref.rigid_motion(case.surface, R, tr), key)
     other = CurvatureCase(floated(moved), case.chi, case.recipe + f", moved, relabelled {key}")
@@ -570,7 +399,7 @@ def pushable_surfaces(draw):
     if draw(st.booleans()):
         n = draw(st.integers(3, 7))
         top, bottom = Fraction(draw(st.integers(1, 8)), 4), Fraction(draw(st.integers(1, 8)), 4)
-        ring = [(*_circle_point(2 * math.pi * (k + Fraction(1, 3)) / n), 0) for k in range(n)]
+        ring = [(*circle_point(2 * math.pi * (k + Fraction(1, 3)) / n), 0) for k in range(n)]
         faces = [(0, 2 + k, 2 + (k + 1) % n) for k in range(n)]
         faces += [(1, 2 + (k + 1) % n, 2 + k) for k in range(n)]
         s = PolyhedralSurface(Triangulation.from_faces(faces),
@@ -733,10 +562,11 @@ def area_tolerance(case: CurvatureCase) -> float:
 
 def _edge_dict(impl, case, pid):
     raw = _call(impl, "edge_mean_curvature", case)
+    back = {w: v for v, w in enumerate(case.layout)}       # array index -> surface vertex
     out = {}
     for (i, j), value in dict(raw).items():
-        key = (int(min(i, j)), int(max(i, j)))
-        out[key] = float(value)
+        i, j = back.get(int(i), -1 - int(i)), back.get(int(j), -1 - int(j))
+        out[(min(i, j), max(i, j))] = float(value)
     return out
 
 

@@ -54,6 +54,17 @@ METHODS: dict[str, str] = {
 }
 
 
+#: what a per-vertex method answers at a vertex used by no face (an "isolated" vertex, as in
+#: an OBJ file with leftover vertices): the empty angle sum gives angle defect 2 pi (and
+#: sum K = 2 pi chi keeps holding with chi = V - E + F counting the point), no face gives
+#: it area, no edge gives it a Laplacian entry (its row and column of L are zero)
+ISOLATED_VERTEX: dict[str, float] = {
+    "angle_defects": 2 * 3.141592653589793,
+    "vertex_areas_barycentric": 0.0,
+    "vertex_areas_voronoi": 0.0,
+}
+
+
 FLOAT64_EPSILON = 2.0 ** -52
 _epsilon = contextvars.ContextVar("ddg_machine_epsilon", default=FLOAT64_EPSILON)
 

@@ -21,7 +21,8 @@ import numpy as np
 from ddg_oracle.properties.curvature import (CurvatureCase, area_tolerance, corner_tolerances,
                                   edge_mean_curvature_tolerances, floated, vertex_tolerances)
 from ddg_oracle.properties.delaunay import DelaunayExact
-from ddg_oracle.properties.laplacian import Exact, MeshCase, vertex_area_bounds
+from ddg_oracle.properties.laplacian import Exact, vertex_area_bounds
+from ddg_oracle.properties.strategies import MeshCase
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference import curvature as ref_curvature
 from ddg_oracle.reference import laplacian as ref_laplacian

@@ -1,7 +1,8 @@
 """Deliberately wrong implementations: each must be caught by a property.
 
 Each class is the reference with one plausible bug planted, the kind a
-developer actually writes.
+developer actually writes; ``planted`` names the protocol methods it changes
+(``python -m benchmarks catch`` checks each bug on the properties that call them).
 """
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
@@ -11,6 +12,7 @@ class ChiIgnoresBoundary(ReferenceImplementation):
     """Assumes a closed surface: E = 3F/2 (wrong as soon as there is a boundary)."""
 
     name = "chi-ignores-boundary"
+    planted = ("euler_characteristic",)
 
     def euler_characteristic(self, V, F):
         return len(V) - (3 * len(F)) // 2 + len(F)
@@ -20,6 +22,7 @@ class AlwaysOrientable(ReferenceImplementation):
     """Never looks for an orientation-reversing loop."""
 
     name = "always-orientable"
+    planted = ("is_orientable", "genus")
 
     def is_orientable(self, V, F):
         return True
@@ -32,6 +35,7 @@ class OneBoundaryLoop(ReferenceImplementation):
     """Chains all boundary edges into a single loop."""
 
     name = "one-boundary-loop"
+    planted = ("boundary_loops",)
 
     def boundary_loops(self, V, F):
         loops = super().boundary_loops(V, F)
@@ -42,6 +46,7 @@ class Float32Defects(ReferenceImplementation):
     """Correct angle defects, rounded to float32 (as a float32 library computes them)."""
 
     name = "float32-defects"
+    planted = ("angle_defects",)
 
     def angle_defects(self, V, F):
         import numpy as np
@@ -50,7 +55,10 @@ class Float32Defects(ReferenceImplementation):
 
 
 class Float32DefectsDeclared(Float32Defects):
+    """Not a bug: the same float32 values, declared (held to float32 bounds, it passes)."""
+
     name = "float32-defects-declared"
+    planted = ()
     machine_epsilon = 2.0 ** -23
 
 
@@ -60,6 +68,8 @@ class NoFlips(ReferenceImplementation):
     """Returns the cotan Laplacian of the input triangulation: forgets to flip."""
 
     name = "delaunay-without-flips"
+    planted = ("intrinsic_delaunay_laplacian", "planar_flip_to_delaunay",
+               "intrinsic_delaunay_triangulation")
 
     def intrinsic_delaunay_laplacian(self, V, F):
         return self.cotan_laplacian(V, F)
@@ -80,6 +90,7 @@ class OneFlipTooMany(ReferenceImplementation):
     quadrilateral is strictly convex (a loop that tests its stopping rule after acting)."""
 
     name = "one-flip-too-many"
+    planted = ("planar_flip_to_delaunay",)
 
     def planar_flip_to_delaunay(self, V, F):
         import numpy as np
@@ -99,6 +110,7 @@ class OneSidedDelaunayTest(ReferenceImplementation):
     """Tests only the angle in one of the two triangles: cot a >= 0 instead of cot a + cot b >= 0."""
 
     name = "one-sided-delaunay-test"
+    planted = ("is_locally_delaunay",)
 
     def is_locally_delaunay(self, V, F):
         import numpy as np
@@ -110,6 +122,7 @@ class LaplaceBeltramiWithoutHalf(ReferenceImplementation):
     """The Laplace-Beltrami weights cot a + cot b, without the 1/2."""
 
     name = "laplace-beltrami-without-half"
+    planted = ("intrinsic_delaunay_laplacian",)
 
     def intrinsic_delaunay_laplacian(self, V, F):
         return 2 * super().intrinsic_delaunay_laplacian(V, F)
@@ -135,6 +148,7 @@ class BoundaryByMissingTwin(ReferenceImplementation):
     (an interior edge listed twice in one direction looks like two boundary edges)."""
 
     name = "boundary-by-missing-twin"
+    planted = ("angle_defects",)
 
     def angle_defects(self, V, F):
         import numpy as np
@@ -152,6 +166,7 @@ class AbsoluteZeroArea(ReferenceImplementation):
     |cross| < 1e-13 (any face of a mesh scaled below about 1e-7) gets angles pi/3."""
 
     name = "absolute-zero-area"
+    planted = ("corner_angles",)
 
     def corner_angles(self, V, F):
         import numpy as np
@@ -167,6 +182,7 @@ class OffsetCancellation(ReferenceImplementation):
     the origin the three terms cancel catastrophically (and the angles with them)."""
 
     name = "offset-cancellation"
+    planted = ("corner_angles",)
 
     def corner_angles(self, V, F):
         import numpy as np
@@ -176,3 +192,171 @@ class OffsetCancellation(ReferenceImplementation):
             x, y = V[i], V[j]
             return (x * x).sum(1) + (y * y).sum(1) - 2 * (x * y).sum(1)
         return _numpy_corner_angles(V, F, squared)
+
+
+# --- bugs that slivers, high valence, components and isolated vertices show (issue 16) -------
+
+
+def _angle_sums(V, F, angles, n):
+    import numpy as np
+    sums = np.zeros(n)
+    np.add.at(sums, np.asarray(F), angles)
+    return sums
+
+
+def _boundary_vertices(F) -> set:
+    """Ends of edges with one face (unordered pairs: right for any orientation)."""
+    from collections import Counter
+    count = Counter(tuple(sorted((int(f[c]), int(f[(c + 1) % 3])))) for f in F for c in range(3))
+    return {v for e, k in count.items() if k == 1 for v in e}
+
+
+def _defects_from_sums(sums, boundary):
+    import numpy as np
+    return np.array([(np.pi if v in boundary else 2 * np.pi) - s for v, s in enumerate(sums)])
+
+
+class ClampedArccos(ReferenceImplementation):
+    """Corner angles as arccos of the cosine clipped to [-1 + 1e-10, 1 - 1e-10] 'to avoid NaN':
+    every angle below 1.4e-5 rad (a needle) or above pi - 1.4e-5 (a cap) is moved there."""
+
+    name = "clamped-arccos"
+    planted = ("corner_angles",)
+
+    def corner_angles(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        out = np.empty(F.shape)
+        for c in range(3):
+            a = V[F[:, (c + 1) % 3]] - V[F[:, c]]
+            b = V[F[:, (c + 2) % 3]] - V[F[:, c]]
+            cos = (a * b).sum(1) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
+            out[:, c] = np.arccos(np.clip(cos, -1 + 1e-10, 1 - 1e-10))
+        return out
+
+
+class MaxValence32(ReferenceImplementation):
+    """One-ring tables of a fixed width 32 (as GPU and C codes allocate them): a vertex of
+    valence above 32 sums only the angles of its first 32 corners."""
+
+    name = "max-valence-32"
+    planted = ("angle_defects",)
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        F = np.asarray(F)
+        angles = super().corner_angles(V, F)
+        sums, seen = np.zeros(len(V)), np.zeros(len(V), dtype=int)
+        for f, face in enumerate(F):
+            for c, v in enumerate(face):
+                if seen[v] < 32:
+                    sums[v] += angles[f, c]
+                    seen[v] += 1
+        return _defects_from_sums(sums, _boundary_vertices(F))
+
+
+class FirstComponentOnly(ReferenceImplementation):
+    """Walks the mesh from face 0 across edges and sums the angles of the faces it reaches:
+    right on a connected mesh; the vertices of any other component keep 2 pi."""
+
+    name = "first-component-only"
+    planted = ("angle_defects",)
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        F = np.asarray(F)
+        by_edge = {}
+        for f, face in enumerate(F):
+            for c in range(3):
+                by_edge.setdefault(frozenset((int(face[c]), int(face[(c + 1) % 3]))), []).append(f)
+        reached, todo = {0}, [0]
+        while todo:
+            f = todo.pop()
+            for c in range(3):
+                for g in by_edge[frozenset((int(F[f][c]), int(F[f][(c + 1) % 3])))]:
+                    if g not in reached:
+                        reached.add(g)
+                        todo.append(g)
+        angles = super().corner_angles(V, F)
+        keep = sorted(reached)
+        sums = _angle_sums(V, F[keep], angles[keep], len(V))
+        return _defects_from_sums(sums, _boundary_vertices(F))
+
+
+class WeldedByPosition(ReferenceImplementation):
+    """Merges vertices at the same position first (as mesh loaders do by default), then
+    computes defects per merged vertex: two components touching at a point share one
+    angle sum, and an isolated vertex on a used one takes that one's defect."""
+
+    name = "welded-by-position"
+    planted = ("angle_defects",)
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        _, weld = np.unique(V, axis=0, return_inverse=True)
+        weld = weld.reshape(-1)
+        W = weld[F]
+        sums = _angle_sums(V, W, super().corner_angles(V, F), len(V))
+        K = _defects_from_sums(sums, _boundary_vertices(W))
+        return K[weld]
+
+
+class BincountWithoutMinlength(ReferenceImplementation):
+    """Angle sums by np.bincount(F.ravel(), weights) without minlength=len(V): one value
+    short per unreferenced vertex at the end of V (right everywhere else: 2 pi - 0)."""
+
+    name = "bincount-without-minlength"
+    planted = ("angle_defects",)
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        F = np.asarray(F)
+        sums = np.bincount(F.ravel(), weights=super().corner_angles(V, F).ravel())
+        return _defects_from_sums(sums, _boundary_vertices(F))
+
+
+class CompactedVertices(ReferenceImplementation):
+    """Drops unreferenced vertices (np.unique of F), computes on the compacted mesh, and pads
+    the answer with 2 pi at the end: every vertex after an isolated one gets its
+    neighbour's value."""
+
+    name = "compacted-vertices"
+    planted = ("angle_defects",)
+
+    def angle_defects(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        K = super().angle_defects(V[used], inverse.reshape(F.shape))
+        return np.concatenate([K, np.full(len(V) - len(used), 2 * np.pi)])
+
+
+class TwinByReversedKey(ReferenceImplementation):
+    """Cotan Laplacian that pairs halfedge i -> j with its twin by looking up j -> i: an
+    interior edge between two inconsistently oriented faces (a reversed face, a Möbius
+    strip) is taken for two boundary edges and gets only one of its cotangents."""
+
+    name = "twin-by-reversed-key"
+    planted = ("cotan_laplacian",)
+
+    def cotan_laplacian(self, V, F):
+        import numpy as np
+        import scipy.sparse as sp
+        V, F = np.asarray(V, float), np.asarray(F)
+        cot = {}
+        for f, face in enumerate(F):
+            for c in range(3):
+                i, j, k = int(face[c]), int(face[(c + 1) % 3]), int(face[(c + 2) % 3])
+                a, b = V[i] - V[k], V[j] - V[k]
+                cot[(i, j)] = float(a @ b / np.linalg.norm(np.cross(a, b)))
+        rows, cols, vals = [], [], []
+        for (i, j), x in cot.items():
+            twin = cot.get((j, i))
+            if twin is not None and i > j:
+                continue                     # counted once, from the other halfedge
+            w = (x + twin) / 2 if twin is not None else x / 2
+            rows += [i, j, i, j]
+            cols += [j, i, i, j]
+            vals += [-w, -w, w, w]
+        return sp.csr_matrix((vals, (rows, cols)), shape=(len(V), len(V)))

@@ -15,10 +15,13 @@ import numpy as np
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 import pytest
+
+from examples.numpy_mesh import NumpyMesh
 from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 
 from ddg_oracle.properties import PROPERTIES, triangulated_surfaces
 from ddg_oracle.properties import curvature as P
+from ddg_oracle.properties.variants import circle_point
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
 from ddg_oracle.reference import curvature as C
@@ -156,7 +159,7 @@ def test_R2_2_defect_below_2pi_and_folded_star_unbounded_below():
         n = 2 * m
         pts = [(0, 0, 0)]
         for j in range(n):
-            c, s_ = P._circle_point(2 * math.pi * (j + Fraction(1, 3)) / n)
+            c, s_ = circle_point(2 * math.pi * (j + Fraction(1, 3)) / n)
             pts.append((c, s_, 4 if j % 2 == 0 else -4))
         star = PolyhedralSurface(Triangulation.from_faces(
             [(0, 1 + j, 1 + (j + 1) % n) for j in range(n)]), pts)
@@ -534,57 +537,10 @@ class ExactCurvature(ReferenceImplementation):
     name = "exact-curvature"
 
 
-class FloatCurvature:
+class FloatCurvature(NumpyMesh):
     """A plain float64 implementation (numpy, atan2 angles): what a library would do."""
 
     name = "float-atan2"
-
-    @staticmethod
-    def corner_angles(V, F):
-        X = V[F]
-        out = np.empty(F.shape)
-        for c in range(3):
-            a, b = X[:, (c + 1) % 3] - X[:, c], X[:, (c + 2) % 3] - X[:, c]
-            out[:, c] = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), (a * b).sum(axis=1))
-        return out
-
-    @staticmethod
-    def _boundary(V, F):
-        count = {}
-        for f in F.tolist():
-            for c in range(3):
-                e = tuple(sorted((f[c], f[(c + 1) % 3])))
-                count[e] = count.get(e, 0) + 1
-        b = np.zeros(len(V), dtype=bool)
-        for (i, j), k in count.items():
-            if k == 1:
-                b[i] = b[j] = True
-        return b
-
-    def angle_defects(self, V, F):
-        sums = np.zeros(len(V))
-        np.add.at(sums, F.reshape(-1), self.corner_angles(V, F).reshape(-1))
-        return np.where(self._boundary(V, F), np.pi, 2 * np.pi) - sums
-
-    def edge_mean_curvature(self, V, F):
-        X = V[F]
-        N = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
-        N /= np.linalg.norm(N, axis=1)[:, None]
-        face_of = {(f[c], f[(c + 1) % 3]): k for k, f in enumerate(F.tolist()) for c in range(3)}
-        out = {}
-        for (i, j), f in face_of.items():
-            g = face_of.get((j, i))
-            if g is not None and i < j:
-                e = V[j] - V[i]
-                length = float(np.linalg.norm(e))
-                theta = math.atan2(float(np.cross(N[f], N[g]) @ e) / length, float(N[f] @ N[g]))
-                out[(i, j)] = 0.5 * theta * length
-        return out
-
-    @staticmethod
-    def area(V, F):
-        X = V[F]
-        return 0.5 * float(np.linalg.norm(np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]), axis=1).sum())
 
 
 class DefectPiAtInteriorVertices(FloatCurvature):

@@ -6,7 +6,7 @@ from fractions import Fraction
 import pytest
 from hypothesis import given, strategies as st
 
-from ddg_oracle.properties.laplacian import obtuse_meshes, planar_meshes, weighted_graphs, with_boundary
+from ddg_oracle.properties.strategies import obtuse_meshes, planar_meshes, weighted_graphs, with_boundary
 from ddg_oracle.reference.dirichlet import (SingularDirichletProblem, directional_derivative,
                                  energy_gradient, energy_increase, has_positive_weights,
                                  is_constant_on_components, is_harmonic_at, kernel_dimension,

@@ -20,7 +20,7 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 
 from benchmarks.peers import flip_to_delaunay_immutable
-from ddg_oracle.properties.laplacian import any_meshes, closed_meshes
+from ddg_oracle.properties.strategies import any_meshes, closed_meshes
 from ddg_oracle.properties.strategies import triangulated_surfaces
 from ddg_oracle.reference import cotan_fast, curvature_fast, surfaces
 from ddg_oracle.reference.combinatorics import Triangulation

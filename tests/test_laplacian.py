@@ -10,9 +10,10 @@ import pytest
 import scipy.sparse as sp
 from hypothesis import given, strategies as st
 
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import laplacian as props
-from ddg_oracle.properties.laplacian import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
-                                  planar_meshes, weighted_graphs, with_functions)
+from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
+                                             planar_meshes, weighted_graphs, with_functions)
 from ddg_oracle.properties.profiles import profile
 from tests.property_checks import assert_caught, assert_passes_well_inside
 from ddg_oracle.properties.registry import PROPERTIES
@@ -42,23 +43,10 @@ CHAPTER3 = ["D3.1", "T3.1 / R3.2", "T3.2", "C3.3", "C3.4 / T3.5", "T3.6", "R3.3"
 # --- a tiny adapter: float views of the exact reference, and planted bugs ----------------------
 
 
-class ExactViews:
+class ExactViews(ReferenceImplementation):
     """The exact reference behind the protocol: every float correctly rounded."""
 
     name = "exact reference (float views)"
-
-    @staticmethod
-    def _s(V, F):
-        return PolyhedralSurface.from_arrays(V, F)
-
-    def cotan_laplacian(self, V, F):
-        return cotan_laplacian(self._s(V, F)).to_scipy()
-
-    def vertex_areas_voronoi(self, V, F):
-        return np.array([float(a) for a in vertex_areas_voronoi(self._s(V, F))])
-
-    def vertex_areas_barycentric(self, V, F):
-        return np.array([float(a) for a in vertex_areas_barycentric(self._s(V, F))])
 
 
 def _planted(V, F, corner_of, boundary_factor=0.5, sign=1.0):

@@ -104,7 +104,7 @@ def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
     import numpy as np
     from ddg_oracle.oracles.libigl import Libigl
     from ddg_oracle.properties.delaunay import DelaunayExact, laplace_beltrami_operator
-    from ddg_oracle.properties.laplacian import MeshCase
+    from ddg_oracle.properties.strategies import MeshCase
     s = surfaces.torus(5, 4)
     case = MeshCase(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")
     A = Libigl().intrinsic_delaunay_laplacian(*case.arrays()).toarray()

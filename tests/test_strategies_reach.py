@@ -1,24 +1,31 @@
-"""The curvature strategies reach where real bugs hide, and shrink back to the plain case.
+"""The surface strategies reach where real bugs hide, and shrink back to the plain case.
 
 Scale (2^k, k in -60..60), offsets far from the origin (2^e times the mesh size, e up
 to 30), Möbius strips and inconsistently oriented surfaces (for the properties of the
-metric alone): each is drawn, and a search for it shrinks to the simplest surface with
-the parameter at its smallest value; a planted bug that only such inputs show is caught.
+metric alone), needles and caps down to 2^-24, valence up to 64, several components
+(touching at a point: two vertices at one position), isolated vertices, any order:
+each is drawn, and a search for it shrinks to the simplest surface with the parameter
+at its smallest value; a planted bug that only such inputs show is caught.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 from hypothesis import HealthCheck, find, settings
 from hypothesis.errors import NoSuchExample
 
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.curvature import jittered_surfaces
+from ddg_oracle.properties.strategies import jittered_surfaces
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, run_property
-from tests.planted_bugs import AbsoluteZeroArea, BoundaryByMissingTwin, OffsetCancellation
+from ddg_oracle.properties.strategies import surface_meshes, with_isolated, acute_meshes
+from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, BoundaryByMissingTwin,
+                                ClampedArccos, CompactedVertices, FirstComponentOnly,
+                                MaxValence32, OffsetCancellation, TwinByReversedKey,
+                                WeldedByPosition)
 
 SEARCH = settings(max_examples=1000, database=None, deadline=None, derandomize=True,
                   suppress_health_check=list(HealthCheck))
@@ -69,3 +76,124 @@ def test_bugs_only_far_inputs_show_are_caught(bug, pid):
     r = run_property(PROPERTIES[pid], bug(), profile("ci"))
     assert r.status == FAILED, f"{bug.name} passed {pid}"
     assert r.failure.mesh is not None
+
+
+@pytest.mark.parametrize("kind", ["needle", "cap"])
+def test_slivers_down_to_2_to_the_minus_15_are_drawn_and_shrink_to_one_split_tetrahedron(kind):
+    case = find(jittered_surfaces(), lambda c: _param(c, "sliver") == kind
+                and _param(c, "sliver exponent") >= 15, settings=SEARCH)
+    assert _param(case, "sliver exponent") == 15
+    assert case.triangulation.n_faces == 6 and case.recipe.startswith("tetrahedron [0, 0]")
+    # the new vertex really is 2^-15 of the mesh from a corner (needle) or an edge (cap)
+    V, F = case.arrays()
+    edges = np.linalg.norm(V[F[:, [1, 2, 0]]] - V[F], axis=2)
+    if kind == "needle":
+        assert edges.min() / edges.max() < 2.0 ** -14
+    else:
+        A = V[F]
+        double_area = np.linalg.norm(np.cross(A[:, 1] - A[:, 0], A[:, 2] - A[:, 0]), axis=1)
+        assert double_area.min() / edges.max() ** 2 < 2.0 ** -14
+
+
+def test_a_sliver_on_the_boundary_is_drawn():
+    case = find(jittered_surfaces(closed=False), lambda c: _param(c, "sliver") == "cap"
+                and "boundary" in _boundary_caps(c), settings=SEARCH)
+    assert _param(case, "sliver exponent") == 1
+
+
+def _boundary_caps(case):
+    # "boundary" when the split face's edge opposite the new vertex is a boundary edge
+    t, q = case.triangulation, case.surface.n_vertices - 1
+    for h in range(t.n_halfedges):
+        if t.twin(h) < 0 and q in t.faces[h // 3] and q not in (t.tail(h), t.head(h)):
+            return "boundary"
+    return ""
+
+
+def test_valence_up_to_64_is_drawn_and_shrinks_to_valence_33():
+    def valence(c):
+        t = c.triangulation
+        return max(sum(1 for f in t.faces if v in f) for v in range(t.n_vertices))
+    case = find(jittered_surfaces(), lambda c: valence(c) > 32, settings=SEARCH)
+    assert valence(case) == 33 and case.recipe.startswith(("fan of valence 33", "bipyramid of valence 33"))
+    big = find(jittered_surfaces(), lambda c: valence(c) >= 60, settings=SEARCH)
+    assert valence(big) == 60
+
+
+@pytest.mark.parametrize("touching", [False, True])
+def test_a_second_component_is_drawn_and_shrinks_to_a_triangle_beside_a_tetrahedron(touching):
+    case = find(jittered_surfaces(), lambda c: _param(c, "components") == 2
+                and _param(c, "touching") == touching, settings=SEARCH)
+    assert len(case.triangulation.components()) == 2
+    assert case.triangulation.n_faces == 5 and "and a triangle" in case.recipe
+    V, _ = case.mesh
+    distinct = {tuple(p) for p in V}
+    # touching: two vertices (one per component) at exactly one position, not merged
+    assert len(distinct) == len(V) - (1 if touching else 0)
+
+
+def test_isolated_vertices_are_drawn_anywhere_and_shrink_to_one_at_the_end():
+    case = find(jittered_surfaces(), lambda c: _param(c, "isolated") > 0, settings=SEARCH)
+    assert [i for i, _ in case.isolated] == [4] and case.triangulation.n_faces == 4
+    V, F = case.arrays()
+    assert len(V) == 5 and 4 not in set(F.ravel().tolist())   # leftover vertex at the end
+    inner = find(jittered_surfaces(), lambda c: any(0 < i < c.surface.n_vertices
+                                                    for i, _ in c.isolated), settings=SEARCH)
+    V, F = inner.arrays()
+    used = set(F.ravel().tolist())
+    assert any(0 < i < len(V) - 1 and i not in used for i in range(len(V)))   # in the middle
+    # the Laplacian strategies draw them too
+    c = find(with_isolated(acute_meshes(max_components=3)),
+             lambda c: c.n > len({v for f in c.faces for v in f}), settings=SEARCH)
+    assert c.n == len({v for f in c.faces for v in f}) + 1
+
+
+def test_order_is_drawn_and_shrinks_to_the_constructors_order():
+    case = find(jittered_surfaces(), lambda c: _param(c, "reordered"), settings=SEARCH)
+    assert case.recipe.startswith("tetrahedron [0, 0], reordered")
+    from ddg_oracle.reference import surfaces
+    plain = surfaces.tetrahedron().triangulation.faces
+    assert sorted(map(sorted, case.triangulation.faces)) != sorted(map(sorted, plain)) or \
+        list(case.triangulation.faces) != list(plain)
+
+
+def test_the_laplacian_strategies_draw_moebius_strips_and_reversed_faces():
+    for want in (False, True):
+        c = find(surface_meshes(), lambda c: _orientable(c) is want and _reversed(c),
+                 settings=SEARCH)
+        assert _reversed(c)
+
+
+def _orientable(c):
+    from ddg_oracle.reference.combinatorics import Triangulation
+    return Triangulation.from_faces(c.faces, n_vertices=c.n).is_orientable() if \
+        c.n == len({v for f in c.faces for v in f}) else None
+
+
+def _reversed(c):
+    from ddg_oracle.reference.combinatorics import Triangulation
+    if c.n != len({v for f in c.faces for v in f}):
+        return False
+    t = Triangulation.from_faces(c.faces, n_vertices=c.n)
+    return any(t.reversed_gluing(e) for e in range(t.n_edges))
+
+
+DEFECTS = ("D2.2", "R2.4", "T2.6")          # the properties calling angle_defects first
+
+
+@pytest.mark.parametrize("bug, pids, max_faces", [
+    (ClampedArccos, ("D2.6",), 6),            # a tetrahedron with one face split at 2^-k
+    (MaxValence32, DEFECTS, 66),              # valence 33: a fan of 33 faces, or a bipyramid
+    (FirstComponentOnly, DEFECTS, 8),         # a tetrahedron and a triangle (two, closed)
+    (WeldedByPosition, DEFECTS, 8),           # ... touching it at a vertex
+    (BincountWithoutMinlength, DEFECTS, 4),   # a tetrahedron and an isolated vertex last
+    (CompactedVertices, DEFECTS, 4),          # a tetrahedron and an isolated vertex first
+    (TwinByReversedKey, ("D3.1",), 6),        # a reversed face or a Möbius strip
+])
+def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
+    # as `ddg-oracle check --only` would run them, under ci: some property catches it
+    failed = [r for r in (run_property(PROPERTIES[p], bug(), profile("ci")) for p in pids)
+              if r.status == FAILED]
+    assert failed, f"{bug.name} passed {pids}"
+    smallest = min(len(r.failure.mesh[1]) for r in failed)
+    assert smallest <= max_faces, f"{bug.name}: shrunk to {smallest} faces"

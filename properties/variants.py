@@ -1,0 +1,168 @@
+"""Exact variants of a polyhedral surface, where real bugs hide (issue 16).
+
+Each function takes a :class:`PolyhedralSurface` with exact (rational) positions
+and returns another one, exactly: no float is involved, so the reference stays
+exact on the result and a strategy can round to floats once, at the end.
+
+* :func:`permuted` -- vertices relabelled, faces reordered, corners rotated;
+* :func:`with_sliver` -- one face split 1-to-3 at a point 2**-k from a corner
+  (two needles) or from an edge's midpoint (a cap, with an angle near pi; on the
+  boundary when that edge is a boundary edge);
+* :func:`disjoint_union` -- a second component beside the first, or touching it
+  at one point (two vertices at the same position, not merged);
+* :func:`fan` and :func:`bipyramid` -- vertices of valence up to 128 (CAD end
+  caps), exactly planar or lifted by 2**-k.
+
+Strategies draw the small integers these take; every integer 0 is the plain case,
+so a failing example shrinks to it.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from fractions import Fraction
+
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+
+__all__ = ["permuted", "with_sliver", "disjoint_union", "fan", "bipyramid", "circle_point",
+           "is_degenerate"]
+
+
+def permuted(s: PolyhedralSurface, seed: int) -> PolyhedralSurface:
+    """The same surface with its vertex ids shuffled, its faces reordered and each face's
+    corners rotated (orientation kept), all chosen by ``seed``; seed 0 is the identity."""
+    if not seed:
+        return s
+    rng = random.Random(seed)
+    n = s.n_vertices
+    perm = list(range(n))
+    rng.shuffle(perm)                           # old vertex v is now perm[v]
+    faces = [tuple(perm[v] for v in f) for f in s.triangulation.faces]
+    rng.shuffle(faces)
+    faces = [f[r:] + f[:r] for f, r in ((f, rng.randrange(3)) for f in faces)]
+    positions = [None] * n
+    for v, w in enumerate(perm):
+        positions[w] = s.positions[v]
+    return PolyhedralSurface(Triangulation.from_faces(faces, n_vertices=n), positions)
+
+
+def _cross(u, v):
+    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+
+
+def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
+                lift: int | None = None) -> PolyhedralSurface:
+    """Face f = halfedge // 3 split 1-to-3 at a new point p, with (a, b) the edge of that
+    halfedge and c the third corner:
+
+    * ``kind="needle"``: p = x_a + 2**-k (centroid - x_a): the two faces at a
+      get an edge 2**-k times the others (needles), the third is nearly f;
+    * ``kind="cap"``: p = mid(a, b) + 2**-k (x_c - mid(a, b)): face (a, b, p)
+      has an angle near pi at p (a cap, at the boundary when (a, b) is a
+      boundary edge).
+
+    ``lift``: p is also moved off f's plane by 2**-(k + lift) times f's normal
+    (the cross product, exact), so the new vertex is not exactly flat.  The
+    faces keep f's orientation; the surface's topology is unchanged.
+    """
+    faces = [tuple(f) for f in s.triangulation.faces]
+    f, r = divmod(halfedge % (3 * len(faces)), 3)
+    a, b, c = faces[f][r], faces[f][(r + 1) % 3], faces[f][(r + 2) % 3]
+    x = s.positions
+    t = Fraction(1, 2 ** k)
+    if kind == "needle":
+        centroid = [(x[a][i] + x[b][i] + x[c][i]) / 3 for i in range(3)]
+        p = [x[a][i] + t * (centroid[i] - x[a][i]) for i in range(3)]
+    elif kind == "cap":
+        mid = [(x[a][i] + x[b][i]) / 2 for i in range(3)]
+        p = [mid[i] + t * (x[c][i] - mid[i]) for i in range(3)]
+    else:
+        raise ValueError(f"unknown sliver kind {kind!r}")
+    if lift is not None:
+        nrm = _cross([x[b][i] - x[a][i] for i in range(3)], [x[c][i] - x[a][i] for i in range(3)])
+        p = [p[i] + t * Fraction(1, 2 ** lift) * nrm[i] for i in range(3)]
+    q = s.n_vertices
+    faces[f] = (a, b, q)
+    faces += [(b, c, q), (c, a, q)]
+    return PolyhedralSurface(Triangulation.from_faces(faces, n_vertices=q + 1),
+                             list(x) + [tuple(p)])
+
+
+def disjoint_union(s: PolyhedralSurface, other: PolyhedralSurface,
+                   touch: bool = False) -> PolyhedralSurface:
+    """``s`` and ``other`` as two components of one mesh (other's vertices numbered after s's).
+
+    ``other`` is moved by a dyadic translation: beside ``s`` (its bounding box
+    shifted past s's along x), or, with ``touch``, so that one of its vertices lands
+    exactly on one of s's: two vertices at one position, which an implementation
+    must not merge.
+    """
+    if touch:
+        # s's lexicographically largest vertex on other's smallest: other then lies beyond
+        # s's extreme point, and (halving other about that vertex until it does) the two
+        # share exactly that one position
+        a, b = max(s.positions), min(other.positions)
+        pts = other.positions
+        own = set(map(tuple, s.positions))
+        while len({tuple(x + ai - bi for x, ai, bi in zip(q, a, b)) for q in pts} & own) > 1:
+            pts = [tuple(bi + (x - bi) / 2 for x, bi in zip(q, b)) for q in pts]
+        other = other.with_positions(pts)
+        shift = [ai - bi for ai, bi in zip(a, b)]
+    else:
+        hi = max(p[0] for p in s.positions)
+        lo = min(p[0] for p in other.positions)
+        width = max(p[0] for p in other.positions) - lo
+        shift = [hi - lo + max(width, Fraction(1)) / 2, Fraction(0), Fraction(0)]
+    n = s.n_vertices
+    faces = [tuple(f) for f in s.triangulation.faces]
+    faces += [tuple(v + n for v in f) for f in other.triangulation.faces]
+    positions = list(s.positions) + [tuple(p + d for p, d in zip(q, shift))
+                                     for q in other.positions]
+    return PolyhedralSurface(Triangulation.from_faces(faces, n_vertices=len(positions)), positions)
+
+
+def circle_point(angle: float, denominator: int = 1000) -> tuple[Fraction, Fraction]:
+    """A rational point of the unit circle near ``angle`` (not at angle pi): the rational
+    parametrisation ((1 - t^2), 2 t) / (1 + t^2) at t ~ tan(angle / 2)."""
+    t = Fraction(math.tan(angle / 2)).limit_denominator(denominator)
+    d = 1 + t * t
+    return (1 - t * t) / d, 2 * t / d
+
+
+def _ring(n: int):
+    # rational unit-circle points at angles 2 pi (j + 1/3) / n: distinct, never at pi,
+    # exact cosines and sines, so an exactly planar star stays exactly planar
+    return [circle_point(2 * math.pi * (j + 1 / 3) / n, 64 * n) for j in range(n)]
+
+
+def fan(n: int, lift: int | None = None) -> PolyhedralSurface:
+    """The star of vertex 0 with n neighbours on the unit circle (a disk of n faces): exactly
+    planar in z = 0, or with the centre lifted to z = 2**-lift (nearly flat)."""
+    h = Fraction(0) if lift is None else Fraction(1, 2 ** lift)
+    faces = [(0, 1 + j, 1 + (j + 1) % n) for j in range(n)]
+    return PolyhedralSurface(Triangulation.from_faces(faces),
+                             [(Fraction(0), Fraction(0), h)] + [(c, s_, Fraction(0))
+                                                                for c, s_ in _ring(n)])
+
+
+def bipyramid(n: int, top: Fraction = Fraction(1), bottom: Fraction = Fraction(1)) -> PolyhedralSurface:
+    """A closed sphere: apexes (0, 0, top), (0, 0, -bottom) over an n-gon on the unit circle;
+    both apexes have valence n, the ring vertices 4."""
+    faces = [(0, 2 + j, 2 + (j + 1) % n) for j in range(n)]
+    faces += [(1, 2 + (j + 1) % n, 2 + j) for j in range(n)]
+    pts = [(Fraction(0), Fraction(0), top), (Fraction(0), Fraction(0), -bottom)]
+    pts += [(c, s_, Fraction(0)) for c, s_ in _ring(n)]
+    return PolyhedralSurface(Triangulation.from_faces(faces), pts)
+
+
+def is_degenerate(s: PolyhedralSurface) -> bool:
+    """Whether some face has exactly zero area (its corners collinear), exactly."""
+    x = s.positions
+    for a, b, c in s.triangulation.faces:
+        u = [x[b][i] - x[a][i] for i in range(3)]
+        v = [x[c][i] - x[a][i] for i in range(3)]
+        if not any(_cross(u, v)):
+            return True
+    return False
