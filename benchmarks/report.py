@@ -22,6 +22,7 @@ python -m benchmarks --quick      # the same, smaller and fewer runs: under a mi
 python -m benchmarks flips r3     # some groups only (the others keep their last results)
 python -m benchmarks suite        # test suite and `ddg-oracle check` wall times (minutes)
 python -m benchmarks main         # `ddg-oracle check`: 3 default runs and a ci run
+python -m benchmarks catch        # time to catch each planted bug (3 seeds, ~20 minutes)
 python -m benchmarks --all        # everything
 ```
 
@@ -136,6 +137,22 @@ differ), then `--profile ci` once.  *slowest task*: one property on one
 implementation, from the report's `timings.json`; every task runs under its
 budget (`properties/budget.py`: 18 s and 6 crashes with `default`, 40 s and 12
 with `ci`).  Load: the 1-minute load average before the run.
+"""
+
+CATCH = """\
+## 7. Time to catch planted bugs
+
+`python -m benchmarks catch`: each planted bug of `examples/numpy_cotan.py` and
+`tests/planted_bugs.py` checked by `ddg-oracle check --impl BUG --only IDS --seed S`
+(default profile, 2 workers; IDS = the properties that call the methods the bug
+plants), seeds 1, 2, 3.  *first*: the failing property whose task ended soonest
+(the most frequent over the seeds); *seconds*: that task's time, its examples,
+the failure and the shrinking included (median over the seeds that caught it);
+*faces*: its shrunk counterexample (median; *smallest*: the smallest counterexample
+over every failing property and seed); *check*: the whole command's wall time
+(median).  Exceptions to "at most 6 faces": a vertex of valence 33 needs 33 faces
+(66 on a closed surface); two closed components need 8; a non-orientable or
+higher-genus surface needs 6 to 10 (the topology bugs).
 """
 
 HYPOTHESIS = """\
@@ -324,6 +341,13 @@ _TABLES = [
                     ("exit", lambda r: str(r["exit"])), ("load before", lambda r: str(r["load"])),
                     ("checks", lambda r: str(r["checks"])),
                     ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.1f} s)")]),
+    ("catch", CATCH, [("bug", lambda r: r["bug"]), ("planted", lambda r: ", ".join(r["planted"])),
+                      ("caught", lambda r: f"{r['caught']}/{r['runs']}"),
+                      ("first", lambda r: r.get("first", "-")),
+                      ("seconds", lambda r: f"{r['seconds']:.1f}" if r.get("seconds") is not None else "-"),
+                      ("faces", lambda r: f"{r['faces']:g}" if r.get("faces") is not None else "-"),
+                      ("smallest", lambda r: str(r.get("faces_min", "-"))),
+                      ("check s", lambda r: f"{r['wall']:.0f}")]),
     ("hypothesis", HYPOTHESIS, [("implementation", lambda r: r["implementation"]),
                                 ("status", lambda r: r["status"]),
                                 ("examples", lambda r: str(r["examples"])),
@@ -393,6 +417,14 @@ def _targets(results: dict) -> list[str]:
                      f"{'yes' if slow <= 20.5 else 'no'} |")
         lines.append(f"| `ddg-oracle check --profile ci` <= 120 s | {ci:.1f} s | "
                      f"{'yes' if ci <= 120 else 'no'} |")
+    catch = results.get("catch", {}).get("rows", [])
+    if catch:
+        missed = [r["bug"] for r in catch if r["caught"] < r["runs"]]
+        lines.append(f"| every planted bug caught under the default profile (seeds "
+                     f"{', '.join(map(str, results['catch']['seeds']))}) | "
+                     f"{sum(r['caught'] == r['runs'] for r in catch)} of {len(catch)} bugs "
+                     f"every time{'; missed: ' + ', '.join(missed) if missed else ''} | "
+                     f"{'yes' if not missed else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None

@@ -27,11 +27,12 @@ BUILTIN: dict[str, str] = {
     "gpytoolbox": "ddg_oracle.oracles.gpytoolbox:Gpytoolbox",
     "robust_laplacian": "ddg_oracle.oracles.robust_laplacian:RobustLaplacian",
     "potpourri3d": "ddg_oracle.oracles.potpourri3d:Potpourri3d",
+    "trimesh": "ddg_oracle.oracles.trimesh:Trimesh",
 }
 
 #: The pip extra that installs each built-in adapter's library (reference and scipy: core).
 EXTRAS: dict[str, str] = {"libigl": "libigl", "pymeshlab": "pymeshlab", "gpytoolbox": "peers",
-                          "robust_laplacian": "peers", "potpourri3d": "peers"}
+                          "robust_laplacian": "peers", "potpourri3d": "peers", "trimesh": "peers"}
 
 _OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
 
@@ -138,7 +139,7 @@ def convention_counterpart(spec: str) -> tuple[str, str] | None:
 LIBRARIES: dict[str, str | None] = {"reference": None, "libigl": "igl", "pymeshlab": "pymeshlab",
                                     "scipy": "scipy", "gpytoolbox": "gpytoolbox",
                                     "robust_laplacian": "robust_laplacian",
-                                    "potpourri3d": "potpourri3d"}
+                                    "potpourri3d": "potpourri3d", "trimesh": "trimesh"}
 
 
 def available() -> list[str]:

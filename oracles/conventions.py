@@ -26,6 +26,8 @@ DOCUMENTED_CONVENTIONS: dict[str, dict[tuple[str, str], str]] = {
                                                   "flipped in the double of the surface)",
                          ("mollify", "library"): "R3 (mollify_factor 1e-5 lengthens every "
                                                  "edge of a nearly degenerate mesh)"},
+    "trimesh": {("boundary", "library"): "TM1 (vertex_defects: 2 pi - angle sum at boundary "
+                                         "vertices)"},
 }
 
 #: The values of an adapter's convention option: the reference's or the library's own.

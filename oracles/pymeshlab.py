@@ -32,7 +32,8 @@ Conversions (each a named option; the defaults give the reference's conventions)
 
 Vertex order: a ``pymeshlab.Mesh`` built from arrays keeps them, but a filter
 may compact or drop vertices (the curvature filter removes unreferenced
-ones); every call checks that the mesh still has the input's vertices, in
+ones: ``angle_defects`` sets them aside first and gives them the protocol's
+value); every call checks that the mesh still has the input's vertices, in
 order, and raises :class:`VertexOrderChanged` otherwise.
 
 Bad input: NaN or infinite coordinates make the curvature filter abort the
@@ -52,7 +53,9 @@ import math
 
 import numpy as np
 
-from .arrays import checked_arrays
+from ddg_oracle.properties.protocol import ISOLATED_VERTEX
+
+from .arrays import Referenced, checked_arrays
 from .conventions import CONVENTIONS
 
 import pymeshlab
@@ -251,13 +254,16 @@ class PyMeshLab:
         return float(ms.get_geometric_measures()["surface_area"])
 
     def angle_defects(self, V, F) -> np.ndarray:
-        """vcg's KG times the reference's exact mixed area; boundary term per option."""
-        V, F = _arrays(V, F)
+        """vcg's KG times the reference's exact mixed area; boundary term per option.  The
+        curvature filter drops vertices used by no face: they are set aside first and given
+        the protocol's 2 pi (``ISOLATED_VERTEX``)."""
+        r = Referenced(*_arrays(V, F))
+        V, F = r.V, r.F
         K = self.discrete_curvature(V, F, "Gaussian Curvature") * exact_mixed_voronoi_areas(V, F)
         if self.boundary == "reference":
             for v, phi in boundary_edge_angles(V, F).items():
                 K[v] += phi - math.pi
-        return K
+        return r.scatter(K, ISOLATED_VERTEX["angle_defects"])
 
     # --- chapter 4: Delaunay flips ------------------------------------------------------
 

@@ -375,9 +375,12 @@ _COMPONENTS = {
     "disk": (lambda: surfaces.disk(4), 1, False),
     "moebius strip": (lambda: surfaces.mobius_strip(3), 0, False),
 }
-#: largest k of a 2**-k sliver or lift drawn: the corner bound C_ANGLE eps (1 + 1/sin)
-#: of a needle's angle 2**-k stays below the angle itself while 2 k < 52 - log2 C_ANGLE
-SLIVER_LIMIT = 24
+#: largest k of a 2**-k sliver drawn.  The corner bound C_ANGLE eps (1 + 1/sin) of a
+#: needle's own small angle stays below the angle while 2 k < 52 - log2 C_ANGLE (k < 24);
+#: beyond, that angle is no longer checked, but the face's other corners, its area and
+#: every cotangent still are (a "degenerate triangle" rule that zeroes a whole face below
+#: 1e-8 rad shows there), and 30 keeps 22 bits of the sliver in float coordinates
+SLIVER_LIMIT = 30
 #: highest valence drawn for fans and bipyramids (CAD end caps are fans of 32-128 faces)
 MAX_VALENCE = 64
 #: smallest lift 2**-k of a high-valence fan's centre: beyond k = 20 the reference's exact
@@ -474,7 +477,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     * ``intrinsic=True`` (properties of the metric alone: angle defects, turning
       angles, corner angles): Möbius strips (non-orientable) and orientable
       surfaces with a random subset of faces reversed -- same metric, other halfedges;
-    * ``wide=True``: a sliver (a face split at 2**-k, k <= 24, from a corner --
+    * ``wide=True``: a sliver (a face split at 2**-k, k <= 30, from a corner --
       needles -- or from an edge's midpoint -- a cap, on the boundary if that edge
       is), a second component (beside it, or touching it at one point: two
       vertices at one position), up to 2 isolated vertices (used by no face; at

