@@ -49,8 +49,10 @@ def _one(spec: str, ids: list[str], seed: int) -> dict:
         cmd = [sys.executable, "-m", "ddg_oracle", "check", "--impl", spec, "--seed", str(seed),
                "--report", report, "--only", *ids]
         t0 = time.perf_counter()
-        subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+        p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
         wall = time.perf_counter() - t0
+        if p.returncode not in (0, 1):          # not a check result: the tool itself failed
+            raise RuntimeError(f"{' '.join(cmd)} exited {p.returncode}:\n{p.stderr[-3000:]}")
         with open(os.path.join(report, "results.json")) as fh:
             results = json.load(fh)["results"]
         with open(os.path.join(report, "timings.json")) as fh:

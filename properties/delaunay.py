@@ -327,8 +327,10 @@ def unique_delaunay_operator(impl, pair):
     _record("T4.5", err, B)
     (i, j), r = _worst(err, B)
     if r > 1:
+        # the mesh is (V, F) of the second triangulation, the first's faces in the message
         raise PropertyFailure("T4.5", impl, f"the operators of two triangulations of one point "
-                              f"set differ by {r:.3g} x the bound", mesh=(c1.mesh, c2.mesh[1]),
+                              f"set differ by {r:.3g} x the bound (the other triangulation: "
+                              f"{[list(f) for f in c1.faces]})", mesh=c2.mesh,
                               element=(int(i), int(j)), expected=float(A1[i, j]),
                               observed=float(A2[i, j]))
 

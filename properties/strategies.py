@@ -473,7 +473,8 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     * the surface: a constructor's closed surface or disk, annulus, grid, a closed
       one minus a face, a fan of valence 3..64 (exactly planar or its centre
       lifted by 2**-k) or a bipyramid of valence 3..64; maybe 1-to-4 subdivided
-      (exact midpoints) and jittered (2**-(4 + level), rational or float);
+      (exact midpoints), some interior edges flipped (``wide``: a random valence
+      distribution) and jittered (2**-(4 + level), rational or float);
     * ``intrinsic=True`` (properties of the metric alone: angle defects, turning
       angles, corner angles): Möbius strips (non-orientable) and orientable
       surfaces with a random subset of faces reversed -- same metric, other halfedges;
@@ -496,6 +497,13 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     if subdivide and draw(st.integers(0, 3)) == 3 and s.triangulation.n_faces <= 100:
         s = _subdivided(s)
         recipe += ", 1-to-4"
+    flips = draw(st.lists(st.integers(0, 1 << 16), max_size=4)) if wide else []
+    if flips:
+        # random valence: flip interior edges (kept a simplicial complex); the vertices
+        # stay, the faces become the other diagonals of (generally non-planar) quads
+        s = PolyhedralSurface(apply_moves(s.triangulation, [("flip", w) for w in flips]),
+                              s.positions)
+        recipe += f", flips {flips}"
     level = draw(st.integers(0, 2))
     if level:
         seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())

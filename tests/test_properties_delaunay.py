@@ -2,6 +2,8 @@
 
 from fractions import Fraction
 
+from pathlib import Path
+
 import pytest
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
@@ -114,3 +116,18 @@ def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
     zero_edges = D.bounds.adjacent & (D.Lf == 0) & ~np.eye(case.n, dtype=bool)
     assert np.all(D.B[other] > 0) and D.B[other].max() <= D.B[zero_edges].max()
     laplace_beltrami_operator(Libigl(), case)           # passes: no PropertyFailure
+
+
+def test_a_T4_5_failure_is_written_as_one_mesh_in_the_report(tmp_path):
+    # T4.5 compares two triangulations of one point set: its counterexample is the second
+    # (V, F), the first's faces in the message; the report writes it like any other
+    import subprocess
+    import sys
+    report = tmp_path / "report"
+    p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--impl",
+                        "tests.planted_bugs:NoFlips", "--only", "T4.5", "--seed", "1",
+                        "--report", str(report), "--workers", "1"],
+                       capture_output=True, text=True, cwd=Path(__file__).resolve().parent.parent)
+    assert p.returncode == 1, p.stderr[-2000:]
+    [obj] = report.glob("failures/*T4.5*/mesh.obj")
+    assert "the other triangulation" in p.stdout and obj.read_text().count("\nf ") >= 1
