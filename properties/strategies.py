@@ -501,9 +501,11 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     if flips:
         # random valence: flip interior edges (kept a simplicial complex); the vertices
         # stay, the faces become the other diagonals of (generally non-planar) quads
-        s = PolyhedralSurface(apply_moves(s.triangulation, [("flip", w) for w in flips]),
-                              s.positions)
-        recipe += f", flips {flips}"
+        flipped = PolyhedralSurface(apply_moves(s.triangulation, [("flip", w) for w in flips]),
+                                    s.positions)
+        if not variants.has_fold(flipped):      # a flip across a reflex quad folds two faces
+            s = flipped
+            recipe += f", flips {flips}"
     level = draw(st.integers(0, 2))
     if level:
         seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
@@ -551,8 +553,8 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         s = _scaled_and_moved(s, k, e, signs)
         recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
     s = floated(s)
-    if variants.is_degenerate(s):            # rounding collapsed the sliver: not this example
-        assume(False)
+    if variants.is_degenerate(s) or variants.has_fold(s):   # rounding collapsed a sliver or
+        assume(False)                                       # folded a flip: not this example
     allow_isolated, isolated = isolated, ()
     n_iso = draw(st.integers(0, 2)) if wide and allow_isolated else 0
     if n_iso:

@@ -27,7 +27,7 @@ from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 __all__ = ["permuted", "with_sliver", "disjoint_union", "fan", "bipyramid", "circle_point",
-           "is_degenerate"]
+           "is_degenerate", "has_fold"]
 
 
 def permuted(s: PolyhedralSurface, seed: int) -> PolyhedralSurface:
@@ -164,5 +164,26 @@ def is_degenerate(s: PolyhedralSurface) -> bool:
         u = [x[b][i] - x[a][i] for i in range(3)]
         v = [x[c][i] - x[a][i] for i in range(3)]
         if not any(_cross(u, v)):
+            return True
+    return False
+
+
+def has_fold(s: PolyhedralSurface) -> bool:
+    """Whether two faces sharing an edge are folded onto each other (dihedral angle exactly
+    +-pi: both opposite vertices on the same side of the edge, in one plane with it),
+    exactly, whatever the faces' orientation.  The reference refuses such a surface."""
+    t, x = s.triangulation, s.positions
+    for e in range(t.n_edges):
+        h, g = t.edge_halfedges(e)
+        if g < 0:
+            continue
+        a, b = t.tail(h), t.head(h)
+        p, q = (t.faces[k // 3][(k + 2) % 3] for k in (h, g))
+        d = [x[b][i] - x[a][i] for i in range(3)]
+        dd = sum(c * c for c in d)
+        u, w = ([x[r][i] - x[a][i] for i in range(3)] for r in (p, q))
+        u = [u[i] - sum(c * k for c, k in zip(u, d)) / dd * d[i] for i in range(3)]
+        w = [w[i] - sum(c * k for c, k in zip(w, d)) / dd * d[i] for i in range(3)]
+        if not any(_cross(u, w)) and sum(c * k for c, k in zip(u, w)) > 0:
             return True
     return False
