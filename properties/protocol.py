@@ -13,6 +13,7 @@ property that needs a method the implementation lacks is "not applicable".
 from __future__ import annotations
 
 import contextvars
+import math
 
 # name -> one-line contract; the single source of the protocol's method names.
 METHODS: dict[str, str] = {
@@ -59,7 +60,7 @@ METHODS: dict[str, str] = {
 #: sum K = 2 pi chi keeps holding with chi = V - E + F counting the point), no face gives
 #: it area, no edge gives it a Laplacian entry (its row and column of L are zero)
 ISOLATED_VERTEX: dict[str, float] = {
-    "angle_defects": 2 * 3.141592653589793,
+    "angle_defects": math.tau,
     "vertex_areas_barycentric": 0.0,
     "vertex_areas_voronoi": 0.0,
 }

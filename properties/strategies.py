@@ -327,7 +327,7 @@ def _as_arrays(mesh):
 
 def floated(surface: PolyhedralSurface) -> PolyhedralSurface:
     """The surface with every coordinate rounded to the nearest float (then taken exactly)."""
-    return surface.with_positions([[float(x) for x in p] for p in surface.positions])
+    return surface.with_positions([floated_point(p) for p in surface.positions])
 
 
 def _subdivided(s: PolyhedralSurface) -> PolyhedralSurface:

@@ -6,6 +6,7 @@ developer actually writes; ``planted`` names the protocol methods it changes
 """
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from examples.numpy_mesh import NumpyMesh      # its boundary test: edges of one face
 
 
 class ChiIgnoresBoundary(ReferenceImplementation):
@@ -204,16 +205,11 @@ def _angle_sums(V, F, angles, n):
     return sums
 
 
-def _boundary_vertices(F) -> set:
-    """Ends of edges with one face (unordered pairs: right for any orientation)."""
-    from collections import Counter
-    count = Counter(tuple(sorted((int(f[c]), int(f[(c + 1) % 3])))) for f in F for c in range(3))
-    return {v for e, k in count.items() if k == 1 for v in e}
-
-
 def _defects_from_sums(sums, boundary):
+    """2 pi - sum, pi - sum where ``boundary`` (a bool per vertex) is set; one value per sum
+    (a short ``sums`` stays short: that is BincountWithoutMinlength's bug)."""
     import numpy as np
-    return np.array([(np.pi if v in boundary else 2 * np.pi) - s for v, s in enumerate(sums)])
+    return np.where(boundary[:len(sums)], np.pi, 2 * np.pi) - sums
 
 
 class ClampedArccos(ReferenceImplementation):
@@ -252,7 +248,7 @@ class MaxValence32(ReferenceImplementation):
                 if seen[v] < 32:
                     sums[v] += angles[f, c]
                     seen[v] += 1
-        return _defects_from_sums(sums, _boundary_vertices(F))
+        return _defects_from_sums(sums, NumpyMesh._boundary(V, F))
 
 
 class FirstComponentOnly(ReferenceImplementation):
@@ -280,7 +276,7 @@ class FirstComponentOnly(ReferenceImplementation):
         angles = super().corner_angles(V, F)
         keep = sorted(reached)
         sums = _angle_sums(V, F[keep], angles[keep], len(V))
-        return _defects_from_sums(sums, _boundary_vertices(F))
+        return _defects_from_sums(sums, NumpyMesh._boundary(V, F))
 
 
 class WeldedByPosition(ReferenceImplementation):
@@ -298,7 +294,7 @@ class WeldedByPosition(ReferenceImplementation):
         weld = weld.reshape(-1)
         W = weld[F]
         sums = _angle_sums(V, W, super().corner_angles(V, F), len(V))
-        K = _defects_from_sums(sums, _boundary_vertices(W))
+        K = _defects_from_sums(sums, NumpyMesh._boundary(V, W))
         return K[weld]
 
 
@@ -313,7 +309,7 @@ class BincountWithoutMinlength(ReferenceImplementation):
         import numpy as np
         F = np.asarray(F)
         sums = np.bincount(F.ravel(), weights=super().corner_angles(V, F).ravel())
-        return _defects_from_sums(sums, _boundary_vertices(F))
+        return _defects_from_sums(sums, NumpyMesh._boundary(V, F))
 
 
 class CompactedVertices(ReferenceImplementation):
