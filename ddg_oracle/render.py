@@ -27,6 +27,20 @@ def _neighbourhood(F: np.ndarray, seeds: set[int], rings: int = 2) -> np.ndarray
     return keep
 
 
+def _on_mesh(element: dict, n_vertices: int, n_faces: int) -> dict:
+    """``element`` if every index it holds is in the mesh, else {} (the picture is then
+    drawn with nothing highlighted rather than not at all: a property naming an element
+    of another mesh is a bug of that property, not a reason to lose the report).
+
+    >>> _on_mesh({"edge": [3, 4]}, 4, 2), _on_mesh({"face": 1, "corner": 2}, 4, 2)
+    ({}, {'face': 1, 'corner': 2})
+    """
+    ok = (all(0 <= v < n_vertices for v in element.get("edge", []))
+          and 0 <= element.get("vertex", 0) < n_vertices
+          and 0 <= element.get("face", 0) < n_faces and 0 <= element.get("corner", 0) < 3)
+    return element if ok else {}
+
+
 def render_mesh(path, V, F, element: dict | None = None, title: str = "") -> None:
     """Write a PNG of mesh (V, F) to ``path`` with ``element`` highlighted.
 
@@ -40,7 +54,7 @@ def render_mesh(path, V, F, element: dict | None = None, title: str = "") -> Non
 
     V = np.asarray(V, dtype=np.float64).reshape(-1, 3)
     F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
-    element = element or {}
+    element = _on_mesh(element or {}, len(V), len(F))
     seeds: set[int] = set()
     if "vertex" in element:
         seeds.add(element["vertex"])

@@ -89,8 +89,10 @@ def flip_amplification(metric, log):
 class DelaunayExact:
     """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds."""
 
+    of = classmethod(Exact.of.__func__)      # once per case content, read-only (.memo)
+
     def __init__(self, case: MeshCase):
-        self.X = X = Exact(case)
+        self.X = X = Exact.of(case)
         self.delaunay, self.log = flip_to_delaunay(X.metric)
         d, self.amplification = flip_amplification(X.metric, self.log)
         assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
@@ -247,7 +249,7 @@ def _interior_meshes():
       needs={"is_locally_delaunay"}, strategy=delaunay_meshes)
 def locally_delaunay_edges(impl, case: MeshCase):
     pid = "D4.4 / T4.7 / P4.9"
-    X = Exact(case)
+    X = Exact.of(case)
     t = X.triangulation
     got = np.asarray(impl.is_locally_delaunay(*case.arrays()))
     if got.shape != (t.n_faces, 3):
@@ -265,16 +267,16 @@ def locally_delaunay_edges(impl, case: MeshCase):
             s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
             bound = sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
             if abs(s) <= bound:                     # an (exact or near) tie: rounding decides
-                tie = tie or (f, c, want, bool(got[f, c]), s, bound)
+                tie = tie or (f, c, e, want, bool(got[f, c]), s, bound)
                 continue
             _fail(pid, impl, case, f"edge {t.edge_vertices(e)} opposite corner {c} of face {f} "
                   f"is {'' if want else 'not '}Delaunay (cot sum {s:.6g}, the bound {bound:.3g})",
-                  element=(f, c), expected=want, observed=bool(got[f, c]))
+                  element=t.edge_vertices(e), expected=want, observed=bool(got[f, c]))
     if tie:
-        f, c, want, seen, s, bound = tie
+        f, c, e, want, seen, s, bound = tie
         _near_tie(pid, impl, case.mesh, f"the edge opposite corner {c} of face {f} has the cot "
-                  f"sum {s:.3g}, within the float bound {bound:.3g} of 0", element=(f, c),
-                  expected=want, observed=seen)
+                  f"sum {s:.3g}, within the float bound {bound:.3g} of 0",
+                  element=t.edge_vertices(e), expected=want, observed=seen)
 
 
 @prop("P4.10", "the interior-edge cotan weights of the implementation's cotan_laplacian are all "
@@ -283,7 +285,7 @@ def locally_delaunay_edges(impl, case: MeshCase):
       needs={"cotan_laplacian"}, strategy=delaunay_meshes)
 def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
     A = _dense(impl, case, "P4.10")
-    X = Exact(case)
+    X = Exact.of(case)
     n = X.n
     off = X.adjacent & ~np.eye(n, dtype=bool)
     W, exact = -A, -X.Lf                            # weights: minus the off-diagonal entries
@@ -306,7 +308,7 @@ def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
 def laplace_beltrami_operator(impl, case: MeshCase):
     pid = "D4.8 / R4.9"
     A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     neg = D.interior_pairs & (A > D.B)              # a weight -A_ij clearly below 0
     if np.any(neg):
         i, j = np.argwhere(neg)[0]
@@ -322,7 +324,7 @@ def unique_delaunay_operator(impl, pair):
     c1, c2 = pair
     A1 = _matrix(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
     A2 = _matrix(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
-    B = DelaunayExact(c1).B + DelaunayExact(c2).B
+    B = DelaunayExact.of(c1).B + DelaunayExact.of(c2).B
     err = np.abs(A1 - A2)
     _record("T4.5", err, B)
     (i, j), r = _worst(err, B)
@@ -341,7 +343,7 @@ def unique_delaunay_operator(impl, pair):
 def delaunay_minimises_the_energy(impl, case: MeshCase):
     L = _dense(impl, case, "T4.21")
     D = _matrix(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
-    De = DelaunayExact(case)
+    De = DelaunayExact.of(case)
     M = (L - D + (L - D).T) / 2
     lam = float(np.linalg.eigvalsh(M)[0])
     tol = float(np.linalg.norm(De.X.B) + np.linalg.norm(De.B)
@@ -357,7 +359,7 @@ def delaunay_minimises_the_energy(impl, case: MeshCase):
       needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
 def valence_one_vertex(impl, case: MeshCase):
     A = _matrix(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
         raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
     _compare("X4.2", impl, case, A, D.Lf, D.B, "Laplace-Beltrami")
@@ -367,7 +369,7 @@ def valence_one_vertex(impl, case: MeshCase):
       "quarter of the exact harmonic index", needs={"cotan_laplacian"}, strategy=delaunay_meshes)
 def harmonic_index_is_the_trace(impl, case: MeshCase):
     A = _dense(impl, case, "L4.18")
-    X = Exact(case)
+    X = Exact.of(case)
     exact = float(harmonic_index(X.metric))
     got = 4 * float(np.trace(A))
     bound = 4 * float(np.trace(X.B)) + gamma(X.n) * abs(got)
@@ -380,7 +382,7 @@ def harmonic_index_is_the_trace(impl, case: MeshCase):
 @prop("D4.7 / L4.17", "h(T) = sum (a^2 + b^2 + c^2) / A = 4 sum cot: from the implementation's "
       "corner angles", needs={"corner_angles"}, strategy=delaunay_meshes)
 def harmonic_index_from_angles(impl, case: MeshCase):
-    X = Exact(case)
+    X = Exact.of(case)
     ang = np.asarray(impl.corner_angles(*case.arrays()), dtype=float)
     got = float(4 * np.sum(1 / np.tan(ang)))
     exact = float(harmonic_index(X.metric))
@@ -424,7 +426,7 @@ def _angles_from_squared_lengths(l2):
 def flip_algorithm_result(impl, case: MeshCase):
     pid = "A4.13"
     F2, l2 = _triangulation_result(impl, case, pid)
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     amp = max(D.amplification)
     ang, area = _angles_from_squared_lengths(l2)
     rho = l2.max(axis=1) / (2 * np.maximum(area, np.finfo(float).tiny))
@@ -468,7 +470,7 @@ def flip_algorithm_result(impl, case: MeshCase):
       "had to flip", needs={"intrinsic_delaunay_triangulation"}, strategy=delaunay_meshes)
 def harmonic_index_decreases(impl, case: MeshCase):
     F2, l2 = _triangulation_result(impl, case, "C4.19")
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     ang, _ = _angles_from_squared_lengths(l2)
     h = float(4 * np.sum(1 / np.tan(ang)))
     before = float(harmonic_index(D.X.metric))
@@ -491,7 +493,7 @@ def harmonic_index_bounds_the_longest_edge(impl, case: MeshCase):
     ang, area = _angles_from_squared_lengths(l2)
     h = float(4 * np.sum(1 / np.tan(ang)))
     lhs, A = float(l2.max()), float(area.sum())
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     bound = (4 * float(np.sum(D.bounds.beta)) + gamma(l2.size) * abs(h)) * A + gamma(8) * lhs
     if lhs - h * A > bound:
         _fail("L4.20 / C4.13", impl, case, "the longest edge exceeds sqrt(h A)",
@@ -511,7 +513,7 @@ def _interior(X: Exact) -> np.ndarray:
 def flat_meshes_are_minimal(impl, case: MeshCase):
     pid = "D4.9 / R4.10"
     A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
     got = A @ V
@@ -521,7 +523,7 @@ def flat_meshes_are_minimal(impl, case: MeshCase):
     _record(pid, err, bound)
     if r > 1:
         _fail(pid, impl, case, f"(L x)({v}) is not 0 at an interior vertex ({r:.3g} x the bound)",
-              element=(int(v), int(k)), expected=0.0, observed=float(got[v, k]))
+              element=f"vertex {v}, coordinate {k}", expected=0.0, observed=float(got[v, k]))
     off = ~np.eye(D.X.n, dtype=bool) & inner[:, None]
     neg = off & (A > D.B)
     if np.any(neg):
@@ -537,7 +539,7 @@ def flat_meshes_are_minimal(impl, case: MeshCase):
 def delaunay_minimal_surface_step(impl, case: MeshCase):
     pid = "A4.23"
     A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
-    D = DelaunayExact(case)
+    D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
     if not inner.any():
@@ -631,7 +633,7 @@ def empty_disk_property(impl, pts):
     for k, t in enumerate(tris):
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) == 0:
             raise PropertyFailure("D4.1", impl, f"degenerate triangle {k}: {t}", mesh=mesh,
-                                  element=k)
+                                  element=f"face {k}")
     real, ties = _real_violations(pts, tris)
     if real:
         t, v, why, det, bound = real[0]
@@ -691,7 +693,7 @@ def planar_flips_reach_delaunay(impl, example):
     for k, t in enumerate(tris):
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
             raise PropertyFailure(pid, impl, f"face {k} {t} is degenerate or clockwise" + result,
-                                  mesh=mesh, element=k)
+                                  mesh=mesh, element=f"face {k}")
 
     def sides(fs):                  # directed edge -> (face, opposite vertex)
         return {(f[c], f[(c + 1) % 3]): (k, f[(c + 2) % 3])
@@ -751,7 +753,7 @@ def rippa_energy_difference(impl, quad_u):
     f = np.array(u, dtype=float)
     got = 0.5 * float(f @ (A13 - A24) @ f)
     af = np.abs(f)
-    X13, X24 = Exact(c13), Exact(c24)
+    X13, X24 = Exact.of(c13), Exact.of(c24)
     bound = 0.5 * float(af @ (X13.B + X24.B + gamma(12) * (np.abs(A13) + np.abs(A24))) @ af)
     r = _record("L4.14", abs(got - exact), bound)
     if r > 1:

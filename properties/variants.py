@@ -157,9 +157,22 @@ def bipyramid(n: int, top: Fraction = Fraction(1), bottom: Fraction = Fraction(1
     return PolyhedralSurface(Triangulation.from_faces(faces), pts)
 
 
+def _integer_positions(s: PolyhedralSurface) -> list[tuple[int, int, int]]:
+    """The positions times one common positive denominator, as integers: the same surface
+    scaled, so every sign and zero test below is unchanged, at the price of integer
+    arithmetic (these tests run on every drawn example)."""
+    den = 1
+    for p in s.positions:
+        for c in p:
+            d = Fraction(c).denominator
+            if den % d:
+                den = den * d // math.gcd(den, d)
+    return [tuple(int(c * den) for c in p) for p in s.positions]
+
+
 def is_degenerate(s: PolyhedralSurface) -> bool:
     """Whether some face has exactly zero area (its corners collinear), exactly."""
-    x = s.positions
+    x = _integer_positions(s)
     for a, b, c in s.triangulation.faces:
         u = [x[b][i] - x[a][i] for i in range(3)]
         v = [x[c][i] - x[a][i] for i in range(3)]
@@ -172,7 +185,7 @@ def has_fold(s: PolyhedralSurface) -> bool:
     """Whether two faces sharing an edge are folded onto each other (dihedral angle exactly
     +-pi: both opposite vertices on the same side of the edge, in one plane with it),
     exactly, whatever the faces' orientation.  The reference refuses such a surface."""
-    t, x = s.triangulation, s.positions
+    t, x = s.triangulation, _integer_positions(s)
     for e in range(t.n_edges):
         h, g = t.edge_halfedges(e)
         if g < 0:
@@ -180,10 +193,11 @@ def has_fold(s: PolyhedralSurface) -> bool:
         a, b = t.tail(h), t.head(h)
         p, q = (t.faces[k // 3][(k + 2) % 3] for k in (h, g))
         d = [x[b][i] - x[a][i] for i in range(3)]
-        dd = sum(c * c for c in d)
         u, w = ([x[r][i] - x[a][i] for i in range(3)] for r in (p, q))
-        u = [u[i] - sum(c * k for c, k in zip(u, d)) / dd * d[i] for i in range(3)]
-        w = [w[i] - sum(c * k for c, k in zip(w, d)) / dd * d[i] for i in range(3)]
-        if not any(_cross(u, w)) and sum(c * k for c, k in zip(u, w)) > 0:
+        # with n = d x u and m = d x w: p, q and the edge are coplanar iff n . w = 0, and
+        # then on the same side iff n . m = |d|^2 (u' . w') > 0 (u', w': the parts of u, w
+        # perpendicular to d), the projection test without a division
+        n, m = _cross(d, u), _cross(d, w)
+        if not sum(c * k for c, k in zip(n, w)) and sum(c * k for c, k in zip(n, m)) > 0:
             return True
     return False

@@ -2,6 +2,7 @@
 its bounds, or a planted bug is caught with a shrunk counterexample."""
 
 from ddg_oracle.properties import laplacian as props
+from ddg_oracle.report import element_ids
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.registry import PROPERTIES
 from ddg_oracle.properties.runner import FAILED, PASSED, run_property
@@ -25,4 +26,16 @@ def assert_caught(pid, impl, max_faces):
     assert r.failure.property_id == pid
     F = r.failure.mesh[1]
     assert len(F) <= max_faces, f"counterexample did not shrink: {len(F)} faces"
+    assert_element_on_mesh(r.failure)
     return r
+
+
+def assert_element_on_mesh(failure):
+    """The element a failure names (what the report's picture highlights) is one of its
+    mesh's: vertex and face indices in range."""
+    ids = element_ids(failure.element) or {}
+    V, F = failure.mesh
+    for v in ids.get("edge", []) + [ids[k] for k in ("vertex",) if k in ids]:
+        assert 0 <= v < len(V), f"{failure.element!r} names vertex {v} of {len(V)}"
+    if "face" in ids:
+        assert 0 <= ids["face"] < len(F), f"{failure.element!r} names a face of {len(F)}"

@@ -16,6 +16,7 @@ from ddg_oracle.reference.intrinsic import flip
 from ddg_oracle.reference.laplacian import cotan_weights
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from ddg_oracle.report import element_ids
 from tests.planted_bugs import (LaplaceBeltramiWithoutHalf, NoFlips, OneFlipTooMany,
                                 OneSidedDelaunayTest)
 
@@ -53,6 +54,7 @@ def test_one_flip_past_delaunay_is_caught():
 def test_a_one_sided_delaunay_test_is_caught():
     r = assert_caught("D4.4 / T4.7 / P4.9", OneSidedDelaunayTest(), 4)
     assert r.failure.expected is True and r.failure.observed is False
+    assert "edge" in element_ids(r.failure.element)       # the edge that is (not) Delaunay
 
 
 def test_laplace_beltrami_without_half_is_caught_on_one_triangle():

@@ -22,6 +22,7 @@ from ddg_oracle.properties.strategies import jittered_surfaces
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, run_property
 from ddg_oracle.properties.strategies import surface_meshes, with_isolated, acute_meshes
+from tests.property_checks import assert_element_on_mesh
 from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, BoundaryByMissingTwin,
                                 ClampedArccos, CompactedVertices, FirstComponentOnly,
                                 MaxValence32, OffsetCancellation, TwinByReversedKey,
@@ -75,7 +76,7 @@ def test_orientation_classes_are_drawn_for_intrinsic_properties_only(orientation
 def test_bugs_only_far_inputs_show_are_caught(bug, pid):
     r = run_property(PROPERTIES[pid], bug(), profile("ci"))
     assert r.status == FAILED, f"{bug.name} passed {pid}"
-    assert r.failure.mesh is not None
+    assert_element_on_mesh(r.failure)
 
 
 @pytest.mark.parametrize("kind", ["needle", "cap"])
@@ -202,6 +203,7 @@ def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
         if r.status == FAILED:
             break
     assert r.status == FAILED, f"{bug.name} passed {pids}"
+    assert_element_on_mesh(r.failure)
     if max_faces <= 32:
         assert len(r.failure.mesh[1]) <= max_faces, f"{bug.name}: shrunk to {len(r.failure.mesh[1])} faces"
     else:                              # not shrunk: a vertex of valence > 32 is there
