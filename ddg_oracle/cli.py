@@ -95,7 +95,8 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--budget", type=float, default=None, metavar="SECONDS",
                    help="wall-clock seconds per task (one property on one implementation), "
                         "shrinking included; a call still running then is a hang; 0: none "
-                        "(default: 18 with --profile default, 40 with ci, none with thorough)")
+                        "(default: 18, at most 3 of them shrinking, with --profile default; "
+                        "40, at most 10 shrinking, with ci; none with thorough)")
     c.add_argument("--only", action="extend", nargs="+", metavar="ID",
                    help="only these catalog IDs (several, or comma-separated; any part of a "
                         "joint ID: L4.3 selects 'L4.3 / P4.4')")

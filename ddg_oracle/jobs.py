@@ -268,7 +268,11 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     from multiprocessing.connection import wait
 
     ctx = mp.get_context("spawn")       # no fork of a parent holding threads
-    queue = list(todo)
+    # dispatched from the last task on: the catalog's later chapters hold the costly
+    # properties (curvature, Laplacian, Delaunay) and chapter 1 the cheap ones (topology),
+    # which then fill both workers at the end instead of one worker finishing a long task
+    # alone (results still come back in task order)
+    queue = list(reversed(todo))
     attempts: dict[int, int] = {}
     running: dict = {}                  # connection -> (process, task index or None)
     why_died: dict[int, str] = {}

@@ -9,6 +9,11 @@ per task.  A task runs under :func:`task_budget`:
   is a hang of the implementation, reported with its input), and the example
   time limit (:func:`~.profiles.example_time_limit`) is at most the time left;
   when nothing is left, :class:`BudgetExceeded` stops the search.
+- ``shrink``: wall-clock time for shrinking, counted from the first failure,
+  crash or shrunk tie on (the task's deadline moves closer then, never further):
+  a failure found late still gets its shrink, one found early does not spend
+  the whole task shrinking.  What a user waits for in the default profile is
+  the verdict; the ci and thorough profiles shrink longer.
 - ``crashes``: outcomes of the implementation that are crashes or hangs (not
   property failures).  Deterministic, unlike time: after this many, the search
   stops and the smallest crashing input seen so far is the result.
@@ -35,11 +40,17 @@ class BudgetExceeded(BaseException):
 class Budget:
     seconds: float | None       # wall clock of the whole task; None: no limit
     crashes: int | None         # crash or hang outcomes of the implementation; None: no limit
+    shrink: float | None = None  # seconds of shrinking from the first failure on; None: the rest
 
 
 #: Per profile: the default run must stay within about a minute on 2 cores with every
-#: library installed; ci gets more room; thorough none.
-BUDGETS = {"default": Budget(18.0, 6), "ci": Budget(40.0, 12), "thorough": Budget(None, None)}
+#: library installed (`python -m benchmarks main` measures it); ci gets more room;
+#: thorough none.  Shrinking a failure on a wide mesh costs 20-100 ms per candidate
+#: (exact reference included): 3 s is 30-150 candidates, which takes the planted bugs
+#: of `python -m benchmarks catch` to their small counterexamples (Hypothesis shrinks
+#: the big choices first: components, subdivision, scale); ci shrinks 10 s.
+BUDGETS = {"default": Budget(18.0, 6, 3.0), "ci": Budget(40.0, 12, 10.0),
+           "thorough": Budget(None, None)}
 
 _deadline: contextvars.ContextVar[float | None] = contextvars.ContextVar(
     "ddg_task_deadline", default=None)
@@ -53,6 +64,23 @@ def task_budget(seconds: float | None):
         yield
     finally:
         _deadline.reset(token)
+
+
+def shrink_from_now(seconds: float | None) -> None:
+    """Bring the current task's deadline to at most ``seconds`` from now (None: nothing
+    changes); called when shrinking starts, inside :func:`task_budget` (which restores
+    the deadline outside it when the task ends).
+
+    >>> with task_budget(30):
+    ...     shrink_from_now(2)
+    ...     time_left() <= 2
+    True
+    """
+    deadline = _deadline.get()
+    if seconds is None:
+        return
+    end = time.monotonic() + seconds
+    _deadline.set(end if deadline is None else min(deadline, end))
 
 
 def time_left() -> float | None:

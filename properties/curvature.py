@@ -165,58 +165,57 @@ def vertex_stars(draw, kind: str | None = None):
 
 def _reference(case: CurvatureCase, what: str) -> dict:
     """Float views (correctly rounded) of the exact angle defects (``what="defects"``, D2.2)
-    or turning angles (``"turning"``, R2.4), computed once per case."""
-    c = case._cache
-    if what not in c:
+    or turning angles (``"turning"``, R2.4), computed once per case content."""
+    def compute(case):
         m = case.surface.metric()
         exact = ref.angle_defects(m) if what == "defects" else ref.turning_angles(m)
-        c[what] = {v: float(k) for v, k in exact.items()}
-    return c[what]
+        return {v: float(k) for v, k in exact.items()}
+    return case.derived(what, compute)
 
 
 def _reference_mean_curvature(case: CurvatureCase):
     """{(i, j): float(H(e))} of the exact D2.3 values over the interior edges."""
-    c = case._cache
-    if "H" not in c:
+    def compute(case):
         t = case.triangulation
-        c["H"] = {tuple(sorted(t.edge_vertices(e))): float(h)
-                  for e, h in ref.mean_curvature(case.surface).items()}
-    return c["H"]
+        return {tuple(sorted(t.edge_vertices(e))): float(h)
+                for e, h in ref.mean_curvature(case.surface).items()}
+    return case.derived("H", compute)
 
 
 def _geometry(case: CurvatureCase):
     """Float geometry for the *tolerances* only (conditioning need not be exact): per corner
     the angle and 1/sin of it, per face the area, per interior edge (i, j) its length, its
     dihedral angle theta and its two faces.  Expected values never come from here."""
-    c = case._cache
-    if "geometry" not in c:
-        V, F = case.surface_arrays()
-        X = V[F]
-        cross = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
-        twice_area = np.linalg.norm(cross, axis=1)
-        angles = np.empty(F.shape)
-        inv_sin = np.empty(F.shape)
+    return case.derived("geometry", _float_geometry)
+
+
+def _float_geometry(case: CurvatureCase) -> dict:
+    V, F = case.surface_arrays()
+    X = V[F]
+    cross = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
+    twice_area = np.linalg.norm(cross, axis=1)
+    angles = np.empty(F.shape)
+    inv_sin = np.empty(F.shape)
+    for k in range(3):
+        a, b = X[:, (k + 1) % 3] - X[:, k], X[:, (k + 2) % 3] - X[:, k]
+        la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
+        angles[:, k] = np.arctan2(twice_area, (a * b).sum(axis=1))
+        inv_sin[:, k] = la * lb / twice_area
+    normal = cross / twice_area[:, None]
+    face_of = {}
+    for f, face in enumerate(F.tolist()):
         for k in range(3):
-            a, b = X[:, (k + 1) % 3] - X[:, k], X[:, (k + 2) % 3] - X[:, k]
-            la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
-            angles[:, k] = np.arctan2(twice_area, (a * b).sum(axis=1))
-            inv_sin[:, k] = la * lb / twice_area
-        normal = cross / twice_area[:, None]
-        face_of = {}
-        for f, face in enumerate(F.tolist()):
-            for k in range(3):
-                face_of[(face[k], face[(k + 1) % 3])] = f
-        edges = {}
-        for (i, j), f in face_of.items():
-            g = face_of.get((j, i))
-            if g is not None and i < j:
-                e = V[j] - V[i]
-                length = float(np.linalg.norm(e))
-                theta = math.atan2(float(np.cross(normal[f], normal[g]) @ e) / length,
-                                   float(normal[f] @ normal[g]))
-                edges[(i, j)] = (length, theta, f, g)
-        c["geometry"] = dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges)
-    return c["geometry"]
+            face_of[(face[k], face[(k + 1) % 3])] = f
+    edges = {}
+    for (i, j), f in face_of.items():
+        g = face_of.get((j, i))
+        if g is not None and i < j:
+            e = V[j] - V[i]
+            length = float(np.linalg.norm(e))
+            theta = math.atan2(float(np.cross(normal[f], normal[g]) @ e) / length,
+                               float(normal[f] @ normal[g]))
+            edges[(i, j)] = (length, theta, f, g)
+    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges)
 
 
 def _input_scale(case: CurvatureCase) -> np.ndarray:
@@ -375,8 +374,10 @@ def angle_defects_are_invariant(impl, example):
     an angle sum over many independent square roots whose exact zero test the reference
     cannot finish yet (issue 18), so stars stay at valence <= ROTATED_VALENCE here."""
     case, (R, tr), key = example
-    moved, perm = _relabel(ref.rigid_motion(case.surface, R, tr), key)
-    other = CurvatureCase(floated(moved), case.chi, case.recipe + f", moved, relabelled {key}")
+    motion = (tuple(map(tuple, R)), tuple(tr), key)
+    moved, perm = case.derived(("moved", motion),
+                               lambda c: _relabel(floated(ref.rigid_motion(c.surface, R, tr)), key))
+    other = CurvatureCase(moved, case.chi, case.recipe + f", moved, relabelled {key}")
     K1, K2 = _defects(impl, case, "T2.5"), _defects(impl, other, "T2.5")
     tol1 = vertex_tolerances(case, corner_tolerances(case))
     tol2 = vertex_tolerances(other, corner_tolerances(other, input_rounding=True))
@@ -480,7 +481,8 @@ _SIGN = {"convex": 1, "planar": 0, "saddle": -1}
       "to be of each kind; K decided beyond the float bound)", needs={"angle_defects"},
       strategy=lambda: st.sampled_from(["convex", "planar", "saddle"]).flatmap(vertex_stars))
 def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
-    assume(_PREDICATES[star.kind](star.surface, 0))      # the kind survived rounding to floats
+    # the kind survived rounding to floats
+    assume(star.derived("kind", lambda c: _PREDICATES[c.kind](c.surface, 0)))
     K = float(_defects(impl, star, "L2.4")[0])
     tol = float(vertex_tolerances(star, corner_tolerances(star))[0])
     want = _SIGN[star.kind]
@@ -502,14 +504,20 @@ def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
                               expected=0.0, observed=K, bound=tol)
 
 
+def _corner_angles_from_lengths(case: CurvatureCase) -> np.ndarray:
+    """Float views of the exact corner angles of the metric built from the squared lengths
+    alone (no positions used), D2.6."""
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
+    m = case.surface.metric()
+    flat = PiecewiseFlatSurface(case.triangulation, m.squared_lengths)
+    return np.array([[float(a) for a in face] for face in ref.corner_angles(flat)])
+
+
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "
       "(the piecewise flat metric built from squared lengths alone)", needs={"corner_angles"},
       strategy=lambda: jittered_surfaces(intrinsic=True))
 def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
-    from ddg_oracle.reference.metric import PiecewiseFlatSurface
-    m = case.surface.metric()
-    flat = PiecewiseFlatSurface(case.triangulation, m.squared_lengths)     # no positions used
-    expected = np.array([[float(a) for a in face] for face in ref.corner_angles(flat)])
+    expected = case.derived("corner angles", _corner_angles_from_lengths)
     A = np.asarray(_call(impl, "corner_angles", case), dtype=np.float64)
     if A.shape != expected.shape:
         raise PropertyFailure("D2.6", impl, "corner_angles must be an (m, 3) array", mesh=case.mesh,
@@ -724,7 +732,7 @@ def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
       "with the exact (A, 2 H(S), 2 pi chi)", needs={"area", "edge_mean_curvature", "angle_defects"},
       strategy=lambda: jittered_surfaces(closed=True))
 def steiner_coefficients_match(impl, case: CurvatureCase):
-    A_ref, twoH_ref, _ = ref.steiner_coefficients(case.surface)
+    A_ref, twoH_ref, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
     A = float(_call(impl, "area", case))
     bound_A = area_tolerance(case)
     if not abs(A - float(A_ref)) <= bound_A:

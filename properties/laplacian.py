@@ -50,6 +50,7 @@ from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl
                                  weight_sign_by_angles)
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from . import memo
 from .protocol import ISOLATED_VERTEX, eps
 from .strategies import (MeshCase, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
@@ -125,7 +126,13 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
 
 
 class Exact:
-    """The exact reference on the floats of a case, with float views and entry bounds."""
+    """The exact reference on the floats of a case, with float views and entry bounds.
+    ``Exact.of(case)``: the same, computed once per case content (:mod:`.memo`: every
+    implementation of a property is checked on the same examples); read-only."""
+
+    @classmethod
+    def of(cls, case: MeshCase) -> "Exact":
+        return memo.shared((cls.__name__, case.positions, case.faces), lambda: cls(case))
 
     def __init__(self, case: MeshCase):
         self.case = case
@@ -212,7 +219,7 @@ def _worst(err, bound):
       needs={"cotan_laplacian"}, strategy=lambda: scaled_meshes(any_meshes(isolated=True)))
 def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase):
     A = _dense(impl, case, "D3.1")
-    X = Exact(case)
+    X = Exact.of(case)
     n = X.n
     off = ~X.adjacent & ~np.eye(n, dtype=bool)
     if np.any(A[off] != 0):
@@ -243,7 +250,7 @@ def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
 def energy_of_the_interpolant(impl, case: MeshCase):
     A = _dense(impl, case, "T3.6")
-    X = Exact(case)
+    X = Exact.of(case)
     f = np.array([float(x) for x in case.values])
     q = float(f @ (A @ f)) / 2
     exact = float(dirichlet_energy_pl(X.surface, X.restrict(case.values)))
@@ -262,7 +269,7 @@ def energy_of_the_interpolant(impl, case: MeshCase):
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
 def gradient_of_the_energy(impl, case: MeshCase):
     A = _dense(impl, case, "T3.1 / R3.2")
-    X = Exact(case)
+    X = Exact.of(case)
     f, phi = list(case.values), list(case.second)
     exact = float(directional_derivative(lambda g: dirichlet_energy_pl(X.surface, g),
                                          X.restrict(f), X.restrict(phi)))
@@ -285,7 +292,7 @@ def _eig_tol(X: Exact, A) -> float:
       needs={"cotan_laplacian"}, strategy=lambda: with_boundary(obtuse_meshes()))
 def negative_weights_keep_the_energy_positive(impl, case: MeshCase):
     A = _dense(impl, case, "R3.3")
-    X = Exact(case)
+    X = Exact.of(case)
     tol = _eig_tol(X, A)
     lam = float(np.linalg.eigvalsh((A + A.T) / 2)[0])
     _record("R3.3", max(-lam, 0.0), tol)
@@ -307,7 +314,7 @@ def negative_weights_keep_the_energy_positive(impl, case: MeshCase):
       needs={"cotan_laplacian"}, strategy=lambda: with_isolated(acute_meshes(max_components=3)))
 def harmonic_functions_are_locally_constant(impl, case: MeshCase):
     A = _dense(impl, case, "C3.3")
-    X = Exact(case)
+    X = Exact.of(case)
     tol = _eig_tol(X, A)
     comps = X.components()
     lam = np.linalg.eigvalsh((A + A.T) / 2)
@@ -344,7 +351,7 @@ def _solve(A, V0, c):
       needs={"cotan_laplacian"}, strategy=lambda: with_boundary(acute_meshes()))
 def maximum_principle(impl, case: MeshCase):
     A = _dense(impl, case, "T3.2")
-    X = Exact(case)
+    X = Exact.of(case)
     V0 = list(case.boundary)
     c = np.array([float(x) for x in case.values])
     u, I = _solve(A, V0, c)
@@ -369,7 +376,7 @@ def maximum_principle(impl, case: MeshCase):
       strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
 def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
     A = _dense(impl, case, "C3.4 / T3.5")
-    X = Exact(case)
+    X = Exact.of(case)
     V0 = list(case.boundary)
     c = np.array([float(x) for x in case.values])
     u, I = _solve(A, V0, c)
@@ -402,7 +409,7 @@ def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(acute_meshes()))
 def harmonic_value_in_convex_hull(impl, case: MeshCase):
     A = _dense(impl, case, "P3.10")
-    X = Exact(case)
+    X = Exact.of(case)
     vals = np.array([float(x) for x in case.values])
     sec = np.array([float(x) for x in case.second])
     U = np.stack([vals, sec, vals * sec], axis=1)             # a map to R^3
@@ -434,7 +441,7 @@ def harmonic_value_in_convex_hull(impl, case: MeshCase):
       needs={"cotan_laplacian"}, strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
 def weight_sign_by_opposite_angles(impl, case: MeshCase):
     A = _dense(impl, case, "E3.12")
-    X = Exact(case)
+    X = Exact.of(case)
     t = X.triangulation
     ERROR_RATIOS.setdefault("E3.12", 0.0)
     tie = None
@@ -468,7 +475,7 @@ def area_gradient_of_a_triangle(impl, case: MeshCase):
 
 def _area_gradient_check(pid, impl, case):
     A = _dense(impl, case, pid)
-    X = Exact(case)
+    X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
     got = A @ P
     exact = np.zeros_like(P)                 # an isolated vertex: no face, no gradient
@@ -493,7 +500,7 @@ def _area_gradient_check(pid, impl, case):
                                  surface_meshes(isolated=True)))
 def area_as_dirichlet_energy(impl, case: MeshCase):
     A = _dense(impl, case, "T3.9")
-    X = Exact(case)
+    X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
     energy = float(sum(P[:, k] @ A @ P[:, k] for k in range(3))) / 2
     area = float(X.metric.total_area())
@@ -513,7 +520,7 @@ def area_as_dirichlet_energy(impl, case: MeshCase):
       strategy=lambda: with_boundary(st.one_of(jittered_grids(), obtuse_fans()), mesh_boundary=True))
 def minimal_surface_step_decreases_area(impl, case: MeshCase):
     A = _dense(impl, case, "A3.6")
-    X = Exact(case)
+    X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
     U, I = _solve(A, list(case.boundary), P)
     if not I:
@@ -573,7 +580,7 @@ def vertex_area_bounds(X: Exact) -> tuple[np.ndarray, np.ndarray]:
       strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes(), jittered_grids(), closed_meshes(),
                                  surface_meshes(isolated=True)))
 def vertex_areas_sum_to_the_area(impl, case: MeshCase):
-    X = Exact(case)
+    X = Exact.of(case)
     V, F = case.arrays()
     n = X.n
     area = float(X.metric.total_area())

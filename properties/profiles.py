@@ -152,7 +152,7 @@ def profile_budget(name: str) -> Budget:
     """The task budget (:mod:`.budget`) that goes with one of our profiles.
 
     >>> profile_budget("ddg-oracle-thorough")
-    Budget(seconds=None, crashes=None)
+    Budget(seconds=None, crashes=None, shrink=None)
     """
     return BUDGETS[_short(name)]
 

@@ -38,7 +38,7 @@ from hypothesis import given, seed as hypothesis_seed, settings as Settings
 
 from ddg_oracle.reference.errors import ExactArithmeticLimit, TimeLimitExceeded
 
-from .budget import Budget, BudgetExceeded, task_budget
+from .budget import Budget, BudgetExceeded, shrink_from_now, task_budget
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
 from .profiles import profile as named_profile, profile_budget
@@ -129,11 +129,20 @@ def _crash_text(e: BaseException) -> str:
 
 def _keep_smallest(state: dict, key: str, e: BaseException, example) -> None:
     """Remember the smallest failing (``key="failure"``) or crashing example seen, in case
-    the budget stops the search before Hypothesis has replayed its shrunk one."""
+    the budget stops the search before Hypothesis has replayed its shrunk one.  The first
+    one starts the shrinking, and its budget (:func:`_start_shrinking`)."""
+    _start_shrinking(state)
     mesh = getattr(e, "mesh", None) or example_mesh(example)
     best = state[key]
     if best is None or _size(mesh) <= _size(best[2]):
         state[key] = (e, example, mesh)
+
+
+def _start_shrinking(state: dict) -> None:
+    """The first failure or crash (Hypothesis shrinks from here): the rest of the task
+    gets at most the budget's shrink seconds."""
+    if state["failure"] is None and state["crash"] is None:
+        shrink_from_now(state["shrink"])
 
 
 def _size(mesh) -> int:
@@ -191,7 +200,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                            f"{'s' if len(missing) > 1 else ''} this property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
              "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
-             "stopped": None}
+             "stopped": None, "shrink": budget.shrink if budget is not None else None}
     max_crashes = budget.crashes if budget is not None else None
     # examples the implementation declines are counted, not checked; the check is wrapped
     # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
@@ -239,7 +248,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     # both from the test function, the same `body` for every property; this is the hook
     # its pytest plugin uses for parametrized tests (no public API exists for it)
     body._hypothesis_internal_add_digest = p.id.encode()
-    t0 = time.perf_counter()
+    t0 = state["t0"] = time.perf_counter()
     with task_budget(budget.seconds if budget is not None else None):
         errors, run = _search(body, p, settings, seed, state=state)
         if not errors and state["tie"] is not None and state["stopped"] is None:
@@ -298,6 +307,11 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     on a candidate of this pass stops it (not chased: each hang costs the timeout).
     Returns a real failure this pass found on a simpler example, if any."""
     n, ties, outside = state["n"], state["ties"], state["outside"]
+    # this pass replays at most the first pass's examples, then shrinks: it gets the first
+    # pass's time plus the shrink budget (body's source stays as it is: it seeds the
+    # derandomized example stream)
+    if state["shrink"] is not None:
+        shrink_from_now(state["shrink"] + time.perf_counter() - state["t0"])
     seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
                                                  None)
     state["ties_raise"] = True

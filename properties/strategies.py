@@ -22,7 +22,7 @@ from ddg_oracle.reference.combinatorics import Classification, Triangulation, co
 from ddg_oracle.reference.errors import NotFlippable
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from . import variants
+from . import memo, variants
 
 
 @dataclass(frozen=True)
@@ -309,6 +309,21 @@ class CurvatureCase:
         if "surface arrays" not in self._cache:
             self._cache["surface arrays"] = _as_arrays(self.surface_mesh)
         return self._cache["surface arrays"]
+
+    @property
+    def content(self) -> tuple:
+        """What the case is, as a hashable value: exact positions, faces, isolated vertices
+        and chi (the key of :meth:`derived`)."""
+        if "content" not in self._cache:
+            self._cache["content"] = (tuple(self.surface.positions), self.triangulation.faces,
+                                      self.isolated, self.chi)
+        return self._cache["content"]
+
+    def derived(self, name: str, compute):
+        """``compute(self)``, computed once per content in this process (:mod:`.memo`):
+        for values of the example alone (exact reference values, float geometry of the
+        bounds), which every implementation's check of the same example needs."""
+        return memo.shared((name, self.content), lambda: compute(self))
 
     def __getstate__(self):
         # the cache (float arrays, exact values) is rebuilt on demand: not pickled, so a
