@@ -262,7 +262,7 @@ def vertex_tolerances(case: CurvatureCase, corner_tol: np.ndarray) -> np.ndarray
 
 
 def _call(impl, method: str, case: CurvatureCase):
-    V, F = case.arrays()
+    V, F = case.arrays()              # new arrays: an implementation may work in place
     return getattr(impl, method)(V, F)
 
 
