@@ -127,12 +127,14 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
 
 class Exact:
     """The exact reference on the floats of a case, with float views and entry bounds.
-    ``Exact.of(case)``: the same, computed once per case content (:mod:`.memo`: every
-    implementation of a property is checked on the same examples); read-only."""
+    ``Exact.of(case)``: the same, computed once per case content and machine epsilon (the
+    bounds are the checked implementation's: float64 or float32) in this process
+    (:mod:`.memo`: every implementation of a property is checked on the same examples);
+    read-only."""
 
     @classmethod
     def of(cls, case: MeshCase) -> "Exact":
-        return memo.shared((cls.__name__, case.positions, case.faces), lambda: cls(case))
+        return memo.shared((cls.__name__, eps(), case.positions, case.faces), lambda: cls(case))
 
     def __init__(self, case: MeshCase):
         self.case = case

@@ -298,8 +298,7 @@ class CurvatureCase:
 
     def arrays(self):
         """(V float64 n x 3, F int64 m x 3), exactly what an implementation receives: new
-        arrays each call (a case is shared by the checks of every implementation, see
-        :func:`jittered_surfaces`, and a caller may work in place on them)."""
+        arrays each call (a caller, or an implementation, may work in place on them)."""
         if "arrays" not in self._cache:
             self._cache["arrays"] = _as_arrays(self.mesh)
         V, F = self._cache["arrays"]
@@ -324,7 +323,6 @@ class CurvatureCase:
                                       self.isolated, self.chi, self.vertex, self.kind,
                                       self.params)
         return self._cache["content"]
-
 
     def derived(self, name: str, compute):
         """``compute(self)``, computed once per content in this process (:mod:`.memo`):
@@ -438,10 +436,9 @@ def _scaled_and_moved(s: PolyhedralSurface, k: int, e: int | None, signs: int) -
     return s.with_positions(pts)
 
 
-def _base_choices(draw, closed, intrinsic, max_valence=MAX_VALENCE) -> tuple:
-    """The draws of :func:`_base_build` (name, orientation code, a, b, valence, lift, face):
-    a constructor's surface, maybe minus a face, a high-valence fan or bipyramid, or
-    (``intrinsic``) a Möbius strip.  No range depends on a built surface."""
+def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
+    """(surface, chi, recipe): a constructor's surface, maybe minus a face, a high-valence
+    fan or bipyramid, or (``intrinsic``) a Möbius strip; also the orientation code."""
     names = []
     if closed is not False:
         names += list(_CLOSED)
@@ -460,18 +457,6 @@ def _base_choices(draw, closed, intrinsic, max_valence=MAX_VALENCE) -> tuple:
     if orientation == 1:
         name = "moebius strip"
     a, b = draw(st.integers(0, 5)), draw(st.integers(0, 5))
-    n = lift = f = None
-    if name in ("fan", "bipyramid"):
-        n = draw(st.integers(3, max_valence))
-        if name == "fan":
-            lift = draw(st.integers(0, FAN_LIFT_LIMIT))           # 0: exactly planar
-    elif name.startswith("holed "):
-        f = draw(st.integers(0, 1 << 10))                          # mod the face count
-    return name, orientation, a, b, n, lift, f
-
-
-def _base_build(name, orientation, a, b, n, lift, f):
-    """(surface, chi, recipe, orientation code) of :func:`_base_choices`' draws."""
     if name in _CLOSED:
         s, chi = _CLOSED[name](a, b), _CHI[name]
     elif name in _WITH_BOUNDARY:
@@ -479,16 +464,19 @@ def _base_build(name, orientation, a, b, n, lift, f):
         s = build(a, b)
     elif name == "moebius strip":
         s, chi = surfaces.mobius_strip(3 + a % 5), 0
-    elif name == "fan":
-        s, chi = variants.fan(n, lift or None), 1
-        name = f"fan of valence {n}" + (f", centre lifted by 2^-{lift}" if lift else ", planar")
-    elif name == "bipyramid":
-        s, chi = variants.bipyramid(n, Fraction(1 + a, 2), Fraction(1 + b, 2)), 2
-        name = f"bipyramid of valence {n}"
+    elif name in ("fan", "bipyramid"):
+        n = draw(st.integers(3, max_valence))
+        if name == "fan":
+            lift = draw(st.integers(0, FAN_LIFT_LIMIT))           # 0: exactly planar
+            s, chi = variants.fan(n, lift or None), 1
+            name = f"fan of valence {n}" + (f", centre lifted by 2^-{lift}" if lift else ", planar")
+        else:
+            s, chi = variants.bipyramid(n, Fraction(1 + a, 2), Fraction(1 + b, 2)), 2
+            name = f"bipyramid of valence {n}"
     else:
         base = name.split(" ", 1)[1]
         s0 = _CLOSED[base](a, b)
-        f %= s0.triangulation.n_faces
+        f = draw(st.integers(0, 1 << 10)) % s0.triangulation.n_faces
         s, chi = PolyhedralSurface(s0.triangulation.remove_face(f), s0.positions), _CHI[base] - 1
         name = f"{name} (face {f})"
     return s, chi, f"{name} [{a}, {b}]", orientation
@@ -523,55 +511,13 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
       more is beyond the reference's exact zero test today: issue 18).
 
     Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1, at the
-    origin, consistently oriented, connected, in its constructor's order.  Every
-    choice is drawn first and the case built from them once per process
-    (:mod:`.memo`): each implementation of a property is checked on the same
-    examples, so a worker builds each example once.  The case is shared: read-only.
+    origin, consistently oriented, connected, in its constructor's order.
     """
-    base = _base_choices(draw, closed, intrinsic, max_valence)
-    sub = bool(subdivide and draw(st.integers(0, 3)) == 3)
-    flips = tuple(draw(st.lists(st.integers(0, 1 << 16), max_size=4))) if wide else ()
-    level = draw(st.integers(0, 2))
-    jitter = (draw(st.integers(0, 1 << 16)), draw(st.booleans())) if level else None
-    sliver = draw(st.integers(0, 2)) if wide else 0          # 0 none, 1 needle, 2 cap
-    cut = None
-    if sliver:               # exponent, halfedge, on a boundary edge if any, lift
-        cut = (draw(st.integers(1, SLIVER_LIMIT)), draw(st.integers(0, 1 << 16)),
-               draw(st.booleans()), draw(st.one_of(st.none(), st.integers(0, 8))))
-    reverse = draw(st.integers(0, 1 << 16)) if base[1] == 2 else None
-    comp = draw(st.integers(0, 2)) if wide else 0             # 0 none, 1 beside, 2 touching
-    other = None
-    if comp:
-        names = [n for n, (_, _, c) in _COMPONENTS.items()
-                 if (c or closed is not True) and (intrinsic or n != "moebius strip")]
-        other = draw(st.sampled_from(names))
-    order = draw(st.integers(0, 1 << 16)) if wide and draw(st.booleans()) else 0
-    # scaling by 2**k is exact in floats, so a bug of the unit-size mesh shows scaled too:
-    # scale most examples (a threshold bug shows only there)
-    k = draw(st.integers(-60, 60)) if far and draw(st.integers(0, 3)) else 0
-    e = draw(st.integers(0, 30)) if far and draw(st.integers(0, 3)) >= 2 else None
-    signs = draw(st.integers(0, 7)) if e is not None else 0
-    spots = []
-    for _ in range(draw(st.integers(0, 2)) if wide and isolated else 0):
-        # vertex whose position it takes (mod the count), there or far, where in V:
-        # last (leftover vertices of a file), first, or anywhere
-        v, at_vertex, where = (draw(st.integers(0, 1 << 16)), draw(st.booleans()),
-                               draw(st.integers(0, 2)))
-        spots.append((v, at_vertex, where, draw(st.integers(0, 1 << 16)) if where == 2 else None))
-    choices = (base, sub, flips, level, jitter, sliver, cut, reverse, comp, other, order, k, e,
-               signs, tuple(spots), closed)
-    case = memo.shared(("jittered_surfaces", choices), lambda: _build_jittered(*choices))
-    assume(case is not None)     # rounding collapsed a sliver or folded a flip
-    return case
-
-
-def _build_jittered(base, sub, flips, level, jitter, sliver, cut, reverse, comp, other, order,
-                    k, e, signs, spots, closed):
-    """The :class:`CurvatureCase` of :func:`jittered_surfaces`' draws (None: degenerate)."""
-    s, chi, recipe, orientation = _base_build(*base)
-    if sub and s.triangulation.n_faces <= 100:
+    s, chi, recipe, orientation = _base(draw, closed, intrinsic, max_valence)
+    if subdivide and draw(st.integers(0, 3)) == 3 and s.triangulation.n_faces <= 100:
         s = _subdivided(s)
         recipe += ", 1-to-4"
+    flips = draw(st.lists(st.integers(0, 1 << 16), max_size=4)) if wide else []
     if flips:
         # random valence: flip interior edges (kept a simplicial complex); the vertices
         # stay, the faces become the other diagonals of (generally non-planar) quads
@@ -579,55 +525,73 @@ def _build_jittered(base, sub, flips, level, jitter, sliver, cut, reverse, comp,
                                     s.positions)
         if not variants.has_fold(flipped):      # a flip across a reflex quad folds two faces
             s = flipped
-            recipe += f", flips {list(flips)}"
+            recipe += f", flips {flips}"
+    level = draw(st.integers(0, 2))
     if level:
-        seed, floats = jitter
+        seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
         s = _jittered(s, level, seed, floats)
         recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
+    sliver = draw(st.integers(0, 2)) if wide else 0          # 0 none, 1 needle, 2 cap
     k_sliver = 0
     if sliver:
         kind = ("needle", "cap")[sliver - 1]
-        k_sliver, h, on_boundary, lift = cut
-        if on_boundary:                                       # a boundary edge, if any
+        k_sliver = draw(st.integers(1, SLIVER_LIMIT))
+        h = draw(st.integers(0, 1 << 16))
+        if draw(st.booleans()):                               # a boundary edge, if any
             t = s.triangulation
             border = [x for x in range(t.n_halfedges) if t.twin(x) < 0]
             h = border[h % len(border)] if border else h
+        lift = draw(st.one_of(st.none(), st.integers(0, 8)))
         h %= s.triangulation.n_halfedges
         s = variants.with_sliver(s, h, kind, k_sliver, lift)
         recipe += f", {kind} 2^-{k_sliver} at halfedge {h}" + (
             f" lifted 2^-{lift}" if lift is not None else "")
     if orientation == 2:
-        s, n_reversed = _reversed_faces(s, reverse)
-        recipe += f", {n_reversed} face(s) reversed"
+        s, k = _reversed_faces(s, draw(st.integers(0, 1 << 16)))
+        recipe += f", {k} face(s) reversed"
+    comp = draw(st.integers(0, 2)) if wide else 0             # 0 none, 1 beside, 2 touching
     if comp:
+        names = [n for n, (_, _, c) in _COMPONENTS.items()
+                 if (c or closed is not True) and (intrinsic or n != "moebius strip")]
+        other = draw(st.sampled_from(names))
         build, chi2, _ = _COMPONENTS[other]
         s = variants.disjoint_union(s, build(), touch=comp == 2)
         chi += chi2
         recipe += f", and a {other} {'touching it at a vertex' if comp == 2 else 'beside it'}"
+    order = draw(st.integers(0, 1 << 16)) if wide and draw(st.booleans()) else 0
     if order:
         s = variants.permuted(s, order)
         recipe += f", reordered (seed {order})"
+    # scaling by 2**k is exact in floats, so a bug of the unit-size mesh shows scaled too:
+    # scale most examples (a threshold bug shows only there)
+    k = draw(st.integers(-60, 60)) if far and draw(st.integers(0, 3)) else 0
+    e = draw(st.integers(0, 30)) if far and draw(st.integers(0, 3)) >= 2 else None
     if e is not None and sliver:
         e = min(e, 36 - k_sliver)            # keep >= 12 bits of the sliver after rounding
     if k or e is not None:
+        signs = draw(st.integers(0, 7)) if e is not None else 0
         s = _scaled_and_moved(s, k, e, signs)
         recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
     s = floated(s)
-    if variants.is_degenerate(s) or variants.has_fold(s):
-        return None
-    isolated = ()
-    if spots:
-        n_iso, placed = len(spots), []
-        size = s.n_vertices + n_iso
-        for v, at_vertex, where, anywhere in spots:
-            v %= s.n_vertices
+    if variants.is_degenerate(s) or variants.has_fold(s):   # rounding collapsed a sliver or
+        assume(False)                                       # folded a flip: not this example
+    allow_isolated, isolated = isolated, ()
+    n_iso = draw(st.integers(0, 2)) if wide and allow_isolated else 0
+    if n_iso:
+        spots = []
+        for _ in range(n_iso):
+            v = draw(st.integers(0, s.n_vertices - 1))
+            at_vertex = draw(st.booleans())
             p = s.positions[v] if at_vertex else tuple(x * 3 + 1 for x in s.positions[v])
+            # where in V: last (leftover vertices of a file), first, or anywhere
+            where = draw(st.integers(0, 2))
+            size = s.n_vertices + n_iso
             i = (size - 1, 0, None)[where]
-            placed.append((anywhere % size if i is None else i, floated_point(p)))
+            spots.append((draw(st.integers(0, size - 1)) if i is None else i, floated_point(p)))
         used, isolated = set(), []
-        for i, p in placed:                  # distinct indices, in order
+        for i, p in spots:                   # distinct indices, in order
             while i in used:
-                i = (i + 1) % size
+                i = (i + 1) % (s.n_vertices + n_iso)
             used.add(i)
             isolated.append((i, p))
         isolated = tuple(sorted(isolated))
