@@ -165,7 +165,9 @@ def test_every_applicable_property_passes_but_on_the_meshes_of_findings_G3_and_G
             # G3: tip_angles' absolute threshold (the curvature strategy scales by 2^k);
             # G4: angles and areas from squared lengths lose needles and caps (slivers)
             V, F = r.failure.mesh
-            small = max(abs(x) for p in V for x in p) < 2 ** -10
+            # the size of the surface: an isolated vertex (used by no face) may sit far
+            # away, and a budget-cut shrink may leave it there
+            small = np.abs(np.asarray(V, float)[np.asarray(F)]).max() < 2 ** -10
             assert small or _sliver(V, F), str(r.failure)
         else:
             assert r.ok, r.status
