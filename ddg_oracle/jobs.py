@@ -185,12 +185,15 @@ def _alive(pid: int) -> bool:
 def _worker_main(options: Options, meshes: list, conn) -> None:
     """A pool worker: run the tasks it is sent, one at a time, answer each with its results.
     On SIGTERM it closes its isolated library workers first (no orphan)."""
+    import os
     import signal
-    import sys
 
     def stop(signum, frame):
         close_all()
-        sys.exit(128 + signum)
+        # not sys.exit: a SystemExit raised while a garbage-collector callback runs (which
+        # Hypothesis installs) is printed as "Exception ignored" and swallowed, and the
+        # worker would go on; the library workers are closed, nothing else needs unwinding
+        os._exit(128 + signum)
 
     signal.signal(signal.SIGTERM, stop)
     signal.signal(signal.SIGINT, signal.SIG_IGN)      # the parent decides what an interrupt does
