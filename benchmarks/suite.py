@@ -20,7 +20,7 @@ def run_hypothesis(mode: Mode) -> dict:
     from ddg_oracle.properties.profiles import profile
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     from ddg_oracle.oracles.libigl import Libigl
-    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import run_property
 
     n = 25 if mode.quick else 200

@@ -254,7 +254,7 @@ class ResultStream:
     def add(self, k: int, results) -> None:
         import base64
         import pickle
-        from ddg_oracle.properties.registry import PROPERTIES
+        from ddg_oracle.properties import PROPERTIES
         records = [result_record(r, getattr(PROPERTIES.get(r.property_id), "statement", ""),
                                  self.tasks[k].spec) for r in results]
         line = {"task": self._key(self.tasks[k]), "results": records,
@@ -498,7 +498,7 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
     """Write results.json, index.html, timings.json, summary.md and the failure files into
     ``directory``;
     returns {result index: its failure files} (paths relative to ``directory``)."""
-    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
 
     from .html_report import write_html

@@ -3,6 +3,9 @@
 Importing this package registers our properties in our own registry and
 nothing else: no Hypothesis profile is loaded or registered (see
 :mod:`.profiles`), so a user's own ``@given`` tests keep their settings.
+The public names are loaded when first used (PEP 562): a process that needs
+only a small module (an isolated library worker importing :mod:`.protocol` or
+:mod:`.budget`) does not import Hypothesis and every property with it.
 
 Use from your own tests::
 
@@ -19,27 +22,38 @@ or draw meshes for your own properties::
         V, F = case.arrays()                          # float64 n x 3, int64 m x 3
 """
 
-from .registry import PROPERTIES, Property, PropertyFailure, TieDisagreement, all_properties
-from .runner import check_implementation, run_properties
-from .strategies import (CurvatureCase, MeshCase, SurfaceCase, acute_meshes, any_meshes,
-                         closed_meshes, closed_surfaces, jittered_grids, jittered_surfaces,
-                         named_surfaces, obtuse_meshes, planar_meshes, scaled_meshes,
-                         single_triangles, surface_meshes, triangulated_surfaces, weighted_graphs,
-                         with_functions, with_isolated)
-# strategies that live beside the properties they serve (star kinds, Delaunay flips, flat tori)
-from .curvature import rational_motions, vertex_stars
-from .delaunay import delaunay_meshes, flipped_meshes, two_triangulations
-from .metrics import flat_tori, polycube_surfaces, randomly_flipped
-from .planar_points import integer_point_sets, integer_quadrilaterals, rational_point_sets
+#: public name -> the module defining it (strategies that live beside the properties they
+#: serve: star kinds, Delaunay flips, flat tori, planar point sets)
+_PUBLIC = {
+    **dict.fromkeys(["PROPERTIES", "Property", "PropertyFailure", "TieDisagreement",
+                     "all_properties"], "registry"),
+    **dict.fromkeys(["check_implementation", "run_properties"], "runner"),
+    **dict.fromkeys(["CurvatureCase", "MeshCase", "SurfaceCase", "acute_meshes", "any_meshes",
+                     "closed_meshes", "closed_surfaces", "jittered_grids", "jittered_surfaces",
+                     "named_surfaces", "obtuse_meshes", "planar_meshes", "scaled_meshes",
+                     "single_triangles", "surface_meshes", "triangulated_surfaces",
+                     "weighted_graphs", "with_functions", "with_isolated"], "strategies"),
+    **dict.fromkeys(["rational_motions", "vertex_stars"], "curvature"),
+    **dict.fromkeys(["delaunay_meshes", "flipped_meshes", "two_triangulations"], "delaunay"),
+    **dict.fromkeys(["flat_tori", "polycube_surfaces", "randomly_flipped"], "metrics"),
+    **dict.fromkeys(["integer_point_sets", "integer_quadrilaterals", "rational_point_sets"],
+                    "planar_points"),
+}
 
-all_properties()        # registers every property, so PROPERTIES is complete on import
+__all__ = list(_PUBLIC)
 
-__all__ = ["PROPERTIES", "Property", "PropertyFailure", "TieDisagreement", "all_properties",
-           "check_implementation", "run_properties", "SurfaceCase", "closed_surfaces", "named_surfaces",
-           "triangulated_surfaces", "jittered_surfaces", "rational_motions", "vertex_stars",
-           "delaunay_meshes", "flipped_meshes", "two_triangulations", "MeshCase", "CurvatureCase",
-           "surface_meshes", "with_isolated", "acute_meshes",
-           "any_meshes", "closed_meshes", "jittered_grids", "obtuse_meshes", "planar_meshes",
-           "scaled_meshes", "single_triangles", "weighted_graphs", "with_functions", "flat_tori",
-           "polycube_surfaces", "randomly_flipped", "integer_point_sets", "integer_quadrilaterals",
-           "rational_point_sets"]
+
+def __getattr__(name: str):
+    module = _PUBLIC.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+    from .registry import all_properties
+    all_properties()        # every property registered: PROPERTIES is complete once it is seen
+    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_PUBLIC))

@@ -16,7 +16,7 @@ from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, closed_m
                                              planar_meshes, weighted_graphs, with_functions)
 from ddg_oracle.properties.profiles import profile
 from tests.property_checks import assert_caught, assert_passes_well_inside
-from ddg_oracle.properties.registry import PROPERTIES
+from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.runner import PASSED, run_property
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.areas import (area_as_dirichlet_energy, area_from_cotangents, area_gradient,

@@ -78,3 +78,19 @@ def test_the_layer_check_catches_an_upward_import(tmp_path):
     rel = tmp_path / "rel.py"
     rel.write_text("from ..oracles import libigl\n")
     assert _imports(rel, "ddg_oracle.properties")[0][1] == "ddg_oracle.oracles"
+
+
+def test_a_library_worker_does_not_import_hypothesis_or_the_properties():
+    # an isolated library worker imports ddg_oracle.isolation (budget, protocol) and its
+    # adapter: the properties package loads its public names lazily, so such a process
+    # starts without Hypothesis (0.5 s per worker, 16 workers in a main job)
+    import subprocess
+    import sys
+    code = ("import sys, ddg_oracle.isolation, ddg_oracle.oracles.arrays\n"
+            "print(sorted(m for m in sys.modules if m == 'hypothesis'\n"
+            "             or m.startswith('ddg_oracle.properties.') and not m.endswith(\n"
+            "             ('.budget', '.protocol'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+    import ddg_oracle.properties as p
+    assert p.PROPERTIES["D1.6"].id == "D1.6" and len(p.PROPERTIES) == len(p.all_properties())

@@ -11,7 +11,7 @@ from examples.numpy_cotan import (AbsoluteThreshold, BoundaryWithoutHalf, NumpyC
                                   WrongCorner)
 from ddg_oracle.properties import check_implementation
 from ddg_oracle.properties.profiles import profile
-from ddg_oracle.properties.registry import PROPERTIES
+from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.runner import FAILED, PASSED, run_property
 
 ROOT = Path(__file__).resolve().parent.parent
