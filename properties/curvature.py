@@ -35,6 +35,7 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from . import memo
 from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement, prop
 from .strategies import CurvatureCase, floated, jittered_surfaces
@@ -157,7 +158,9 @@ def vertex_stars(draw, kind: str | None = None):
         params = (n, h)
     else:
         raise ValueError(f"unknown star kind {kind!r}")
-    return _star_surface(dirs, kind, params, symmetry, shift)
+    # built once per drawn star in this process: every implementation's task draws the same
+    return memo.DRAWN.shared(("star", tuple(dirs), kind, params, symmetry, shift),
+                             lambda: _star_surface(dirs, kind, params, symmetry, shift))
 
 
 # --- reference values and tolerances --------------------------------------------------------------
@@ -706,10 +709,12 @@ def convex_polyhedra(draw):
     n = draw(st.integers(4, 12))
     dirs = draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3), st.integers(-3, 3))
                          .filter(any), min_size=n, max_size=n, unique=True))
-    pts = sorted({tuple(round(8 * x / math.sqrt(sum(y * y for y in d))) for x in d) for d in dirs})
-    s = convex_hull_surface(pts)
+    pts = tuple(sorted({tuple(round(8 * x / math.sqrt(sum(y * y for y in d))) for x in d)
+                        for d in dirs}))
+    # the hull depends on the points alone: built once per point set in this process
+    s = memo.DRAWN.shared(("convex hull", pts), lambda: convex_hull_surface(pts))
     assume(s is not None)
-    return CurvatureCase(s, 2, f"convex hull of {pts}")
+    return CurvatureCase(s, 2, f"convex hull of {list(pts)}")
 
 
 @prop("T2.7", "total mean curvature of a convex polyhedron = integral of its support function over "
@@ -718,7 +723,8 @@ def convex_polyhedra(draw):
 def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
     H = _edge_dict(impl, case, "T2.7")
     total = math.fsum(H.values())
-    value, quad_bound = support_function_integral(case.surface.to_arrays()[0])
+    value, quad_bound = case.derived("support integral",
+                                     lambda c: support_function_integral(c.surface.to_arrays()[0]))
     tol = edge_mean_curvature_tolerances(case)
     bound = quad_bound + sum(tol.values()) + gamma(len(H)) * sum(abs(h) for h in H.values())
     err = abs(total - value)

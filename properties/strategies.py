@@ -319,9 +319,9 @@ class CurvatureCase:
         """What the case is, as a hashable value: exact positions, faces, isolated vertices,
         chi and the distinguished vertex and kind (the key of :meth:`derived`)."""
         if "content" not in self._cache:
-            self._cache["content"] = (tuple(self.surface.positions), self.triangulation.faces,
-                                      self.isolated, self.chi, self.vertex, self.kind,
-                                      self.params)
+            self._cache["content"] = _Hashed((tuple(self.surface.positions),
+                                              self.triangulation.faces, self.isolated, self.chi,
+                                              self.vertex, self.kind, self.params))
         return self._cache["content"]
 
     def derived(self, name: str, compute):
@@ -338,6 +338,18 @@ class CurvatureCase:
     def __repr__(self) -> str:
         V, F = self.mesh
         return f"CurvatureCase({self.recipe}; V={len(V)}, F={len(F)}, F={F})"
+
+
+class _Hashed(tuple):
+    """A tuple that computes its hash once: a memo key of exact positions (hashing hundreds
+    of Fractions) is looked up several times per example."""
+
+    def __hash__(self):
+        try:
+            return self._hash
+        except AttributeError:
+            self._hash = tuple.__hash__(self)
+            return self._hash
 
 
 def _as_arrays(mesh):
@@ -436,6 +448,13 @@ def _scaled_and_moved(s: PolyhedralSurface, k: int, e: int | None, signs: int) -
     return s.with_positions(pts)
 
 
+def _built(key: tuple, build):
+    """``build()``, once per ``key`` in this process (:data:`.memo.DRAWN`): a drawn surface
+    is a chain of exact steps, each determined by the previous one and its drawn choices,
+    and every implementation's task draws the same choices.  ``key`` is the chain so far."""
+    return memo.DRAWN.shared(("jittered",) + key, build)
+
+
 def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
     """(surface, chi, recipe): a constructor's surface, maybe minus a face, a high-valence
     fan or bipyramid, or (``intrinsic``) a Möbius strip; also the orientation code."""
@@ -458,26 +477,29 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
         name = "moebius strip"
     a, b = draw(st.integers(0, 5)), draw(st.integers(0, 5))
     if name in _CLOSED:
-        s, chi = _CLOSED[name](a, b), _CHI[name]
+        s, chi = _built((name, a, b), lambda: _CLOSED[name](a, b)), _CHI[name]
     elif name in _WITH_BOUNDARY:
         build, chi = _WITH_BOUNDARY[name]
-        s = build(a, b)
+        s = _built((name, a, b), lambda: build(a, b))
     elif name == "moebius strip":
-        s, chi = surfaces.mobius_strip(3 + a % 5), 0
+        s, chi = _built((name, a % 5), lambda: surfaces.mobius_strip(3 + a % 5)), 0
     elif name in ("fan", "bipyramid"):
         n = draw(st.integers(3, max_valence))
         if name == "fan":
             lift = draw(st.integers(0, FAN_LIFT_LIMIT))           # 0: exactly planar
-            s, chi = variants.fan(n, lift or None), 1
+            s, chi = _built((name, n, lift), lambda: variants.fan(n, lift or None)), 1
             name = f"fan of valence {n}" + (f", centre lifted by 2^-{lift}" if lift else ", planar")
         else:
-            s, chi = variants.bipyramid(n, Fraction(1 + a, 2), Fraction(1 + b, 2)), 2
-            name = f"bipyramid of valence {n}"
+            s = _built((name, n, a, b),
+                       lambda: variants.bipyramid(n, Fraction(1 + a, 2), Fraction(1 + b, 2)))
+            chi, name = 2, f"bipyramid of valence {n}"
     else:
         base = name.split(" ", 1)[1]
-        s0 = _CLOSED[base](a, b)
+        s0 = _built((base, a, b), lambda: _CLOSED[base](a, b))
         f = draw(st.integers(0, 1 << 10)) % s0.triangulation.n_faces
-        s, chi = PolyhedralSurface(s0.triangulation.remove_face(f), s0.positions), _CHI[base] - 1
+        s = _built((base, a, b, "minus face", f),
+                   lambda: PolyhedralSurface(s0.triangulation.remove_face(f), s0.positions))
+        chi = _CHI[base] - 1
         name = f"{name} (face {f})"
     return s, chi, f"{name} [{a}, {b}]", orientation
 
@@ -514,22 +536,29 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     origin, consistently oriented, connected, in its constructor's order.
     """
     s, chi, recipe, orientation = _base(draw, closed, intrinsic, max_valence)
+    key = (recipe,)             # the base's recipe determines it; each step extends the key
     if subdivide and draw(st.integers(0, 3)) == 3 and s.triangulation.n_faces <= 100:
-        s = _subdivided(s)
+        key += ("1-to-4",)
+        s = _built(key, lambda s=s: _subdivided(s))
         recipe += ", 1-to-4"
     flips = draw(st.lists(st.integers(0, 1 << 16), max_size=4)) if wide else []
     if flips:
         # random valence: flip interior edges (kept a simplicial complex); the vertices
         # stay, the faces become the other diagonals of (generally non-planar) quads
-        flipped = PolyhedralSurface(apply_moves(s.triangulation, [("flip", w) for w in flips]),
-                                    s.positions)
-        if not variants.has_fold(flipped):      # a flip across a reflex quad folds two faces
-            s = flipped
+        def flip(s=s):
+            flipped = PolyhedralSurface(apply_moves(s.triangulation, [("flip", w) for w in flips]),
+                                        s.positions)
+            # a flip across a reflex quad folds two faces: not taken
+            return None if variants.has_fold(flipped) else flipped
+        flipped = _built(key + ("flips", tuple(flips)), flip)
+        if flipped is not None:
+            s, key = flipped, key + ("flips", tuple(flips))
             recipe += f", flips {flips}"
     level = draw(st.integers(0, 2))
     if level:
         seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
-        s = _jittered(s, level, seed, floats)
+        key += ("jitter", level, seed, floats)
+        s = _built(key, lambda s=s: _jittered(s, level, seed, floats))
         recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
     sliver = draw(st.integers(0, 2)) if wide else 0          # 0 none, 1 needle, 2 cap
     k_sliver = 0
@@ -543,11 +572,14 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
             h = border[h % len(border)] if border else h
         lift = draw(st.one_of(st.none(), st.integers(0, 8)))
         h %= s.triangulation.n_halfedges
-        s = variants.with_sliver(s, h, kind, k_sliver, lift)
+        key += (kind, h, k_sliver, lift)
+        s = _built(key, lambda s=s: variants.with_sliver(s, h, kind, k_sliver, lift))
         recipe += f", {kind} 2^-{k_sliver} at halfedge {h}" + (
             f" lifted 2^-{lift}" if lift is not None else "")
     if orientation == 2:
-        s, k = _reversed_faces(s, draw(st.integers(0, 1 << 16)))
+        which = draw(st.integers(0, 1 << 16))
+        key += ("reversed", which)
+        s, k = _built(key, lambda s=s: _reversed_faces(s, which))
         recipe += f", {k} face(s) reversed"
     comp = draw(st.integers(0, 2)) if wide else 0             # 0 none, 1 beside, 2 touching
     if comp:
@@ -555,12 +587,14 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
                  if (c or closed is not True) and (intrinsic or n != "moebius strip")]
         other = draw(st.sampled_from(names))
         build, chi2, _ = _COMPONENTS[other]
-        s = variants.disjoint_union(s, build(), touch=comp == 2)
+        key += ("and", other, comp)
+        s = _built(key, lambda s=s: variants.disjoint_union(s, build(), touch=comp == 2))
         chi += chi2
         recipe += f", and a {other} {'touching it at a vertex' if comp == 2 else 'beside it'}"
     order = draw(st.integers(0, 1 << 16)) if wide and draw(st.booleans()) else 0
     if order:
-        s = variants.permuted(s, order)
+        key += ("reordered", order)
+        s = _built(key, lambda s=s: variants.permuted(s, order))
         recipe += f", reordered (seed {order})"
     # scaling by 2**k is exact in floats, so a bug of the unit-size mesh shows scaled too:
     # scale most examples (a threshold bug shows only there)
@@ -570,11 +604,16 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         e = min(e, 36 - k_sliver)            # keep >= 12 bits of the sliver after rounding
     if k or e is not None:
         signs = draw(st.integers(0, 7)) if e is not None else 0
-        s = _scaled_and_moved(s, k, e, signs)
+        key += ("scaled", k, e, signs)
+        s = _built(key, lambda s=s: _scaled_and_moved(s, k, e, signs))
         recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
-    s = floated(s)
-    if variants.is_degenerate(s) or variants.has_fold(s):   # rounding collapsed a sliver or
-        assume(False)                                       # folded a flip: not this example
+    def rounded(s=s):
+        s = floated(s)
+        # rounding collapsed a sliver or folded a flip: not an example (None)
+        return None if variants.is_degenerate(s) or variants.has_fold(s) else s
+    key += ("floated",)
+    s = _built(key, rounded)
+    assume(s is not None)
     allow_isolated, isolated = isolated, ()
     n_iso = draw(st.integers(0, 2)) if wide and allow_isolated else 0
     if n_iso:
@@ -601,7 +640,10 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
               ("sliver", (None, "needle", "cap")[sliver]), ("sliver exponent", k_sliver),
               ("components", 1 + (comp > 0)), ("touching", comp == 2),
               ("isolated", len(isolated)), ("reordered", order != 0))
-    return CurvatureCase(s, chi, recipe, params=params, isolated=isolated)
+    # one case object per drawn example: its float arrays and content key are computed once
+    # for every implementation's task (a case is a value: nothing mutates it)
+    return _built(key + ("case", isolated), lambda: CurvatureCase(s, chi, recipe, params=params,
+                                                                  isolated=isolated))
 
 
 def floated_point(p) -> tuple:

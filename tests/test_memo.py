@@ -3,6 +3,8 @@ same -- per example content and, for bounds, per machine epsilon."""
 
 import contextvars
 
+import pytest
+
 import numpy as np
 
 from ddg_oracle.properties import memo, protocol
@@ -34,3 +36,46 @@ def test_the_bounds_of_a_float32_implementation_are_not_a_float64_ones():
     assert Exact.of(case).B is B64                 # float64 again: the float64 bounds
     nz = B64 > 0
     assert nz.any() and np.allclose(B32[nz] / B64[nz], 2.0 ** 29)
+
+
+def _drawn(strategy, n, monkeypatch=None):
+    """The content of the first ``n`` examples of a derandomized run of ``strategy``."""
+    from hypothesis import HealthCheck, given, settings
+    seen = []
+
+    @settings(max_examples=n, derandomize=True, database=None, deadline=None,
+              suppress_health_check=list(HealthCheck))
+    @given(strategy)
+    def run(case):
+        seen.append((case.content, case.recipe, case.mesh))
+
+    run()
+    return seen
+
+
+@pytest.mark.parametrize("name", ["jittered", "intrinsic", "closed", "stars", "convex"])
+def test_a_drawn_example_is_the_one_built_without_the_memo(name, monkeypatch):
+    # the building steps of a drawn surface are kept per key (memo.DRAWN): a key missing
+    # one drawn choice would hand one example another's surface.  The same derandomized
+    # stream drawn with the table, then with it bypassed, gives the same examples
+    from ddg_oracle.properties import curvature, strategies
+    strategy = {"jittered": strategies.jittered_surfaces(),
+                "intrinsic": strategies.jittered_surfaces(intrinsic=True),
+                "closed": strategies.jittered_surfaces(closed=True, far=False),
+                "stars": curvature.vertex_stars(),
+                "convex": curvature.convex_polyhedra()}[name]
+    memo.clear()
+    with_table = _drawn(strategy, 150)
+    assert len(memo.DRAWN) > 0                      # the steps were kept ...
+    again = _drawn(strategy, 150)                   # ... and a warm table changes nothing
+    monkeypatch.setattr(memo.DRAWN, "shared", lambda key, compute: compute())
+    without = _drawn(strategy, 150)
+    assert with_table == again == without
+
+
+def test_the_drawn_table_is_bounded():
+    table = memo.Table(3)
+    for k in range(10):
+        table.shared(k, lambda k=k: k * k)
+    assert len(table) == 3 and table.shared(9, lambda: None) == 81
+    assert table.shared(0, lambda: "again") == "again"      # dropped, computed again
