@@ -109,7 +109,7 @@ def run_task(task: Task) -> list:
 
 
 def _crashed(task: Task, why: str) -> list:
-    from ddg_oracle.properties.registry import PROPERTIES
+    from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import CRASHED, Result
     p = PROPERTIES.get(task.property_id)
     return [Result(task.property_id or "-", p.name if p else "-", task.spec, CRASHED,
@@ -267,6 +267,29 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     return [r for k in range(len(tasks)) for r in out[k]]
 
 
+def task_group(task: Task):
+    """The tasks that share memoized exact values: one property's (every implementation
+    sees its examples), or one mesh file's."""
+    return task.property_id if task.mesh is None else ("mesh", task.mesh)
+
+
+def next_task(queue: list[int], tasks: list[Task], mine, others: set) -> int:
+    """The position in ``queue`` of the task a free worker takes next: one of its own group
+    ``mine`` while any is left (the implementations see the same examples, whose exact
+    reference values the worker has memoized: properties.memo), else one of a group no
+    other worker is on (``others``), else the first.
+
+    >>> ts = [Task("a", "P"), Task("b", "P"), Task("a", "Q"), Task("b", "Q")]
+    >>> next_task([0, 1, 2, 3], ts, "Q", {"P"}), next_task([0, 1, 2, 3], ts, None, {"P"})
+    (2, 2)
+    """
+    for wanted in (lambda g: g == mine, lambda g: g not in others):
+        for i, k in enumerate(queue):
+            if wanted(task_group(tasks[k])):
+                return i
+    return 0
+
+
 def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     from multiprocessing.connection import wait
 
@@ -279,6 +302,11 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     attempts: dict[int, int] = {}
     running: dict = {}                  # connection -> (process, task index or None)
     why_died: dict[int, str] = {}
+    last: dict = {}                     # connection -> group of the last task it was sent
+
+    def pick(conn) -> int:
+        others = {last.get(c) for c in running if c is not conn}
+        return queue.pop(next_task(queue, tasks, last.get(conn), others))
 
     def start():
         parent, child = ctx.Pipe()
@@ -292,7 +320,8 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     def feed(conn):
         proc, _ = running[conn]
         if queue:
-            k = queue.pop(0)
+            k = pick(conn)
+            last[conn] = task_group(tasks[k])
             try:
                 conn.send((k, tasks[k]))
             except (BrokenPipeError, OSError):
