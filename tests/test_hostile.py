@@ -226,6 +226,23 @@ def test_time_limit_per_example_names_the_property_and_the_setting():
     _says(err.value, ("[D1.6] demo", "time limit of 0.05 s", f"{TIME_LIMIT_ENV}=SECONDS"))
 
 
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_time_limit_that_fires_inside_a_finalizer_still_stops_the_example():
+    # Python prints and swallows an exception raised inside __del__ (or a garbage-collector
+    # callback, which Hypothesis installs): the overrun must not be lost with it
+    import time
+
+    class Slow:
+        def __del__(self):
+            time.sleep(0.3)
+
+    t0 = time.monotonic()
+    with pytest.raises(TimeLimitExceeded, match="time limit of 0.05 s"):
+        with example_time_limit("[D1.6] demo", seconds=0.05):
+            Slow().__class__       # the instance is finalized at once, the timer fires there
+    assert time.monotonic() - t0 < 2
+
+
 def test_time_limit_setting(monkeypatch):
     monkeypatch.delenv(TIME_LIMIT_ENV, raising=False)
     assert time_limit_seconds() == 120
