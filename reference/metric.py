@@ -13,6 +13,7 @@ the corner c of face f is opposite to halfedge 3 f + (c+1) % 3.
 from __future__ import annotations
 
 from fractions import Fraction
+from math import gcd
 from typing import Sequence
 
 from .combinatorics import Triangulation
@@ -200,6 +201,17 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
 
     Areas come from the Lagrange identity 4 A^2 = |u|^2 |v|^2 - (u.v)^2, which
     holds in every dimension; a zero-area face raises :class:`DegenerateFace`.
+    Exact: each edge's and each face's points are written on their own common
+    denominator D (x = X / D, X integer), so |X_i - X_j|^2 / D^2 and the Lagrange
+    identity are integer arithmetic, one Fraction per result (float input: D a
+    power of two).  16 A^2 = 4 (4 A^2) is then Heron's 16 A^2 of the squared
+    lengths identically, and 4 A^2 > 0 is the strict triangle inequality: the
+    metric is valid by construction.
+
+    >>> from ddg_oracle.reference import Triangulation
+    >>> m = metric_of([(0, 0, 0), (1, 0, 0), (0, Fraction(1, 3), 0)], Triangulation.from_faces([[0, 1, 2]]))
+    >>> m.squared_lengths, m.area(0)
+    ((Fraction(1, 1), Fraction(10, 9), Fraction(1, 9)), Surd('1/6'))
     """
     t = triangulation
     # points may come as floats: take every coordinate exactly first
@@ -208,7 +220,8 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     sq = []
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)
-        sq.append(sum((x - y) ** 2 for x, y in zip(points[i], points[j])))
+        (X, Y), D = _on_common_denominator(points[i], points[j])
+        sq.append(Fraction(sum((x - y) ** 2 for x, y in zip(X, Y)), D * D))
     for e, x in enumerate(sq):
         # checked before the areas: a zero edge makes its faces zero-area, and
         # "coincident vertices" says more than "collinear"
@@ -218,14 +231,26 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
                                  "(coincident vertices); its faces have zero area")
     areas = []
     for f, (i, j, k) in enumerate(t.faces):
-        u = [y - x for x, y in zip(points[i], points[j])]
-        v = [y - x for x, y in zip(points[i], points[k])]
+        (P, Q, R), D = _on_common_denominator(points[i], points[j], points[k])
+        u = [y - x for x, y in zip(P, Q)]
+        v = [y - x for x, y in zip(P, R)]
         uv = sum(x * y for x, y in zip(u, v))
         four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
         if four_a2 == 0:
             raise degenerate_face(t, f)
-        areas.append(sqrt(four_a2) / 2)
-    return PiecewiseFlatSurface(t, sq, areas)
+        areas.append(sqrt(Fraction(four_a2, D ** 4)) / 2)
+    return PiecewiseFlatSurface._trusted(t, sq, areas)
+
+
+def _on_common_denominator(*points) -> tuple[list[list[int]], int]:
+    """Rational points as integer points over one positive common denominator D."""
+    D = 1
+    for p in points:
+        for x in p:
+            d = x.denominator
+            if D % d:
+                D = D // gcd(D, d) * d
+    return [[x.numerator * (D // x.denominator) for x in p] for p in points], D
 
 
 def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:
