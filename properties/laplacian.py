@@ -37,6 +37,7 @@ sixteenths, ring radii) so that failures shrink to meshes of a few faces.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -103,10 +104,7 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
     cot = np.zeros((t.n_faces, 3))
     rho = np.zeros(t.n_faces)
     for f in range(t.n_faces):
-        # exact ratio, then rounded: scale-free, so tiny and huge meshes do not underflow
-        rho[f] = float(max(metric.face_squared_lengths(f)) / (2 * metric.area(f)))
-        for c in range(3):
-            cot[f, c] = float(metric.corner_cot(f, c))
+        rho[f], cot[f] = _conditioning(metric, f)
     amp = np.ones(t.n_faces) if amplification is None else np.asarray(amplification, float)
     beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
     for e in range(t.n_edges):
@@ -123,6 +121,33 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
                 S[x, y] += m
                 cnt[x, y] += 1
     return EntryBounds(cot, rho, beta, B + cnt * eps() * S, cnt > 0)
+
+
+def _conditioning(metric, f: int) -> tuple[float, list[float]]:
+    """(rho, the three corner cotangents) of face f as floats, within 2 ulps of the exact
+    values: conditioning factors of a bound (its constants dwarf a few ulps).  From exact
+    scale-free ratios, so tiny and huge meshes neither underflow nor overflow: with the
+    squared lengths l on one common denominator (integers L) and H = 16 A^2 (Heron) in the
+    same units, rho = max l / (2 A) = sqrt(4 max L^2 / H) and cot = n / (4 A) = sign(n)
+    sqrt(n^2 / H), n = a + b - o: integer quotients (correctly rounded), one float square
+    root.  Irrational lengths (after intrinsic flips) take the exact cotangents."""
+    sq = metric.face_squared_lengths(f)                   # opposite corners 2, 0, 1
+    if all(type(x) is Fraction for x in sq):
+        D = 1
+        for x in sq:
+            d = x.denominator
+            if D % d:
+                D = D // math.gcd(D, d) * d
+        l0, l1, l2 = L = [x.numerator * (D // x.denominator) for x in sq]
+        H = 2 * (l0 * l1 + l1 * l2 + l2 * l0) - l0 * l0 - l1 * l1 - l2 * l2
+        n = (l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0)     # corners 0, 1, 2
+        try:
+            return (math.sqrt(4 * max(L) ** 2 / H),
+                    [math.copysign(math.sqrt(x * x / H), x) for x in n])
+        except OverflowError:
+            pass                            # beyond the float range: as the exact route says
+    return (float(max(sq) / (2 * metric.area(f))),
+            [float(metric.corner_cot(f, c)) for c in range(3)])
 
 
 class Exact:

@@ -12,8 +12,9 @@ from hypothesis import given, strategies as st
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import laplacian as props
-from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, closed_meshes, obtuse_meshes,
-                                             planar_meshes, weighted_graphs, with_functions)
+from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, closed_meshes, jittered_surfaces,
+                                             obtuse_meshes, planar_meshes, weighted_graphs,
+                                             with_functions)
 from ddg_oracle.properties.profiles import profile
 from tests.property_checks import assert_caught, assert_passes_well_inside
 from ddg_oracle.properties import PROPERTIES
@@ -525,3 +526,17 @@ def test_a_float_implementation_stays_well_inside_the_bounds():
     r = run_property(PROPERTIES["D3.1"], NumpyCotan(), profile("default"))
     assert r.status == PASSED, r.failure
     assert 0 < props.ERROR_RATIOS["D3.1"] < 0.5
+
+
+@given(st.one_of(any_meshes(isolated=False), obtuse_meshes(), jittered_surfaces().map(
+    lambda c: c.surface)))
+def test_the_conditioning_factors_of_the_bounds_are_the_exact_ones_within_two_ulps(case):
+    # entry_bounds takes rho and the cotangents from exact ratios through one float square
+    # root: within 2 ulps of the correctly rounded exact values
+    m = case.metric() if hasattr(case, "metric") else props.Exact.of(case).metric
+    for f in range(m.triangulation.n_faces):
+        rho, cot = props._conditioning(m, f)
+        want_rho = float(max(m.face_squared_lengths(f)) / (2 * m.area(f)))
+        want_cot = [float(m.corner_cot(f, c)) for c in range(3)]
+        for got, want in zip([rho, *cot], [want_rho, *want_cot]):
+            assert abs(got - want) <= 2 * np.spacing(abs(want)), (f, got, want)
