@@ -21,7 +21,7 @@ import pytest
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.oracles.executable import DriverFailed, Executable
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.profiles import profile, profile_budget
 from ddg_oracle.properties.protocol import OutsideDomain
 from ddg_oracle.properties.runner import CRASHED, FAILED, PASSED, run_property
 from ddg_oracle.reference import surfaces
@@ -129,7 +129,9 @@ def test_a_driver_restarts_after_dying_and_declines_and_fails_are_answers():
 
 def test_a_crashing_driver_is_a_crashed_result_and_the_run_goes_on():
     segfault = _misbehaving("segfault", timeout=5.0)
-    r = run_property(PROPERTIES["D3.1"], segfault, profile("default"))
+    # with the task budget the command gives it (crashes counted): not 100 restarts to shrink
+    r = run_property(PROPERTIES["D3.1"], segfault, profile("default"),
+                     budget=profile_budget("default"))
     assert r.status == CRASHED and "SIGSEGV" in r.error and r.mesh is not None
     ok = _misbehaving("ok")
     assert run_property(PROPERTIES["D1.6"], ok, profile("default")).status == PASSED
