@@ -157,3 +157,55 @@ def test_only_multiples_of_pi_scale_by_fractions():
     assert generic * 3 == generic + generic + generic
     with pytest.raises(InputError):
         generic * Fraction(1, 2)
+
+
+# --- regression tests of issue 18's Angle defects ---------------------------------------------
+
+
+def test_a_rational_multiple_of_pi_off_the_24ths_is_recognised():
+    # pi/4 + pi/5 = 9 pi / 20: the arccot part is a multiple of pi/24, the pi part need not be
+    theta = corner_angle(1) + pi * Fraction(1, 5)
+    assert theta.as_multiple_of_pi() == Fraction(9, 20)
+    assert theta * Fraction(1, 2) == pi * Fraction(9, 40)
+    assert (corner_angle(0) * 3 + pi * Fraction(2, 7)).as_multiple_of_pi() == Fraction(3, 2) + Fraction(2, 7)
+    assert (corner_angle(2) + pi * Fraction(1, 5)).as_multiple_of_pi() is None
+    with pytest.raises(InputError, match="rational multiple of pi"):
+        (corner_angle(2) + pi * Fraction(1, 5)) * Fraction(1, 2)
+
+
+def test_an_angle_with_a_pi_part_off_the_24ths_is_never_zero_and_its_sign_is_found():
+    # theta = arccot(c) - pi/5 with c within 2^-300 of cot(pi/5) = sqrt(1 + 2/sqrt5): no zero
+    # test exists for pi/5, none is needed (module docstring); the enclosure separates it
+    import mpmath
+    with mpmath.workdps(200):
+        c = Fraction(mpmath.nstr(mpmath.cot(mpmath.pi / 5), 120)).limit_denominator(2 ** 160)
+        want = mpmath.sign(mpmath.acot(mpmath.mpf(c.numerator) / c.denominator) - mpmath.pi / 5)
+    theta = corner_angle(c) - pi * Fraction(1, 5)
+    assert theta.sign() == int(want) != 0
+
+
+def test_an_undecided_sign_says_why_and_its_message_survives_a_huge_cotangent(monkeypatch):
+    from ddg_oracle.reference.errors import Undecidable
+    from ddg_oracle.reference.exact import angles
+    big = Surd(10 ** 400)                           # beyond the float range
+    theta = corner_angle(big) - corner_angle(big + 1)      # about 1e-800, not 0
+    assert "arccot" in repr(theta)                  # no OverflowError
+    monkeypatch.setattr(angles, "PRECISION_LIMIT", 512)
+    with pytest.raises(Undecidable, match=r"it is not 0 \(exact zero test\).*PRECISION_LIMIT"):
+        theta.sign()
+    off = corner_angle(Fraction(13, 10)) - pi * Fraction(1, 5)
+    assert off.sign() != 0                          # decided well inside the limit
+    monkeypatch.setattr(angles, "PRECISION_LIMIT", 4096)
+    assert theta.sign() == 1                        # arccot decreases: arccot(b) > arccot(b + 1)
+
+
+def test_a_large_multiplicity_is_one_power_by_squaring(monkeypatch):
+    # 10,000 pi/4 - 2500 pi == 0 through the exact zero test: a few times log2(10,000) complex
+    # products, not 10,000
+    from ddg_oracle.reference.exact import angles
+    calls = []
+    real = angles._cmul
+    monkeypatch.setattr(angles, "_cmul", lambda z, w: calls.append(1) or real(z, w))
+    theta = Angle({Surd(1): 10_000}, -2500)
+    assert theta.sign() == 0 and theta == 0
+    assert 0 < len(calls) <= 64

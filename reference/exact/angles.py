@@ -19,9 +19,14 @@ How comparisons are decided, exactly:
   enclosure already confines theta to (-2 pi, 2 pi).  The direction of r pi is
   exact when 24 r is an integer (tan(pi/24) = sqrt6 - sqrt3 + sqrt2 - 2), which
   covers every multiple of pi/24.
-* Otherwise theta != 0 and the enclosure is refined until it excludes 0.  For
-  a pi part with 24 r not an integer no exact zero test exists; after
-  ``PRECISION_LIMIT`` bits :class:`~ddg_oracle.reference.errors.Undecidable` is raised.
+* A pi part with 24 r not an integer needs no zero test: the arccot part
+  sum m_i arccot(c_i) is a rational multiple of pi only if it is a multiple of
+  pi/24 (e^(2 i theta) = prod ((c_i + i) / (c_i - i))^(m_i) lies in a
+  multiquadratic field Q(i, sqrt r_1, ...), whose roots of unity have orders
+  dividing 24), so theta = 0 is impossible there.
+* Otherwise theta != 0 and the enclosure is refined until it excludes 0; a
+  nonzero theta within 2**-``PRECISION_LIMIT`` of 0 raises
+  :class:`~ddg_oracle.reference.errors.Undecidable`, saying so.
 
 No float is used anywhere in a decision.  ``float(angle)`` is correctly rounded.
 
@@ -96,17 +101,27 @@ class Angle:
         return dict(self._parts)
 
     def as_multiple_of_pi(self) -> Fraction | None:
-        """theta / pi when it is a multiple of pi/24 (exactly decided), else None."""
+        """theta / pi when theta is a rational multiple of pi (exactly decided), else None.
+
+        The arccot part is then a multiple of pi/24 (module docstring), so theta / pi =
+        r + k / 24 for one integer k: the enclosure picks k, the exact zero test checks it.
+
+        >>> from ddg_oracle.reference.exact import corner_angle, pi
+        >>> (corner_angle(1) + pi * Fraction(1, 5)).as_multiple_of_pi()     # pi/4 + pi/5
+        Fraction(9, 20)
+        >>> corner_angle(2).as_multiple_of_pi() is None
+        True
+        """
         if not self._parts:
             return self._pi
-        lo, hi = self.interval(20)
+        arccots = Angle._raw(self._parts, Fraction(0))
+        lo, hi = arccots.interval(20)
         plo, phi = _pi_bounds(30)
-        # the enclosure only picks the candidate j/24 nearest to theta/pi;
+        # the enclosure only picks the candidate k/24 nearest to the arccot part / pi;
         # the candidate is then checked exactly
-        j = round(24 * (lo + hi) * (1 << 30) / (plo + phi))
-        cand = Fraction(j, 24)
-        if (self - pi * cand).sign() == 0:
-            return cand
+        k = round(24 * (lo + hi) * (1 << 30) / (plo + phi))
+        if (arccots - pi * Fraction(k, 24)).sign() == 0:
+            return self._pi + Fraction(k, 24)
         return None
 
     # -- arithmetic -------------------------------------------------------------
@@ -175,24 +190,32 @@ class Angle:
         if not self._parts:
             return (self._pi > 0) - (self._pi < 0)
         bits = 64 + max(1, sum(abs(m) for m in self._parts.values())).bit_length()
-        zero_tested = False
-        while bits <= PRECISION_LIMIT:
+        # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)
+        nonzero = (self._pi * 24).denominator != 1
+        bits = min(bits, PRECISION_LIMIT)
+        while True:
             lo, hi = self.interval_at(bits)
             if lo > 0:
                 return 1
             if hi < 0:
                 return -1
-            if not zero_tested and (self._pi * 24).denominator == 1:
+            if not nonzero:
                 two_pi_lo = Fraction(2 * _pi_bounds(bits)[0], 1 << bits)
                 if -two_pi_lo < lo and hi < two_pi_lo:
                     x, y = self._direction()
                     if y == 0 and x > 0:
                         return 0
-                    zero_tested = True      # theta != 0: refining will separate it
-            bits *= 2
+                    nonzero = True          # theta != 0: refining will separate it
+            if bits >= PRECISION_LIMIT:
+                break
+            bits = min(2 * bits, PRECISION_LIMIT)   # the last try at the limit itself
+        why = ("it is not 0 (its pi part is off the multiples of pi/24)"
+               if (self._pi * 24).denominator != 1 else
+               "it is not 0 (exact zero test)" if nonzero else "the zero test was not reached")
         raise Undecidable(
-            f"could not decide the sign of {self!r} with {PRECISION_LIMIT} bits; "
-            "its pi part has a denominator not dividing 24, so no exact zero test applies")
+            f"the sign of {self!r}: {why}, but its enclosure at {PRECISION_LIMIT} bits per "
+            "term still contains 0; raise ddg_oracle.reference.exact.angles.PRECISION_LIMIT "
+            "to decide it")
 
     def __eq__(self, other):
         if isinstance(other, Angle):
@@ -306,7 +329,7 @@ class Angle:
 
     def __repr__(self):
         terms = []
-        for c, m in sorted(self._parts.items(), key=lambda cm: float(cm[0])):
+        for c, m in sorted(self._parts.items(), key=lambda cm: _sort_key(cm[0])):
             terms.append(f"{m:+d}*arccot({c})")
         if self._pi or not terms:
             terms.insert(0, f"{self._pi}*pi")
@@ -323,9 +346,7 @@ class Angle:
             z = (c, Surd(1)) if m > 0 else (c, Surd(-1))
             key = tuple(r for r, _ in c.terms())
             acc = groups.get(key, (Surd(1), Surd(0)))
-            for _ in range(abs(m)):
-                acc = _cmul(acc, z)
-            groups[key] = acc
+            groups[key] = _cmul(acc, _cpow(z, abs(m)))
         x, y = Surd(1), Surd(0)
         for z in sorted(groups.values(), key=lambda z: z[0].n_terms + z[1].n_terms):
             x, y = _cmul((x, y), z)
@@ -338,6 +359,28 @@ class Angle:
 def _cmul(z, w):
     (a, b), (c, d) = z, w
     return a * c - b * d, a * d + b * c
+
+
+def _cpow(z, n: int):
+    """z**n for a complex number z = (x, y) of Surds, n >= 0, by repeated squaring: about
+    log2 n products instead of n (an angle sum of multiplicity 10,000 is one arccot)."""
+    out = (Surd(1), Surd(0))
+    while n:
+        if n & 1:
+            out = _cmul(out, z)
+        n >>= 1
+        if n:
+            z = _cmul(z, z)
+    return out
+
+
+def _sort_key(c: Surd) -> float:
+    """A float ordering cotangents for display: beyond the float range, +-inf (never an
+    OverflowError: a repr inside an error message must not raise one)."""
+    try:
+        return float(c)
+    except OverflowError:
+        return math.inf if c > 0 else -math.inf
 
 
 @lru_cache(maxsize=None)
