@@ -166,6 +166,13 @@ class Isolated:
         self.methods = frozenset(payload)
         self.name, self.machine_epsilon = name
 
+    def _abandon(self) -> None:
+        """Interrupted (Ctrl-C, the time limit of a property example) while a request or its
+        answer is in the pipe: the worker owes an answer the next call would read as its
+        own, so it is killed, and the next call starts a fresh one."""
+        self._kill()
+        self._proc = None
+
     def _kill(self) -> None:
         if self._proc is not None and self._proc.is_alive():
             self._proc.kill()
@@ -197,13 +204,13 @@ class Isolated:
             how = self._how_it_died()
             self._start()
             raise ImplementationCrashed(self.name, method, how) from None
+        except BaseException:
+            self._abandon()                 # interrupted mid-request: see _abandon
+            raise
         try:
             done = self._conn.poll(wait)
         except BaseException:
-            # interrupted while waiting (Ctrl-C, the time limit of a property
-            # example): the worker still owes an answer, so it cannot be reused
-            self._kill()
-            self._proc = None
+            self._abandon()
             raise
         if not done:
             self._kill()
@@ -223,6 +230,11 @@ class Isolated:
             how = self._how_it_died()
             self._start()
             raise ImplementationCrashed(self.name, method, how) from None
+        except BaseException:
+            # a signal between poll and the end of the answer (the task budget's alarm):
+            # the answer, or its rest, would be read as the next call's
+            self._abandon()
+            raise
         if status == "memory":
             # a failed allocation may leave a library's state half-built: fresh worker
             self._kill()

@@ -91,3 +91,33 @@ def test_memory_limit_setting(monkeypatch):
         memory_limit("lots")
     with pytest.raises(InputError, match="DDG_MEMORY_LIMIT"):
         memory_limit("-1G")
+
+
+def test_an_answer_interrupted_mid_read_is_never_read_as_the_next_calls():
+    # the task budget's alarm can fire after the worker answered and before the answer is
+    # read: that worker is abandoned, not asked again (its stale answer came back as the next
+    # example's in a fresh-clone main job: 4 values for a 206-vertex mesh)
+    pytest.importorskip("igl")
+    from ddg_oracle.reference import surfaces
+
+    class InterruptedOnce:
+        def __init__(self, conn):
+            self.conn, self.fired = conn, False
+
+        def recv(self):
+            if not self.fired:
+                self.fired = True
+                raise KeyboardInterrupt
+            return self.conn.recv()
+
+        def __getattr__(self, name):
+            return getattr(self.conn, name)
+
+    tet = [np.array(a) for a in surfaces.tetrahedron().to_arrays()]
+    octa = [np.array(a) for a in surfaces.octahedron().to_arrays()]
+    with Isolated("libigl", timeout=60) as impl:
+        impl._conn = InterruptedOnce(impl._conn)
+        with pytest.raises(KeyboardInterrupt):
+            impl.angle_defects(*tet)
+        assert len(impl.angle_defects(*octa)) == 6
+        assert len(impl.angle_defects(*tet)) == 4
