@@ -49,6 +49,8 @@ from ddg_oracle.reference.dirichlet import directional_derivative
 from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
                                  vertex_areas_barycentric, vertex_areas_voronoi,
                                  weight_sign_by_angles)
+from ddg_oracle.reference.exact.rationals import on_common_denominator
+from ddg_oracle.reference.metric import heron16
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -133,13 +135,9 @@ def _conditioning(metric, f: int) -> tuple[float, list[float]]:
     root.  Irrational lengths (after intrinsic flips) take the exact cotangents."""
     sq = metric.face_squared_lengths(f)                   # opposite corners 2, 0, 1
     if all(type(x) is Fraction for x in sq):
-        D = 1
-        for x in sq:
-            d = x.denominator
-            if D % d:
-                D = D // math.gcd(D, d) * d
-        l0, l1, l2 = L = [x.numerator * (D // x.denominator) for x in sq]
-        H = 2 * (l0 * l1 + l1 * l2 + l2 * l0) - l0 * l0 - l1 * l1 - l2 * l2
+        L, _ = on_common_denominator(sq)                 # the scale cancels in each ratio
+        l0, l1, l2 = L
+        H = heron16(l0, l1, l2)
         n = (l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0)     # corners 0, 1, 2
         try:
             return (math.sqrt(4 * max(L) ** 2 / H),

@@ -298,7 +298,8 @@ class CurvatureCase:
 
     def arrays(self):
         """(V float64 n x 3, F int64 m x 3), exactly what an implementation receives: new
-        arrays each call (a caller, or an implementation, may work in place on them)."""
+        arrays each call (a drawn case is shared by the checks of every implementation in a
+        worker, see :func:`jittered_surfaces`, and a caller may work in place on them)."""
         if "arrays" not in self._cache:
             self._cache["arrays"] = _as_arrays(self.mesh)
         V, F = self._cache["arrays"]
@@ -533,7 +534,9 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
       more is beyond the reference's exact zero test today: issue 18).
 
     Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1, at the
-    origin, consistently oriented, connected, in its constructor's order.
+    origin, consistently oriented, connected, in its constructor's order.  Each
+    building step is kept per drawn choices (:data:`.memo.DRAWN`), and so is the case:
+    equal draws give the same, shared, read-only case object.
     """
     s, chi, recipe, orientation = _base(draw, closed, intrinsic, max_valence)
     key = (recipe,)             # the base's recipe determines it; each step extends the key

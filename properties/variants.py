@@ -24,6 +24,7 @@ import random
 from fractions import Fraction
 
 from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.exact.rationals import on_common_denominator
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 __all__ = ["permuted", "with_sliver", "disjoint_union", "fan", "bipyramid", "circle_point",
@@ -161,13 +162,8 @@ def _integer_positions(s: PolyhedralSurface) -> list[tuple[int, int, int]]:
     """The positions times one common positive denominator, as integers: the same surface
     scaled, so every sign and zero test below is unchanged, at the price of integer
     arithmetic (these tests run on every drawn example)."""
-    den = 1
-    for p in s.positions:
-        for c in p:
-            d = Fraction(c).denominator
-            if den % d:
-                den = den * d // math.gcd(den, d)
-    return [tuple(int(c * den) for c in p) for p in s.positions]
+    flat, _ = on_common_denominator([c for p in s.positions for c in p])
+    return [tuple(flat[k:k + 3]) for k in range(0, len(flat), 3)]
 
 
 def is_degenerate(s: PolyhedralSurface) -> bool:

@@ -13,12 +13,12 @@ the corner c of face f is opposite to halfedge 3 f + (c+1) % 3.
 from __future__ import annotations
 
 from fractions import Fraction
-from math import gcd
 from typing import Sequence
 
 from .combinatorics import Triangulation
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, rational, sqrt
+from .exact.rationals import on_common_denominator
 
 __all__ = ["PiecewiseFlatSurface", "area", "as_metric", "metric_of", "heron16"]
 
@@ -197,7 +197,7 @@ def area(surface) -> Surd:
 
 
 def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
-    """The intrinsic metric of a triangulation with exact points in R^n.
+    """The intrinsic metric (D2.6) of a triangulation with exact points in R^n.
 
     Areas come from the Lagrange identity 4 A^2 = |u|^2 |v|^2 - (u.v)^2, which
     holds in every dimension; a zero-area face raises :class:`DegenerateFace`.
@@ -244,13 +244,9 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
 
 def _on_common_denominator(*points) -> tuple[list[list[int]], int]:
     """Rational points as integer points over one positive common denominator D."""
-    D = 1
-    for p in points:
-        for x in p:
-            d = x.denominator
-            if D % d:
-                D = D // gcd(D, d) * d
-    return [[x.numerator * (D // x.denominator) for x in p] for p in points], D
+    flat, D = on_common_denominator([x for p in points for x in p])
+    n = len(points[0])
+    return [flat[k:k + n] for k in range(0, len(flat), n)], D
 
 
 def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:

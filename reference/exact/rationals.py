@@ -50,3 +50,19 @@ def rational(x, where: str = "") -> Fraction:
             raise NonFiniteValue(f"non-finite value {f}{at}") from None
         return Fraction(f)
     return Fraction(int(n), int(d))
+
+
+def on_common_denominator(values) -> tuple[list[int], int]:
+    """(integers X, D): rationals x = X / D over their least common denominator D > 0, so
+    that sums and products of them are integer arithmetic (floats: D a power of two).
+
+    >>> on_common_denominator([Fraction(1, 2), Fraction(3, 4), 2])
+    ([2, 3, 8], 4)
+    """
+    values = [Fraction(x) for x in values]
+    D = 1
+    for x in values:
+        d = x.denominator
+        if D % d:
+            D = D // math.gcd(D, d) * d
+    return [x.numerator * (D // x.denominator) for x in values], D
