@@ -30,11 +30,11 @@ decided exactly.
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
 
 from .errors import DDGError, InputError
 from .intrinsic import IntrinsicTriangulation, _metric, _number, _obstruction, _sign, unfold
 from .laplacian import cotan_laplacian, cotan_weights
+from .exact import Surd
 from .metric import PiecewiseFlatSurface
 from .sparse import exact_sum
 
@@ -47,24 +47,6 @@ __all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_de
 class DelaunayError(DDGError, RuntimeError):
     """A statement of chapter 4 found violated at run time (L4.11 or C4.19):
     signals a bug (or a misprint), never an input problem."""
-
-
-def _corner_cot(m: PiecewiseFlatSurface, h: int):
-    """cot of the corner opposite halfedge ``h``: ``(a + b - o) / (4 A)``, computed
-    locally (``PiecewiseFlatSurface.corner_cot`` computes all corners at once,
-    O(F) per new surface: too slow inside the flip loop)."""
-    f = h // 3
-    a, b, c = m.face_squared_lengths(f)
-    o = (a, b, c)[h % 3]
-    return _number((a + b + c - 2 * o) / (4 * _number(m.areas[f])))
-
-
-def _cot_sum(m: PiecewiseFlatSurface, e: int):
-    h, t = m.triangulation.edge_halfedges(e)
-    total = _corner_cot(m, h)
-    if t >= 0:
-        total = total + _corner_cot(m, t)
-    return _number(total)
 
 
 def is_delaunay_edge(surface, e: int) -> bool:
@@ -82,7 +64,19 @@ def is_delaunay_edge(surface, e: int) -> bool:
     h, t = m.triangulation.edge_halfedges(e)
     if t < 0:
         return True
-    return _sign(_cot_sum(m, e)) >= 0
+    # cot = N / (4 A) at each side: with A > 0 the sign of the sum is that of
+    # N_h A_t + N_t A_h (N_h + N_t in one face), which needs no division
+    f, g = h // 3, t // 3
+    n_h, n_t = _cot_numerator(m, h), _cot_numerator(m, t)
+    if f == g:
+        return _sign(_number(n_h + n_t)) >= 0
+    return _sign(_number(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
+
+
+def _cot_numerator(m: PiecewiseFlatSurface, h: int):
+    """4 A cot of the corner opposite halfedge ``h``: ``a + b - o`` (squared lengths)."""
+    a, b, c = m.face_squared_lengths(h // 3)
+    return a + b + c - 2 * (a, b, c)[h % 3]
 
 
 def incircle_determinant(a, b, c, d):
@@ -135,11 +129,16 @@ def is_delaunay(surface) -> bool:
     return not non_delaunay_edges(surface)
 
 
+def _face_data(m, f: int):
+    """(a^2 + b^2 + c^2, A) of face ``f``: its harmonic index is the quotient (D4.7)."""
+    a, b, c = m.face_squared_lengths(f)
+    return _number(a + b + c), _number(m.areas[f])
+
+
 def face_harmonic_index(surface, f: int):
     """D4.7: ``(a^2 + b^2 + c^2) / A`` of face ``f`` (squared side lengths over area)."""
-    m = _metric(surface)
-    a, b, c = m.face_squared_lengths(f)
-    return _number((a + b + c) / _number(m.areas[f]))
+    s, A = _face_data(_metric(surface), f)
+    return _number(s / A)
 
 
 def harmonic_index(surface):
@@ -158,13 +157,97 @@ def harmonic_index(surface):
     return _number(exact_sum(face_harmonic_index(m, f) for f in range(m.triangulation.n_faces)))
 
 
-@dataclass(frozen=True)
-class FlipRecord:
-    """One flip of :func:`flip_to_delaunay`: the edge id and h(T) before and after."""
+class _History:
+    """h(T) after each flip of one :func:`flip_to_delaunay` run, computed when asked."""
 
-    edge: int
-    h_before: object
-    h_after: object
+    def __init__(self, surface):
+        self.surface = surface          # the input (immutable): h(T_0) is its harmonic index
+        self.faces = []                 # per flip: ((s, A) out, (s, A) in), s = a^2 + b^2 + c^2
+        self.changes = {}
+        self.values = []                # h(T_0), h(T_1), ... as far as computed
+
+    def change(self, k: int):
+        c = self.changes.get(k)
+        if c is None:
+            out, into = self.faces[k]
+            c = self.changes[k] = _number(exact_sum(s / A for s, A in into) -
+                                          exact_sum(s / A for s, A in out))
+        return c
+
+    def h(self, k: int):
+        while len(self.values) <= k:
+            n = len(self.values)
+            self.values.append(harmonic_index(self.surface) if n == 0 else
+                               _number(self.values[-1] + self.change(n - 1)))
+        return self.values[k]
+
+
+def _decrease_sign(out, into) -> int:
+    """The exact sign of sum s / A over ``into`` minus over ``out`` (pairs (s, A), A > 0):
+    rigorous enclosures at 64 and 256 bits first (no division of square-root numbers),
+    the exact quotients only when both contain 0."""
+    for bits in (64, 256):
+        lo = hi = 0
+        for sign, pairs in ((1, into), (-1, out)):
+            for s, A in pairs:
+                slo, shi = _enclose(s, bits)
+                alo, ahi = _enclose(A, bits)
+                if alo <= 0:
+                    break
+                qs = (slo / alo, slo / ahi, shi / alo, shi / ahi)
+                lo, hi = (lo + min(qs), hi + max(qs)) if sign > 0 else (lo - max(qs), hi - min(qs))
+            else:
+                continue
+            break
+        else:
+            if lo > 0:
+                return 1
+            if hi < 0:
+                return -1
+    return _sign(_number(exact_sum(s / A for s, A in into) - exact_sum(s / A for s, A in out)))
+
+
+def _enclose(x, bits: int):
+    return x.interval(bits) if isinstance(x, Surd) else (x, x)
+
+
+class FlipRecord:
+    """One flip of :func:`flip_to_delaunay`: the edge id and the exact change of h(T).
+
+    ``change`` = h(T) after - h(T) before, from the flip's two faces alone (two out, two
+    in); C4.19 says it is < 0, and the loop checks its sign exactly.  ``change``,
+    ``h_before`` and ``h_after`` (h(T) of the whole triangulation around the flip, D4.7)
+    are computed when first asked and kept: h is a sum over all faces, which on a surface
+    from R^3 has one square root per face, so a run on a real mesh builds none of them
+    unless asked.
+    """
+
+    __slots__ = ("edge", "_history", "_index")
+
+    def __init__(self, edge: int, history: _History, index: int):
+        self.edge, self._history, self._index = edge, history, index
+
+    @property
+    def change(self):
+        return self._history.change(self._index)
+
+    @property
+    def h_before(self):
+        return self._history.h(self._index)
+
+    @property
+    def h_after(self):
+        return self._history.h(self._index + 1)
+
+    def __eq__(self, other):
+        if not isinstance(other, FlipRecord):
+            return NotImplemented
+        return (self.edge, self.change, self.h_before) == (other.edge, other.change, other.h_before)
+
+    __hash__ = None
+
+    def __repr__(self):
+        return f"FlipRecord(edge={self.edge}, change={self.change})"
 
 
 def _edges_of_face(tri, f: int):
@@ -174,9 +257,9 @@ def _edges_of_face(tri, f: int):
 def flip_to_delaunay(surface, max_flips: int | None = None):
     """A4.13: flip non-Delaunay edges until none is left; returns ``(surface, log)``.
 
-    ``log`` is a list of :class:`FlipRecord` ``(edge, h_before, h_after)`` with
-    the harmonic index (D4.7) of the whole triangulation before and after each
-    flip; it is updated locally (two faces out, two in), exactly.
+    ``log`` is a list of :class:`FlipRecord`: the edge, the exact change of the
+    harmonic index (D4.7), computed locally (two faces out, two in), and h of the
+    whole triangulation before and after each flip, computed when asked.
 
     A work queue holds the edges to examine, initially all; after flipping
     ``e`` the four other edges of its two faces are queued again (only they
@@ -199,7 +282,7 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
     (True, 0)
     """
     m = _metric(surface)
-    h_total = harmonic_index(m)
+    history = _History(m)
     m = IntrinsicTriangulation(m)           # flipped in place, frozen at the end
     tri = m.triangulation                   # a live view: changes with every flip
     queue = deque(range(tri.n_edges))
@@ -217,17 +300,17 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
             raise DelaunayError(f"L4.11 violated: edge {e} {tri.edge_vertices(e)} "
                                 "is not Delaunay but cannot be flipped")
         f, g = u.faces
-        old = face_harmonic_index(m, f) + face_harmonic_index(m, g)
+        out = (_face_data(m, f), _face_data(m, g))
         m.flip_unfolded(u)
-        new = face_harmonic_index(m, f) + face_harmonic_index(m, g)
+        into = (_face_data(m, f), _face_data(m, g))
         if not is_delaunay_edge(m, e):
             raise DelaunayError(f"L4.11 violated: the flipped edge {e} is not Delaunay")
-        if _sign(new - old) >= 0:
+        if _decrease_sign(out, into) >= 0:
             raise DelaunayError(f"C4.19 violated: flipping edge {e} did not decrease the "
-                                f"harmonic index ({old} -> {new} on its two faces)")
-        h_after = _number(h_total - old + new)
-        log.append(FlipRecord(e, h_total, h_after))
-        h_total = h_after
+                                f"harmonic index (faces {f}, {g}: (a^2 + b^2 + c^2, A) "
+                                f"{out} -> {into})")
+        history.faces.append((out, into))
+        log.append(FlipRecord(e, history, len(log)))
         for x in _edges_of_face(tri, f) + _edges_of_face(tri, g):
             if x != e and not queued[x]:
                 queued[x] = True
