@@ -1,6 +1,7 @@
 """``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``.
 
-Groups: cotan, flips, r3, hypothesis (the default set), suite (the test suite and one
+Groups: cotan, flips, r3, hypothesis (the default set), real (the exact reference on
+PyMeshLab's sample meshes and generated fans), suite (the test suite and one
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), catch (the time
 to catch each planted bug under the default profile)."""
 
@@ -9,13 +10,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from . import catch, cotan, flips, report, suite
+from . import catch, cotan, flips, real, report, suite
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
     "cotan": cotan.run,
     "flips": flips.run,
     "r3": flips.run_r3,
+    "real": real.run,
     "hypothesis": suite.run_hypothesis,
     "suite": suite.run_suite,
     "main": suite.run_main,

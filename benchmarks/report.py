@@ -23,6 +23,7 @@ python -m benchmarks flips r3     # some groups only (the others keep their last
 python -m benchmarks suite        # test suite and `ddg-oracle check` wall times (minutes)
 python -m benchmarks main         # `ddg-oracle check`: 3 default runs and a ci run
 python -m benchmarks catch        # time to catch each planted bug (3 seeds, ~20 minutes)
+python -m benchmarks real         # the exact reference on PyMeshLab's sample meshes (~3 minutes)
 python -m benchmarks --all        # everything
 ```
 
@@ -158,6 +159,34 @@ over every failing property and seed); *check*: the whole command's wall time
 non-orientable or higher-genus surface (6 to 10 faces), and OneBoundaryLoop two
 boundary loops, which `triangulated_surfaces` punches far apart after refining
 (38 faces).
+"""
+
+REAL = """\
+## 8. The exact reference on real meshes
+
+`python -m benchmarks real`: PyMeshLab's sample meshes (unreferenced vertices removed, as
+`ddg-oracle compare` does; `bone.ply` and `airplane.obj` have some) and generated fans
+(`tests/test_zero_test.py`: valence n, float coordinates; *exactly planar*: rational points of
+the plane z = 3x - 2y; *float-tilted*: the planar fan rotated in floats, so not planar;
+*lifted*: the apex raised by 2^-100).  *exact*: `angle_defects` (D2.2), exact `Angle` values;
+*signs*: the exact sign of every defect (elliptic / flat / hyperbolic); *floats*: `float()` of
+every defect on fresh values (the float view alone, correctly rounded); *undecided*: signs the
+reference could not decide (the target is 0); *zero tests*: decisions that needed the exact
+zero test after the 128-bit enclosure; *Gauss-Bonnet*: the exact decision of T2.6; *libigl*:
+`igl.gaussian_curvature` (float64) on the same arrays.  CPU seconds, median of up to 5 runs for
+exact / Gauss-Bonnet / libigl, one run for signs and floats.
+"""
+
+REAL_FLIPS = """\
+Intrinsic Delaunay: `flip_to_delaunay` (A4.13) on the same meshes and on fans with a
+high-valence apex (`spiky_fan` of `tests/test_zero_test.py`: two jittered float rings), every
+flip decision (D4.4, L4.11) and every harmonic-index decrease (C4.19) decided exactly; *exact
+decreases*: decreases the 64- and 256-bit enclosures did not settle (exact quotients); then
+every angle sum compared exactly with the input's (they must be equal: flips keep the metric),
+*zero tests* as above, for runs of at most 200 flips (`benchmarks/real.py`, `CHECKED_FLIPS`:
+after long flip cascades the cotangents carry the square roots of many input faces, and the
+comparison takes minutes).  CPU seconds, one run.  The flip loop still computes the canonical
+form of every new squared length and area: on cow.obj the last flips of a cascade dominate.
 """
 
 HYPOTHESIS = """\
@@ -330,6 +359,23 @@ def write(results: dict) -> None:
                     "|" + "---|" * len(columns)]
             out += ["| " + " | ".join(f(r) for _, f in columns) + " |" for r in res["rows"]]
             out.append("")
+    if "real" in results:
+        res = results["real"]
+        out += [REAL, _meta(res), "| mesh | faces | exact s | signs s | floats s | undecided | "
+                "zero tests | Gauss-Bonnet s | libigl s |", "|---|---|---|---|---|---|---|---|---|"]
+        out += [f"| {r['mesh']} | {r['faces']:,} | {r['exact_s']:.3f} | {r['sign_s']:.3f} | "
+                f"{r['float_s']:.3f} | {r['undecided']} | {r['zero_tests']} | "
+                f"{r['gauss_bonnet_s']:.3f} | "
+                + (f"{r['libigl_s']:.4f}" if r.get("libigl_s") is not None else "-") + " |"
+                for r in res["rows"]]
+        out += ["", REAL_FLIPS, "| mesh | faces | flips | flip s | exact decreases | "
+                "angle sums kept | check s | zero tests |", "|---|---|---|---|---|---|---|---|"]
+        out += [f"| {r['mesh']} | {r['faces']:,} | {r['flips']:,} | {r['flip_s']:.2f} | "
+                f"{r['exact_decreases']} | "
+                + ("not checked | - | - |" if r["kept"] is None else
+                   f"{'yes' if r['kept'] else 'NO'} | {r['check_s']:.2f} | {r['zero_tests']} |")
+                for r in res["flips"]]
+        out.append("")
     DOC.write_text("\n".join(out).rstrip() + "\n")
 
 
@@ -432,6 +478,18 @@ def _targets(results: dict) -> list[str]:
                      f"{sum(r['caught'] == r['runs'] for r in catch)} of {len(catch)} bugs "
                      f"every time{'; missed: ' + ', '.join(missed) if missed else ''} | "
                      f"{'yes' if not missed else 'no'} |")
+    real = results.get("real")
+    if real:
+        undecided = sum(r["undecided"] for r in real["rows"])
+        lines.append(f"| no undecided sign on the sample meshes and fans (issue 18) | "
+                     f"{undecided} of {sum(r['defects'] for r in real['rows']):,} | "
+                     f"{'yes' if undecided == 0 else 'no'} |")
+        for name, limit in (("bunny10k_textured.obj", 30), ("bunny.obj", 180)):
+            for r in real["flips"]:
+                if r["mesh"] == name:
+                    lines.append(f"| exact intrinsic Delaunay of {name} <= {limit} s | "
+                                 f"{r['flips']:,} flips in {r['flip_s']:.1f} s | "
+                                 f"{'yes' if r['flip_s'] <= limit else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None

@@ -157,3 +157,19 @@ def test_built_identities_are_zero_and_their_shifts_are_not(pairs, m, seed, j):
     assert shifted.sign() == (j > 0) - (j < 0)
     c = _surd(rng, PRIMES[pairs[0][0]])
     assert (theta + corner_angle(c) - corner_angle(c + Fraction(1, 10 ** 30))).sign() == 1
+
+
+def test_flips_of_a_float_mesh_never_build_the_whole_harmonic_index():
+    # h(T) of a surface from R^3 has one square root per face (48 here): the flip loop must
+    # work with each flip's two faces only, so it runs under a term limit h itself exceeds
+    from ddg_oracle.reference.delaunay import harmonic_index, is_delaunay
+    from ddg_oracle.reference.errors import TermLimitExceeded
+    m = as_metric(spiky_fan(16))
+    with limits(term_limit=32):
+        delaunay, log = flip_to_delaunay(m)
+        assert is_delaunay(delaunay) and len(log) >= 10
+        with pytest.raises(TermLimitExceeded):
+            harmonic_index(m)
+    assert log[0].h_before == harmonic_index(m)
+    assert log[-1].h_after == harmonic_index(delaunay)
+    assert all(r.change < 0 and r.h_after - r.h_before == r.change for r in log)   # C4.19
