@@ -102,7 +102,8 @@ def parser() -> argparse.ArgumentParser:
                         "joint ID: L4.3 selects 'L4.3 / P4.4')")
     c.add_argument("--timeout", type=float, default=60.0,
                    help="seconds per call of a checked implementation before it is killed "
-                        "and reported as hanging (default 60)")
+                        "and reported as hanging, per 10,000 faces of the input (never less; "
+                        "default 60)")
     c.add_argument("--mesh", action="extend", nargs="+", metavar="FILE",
                    help="check on these mesh files (OBJ, OFF, PLY, STL) instead of generated "
                         "meshes; 'pymeshlab:' = every sample mesh PyMeshLab ships, "
@@ -144,7 +145,8 @@ def parser() -> argparse.ArgumentParser:
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes)")
     m.add_argument("--impl", action="append", metavar="NAME|module:object",
                    help="implementation to compare (repeatable; default: every installed one)")
-    m.add_argument("--timeout", type=float, default=60.0, help="seconds per call (default 60)")
+    m.add_argument("--timeout", type=float, default=60.0,
+                   help="seconds per call, per 10,000 faces of the input (never less; default 60)")
 
     t = sub.add_parser(
         "theorems", formatter_class=fmt, help="print the traceability table",

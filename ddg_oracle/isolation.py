@@ -26,7 +26,8 @@ import resource
 import tempfile
 import traceback
 
-from ddg_oracle.oracles.processes import exit_text, stderr_tail
+from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, call_limit, exit_text, rows_of,
+                                          stderr_tail)
 from ddg_oracle.properties.budget import check_time_left, time_left
 from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
                                            machine_epsilon, require_protocol)
@@ -120,7 +121,8 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
 class Isolated:
     """Proxy of an implementation living in a worker process.
 
-    ``timeout`` is per call, in seconds; ``memory`` caps the worker's address
+    ``timeout`` is per call, in seconds, for inputs of up to ROWS_PER_TIMEOUT faces (and as
+    much again per as many more: :func:`call_limit`); ``memory`` caps the worker's address
     space in bytes (None: no cap; default :func:`memory_limit`, i.e.
     ``$DDG_MEMORY_LIMIT`` or 8 GiB).  Use as a context manager or call
     :meth:`close`.
@@ -195,7 +197,8 @@ class Isolated:
         # inside a check task, wait at most what its budget has left (properties.budget)
         check_time_left(f"{self.name}.{method}")
         left = time_left()
-        wait = self.timeout if left is None else min(self.timeout, left)
+        limit = call_limit(self.timeout, rows_of(args))
+        wait = limit if left is None else min(limit, left)
         if self._proc is None or not self._proc.is_alive():
             self._start()
         try:
@@ -215,13 +218,15 @@ class Isolated:
         if not done:
             self._kill()
             self._start()
-            if wait < self.timeout:
+            if wait < limit:
                 raise ImplementationCrashed(
                     self.name, method, f"did not return within {wait:.3g} s, the rest of the "
                     f"check task's time budget (killed); a longer budget: ddg-oracle check "
                     f"--budget SECONDS")
+            scaled = "" if limit == self.timeout else \
+                f" ({self.timeout:g} s per {ROWS_PER_TIMEOUT:,} faces)"
             raise ImplementationCrashed(self.name, method,
-                                        f"did not return within {self.timeout:g} s (killed); "
+                                        f"did not return within {limit:g} s{scaled} (killed); "
                                         "raise the limit with Isolated(timeout=...) or "
                                         "ddg-oracle check --timeout SECONDS")
         try:

@@ -41,7 +41,7 @@ import scipy.sparse
 from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain
 
 from .arrays import checked_arrays
-from .processes import exit_text, stderr_tail
+from .processes import call_limit, exit_text, stderr_tail
 
 PROTOCOL_VERSION = 1
 #: seconds a program may take to answer the handshake (it may import a lot, or JIT)
@@ -128,7 +128,8 @@ class Executable:
     """A program speaking the executable protocol, as an implementation object.
 
     Only the methods the program lists in its handshake exist on the object (so
-    properties needing others are not applicable).  ``timeout``: seconds per call.
+    properties needing others are not applicable).  ``timeout``: seconds per call, per
+    10,000 faces of the input (``processes.call_limit``).
     """
 
     def __init__(self, command: str | list[str], timeout: float = 60.0, cwd=None):
@@ -266,7 +267,7 @@ class Executable:
             request = {"id": k, "method": method, "V": V.tolist(), "F": F.tolist()}
             n, m = len(V), len(F)
         self._send(request, method)
-        answer = self._receive(method, self.timeout)
+        answer = self._receive(method, call_limit(self.timeout, max(n, m)))
         if not isinstance(answer, dict) or answer.get("id") != k:
             raise self._fail(method, f"answered {_short(answer)} to request id {k}")
         if "error" in answer:

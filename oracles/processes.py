@@ -38,3 +38,24 @@ def stderr_tail(path, lines: int = 3, chars: int = 400) -> str:
         return ""
     tail = [x.strip() for x in text.strip().splitlines() if x.strip()][-lines:]
     return " | ".join(tail)[-chars:]
+
+
+#: The per-call limit grows with the input: ``timeout`` seconds per this many rows of the
+#: largest argument (faces or vertices), never less than ``timeout``.
+ROWS_PER_TIMEOUT = 10_000
+
+
+def call_limit(timeout: float, rows: int) -> float:
+    """Seconds one call on an input of ``rows`` faces (or vertices) may take: ``timeout``
+    per ROWS_PER_TIMEOUT rows, never less than ``timeout``.
+
+    >>> round(call_limit(60, 56_172), 3), call_limit(60, 12)
+    (337.032, 60)
+    """
+    return timeout * max(1, rows / ROWS_PER_TIMEOUT)
+
+
+def rows_of(args) -> int:
+    """The length of the longest argument (V or F of a protocol call), 0 if none has one."""
+    return max((len(a) for a in args if hasattr(a, "__len__") and not isinstance(a, (str, bytes))),
+               default=0)

@@ -64,3 +64,12 @@ class AllocatesOnBoundary(ReferenceImplementation):
             import numpy as np
             np.empty(2 << 30, dtype=np.uint8)
         return super().euler_characteristic(V, F)
+
+
+class TakesTwoSeconds(ReferenceImplementation):
+    name = "takes-two-seconds"
+
+    def euler_characteristic(self, V, F):
+        import time
+        time.sleep(2.0)
+        return super().euler_characteristic(V, F)

@@ -52,6 +52,19 @@ def test_hang_is_killed_after_the_time_limit():
         assert impl.euler_characteristic(*_arrays(CLOSED)) == 2
 
 
+def test_the_time_limit_grows_with_the_mesh():
+    # 1 s per 10,000 faces: a 2-second call is killed on a small mesh, not on 40,000 faces
+    big = _arrays(surfaces.grid(100, 200).to_arrays())
+    assert len(big[1]) == 40_000
+    with Isolated("tests.misbehaving:TakesTwoSeconds", timeout=1.0) as impl:
+        with pytest.raises(ImplementationCrashed, match=r"did not return within 1 s \(killed\)"):
+            impl.euler_characteristic(*_arrays(CLOSED))
+        assert impl.euler_characteristic(*big) == 1
+    with Isolated("tests.misbehaving:TakesTwoSeconds", timeout=0.25) as impl:
+        with pytest.raises(ImplementationCrashed, match=r"within 1 s \(0.25 s per 10,000 faces\)"):
+            impl.euler_characteristic(*big)
+
+
 def test_property_run_reports_the_crash_with_a_shrunk_input_and_goes_on():
     with Isolated("tests.misbehaving:SegfaultsOnBoundary", timeout=30) as impl:
         r = run_property(PROPERTIES["D1.6"], impl, QUICK)
