@@ -530,8 +530,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     * ``far=True``: scaled by 2**k (k in -60..60) and moved by 2**e (e in 0..30)
       times its size (``far=False`` for a property that moves the surface itself:
       a rotated far-away surface rounded to floats can lose a face).  ``max_valence``
-      caps the fans and bipyramids (a float-rotated nearly flat fan of valence 14 or
-      more is beyond the reference's exact zero test today: issue 18).
+      caps the fans and bipyramids.
 
     Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1, at the
     origin, consistently oriented, connected, in its constructor's order.  Each
