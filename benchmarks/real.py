@@ -62,7 +62,7 @@ def _samples(mode: Mode):
 class _Counter:
     """Counts the calls of ``module.name`` inside the block: the exact zero tests
     (``angles._pi24_multiple``: decisions the enclosure alone did not settle), the exact
-    harmonic-index decreases (``delaunay.exact_sum`` in the flip loop: likewise)."""
+    harmonic-index decreases (``delaunay._exact_change`` in the flip loop: likewise)."""
 
     def __init__(self, module, name):
         self.calls, self._module, self._name = 0, module, name
@@ -120,7 +120,7 @@ def _row(label: str, s: PolyhedralSurface, mode: Mode) -> dict:
 def _flip_row(label: str, s: PolyhedralSurface) -> dict:
     m = as_metric(s)
     t0 = time.process_time()
-    with _Counter(delaunay, "exact_sum") as exact:
+    with _Counter(delaunay, "_exact_change") as exact:
         d, log = flip_to_delaunay(m)
     t_flip = time.process_time() - t0
     kept = t_check = None

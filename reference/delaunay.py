@@ -170,8 +170,7 @@ class _History:
         c = self.changes.get(k)
         if c is None:
             out, into = self.faces[k]
-            c = self.changes[k] = _number(exact_sum(s / A for s, A in into) -
-                                          exact_sum(s / A for s, A in out))
+            c = self.changes[k] = _exact_change(out, into)
         return c
 
     def h(self, k: int):
@@ -182,8 +181,14 @@ class _History:
         return self.values[k]
 
 
+def _exact_change(out, into):
+    """D4.7: h of the faces ``into`` minus h of the faces ``out``, exactly (pairs (s, A),
+    s = a^2 + b^2 + c^2, A the area: each face's h is s / A)."""
+    return _number(exact_sum(s / A for s, A in into) - exact_sum(s / A for s, A in out))
+
+
 def _decrease_sign(out, into) -> int:
-    """The exact sign of sum s / A over ``into`` minus over ``out`` (pairs (s, A), A > 0):
+    """C4.19: the exact sign of :func:`_exact_change` (pairs (s, A), A > 0):
     rigorous enclosures at 64 and 256 bits first (no division of square-root numbers),
     the exact quotients only when both contain 0."""
     for bits in (64, 256):
@@ -204,7 +209,7 @@ def _decrease_sign(out, into) -> int:
                 return 1
             if hi < 0:
                 return -1
-    return _sign(_number(exact_sum(s / A for s, A in into) - exact_sum(s / A for s, A in out)))
+    return _sign(_exact_change(out, into))
 
 
 def _enclose(x, bits: int):
