@@ -44,6 +44,7 @@ from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_
 from .profiles import profile as named_profile, profile_budget
 from .protocol import OutsideDomain, capabilities, implementation_name, require_protocol
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
+from .stream import same_stream
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
@@ -281,7 +282,8 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
     if seed is not None:
         run = hypothesis_seed(seed)(run)
     try:
-        run()
+        with same_stream():            # the property's stream, whatever this process loaded
+            run()
     except BudgetExceeded as e:
         if state is None:
             raise
