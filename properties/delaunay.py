@@ -33,6 +33,7 @@ way are not failures, since rounding decides them.
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cached_property
 
 import numpy as np
 from hypothesis import strategies as st
@@ -43,7 +44,8 @@ from ddg_oracle.reference.intrinsic import flip
 from ddg_oracle.reference.laplacian import cotan_laplacian
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from .laplacian import K_COT, Exact, _dense, _fail, _record, _solve, _worst, entry_bounds, gamma
+from .laplacian import (K_COT, Exact, _at, _dense, _fail, _record, _solve, _sparse, _worst,
+                        _worst_sparse, entry_bounds, gamma)
 from .strategies import (MeshCase, acute_meshes, closed_meshes, grid_faces,
                          jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
                          single_triangles)
@@ -87,41 +89,59 @@ def flip_amplification(metric, log):
 
 
 class DelaunayExact:
-    """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds."""
+    """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds:
+    sparse (``Ls``, ``Bs``, ``interior_s``: scipy CSR on the case's vertices, any mesh size),
+    dense arrays ``Lf``, ``B``, ``interior_pairs`` built only if a check of a small example
+    asks for them."""
 
     of = classmethod(Exact.of.__func__)      # once per case content, read-only (.memo)
 
     def __init__(self, case: MeshCase):
+        import scipy.sparse as sp
         self.X = X = Exact.of(case)
         self.delaunay, self.log = flip_to_delaunay(X.metric)
         d, self.amplification = flip_amplification(X.metric, self.log)
         assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
-        n = X.n
+        t = self.delaunay.triangulation
+        k = t.n_vertices
         self.L = cotan_laplacian(self.delaunay)
-        self.Lf = np.array(self.L.to_dense_floats(), dtype=float).reshape(n, n)
-        self.bounds = entry_bounds(self.delaunay, n, self.amplification)
-        self.B = self.bounds.B
-        self._widen_on_cocircular_cells()
+        self.bounds = entry_bounds(self.delaunay, k, self.amplification)
+        self.Ls = X.embed(self.L.to_scipy())
+        self.Bs = X.embed(self._widen_on_cocircular_cells(self.bounds.B))
         # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
         # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, E4)
-        t = self.delaunay.triangulation
-        self.interior_pairs = np.zeros((n, n), dtype=bool)
-        boundary = np.zeros((n, n), dtype=bool)
+        pairs = {False: set(), True: set()}
         for e in range(t.n_edges):
             i, j = t.edge_vertices(e)
-            mask = boundary if t.is_boundary_edge(e) else self.interior_pairs
-            mask[i, j] = mask[j, i] = True
-        self.interior_pairs &= ~boundary
+            pairs[t.is_boundary_edge(e)].update(((i, j), (j, i)))
+        inner = sorted(pairs[False] - pairs[True])
+        rows = np.array([p[0] for p in inner], dtype=np.int64)
+        cols = np.array([p[1] for p in inner], dtype=np.int64)
+        self.interior_s = X.embed(sp.csr_matrix((np.ones(len(inner), dtype=bool), (rows, cols)),
+                                                shape=(k, k)))
 
+    @cached_property
+    def Lf(self) -> np.ndarray:
+        return self.Ls.toarray()
 
-    def _widen_on_cocircular_cells(self) -> None:
+    @cached_property
+    def B(self) -> np.ndarray:
+        return self.Bs.toarray()
+
+    @cached_property
+    def interior_pairs(self) -> np.ndarray:
+        return self.interior_s.toarray()
+
+    def _widen_on_cocircular_cells(self, B):
         """R4.9: on a cell of cocircular triangles (joined across edges of weight exactly 0)
         every choice of diagonals is Delaunay and gives the same operator, so an
         implementation that chose other diagonals has weights exactly 0 (in floats: about
         eps) at vertex pairs that are no edge here, where the bound would be 0.  Those
         pairs get the largest bound of the cell's own zero-weight edges: the same corners'
         conditioning, a weight that is 0 either way.  Weights within their bound of 0 count
-        as 0: there rounding decides which diagonal is Delaunay."""
+        as 0: there rounding decides which diagonal is Delaunay.  ``B``: the entry bounds
+        (sparse, the Delaunay triangulation's vertices); returns them widened."""
+        import scipy.sparse as sp
         from ddg_oracle.reference.laplacian import cotan_weights
         t = self.delaunay.triangulation
         w = cotan_weights(self.delaunay)
@@ -135,46 +155,55 @@ class DelaunayExact:
 
         # exactly 0, or within the entry's float bound of 0 (the input's floats made an
         # exactly cocircular quadrilateral nearly so: rounding may choose either diagonal)
-        zero = [e for e in range(t.n_edges) if not t.is_boundary_edge(e)
-                and abs(float(w[e])) <= self.B[t.edge_vertices(e)]]
-        for e in zero:
+        inner = [e for e in range(t.n_edges) if not t.is_boundary_edge(e)]
+        if not inner:
+            return B
+        ends = np.array([t.edge_vertices(e) for e in inner], dtype=np.int64).reshape(-1, 2)
+        b = _at(B, ends[:, 0], ends[:, 1])
+        zero = [(e, float(be)) for e, be in zip(inner, b) if abs(float(w[e])) <= be]
+        for e, _ in zero:
             h, tw = t.edge_halfedges(e)
             root[find(h // 3)] = find(tw // 3)
         bound: dict[int, float] = {}
-        for e in zero:
-            i, j = t.edge_vertices(e)
+        for e, be in zero:
             r = find(t.edge_halfedges(e)[0] // 3)
-            bound[r] = max(bound.get(r, 0.0), self.B[i, j])
+            bound[r] = max(bound.get(r, 0.0), be)
         cells: dict[int, set] = {}
         for f in range(t.n_faces):
             if find(f) in bound:
                 cells.setdefault(find(f), set()).update(t.faces[f])
+        rows, cols, vals = [], [], []
         for r, vs in cells.items():
-            for i in vs:
-                for j in vs:
-                    if i != j and self.B[i, j] == 0:
-                        self.B[i, j] = bound[r]
+            vs = sorted(vs)
+            I = np.repeat(vs, len(vs))
+            J = np.tile(vs, len(vs))
+            off = I != J
+            I, J = I[off], J[off]
+            have = _at(B, I, J)
+            new = have == 0
+            rows.extend(I[new])
+            cols.extend(J[new])
+            vals.extend([bound[r]] * int(new.sum()))
+        if not rows:
+            return B
+        return sp.csr_matrix(B + sp.csr_matrix((vals, (rows, cols)), shape=B.shape))
 
 
 def _matrix(impl, case: MeshCase, pid: str, method: str):
-    M = getattr(impl, method)(*case.arrays())
-    A = np.asarray(M.toarray() if hasattr(M, "toarray") else M, dtype=float)
-    if A.shape != (case.n, case.n):
-        _fail(pid, impl, case, f"{method} has the wrong shape", expected=(case.n, case.n),
-              observed=A.shape)
-    if not np.all(np.isfinite(A)):
-        _fail(pid, impl, case, f"{method} has non-finite entries")
-    return A
+    return _dense(impl, case, pid, method)
 
 
 def _compare(pid, impl, case, A, exact, B, what):
-    err = np.abs(A - exact)
-    _record(pid, err, B)
-    (i, j), r = _worst(err, B)
+    """Every entry of ``A`` (dense or sparse) within ``B`` of ``exact`` (sparse)."""
+    import scipy.sparse as sp
+    A = sp.csr_matrix(A)
+    err = abs(A - exact).tocoo()
+    _record(pid, err.data, _at(B, err.row, err.col))
+    (i, j), r = _worst_sparse(err, B)
     if r > 1:
         _fail(pid, impl, case, f"{what} entry differs from the exact value by {r:.3g} x the "
-              f"bound {B[i, j]:.3g}", element=(int(i), int(j)), expected=float(exact[i, j]),
-              observed=float(A[i, j]))
+              f"bound {float(B[i, j]):.3g}", element=(int(i), int(j)),
+              expected=float(exact[i, j]), observed=float(A[i, j]))
 
 
 # --- strategies --------------------------------------------------------------------------------
@@ -307,14 +336,17 @@ def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
       "weights on interior edges are >= 0", needs={"intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
 def laplace_beltrami_operator(impl, case: MeshCase):
     pid = "D4.8 / R4.9"
-    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
+    A = _sparse(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
-    neg = D.interior_pairs & (A > D.B)              # a weight -A_ij clearly below 0
-    if np.any(neg):
-        i, j = np.argwhere(neg)[0]
+    C = A.tocoo()
+    neg = (_at(D.interior_s, C.row, C.col) != 0) & (C.data > _at(D.Bs, C.row, C.col))
+    if np.any(neg):                                 # a weight -A_ij clearly below 0
+        k = int(np.argmax(neg))
+        i, j = int(C.row[k]), int(C.col[k])
         _fail(pid, impl, case, "negative weight in the Laplace-Beltrami operator",
-              element=(int(i), int(j)), expected=float(D.Lf[i, j]), observed=float(A[i, j]))
-    _compare(pid, impl, case, A, D.Lf, D.B, "Laplace-Beltrami")
+              element=(i, j), expected=float(D.Ls[i, j]), observed=float(A[i, j]))
+    _compare(pid, impl, case, A, D.Ls, D.Bs, "Laplace-Beltrami")
 
 
 @prop("T4.5", "two triangulations of one planar point set (one flat metric) give the same "
@@ -362,7 +394,7 @@ def valence_one_vertex(impl, case: MeshCase):
     D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
         raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
-    _compare("X4.2", impl, case, A, D.Lf, D.B, "Laplace-Beltrami")
+    _compare("X4.2", impl, case, A, D.Ls, D.Bs, "Laplace-Beltrami")
 
 
 @prop("L4.18", "h(T) = 8 sum_i E(phi_i) = 4 trace(L): the diagonal of cotan_laplacian sums to a "

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from fractions import Fraction
 
 import numpy as np
@@ -89,26 +90,27 @@ class EntryBounds:
     """Float views of the exact cotan corners of a metric and the entry bounds ``B`` of its
     Laplacian (module docstring); ``amplification[f]`` scales the length perturbation
     of face f (1 for lengths computed from coordinates; more after float flips, see
-    :mod:`ddg_oracle.properties.delaunay`)."""
+    :mod:`ddg_oracle.properties.delaunay`).  ``B`` and ``adjacent`` (the pairs of vertices
+    joined by an edge, and each such vertex with itself) are sparse (scipy CSR): a real
+    mesh's n x n arrays would not fit; ``.toarray()`` for a small case."""
 
     cot: np.ndarray
     rho: np.ndarray
     beta: np.ndarray
-    B: np.ndarray
-    adjacent: np.ndarray
+    B: object
+    adjacent: object
 
 
 def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
+    import scipy.sparse as sp
     t = metric.triangulation
-    B = np.zeros((n, n))
-    S = np.zeros((n, n))
-    cnt = np.zeros((n, n))
     cot = np.zeros((t.n_faces, 3))
     rho = np.zeros(t.n_faces)
     for f in range(t.n_faces):
         rho[f], cot[f] = _conditioning(metric, f)
     amp = np.ones(t.n_faces) if amplification is None else np.asarray(amplification, float)
     beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
+    rows, cols, faces, corners = [], [], [], []
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)
         if i == j:
@@ -117,12 +119,31 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
             if h < 0:
                 continue
             f, c = h // 3, (h + 2) % 3
-            b, m = beta[f, c] / 2, abs(cot[f, c]) / 2
             for x, y in ((i, j), (j, i), (i, i), (j, j)):
-                B[x, y] += b
-                S[x, y] += m
-                cnt[x, y] += 1
-    return EntryBounds(cot, rho, beta, B + cnt * eps() * S, cnt > 0)
+                rows.append(x)
+                cols.append(y)
+                faces.append(f)
+                corners.append(c)
+    rows, cols = np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64)
+    faces, corners = np.array(faces, dtype=np.int64), np.array(corners, dtype=np.int64)
+
+    def summed(data):
+        # one coordinate list for all three: after summing duplicates the same structure
+        M = sp.csr_matrix((data, (rows, cols)), shape=(n, n))
+        M.sum_duplicates()
+        return M
+    if len(rows):
+        b = summed(beta[faces, corners] / 2)
+        m = summed(np.abs(cot[faces, corners]) / 2)
+        cnt = summed(np.ones(len(rows)))
+        B = b.copy()
+        B.data = b.data + cnt.data * eps() * m.data
+    else:
+        B = sp.csr_matrix((n, n))
+        cnt = B
+    adjacent = cnt.copy()
+    adjacent.data = adjacent.data > 0
+    return EntryBounds(cot, rho, beta, B, adjacent.astype(bool))
 
 
 def _conditioning(metric, f: int) -> tuple[float, list[float]]:
@@ -171,23 +192,41 @@ class Exact:
         t = self.triangulation = self.surface.triangulation
         k = t.n_vertices
         self.L = cotan_laplacian(self.surface)
-        Lc = np.array(self.L.to_dense_floats(), dtype=float).reshape(k, k)
         b = entry_bounds(self.metric, k)
         self.cot, self.rho, self.beta = b.cot, b.rho, b.beta
-        self.Lf, self.B = self.embed(Lc), self.embed(b.B)
-        self.adjacent = self.embed(b.adjacent.astype(float)) > 0
+        # sparse (scipy CSR) on the case's n vertices: the float view of L, the entry bounds,
+        # the edge pattern; Lf, B, adjacent are their dense arrays, built only if asked
+        self.Ls = self.embed(self.L.to_scipy())
+        self.Bs = self.embed(b.B)
+        self.adjacent_s = self.embed(b.adjacent)
 
     @property
     def n(self) -> int:
         return self.case.n
 
-    def embed(self, M) -> np.ndarray:
-        """A (k, k) array on the surface's vertices -> (n, n) on the case's, zero elsewhere."""
+    @cached_property
+    def Lf(self) -> np.ndarray:
+        return self.Ls.toarray()
+
+    @cached_property
+    def B(self) -> np.ndarray:
+        return self.Bs.toarray()
+
+    @cached_property
+    def adjacent(self) -> np.ndarray:
+        return self.adjacent_s.toarray()
+
+    def embed(self, M):
+        """A sparse (k, k) matrix on the surface's vertices -> (n, n) CSR on the case's,
+        zero at the isolated vertices."""
+        import scipy.sparse as sp
+        M = sp.csr_matrix(M)
         if len(self.keep) == self.case.n:
             return M
-        out = np.zeros((self.case.n, self.case.n), dtype=M.dtype)
-        out[np.ix_(self.keep, self.keep)] = M
-        return out
+        C = M.tocoo()
+        keep = np.asarray(self.keep, dtype=np.int64)
+        return sp.csr_matrix((C.data, (keep[C.row], keep[C.col])),
+                             shape=(self.case.n, self.case.n))
 
     def restrict(self, values) -> list:
         """Values on the case's vertices -> on the surface's (the isolated ones dropped)."""
@@ -204,7 +243,19 @@ class Exact:
         """Per row: sum_j (B_ij + gamma_{3n} |A_ij|) |u_j| (u: n or n x k): how far A u may be
         from the exact L u through the entry errors and a backward-stable evaluation or solve."""
         absu = np.abs(u)
-        return (self.B + gamma(3 * self.n + 3) * np.abs(A)) @ absu
+        return self.Bs @ absu + gamma(3 * self.n + 3) * (abs(A) @ absu)
+
+
+def total_area_view(metric) -> tuple[float, float]:
+    """(A, err): the total area as ``math.fsum`` of the exact face areas, each correctly
+    rounded to float64 (error <= u a_f, u = 2**-53), and a bound on |A - exact total area|:
+    u sum a_f for the faces plus u A for the correctly rounded sum.  For a mesh of any size:
+    the exact total of a float mesh has one square root per face (float() of it takes
+    minutes on 10,000 faces)."""
+    areas = [float(a) for a in metric.areas]
+    total = math.fsum(areas)
+    u = 2.0 ** -53
+    return total, u * (math.fsum(areas) + abs(total))
 
 
 def _compact(case: MeshCase, keep) -> PolyhedralSurface:
@@ -213,17 +264,50 @@ def _compact(case: MeshCase, keep) -> PolyhedralSurface:
                                          [[new[v] for v in f] for f in case.faces])
 
 
-def _dense(impl, case: MeshCase, pid: str):
-    V, F = case.arrays()
-    M = impl.cotan_laplacian(V, F)
-    A = M.toarray() if hasattr(M, "toarray") else np.asarray(M, dtype=float)
-    A = np.asarray(A, dtype=float)
+def _sparse(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian"):
+    """The implementation's matrix (``method``) as scipy CSR of float64, duplicates summed;
+    a failure if it is not n x n or has a non-finite entry."""
+    import scipy.sparse as sp
+    M = getattr(impl, method)(*case.arrays())
+    if sp.issparse(M):
+        A = sp.csr_matrix(M, dtype=np.float64)
+    else:
+        a = np.asarray(M, dtype=np.float64)
+        if a.ndim != 2:
+            raise PropertyFailure(pid, impl, f"{method} has the wrong shape", mesh=case.mesh,
+                                  expected=(case.n, case.n), observed=a.shape)
+        A = sp.csr_matrix(a)
     if A.shape != (case.n, case.n):
-        raise PropertyFailure(pid, impl, "cotan_laplacian has the wrong shape", mesh=case.mesh,
+        raise PropertyFailure(pid, impl, f"{method} has the wrong shape", mesh=case.mesh,
                               expected=(case.n, case.n), observed=A.shape)
-    if not np.all(np.isfinite(A)):
-        raise PropertyFailure(pid, impl, "cotan_laplacian has non-finite entries", mesh=case.mesh)
+    A.sum_duplicates()
+    if not np.all(np.isfinite(A.data)):
+        raise PropertyFailure(pid, impl, f"{method} has non-finite entries", mesh=case.mesh)
     return A
+
+
+def _dense(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian") -> np.ndarray:
+    """:func:`_sparse` as a dense array, for the checks of small examples that factor it."""
+    return _sparse(impl, case, pid, method).toarray()
+
+
+def _at(M, rows, cols) -> np.ndarray:
+    """The entries of the sparse matrix ``M`` at the index arrays ``rows``, ``cols``."""
+    if len(rows) == 0:
+        return np.zeros(0)
+    return np.asarray(M[np.asarray(rows), np.asarray(cols)], dtype=np.float64).ravel()
+
+
+def _worst_sparse(err, bound):
+    """((i, j), largest err / bound) over the stored entries of the sparse ``err`` (bound 0
+    where err > 0: infinite); ((0, 0), 0.0) if it has none."""
+    E = err.tocoo()
+    if E.nnz == 0:
+        return (0, 0), 0.0
+    b = _at(bound, E.row, E.col)
+    r = np.where(b > 0, E.data / np.where(b > 0, b, 1), np.where(E.data > 0, np.inf, 0))
+    k = int(np.argmax(r))
+    return (int(E.row[k]), int(E.col[k])), float(r[k])
 
 
 def _fail(pid, impl, case, message, **kw):
@@ -243,31 +327,37 @@ def _worst(err, bound):
       "row sums, supported on edges, entries = the exact cotan weights (3.3) within the derived bound",
       needs={"cotan_laplacian"}, strategy=lambda: scaled_meshes(any_meshes(isolated=True)))
 def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase):
-    A = _dense(impl, case, "D3.1")
+    # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
+    A = _sparse(impl, case, "D3.1")
     X = Exact.of(case)
     n = X.n
-    off = ~X.adjacent & ~np.eye(n, dtype=bool)
-    if np.any(A[off] != 0):
-        i, j = np.argwhere(off & (A != 0))[0]
+    C = A.tocoo()
+    nz = C.data != 0
+    r, c = C.row[nz], C.col[nz]
+    off = (r != c) & (_at(X.adjacent_s, r, c) == 0)
+    if np.any(off):
+        k = int(np.argmax(off))
+        i, j = int(r[k]), int(c[k])
         _fail("D3.1", impl, case, "nonzero entry between vertices that share no edge",
-              element=(int(i), int(j)), expected=0.0, observed=float(A[i, j]))
-    (i, j), r = _worst(np.abs(A - A.T), X.B + X.B.T)
-    if r > 1:
-        _fail("D3.1", impl, case, f"not symmetric ({r:.3g} x the bound)", element=(i, j),
+              element=(i, j), expected=0.0, observed=float(A[i, j]))
+    (i, j), q = _worst_sparse(abs(A - A.T), X.Bs + X.Bs.T)
+    if q > 1:
+        _fail("D3.1", impl, case, f"not symmetric ({q:.3g} x the bound)", element=(i, j),
               expected=float(A[j, i]), observed=float(A[i, j]))
-    rows = np.abs(A.sum(axis=1))
-    rb = X.B.sum(axis=1) + gamma(n) * np.abs(A).sum(axis=1)
-    (i,), r = _worst(rows, rb)
-    if r > 1:
-        _fail("D3.1", impl, case, f"row sum is not 0 ({r:.3g} x the bound): constants are not "
-              "in the kernel", element=f"row {i}", expected=0.0, observed=float(A[i].sum()))
-    err = np.abs(A - X.Lf)
-    _record("D3.1", err, X.B)
-    (i, j), r = _worst(err, X.B)
-    if r > 1:
-        _fail("D3.1", impl, case, f"entry differs from the exact cotan Laplacian by {r:.3g} x "
-              f"the bound {X.B[i, j]:.3g}", element=(i, j), expected=float(X.Lf[i, j]),
-              observed=float(A[i, j]), bound=X.B[i, j])
+    sums = np.asarray(A.sum(axis=1)).ravel()
+    rb = np.asarray(X.Bs.sum(axis=1)).ravel() + gamma(n) * np.asarray(abs(A).sum(axis=1)).ravel()
+    (i,), q = _worst(np.abs(sums), rb)
+    if q > 1:
+        _fail("D3.1", impl, case, f"row sum is not 0 ({q:.3g} x the bound): constants are not "
+              "in the kernel", element=f"row {i}", expected=0.0, observed=float(sums[i]))
+    err = abs(A - X.Ls).tocoo()
+    _record("D3.1", err.data, _at(X.Bs, err.row, err.col))
+    (i, j), q = _worst_sparse(err, X.Bs)
+    if q > 1:
+        b = float(X.Bs[i, j])
+        _fail("D3.1", impl, case, f"entry differs from the exact cotan Laplacian by {q:.3g} x "
+              f"the bound {b:.3g}", element=(i, j), expected=float(X.Ls[i, j]),
+              observed=float(A[i, j]), bound=b)
 
 
 @prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "
@@ -465,15 +555,18 @@ def harmonic_value_in_convex_hull(impl, case: MeshCase):
       "and must be, when the angle sum is exactly pi)",
       needs={"cotan_laplacian"}, strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
 def weight_sign_by_opposite_angles(impl, case: MeshCase):
-    A = _dense(impl, case, "E3.12")
+    A = _sparse(impl, case, "E3.12")
     X = Exact.of(case)
     t = X.triangulation
     ERROR_RATIOS.setdefault("E3.12", 0.0)
     tie = None
+    pairs = [[X.keep[v] for v in t.edge_vertices(e)] for e in range(t.n_edges)]
+    I, J = (np.array([p[k] for p in pairs], dtype=np.int64) for k in (0, 1))
+    weights, bounds = -_at(A, I, J), _at(X.Bs, I, J)
     for e in range(t.n_edges):
-        i, j = t.edge_vertices(e)
+        i, j = pairs[e]
         s = weight_sign_by_angles(X.surface, e)
-        w, b = -float(A[i, j]), float(X.B[i, j])
+        w, b = float(weights[e]), float(bounds[e])
         if s == 0:
             _record("E3.12", abs(w), b)                   # an exactly zero weight
         if s == 0 and abs(w) > b:
@@ -499,7 +592,7 @@ def area_gradient_of_a_triangle(impl, case: MeshCase):
 
 
 def _area_gradient_check(pid, impl, case):
-    A = _dense(impl, case, pid)
+    A = _sparse(impl, case, pid)
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
     got = A @ P
@@ -524,14 +617,14 @@ def _area_gradient_check(pid, impl, case):
       strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes(),
                                  surface_meshes(isolated=True)))
 def area_as_dirichlet_energy(impl, case: MeshCase):
-    A = _dense(impl, case, "T3.9")
+    A = _sparse(impl, case, "T3.9")
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
-    energy = float(sum(P[:, k] @ A @ P[:, k] for k in range(3))) / 2
-    area = float(X.metric.total_area())
-    aP = np.abs(P)
-    bound = 0.5 * sum(aP[:, k] @ (X.B + gamma(2 * X.n + 6) * np.abs(A)) @ aP[:, k]
-                      for k in range(3)) + eps() * area
+    energy = float(sum(P[:, k] @ (A @ P[:, k]) for k in range(3))) / 2
+    area, area_err = total_area_view(X.metric)
+    aP, absA = np.abs(P), abs(A)
+    bound = 0.5 * sum(aP[:, k] @ (X.Bs @ aP[:, k]) + gamma(2 * X.n + 6) * (aP[:, k] @ (absA @ aP[:, k]))
+                      for k in range(3)) + eps() * area + area_err
     r = _record("T3.9", abs(energy - area), bound)
     if r > 1:
         _fail("T3.9", impl, case, f"sum_k E(x_k) is not the area ({r:.3g} x the bound)",
@@ -608,7 +701,7 @@ def vertex_areas_sum_to_the_area(impl, case: MeshCase):
     X = Exact.of(case)
     V, F = case.arrays()
     n = X.n
-    area = float(X.metric.total_area())
+    area, area_err = total_area_view(X.metric)
     vb, bb = vertex_area_bounds(X)
     checks = [("vertex_areas_voronoi", vertex_areas_voronoi, vb)]
     if callable(getattr(impl, "vertex_areas_barycentric", None)):
@@ -626,7 +719,7 @@ def vertex_areas_sum_to_the_area(impl, case: MeshCase):
             _fail("L3.7", impl, case, f"{name} differs from the exact area ({r:.3g} x the bound)",
                   element=f"vertex {i}", expected=float(exact[i]), observed=float(got[i]),
                   bound=bound[i])
-        total_bound = float(bound.sum()) + gamma(n) * float(np.abs(got).sum())
+        total_bound = float(bound.sum()) + gamma(n) * float(np.abs(got).sum()) + area_err
         if abs(float(got.sum()) - area) > total_bound:
             _fail("L3.7", impl, case, f"{name} does not sum to the total area",
                   expected=area, observed=float(got.sum()))

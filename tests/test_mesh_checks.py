@@ -1,0 +1,87 @@
+"""The matrix checks of `ddg-oracle check --mesh` are sparse: they run on meshes of any size
+(they were dense n x n and not applicable above 2,500 vertices), and still find one wrong
+entry among a hundred thousand."""
+
+import numpy as np
+import pytest
+
+from ddg_oracle.compare import MeshExamples, MeshInput, compare_mesh, run_mesh_properties
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.properties.runner import FAILED, PASSED
+
+pytest.importorskip("igl")
+from ddg_oracle.oracles.libigl import Libigl  # noqa: E402
+
+MATRIX_CHECKS = {"D3.1", "T3.9", "E3.12", "L3.7"}
+
+
+def _bumpy_grid(m: int, seed: int = 3):
+    """A float grid of (m + 1)^2 vertices, jittered and bumped (not planar, some obtuse
+    angles), squares split by alternating diagonals."""
+    rng = np.random.default_rng(seed)
+    i, j = np.meshgrid(np.arange(m + 1), np.arange(m + 1), indexing="ij")
+    V = np.stack([i.ravel() + rng.uniform(-0.3, 0.3, i.size),
+                  j.ravel() + rng.uniform(-0.3, 0.3, i.size),
+                  rng.uniform(-0.2, 0.2, i.size)], axis=1) / m
+    F = []
+    for a in range(m):
+        for b in range(m):
+            p, q, r, s = a * (m + 1) + b, (a + 1) * (m + 1) + b, (a + 1) * (m + 1) + b + 1, \
+                a * (m + 1) + b + 1
+            F += [[p, q, r], [p, r, s]] if (a + b) % 2 else [[p, q, s], [q, r, s]]
+    return V, np.array(F)
+
+
+class OneWrongWeight(Libigl):
+    """libigl's cotan Laplacian with the weight of one edge deep inside off by 1e-9 relative
+    (both entries, so the matrix stays symmetric with zero row sums if the diagonal follows)."""
+
+    name = "one-wrong-weight"
+
+    def __init__(self, i, j):
+        super().__init__()
+        self.i, self.j = i, j
+
+    def cotan_laplacian(self, V, F):
+        A = super().cotan_laplacian(V, F).tolil()
+        i, j = self.i, self.j
+        d = A[i, j] * 1e-9
+        A[i, j] += d
+        A[j, i] += d
+        A[i, i] -= d
+        A[j, j] -= d
+        return A.tocsr()
+
+
+@pytest.fixture(scope="module")
+def grid():
+    V, F = _bumpy_grid(51)                    # 2,704 vertices, 5,202 faces
+    return MeshExamples(MeshInput("bumpy grid", V.tolist(), F.tolist()))
+
+
+def test_matrix_checks_run_beyond_the_old_dense_limit_and_pass_on_libigl(grid):
+    assert len(grid.mesh.V) > 2500
+    results = {r.property_id: r for r in run_mesh_properties(grid, Libigl(), only=MATRIX_CHECKS)}
+    assert set(results) == MATRIX_CHECKS
+    assert {r.status for r in results.values()} == {PASSED}, \
+        {k: (r.status, r.note) for k, r in results.items()}
+
+
+def test_one_wrong_weight_among_all_entries_is_found_and_named(grid):
+    F = np.array(grid.mesh.F)
+    i, j = int(F[2600, 0]), int(F[2600, 1])  # an edge near the middle
+    r, = run_mesh_properties(grid, OneWrongWeight(i, j), only={"D3.1"})
+    assert r.status == FAILED
+    assert r.failure.element in ((i, j), (j, i), (i, i), (j, j))
+
+
+def test_compare_reports_the_wrong_entry_of_a_sparse_matrix(grid):
+    F = np.array(grid.mesh.F)
+    i, j = int(F[2600, 0]), int(F[2600, 1])
+    rows = compare_mesh(grid.mesh, [Libigl(), OneWrongWeight(i, j)], ReferenceImplementation())
+    lap = {c.implementation: c for c in rows if c.quantity == "cotan_laplacian"}
+    assert lap["libigl"].status == "agrees" and lap["libigl"].worst <= 1
+    bad = lap["one-wrong-weight"]
+    assert bad.status == "DIFFERS" and bad.over >= 2
+    assert bad.where in {f"entry {(a, b)}" for a in (i, j) for b in (i, j)}
+    assert bad.elements >= grid.surface.triangulation.n_edges * 2 + len(grid.mesh.V)
