@@ -119,6 +119,11 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"worker processes (default {_default_workers()}: "
                         f"min({DEFAULT_WORKERS}, number of CPUs)); 1 runs in this process")
+    c.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the tasks on a dask.distributed cluster: a scheduler's address "
+                        "(tcp://host:8786) or local:N (N worker processes started for the run); "
+                        "a lost worker's tasks run again elsewhere; needs "
+                        "pip install 'ddg-oracle[dask]'")
     c.add_argument("--wide", action="store_true",
                    help="print the full grid (property x implementation) instead of the "
                         "compact report")
@@ -172,7 +177,8 @@ def main(argv=None) -> int:
     from ddg_oracle.properties.protocol import NotAnImplementation
     try:
         if args.command == "check":
-            return _check(args, argv)
+            # the check's own arguments: after the command name (the first argument)
+            return _check(args, None if argv is None else list(argv)[1:])
         if args.command == "compare":
             return _compare(args)
         return _theorems(args)
@@ -312,6 +318,11 @@ class Progress:
             print(file=self.stream)
 
 
+def _check_arguments(argv) -> list[str]:
+    """The arguments of the check command after its name (what --resume parses again)."""
+    return list(argv if argv is not None else sys.argv[2:])
+
+
 def _check(args, argv) -> int:
     from ddg_oracle import jobs
     from ddg_oracle.implementations import available, missing
@@ -363,16 +374,22 @@ def _check(args, argv) -> int:
     else:
         tasks = [jobs.Task(s, p.id) for p in props for s in specs]
     workers = min(workers, len(tasks))
+    client = cluster = None
+    if args.scheduler:
+        from ddg_oracle import cluster as dask_cluster
+        client, cluster = dask_cluster.connect(args.scheduler)
+        workers = dask_cluster.n_workers(client)
     # Started here: what this process runs itself (one worker), or what must be seen to
     # load before the run (a user's module, a program) so that a mistake is exit 2 at
     # once.  With a pool, a built-in adapter whose library is installed is started by the
     # pool's workers only: starting it here too would cost every library's import again.
     from ddg_oracle.implementations import BUILTIN
     plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
-    started = _start([s for s in specs if workers <= 1 or s not in plain], args.timeout)
+    pool = workers > 1 or client is not None
+    started = _start([s for s in specs if not pool or s not in plain], args.timeout)
     names = {s: getattr(i, "name", s) for s, i in started.items()}
     names.update({s: s for s in plain if s not in names})   # their display name is the name
-    if workers <= 1:
+    if not pool:
         for s, impl in started.items():
             jobs.adopt(s, impl)
     else:
@@ -380,7 +397,7 @@ def _check(args, argv) -> int:
             getattr(impl, "close", lambda: None)()
     stream = None
     if args.report:
-        given = [a for a in (argv if argv is not None else sys.argv[2:])]
+        given = _check_arguments(argv)
         stream = ResultStream(args.report, tasks, {"argv": given, "seed": seed,
                                                    "report": str(Path(args.report).resolve())})
         stream_done = stream.finished()                 # a resumed run's finished tasks
@@ -394,12 +411,14 @@ def _check(args, argv) -> int:
     interrupted = None
     try:
         results = jobs.run_tasks(tasks, options, meshes, workers, on_done=on_done,
-                                 done=stream_done)
+                                 done=stream_done, client=client)
     except jobs.Interrupted as e:
         interrupted, results = e, e.done
     finally:
         progress.finish()
         jobs.close_all()
+        if client is not None:
+            dask_cluster.close(client, cluster)
         if stream is not None:
             stream.close()
     seconds = time.perf_counter() - t0
@@ -415,7 +434,7 @@ def _check(args, argv) -> int:
                    "only": sorted(only) if only else None,
                    "meshes": [m.name for m in meshes] or None,
                    "expect_conventions": args.expect_conventions,
-                   "argv": [a for a in (argv if argv is not None else sys.argv[2:])]}
+                   "argv": _check_arguments(argv)}
         timings = {"seconds": round(seconds, 3), "workers": workers,
                    "results": [{"property_id": r.property_id, "implementation": r.implementation,
                                 "source": r.source, "seconds": round(r.seconds, 4)}

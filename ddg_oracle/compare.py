@@ -9,6 +9,8 @@ protocol method, the largest error of each implementation in units of the
 derived bound, and where.  Both take the same mesh arguments:
 
 * a path to an OBJ, OFF, PLY or STL file (:func:`ddg_oracle.meshfiles.read_mesh`);
+* a directory: every such file below it (a corpus; one that cannot be read is
+  skipped with a note);
 * ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
   package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them.
 
@@ -80,6 +82,15 @@ def resolve(args: list[str]) -> list[tuple[str, Path, bool]]:
                 names = ", ".join(str(q.relative_to(d)) for q in sample_meshes())
                 raise MeshFileError(f"{a}: no such sample mesh (PyMeshLab ships {names})")
             out.append((a, p, True))
+        elif Path(a).is_dir():
+            # a corpus: every mesh file below it, sorted; one that cannot be read is
+            # skipped with a note, as a sample mesh is
+            found = sorted(p for p in Path(a).rglob("*")
+                           if p.suffix.lower() in MESH_SUFFIXES and p.is_file())
+            if not found:
+                raise MeshFileError(f"{a}: a directory with no mesh file "
+                                    f"({', '.join(MESH_SUFFIXES)}) in it")
+            out += [(str(p), p, False) for p in found]
         else:
             out.append((a, Path(a), True))
     return out

@@ -215,7 +215,7 @@ RETRIES = 1
 
 
 def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 1,
-              on_done=None, done: dict | None = None) -> list:
+              on_done=None, done: dict | None = None, client=None) -> list:
     """Every task's results, in task order; ``on_done(k, task, results)`` as each finishes.
 
     ``done``: {task index: results} already known (a resumed run): not run again.
@@ -223,12 +223,13 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     that dies while running a task (killed, out of memory) is replaced and the task run
     once more (:data:`RETRIES`), then reported as ``crashed``; no other task's result is
     lost.  SIGINT / SIGTERM raise :class:`Interrupted` carrying the finished results, after
-    every worker and library process is gone."""
+    every worker and library process is gone.  ``client``: a ``dask.distributed`` client
+    whose cluster runs the tasks instead (:mod:`ddg_oracle.cluster`; ``workers`` unused)."""
     import signal
 
     out: dict = dict(done or {})
     todo = [k for k in range(len(tasks)) if k not in out]
-    serial = workers <= 1 or len(todo) <= 1
+    serial = client is None and (workers <= 1 or len(todo) <= 1)
     caught: list[int] = []
 
     def finish(k, results):
@@ -255,6 +256,9 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
                 check()
                 finish(k, run_task(tasks[k]))
                 check()
+        elif client is not None:
+            from ddg_oracle.cluster import run_on_cluster
+            run_on_cluster(client, tasks, todo, options, meshes, finish, check)
         else:
             _run_pool(tasks, todo, options, meshes, workers, finish, check)
     except (KeyboardInterrupt, Interrupted) as e:

@@ -73,3 +73,15 @@ class TakesTwoSeconds(ReferenceImplementation):
         import time
         time.sleep(2.0)
         return super().euler_characteristic(V, F)
+
+
+class SlowChi(ReferenceImplementation):
+    """The reference, 50 ms per Euler characteristic: a task that is still running when a
+    cluster worker is killed (tests/test_cluster.py)."""
+
+    name = "slow-chi"
+
+    def euler_characteristic(self, V, F):
+        import time
+        time.sleep(0.05)
+        return super().euler_characteristic(V, F)

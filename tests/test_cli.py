@@ -544,3 +544,22 @@ def test_the_compact_report_fits_100_columns_with_every_kind_of_result():
                for line in lines[-6:]), lines[-6:]
     # without a terminal: a line per finished applicable task on stderr
     assert re.search(r"^\[\d+/\d+ \d+ s\] R1\.6 libigl: FAILED$", out.stderr, re.M)
+
+
+def test_a_directory_is_a_corpus_of_its_mesh_files(capsys, tmp_path, tetra_obj, disk_obj):
+    corpus = tmp_path / "corpus"
+    (corpus / "sub").mkdir(parents=True)
+    (corpus / "a.obj").write_bytes(tetra_obj.read_bytes())
+    (corpus / "sub" / "b.obj").write_bytes(disk_obj.read_bytes())
+    (corpus / "broken.obj").write_text("v 0 0 0\nf 1 2 x\n")
+    (corpus / "notes.txt").write_text("not a mesh")
+    rc, out, err = _run(capsys, "check", "--mesh", str(corpus), "--impl",
+                        "tests.planted_bugs:ChiIgnoresBoundary", "--only", "D1.6", "--workers", "1",
+                        "--wide")
+    assert rc == 1                                  # chi of the disk
+    assert f"property on {corpus / 'a.obj'}" in out and f"property on {corpus / 'sub' / 'b.obj'}" in out
+    assert "broken.obj" in err and "notes.txt" not in out + err
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    rc, _, err = _run(capsys, "check", "--mesh", str(empty))
+    assert rc == 2 and "no mesh file" in err and err.count("\n") == 1

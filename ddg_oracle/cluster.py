@@ -1,0 +1,176 @@
+"""A check's tasks on a ``dask.distributed`` cluster: ``ddg-oracle check --scheduler ADDRESS``.
+
+``ADDRESS`` is a running scheduler (``tcp://host:8786``, what ``dask scheduler``
+prints) or ``local:N``: a :class:`distributed.LocalCluster` of N worker
+processes started for this run and stopped after it.  The tasks are the same
+as a local run's (:class:`~ddg_oracle.jobs.Task`: implementation x property, or
+implementation x mesh file) and run the same way inside a worker
+(:func:`~ddg_oracle.jobs.run_task`: the reference in the worker process, every
+other library isolated in a process of its own, a crash or hang of it a
+result).  So the results are the local run's: a property's examples depend
+only on the property, the profile and the seed (``properties/stream.py``),
+under ``ci`` results.json is byte-identical to the local run's.
+
+What the cluster adds:
+
+* a worker that dies (killed, out of memory, its machine gone) loses no
+  result: the scheduler runs its unfinished tasks again on another worker; a
+  task that has killed :data:`ALLOWED_FAILURES` + 1 workers is reported as
+  ``crashed`` with the task named, and the run goes on;
+* with ``--report DIR`` each finished task is written to ``DIR/results.jsonl``
+  as it arrives, so ``ddg-oracle check --resume DIR`` continues an interrupted
+  run (locally or on a cluster) with only the unfinished tasks.
+
+Workers need ddg-oracle and the checked libraries installed (the same
+versions as the client), their worker processes must be allowed children
+(``DASK_DISTRIBUTED__WORKER__DAEMON=False`` in the environment of
+``dask worker``: a library runs in a child process), one thread per worker
+process (``--nthreads 1``: a property's example time limit uses SIGALRM of
+the main thread; in another thread it is skipped and only the libraries' own
+call limits apply), and a user's ``module:object`` must import from the
+worker's working directory.  A check of a cluster that breaks these is a
+usage error, said before any task runs.
+"""
+
+from __future__ import annotations
+
+import uuid
+
+from ddg_oracle.reference.errors import InputError
+
+LOCAL_PREFIX = "local:"
+#: worker deaths a task may cause before it is reported as crashed (dask's own setting,
+#: ``distributed.scheduler.allowed-failures``, for the clusters this module starts)
+ALLOWED_FAILURES = 2
+
+
+def _distributed():
+    try:
+        import dask
+        import distributed
+    except ImportError:
+        raise InputError("--scheduler needs dask.distributed: pip install 'ddg-oracle[dask]'") \
+            from None
+    return dask, distributed
+
+
+def connect(address: str):
+    """(client, cluster or None) for ``address`` (see the module doc)."""
+    dask, distributed = _distributed()
+    cluster = None
+    if address.startswith(LOCAL_PREFIX):
+        try:
+            n = int(address[len(LOCAL_PREFIX):])
+        except ValueError:
+            n = 0
+        if n < 1:
+            raise InputError(f"--scheduler {address}: write local:N with N >= 1 worker processes")
+        import logging
+        # set for the rest of this process, not for a block: the cluster's nannies live
+        # here and read the daemon flag again whenever they restart a worker that died
+        dask.config.set({"distributed.worker.daemon": False,
+                         "distributed.scheduler.allowed-failures": ALLOWED_FAILURES})
+        cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                           dashboard_address=":0", silence_logs=logging.ERROR)
+        client = distributed.Client(cluster)
+    else:
+        try:
+            client = distributed.Client(address, timeout=30)
+        except (OSError, TimeoutError) as e:
+            raise InputError(f"--scheduler {address}: cannot reach the scheduler ({e})") from None
+    try:
+        _require_usable(client, address)
+    except BaseException:
+        close(client, cluster)
+        raise
+    return client, cluster
+
+
+def _worker_facts():
+    import multiprocessing
+    return {"daemon": multiprocessing.current_process().daemon}
+
+
+def _require_usable(client, address: str) -> None:
+    info = client.scheduler_info()["workers"]
+    if not info:
+        client.wait_for_workers(1, timeout=60)
+        info = client.scheduler_info()["workers"]
+    bad = [w for w, facts in client.run(_worker_facts).items() if facts["daemon"]]
+    if bad:
+        raise InputError(f"--scheduler {address}: worker {bad[0]} runs as a daemonic process, "
+                         "which may not start the libraries' processes; start the workers with "
+                         "DASK_DISTRIBUTED__WORKER__DAEMON=False")
+    threads = {w: i.get("nthreads", 1) for w, i in info.items()}
+    many = [w for w, k in threads.items() if k != 1]
+    if many:
+        raise InputError(f"--scheduler {address}: worker {many[0]} has {threads[many[0]]} "
+                         "threads; start workers with --nthreads 1 (one task per process)")
+
+
+def close(client, cluster) -> None:
+    try:
+        client.close()
+    finally:
+        if cluster is not None:
+            cluster.close()
+
+
+def n_workers(client) -> int:
+    return len(client.scheduler_info()["workers"])
+
+
+# --- in a worker ----------------------------------------------------------------------------------
+
+
+def _run(run, task):
+    """One task in a dask worker: the run's options and meshes (``run``: token, options,
+    meshes, sent once per worker) installed in this process when the run changes."""
+    from ddg_oracle import jobs
+    token, options, meshes = run
+    if jobs._STATE.get("run") != token:
+        jobs.close_all()
+        jobs._init(options, meshes)
+        jobs._STATE["run"] = token
+    return jobs.run_task(task)
+
+
+# --- in the client --------------------------------------------------------------------------------
+
+
+def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
+    """Run the tasks ``todo`` (indices into ``tasks``) on ``client``'s cluster; ``finish(k,
+    results)`` as each arrives (any order), ``check()`` at least twice a second (raises on
+    SIGINT or SIGTERM: the unfinished tasks are cancelled)."""
+    from distributed import wait
+    from ddg_oracle import jobs
+
+    token = uuid.uuid4().hex
+    [run] = client.scatter([(token, options, meshes)], broadcast=True)
+    index = {}
+    for k in todo:
+        f = client.submit(_run, run, tasks[k], key=f"ddg-oracle-{token}-{k}", pure=False)
+        index[f] = k
+    remaining = set(index)
+    try:
+        while remaining:
+            check()
+            try:
+                done, _ = wait(list(remaining), timeout=0.5, return_when="FIRST_COMPLETED")
+            except TimeoutError:
+                continue
+            for f in done:
+                remaining.discard(f)
+                k = index[f]
+                try:
+                    results = f.result()
+                except Exception as e:  # noqa: BLE001  (KilledWorker: a result, the run goes on)
+                    results = jobs._crashed(
+                        tasks[k], f"the cluster could not finish this task ({type(e).__name__}: "
+                                  f"{e}); a task is run again when its worker dies, "
+                                  f"{ALLOWED_FAILURES} times at most")
+                finish(k, results)
+                f.release()
+    except BaseException:
+        client.cancel(list(remaining))
+        raise
