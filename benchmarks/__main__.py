@@ -2,7 +2,8 @@
 
 Groups: cotan, flips, r3, hypothesis (the default set), real (the exact reference on
 PyMeshLab's sample meshes and generated fans), suite (the test suite and one
-check), main (``ddg-oracle check`` three times and with ci: the main job's time), catch (the time
+check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
+(``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
 to catch each planted bug under the default profile)."""
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ GROUPS = {
     "hypothesis": suite.run_hypothesis,
     "suite": suite.run_suite,
     "main": suite.run_main,
+    "meshcheck": suite.run_mesh_checks,
     "catch": catch.run,
 }
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]

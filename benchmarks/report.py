@@ -128,6 +128,17 @@ SUITE = """\
 Wall time on 2 workers (`pytest -n 2`), one run each.
 """
 
+MESHCHECK = """\
+## 9. Checks on mesh files: `ddg-oracle check --mesh`
+
+`python -m benchmarks meshcheck`: `ddg-oracle check --mesh MESH --report DIR` on
+PyMeshLab's bunnies, every installed implementation (2 workers) and libigl alone,
+one run each.  *task seconds*: the time of every (property, implementation)
+result summed per implementation, from `timings.json`; every matrix check is
+sparse (no size limit), the exact values of a mesh are computed once per worker
+process and shared by the implementations it checks.
+"""
+
 MAIN = """\
 ## 6. The main job: `ddg-oracle check`
 
@@ -394,6 +405,14 @@ _TABLES = [
                     ("--report", lambda r: "yes" if r.get("report", True) else "no"),
                     ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.1f} s)"
                      if r.get("slowest") else "-")]),
+    ("meshcheck", MESHCHECK, [
+        ("mesh", lambda r: r["mesh"]), ("implementations", lambda r: r["impl"]),
+        ("wall seconds", lambda r: f"{r['wall']:.1f}"), ("exit", lambda r: str(r["exit"])),
+        ("load before", lambda r: str(r["load"])),
+        ("results", lambda r: ", ".join(f"{n} {s}" for s, n in sorted(r["statuses"].items()))),
+        ("task seconds", lambda r: ", ".join(f"{i} {t:.0f}" for i, t in
+                                             sorted(r["task_seconds"].items(), key=lambda x: -x[1]))),
+        ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.1f} s)")]),
     ("catch", CATCH, [("bug", lambda r: r["bug"]), ("planted", lambda r: ", ".join(r["planted"])),
                       ("caught", lambda r: f"{r['caught']}/{r['runs']}"),
                       ("first", lambda r: r.get("first", "-")),
@@ -490,6 +509,11 @@ def _targets(results: dict) -> list[str]:
                     lines.append(f"| exact intrinsic Delaunay of {name} <= {limit} s | "
                                  f"{r['flips']:,} flips in {r['flip_s']:.1f} s | "
                                  f"{'yes' if r['flip_s'] <= limit else 'no'} |")
+    for r in results.get("meshcheck", {}).get("rows", []):
+        if r["mesh"].endswith(":bunny.obj"):
+            lines.append(f"| `ddg-oracle check --mesh pymeshlab:bunny.obj` ({r['impl']}) <= 60 s "
+                         f"(issue 18) | {r['wall']:.0f} s, slowest task {r['slowest']} "
+                         f"{r['slowest_seconds']:.0f} s | {'yes' if r['wall'] <= 60 else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None

@@ -103,3 +103,47 @@ def run_main(mode: Mode) -> dict:
             "slowest_default": max(r["slowest_seconds"] for r in rows
                                    if r["profile"] == "default" and r["report"]),
             "ci": next(r["wall"] for r in rows if r["profile"] == "ci")}
+
+
+#: (mesh, implementations): README's check on PyMeshLab's bunnies, every installed
+#: implementation (None) and libigl alone
+MESH_CHECKS = [("pymeshlab:bunny10k_textured.obj", None), ("pymeshlab:bunny10k_textured.obj", "libigl"),
+               ("pymeshlab:bunny.obj", None), ("pymeshlab:bunny.obj", "libigl")]
+
+
+def run_mesh_checks(mode: Mode) -> dict:
+    """``ddg-oracle check --mesh MESH [--impl libigl] --report DIR`` once per row of
+    :data:`MESH_CHECKS` (``--quick``: the 10k bunny only): wall time, exit code, the load
+    average before, and from timings.json the task-seconds per implementation and the
+    slowest (property, implementation)."""
+    import json
+    import tempfile
+
+    rows = []
+    plan = [(m, i) for m, i in MESH_CHECKS if not mode.quick or "10k" in m]
+    for mesh, impl in plan:
+        with tempfile.TemporaryDirectory() as tmp:
+            load = round(os.getloadavg()[0], 1)
+            report = os.path.join(tmp, "report")
+            argv = [sys.executable, "-m", "ddg_oracle", "check", "--mesh", mesh, "--report", report]
+            argv += ["--impl", impl] if impl else []
+            t0 = time.perf_counter()
+            p = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
+            wall = time.perf_counter() - t0
+            timings = json.loads(open(os.path.join(report, "timings.json")).read())
+            per: dict = {}
+            for r in timings["results"]:
+                per[r["implementation"]] = per.get(r["implementation"], 0.0) + r["seconds"]
+            slow = max(timings["results"], key=lambda r: r["seconds"])
+            results = json.loads(open(os.path.join(report, "results.json")).read())["results"]
+            statuses: dict = {}
+            for r in results:
+                statuses[r["status"]] = statuses.get(r["status"], 0) + 1
+        row = {"mesh": mesh, "impl": impl or "all installed", "wall": wall, "exit": p.returncode,
+               "load": load, "task_seconds": per, "statuses": statuses,
+               "slowest": f"{slow['property_id']} / {slow['implementation']}",
+               "slowest_seconds": slow["seconds"]}
+        rows.append(row)
+        say(f"  check --mesh {mesh} ({row['impl']}): {wall:.1f} s exit {p.returncode}, slowest "
+            f"{row['slowest']} {row['slowest_seconds']:.1f} s (load {load})")
+    return {"rows": rows}

@@ -45,7 +45,7 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.areas import area_gradient
+from ddg_oracle.reference.areas import area_gradient_floats
 from ddg_oracle.reference.dirichlet import directional_derivative
 from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
                                  vertex_areas_barycentric, vertex_areas_voronoi,
@@ -220,7 +220,7 @@ class Exact:
     def area_gradient(self) -> np.ndarray:
         """(k, 3) floats of the exact area gradient (T3.9, L3.8) at the surface's vertices,
         each correctly rounded: computed once, shared by every implementation."""
-        return np.array([[float(x) for x in g] for g in area_gradient(self.surface)],
+        return np.array(area_gradient_floats(self.surface),
                         dtype=np.float64).reshape(-1, self.surface.dimension)
 
     def vertex_areas(self, name: str) -> np.ndarray:

@@ -24,10 +24,12 @@ True
 from __future__ import annotations
 
 from fractions import Fraction
+from math import isqrt
 from typing import Sequence
 
 from .errors import BadShape, DegenerateFace, InputError
 from .exact import Surd, sqrt
+from .exact.rationals import on_common_denominator
 from .laplacian import cotan_laplacian, cotan_weighted_edges, metric_of_surface
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
@@ -36,7 +38,7 @@ from .sparse import _normal, exact_sum
 __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",
            "heron_partial_derivatives", "area_length_derivatives", "area_gradient_cotan",
            "area_gradient_direct", "area_gradient_cross", "area_as_dirichlet_energy",
-           "area_gradient", "laplacian_of_positions"]
+           "area_gradient", "area_gradient_floats", "laplacian_of_positions"]
 
 _ZERO = Fraction(0)
 
@@ -241,6 +243,75 @@ def area_gradient(surface: PolyhedralSurface) -> list[tuple]:
             g = area_gradient_direct(pts, c)
             out[face[c]] = tuple(_normal(x + y) for x, y in zip(out[face[c]], g))
     return out
+
+
+def area_gradient_floats(surface: PolyhedralSurface) -> list[tuple]:
+    """:func:`area_gradient` with every coordinate correctly rounded to a float, fast on
+    float meshes of any size (no Surd arithmetic unless a coordinate is 0 or within
+    2^-2048 relative of a float's rounding boundary).
+
+    With the points on one common denominator D (integers), the gradient at corner i
+    of a face is ``n / (2 D sqrt(G))``: ``n = |w|^2 a - <a, w> w`` (a = v_i - v_j,
+    w = v_k - v_j, as :func:`area_gradient_direct`) and ``G = |a|^2 |w|^2 - <a, w>^2``
+    (integers; G is the same at the three corners).  A vertex coordinate is a sum
+    ``sum n_t / sqrt(G_t) / (2D)``; each term times 2^p lies in [s, s + 1) for
+    ``s = isqrt(n^2 4^p // G)`` (signed), so the sum lies in an interval of width
+    (number of terms) 2^-p.  Its two ends rounding to one float decide the value's
+    rounding (rounding is monotonic); else p doubles, up to 2048 bits, and then the
+    exact Surd sum decides (a coordinate that is exactly 0: the in-plane gradient of
+    an interior vertex of a planar mesh, linear precision).
+    """
+    s = _positions(surface)
+    P, dim = s.positions, s.dimension
+    flat, D = on_common_denominator([x for p in P for x in p])
+    pts = [tuple(flat[dim * v:dim * v + dim]) for v in range(len(P))]
+    terms: list[list[list]] = [[[] for _ in range(dim)] for _ in range(s.n_vertices)]
+    for face in s.triangulation.faces:
+        q = [pts[v] for v in face]
+        a0 = [y - x for x, y in zip(q[1], q[0])]          # corner 0: a = v0 - v1, w = v2 - v1
+        w0 = [y - x for x, y in zip(q[1], q[2])]
+        G = _idot(a0, a0) * _idot(w0, w0) - _idot(a0, w0) ** 2
+        if G <= 0:
+            raise DegenerateFace(f"degenerate triangle {[P[v] for v in face]}: its vertices "
+                                 "are collinear")
+        for c in range(3):
+            j, k = (c + 1) % 3, (c + 2) % 3
+            a = [x - y for x, y in zip(q[c], q[j])]
+            w = [x - y for x, y in zip(q[k], q[j])]
+            ww, aw = _idot(w, w), _idot(a, w)
+            for x in range(dim):
+                n = ww * a[x] - aw * w[x]
+                if n:
+                    terms[face[c]][x].append((n, G))
+    return [tuple(_rounded_root_sum(t, 2 * D) for t in vertex) for vertex in terms]
+
+
+def _idot(u, v) -> int:
+    return sum(x * y for x, y in zip(u, v))
+
+
+def _rounded_root_sum(terms, den: int) -> float:
+    """float(sum n / sqrt(G) / den) over ``terms`` [(n, G)], correctly rounded (see
+    :func:`area_gradient_floats`)."""
+    if not terms:
+        return 0.0
+    k = len(terms)
+    p = 64 + k.bit_length()
+    while p <= 2048:
+        four = 1 << (2 * p)
+        lo = 0
+        for n, G in terms:
+            r = isqrt(n * n * four // G)
+            lo += r if n > 0 else -r - 1
+        scale = den << p
+        a, b = float(Fraction(lo, scale)), float(Fraction(lo + k, scale))
+        if a == b and (a != 0.0 or lo > 0 or lo + k < 0):
+            return a
+        p *= 2
+    exact = _ZERO
+    for n, G in terms:
+        exact = exact + Fraction(n, den) / sqrt(G)
+    return float(exact)
 
 
 def laplacian_of_positions(surface: PolyhedralSurface) -> list[tuple]:
