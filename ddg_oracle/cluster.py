@@ -56,8 +56,7 @@ def _distributed():
 
 def connect(address: str):
     """(client, cluster or None) for ``address`` (see the module doc)."""
-    dask, distributed = _distributed()
-    cluster = None
+    n = None
     if address.startswith(LOCAL_PREFIX):
         try:
             n = int(address[len(LOCAL_PREFIX):])
@@ -65,6 +64,9 @@ def connect(address: str):
             n = 0
         if n < 1:
             raise InputError(f"--scheduler {address}: write local:N with N >= 1 worker processes")
+    dask, distributed = _distributed()
+    cluster = None
+    if n is not None:
         import logging
         # set for the rest of this process, not for a block: the cluster's nannies live
         # here and read the daemon flag again whenever they restart a worker that died
@@ -75,7 +77,9 @@ def connect(address: str):
         client = distributed.Client(cluster)
     else:
         try:
-            client = distributed.Client(address, timeout=30)
+            # how long to try: dask's distributed.comm.timeouts.connect (default 30 s;
+            # e.g. DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT=5s)
+            client = distributed.Client(address)
         except (OSError, TimeoutError) as e:
             raise InputError(f"--scheduler {address}: cannot reach the scheduler ({e})") from None
     try:

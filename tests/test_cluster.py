@@ -1,96 +1,129 @@
-"""check --scheduler: the tasks on a real dask.distributed cluster of worker processes,
-results identical to the local run, a killed worker's tasks run again, --resume."""
+"""check --scheduler on a real dask.distributed cluster: a scheduler and two workers started
+as a user starts them (``dask scheduler``, ``dask worker --nthreads 1``), each a process of
+its own, and ``local:N``; the results are the local run's byte for byte, a worker killed
+mid-run loses no result, --resume finishes a run on a cluster.
+
+Everything dask runs in processes of its own: this test process never imports distributed
+(its client's threads and garbage-collector hooks stay out of the suite's workers)."""
 
 import json
 import os
 import signal
-import threading
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import pytest
 
-distributed = pytest.importorskip("distributed")
-import dask  # noqa: E402
+if not any((Path(p) / "distributed").is_dir() for p in sys.path if p):
+    pytest.skip("dask.distributed is not installed", allow_module_level=True)
 
-from ddg_oracle.cli import main  # noqa: E402
-
-ARGS = ["check", "--impl", "reference", "--impl", "tests.misbehaving:SlowChi",
+ROOT = Path(__file__).resolve().parents[1]
+ARGS = ["--impl", "reference", "--impl", "tests.misbehaving:SlowChi",
         "--impl", "tests.planted_bugs:ChiIgnoresBoundary", "--only", "D1.6", "--only", "T1.1",
         "--only", "R1.6", "--seed", "0"]
 
 
-def _check(capsys, tmp_path, name, *extra):
-    report = tmp_path / name
-    rc = main([*ARGS, "--report", str(report), *extra])
-    out, err = capsys.readouterr()
-    return rc, report, out + err
+def _check(report, *extra, wait=True):
+    argv = [sys.executable, "-m", "ddg_oracle", "check", *ARGS, "--report", str(report), *extra]
+    p = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if not wait:
+        return p
+    out, err = p.communicate(timeout=300)
+    return p.returncode, out + err
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    # as a user would start one (dask scheduler / dask worker --nthreads 1), with worker
-    # processes that may start the libraries' processes
-    # (for the whole module: the nannies read it again when they restart a killed worker)
-    with dask.config.set({"distributed.worker.daemon": False}):
-        c = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=":0")
-        yield c
-        c.close()
+def local_run(tmp_path_factory):
+    report = tmp_path_factory.mktemp("local") / "report"
+    rc, out = _check(report, "--workers", "1")
+    assert rc == 1, out                              # ChiIgnoresBoundary fails D1.6
+    return rc, (report / "results.json").read_bytes()
 
 
-def test_results_on_a_cluster_are_byte_identical_to_the_local_run(capsys, tmp_path, cluster):
-    rc_local, local, _ = _check(capsys, tmp_path, "local", "--workers", "1")
-    rc, remote, out = _check(capsys, tmp_path, "remote", "--scheduler", cluster.scheduler_address)
-    assert rc == rc_local == 1                      # ChiIgnoresBoundary fails D1.6
-    assert (remote / "results.json").read_bytes() == (local / "results.json").read_bytes()
+@pytest.fixture
+def cluster(tmp_path):
+    """(scheduler address, worker processes): `dask scheduler` and two `dask worker`s
+    without nannies (a killed worker stays dead: its tasks must go to the other one)."""
+    sched_file = tmp_path / "scheduler.json"
+    procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
+                               "--scheduler-file", str(sched_file), "--port", "0",
+                               "--no-dashboard"], cwd=ROOT,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.monotonic() + 60
+        while not sched_file.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        time.sleep(0.2)                              # written at once, but not atomically
+        address = json.loads(sched_file.read_text())["address"]
+        workers = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker",
+                                     address, "--nthreads", "1", "--no-nanny", "--no-dashboard"],
+                                    cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                   for _ in range(2)]
+        procs += workers
+        subprocess.run([sys.executable, "-c", "import sys; from distributed import Client; "
+                        "c = Client(sys.argv[1], timeout=60); c.wait_for_workers(2, timeout=60)",
+                        address], check=True, timeout=120, capture_output=True)
+        yield address, workers
+    finally:
+        for p in procs:
+            p.kill()
+            p.wait()
+
+
+def test_results_on_a_cluster_are_byte_identical_to_the_local_run(tmp_path, cluster, local_run):
+    address, _ = cluster
+    rc, out = _check(tmp_path / "remote", "--scheduler", address)
+    assert rc == local_run[0], out
+    assert (tmp_path / "remote" / "results.json").read_bytes() == local_run[1]
     assert "2 workers" in out
 
 
-def test_a_killed_worker_loses_no_result(capsys, tmp_path, cluster):
-    rc_local, local, _ = _check(capsys, tmp_path, "local", "--workers", "1")
-    client = distributed.Client(cluster)
-    pids = client.run(os.getpid)
-    killed = []
-
-    def kill_a_busy_worker():
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and not killed:
-            busy = [w for w, keys in client.processing().items()
-                    if any(str(k).startswith("ddg-oracle-") for k in keys)]
-            if busy and busy[0] in pids:
-                time.sleep(0.3)                     # mid-task
-                os.kill(pids[busy[0]], signal.SIGKILL)
-                killed.append(busy[0])
-            time.sleep(0.05)
-
-    killer = threading.Thread(target=kill_a_busy_worker, daemon=True)
-    killer.start()
-    try:
-        rc, remote, _ = _check(capsys, tmp_path, "remote", "--scheduler", cluster.scheduler_address)
-    finally:
-        killer.join(timeout=70)
-    assert killed, "no worker was killed mid-run"
-    assert rc == rc_local
-    results = json.loads((remote / "results.json").read_text())["results"]
-    assert all(r["status"] != "crashed" for r in results), [r for r in results if r["status"] == "crashed"]
-    assert (remote / "results.json").read_bytes() == (local / "results.json").read_bytes()
-    client.wait_for_workers(2, timeout=60)          # the nanny restarted it
-    client.close()
+def test_a_worker_killed_mid_run_loses_no_result(tmp_path, cluster, local_run):
+    address, workers = cluster
+    report = tmp_path / "remote"
+    p = _check(report, "--scheduler", address, wait=False)
+    lines = report / "results.jsonl"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and p.poll() is None:
+        if lines.exists() and lines.read_text().count("\n") >= 1:
+            break                                    # tasks are running on both workers
+        time.sleep(0.05)
+    assert p.poll() is None, "the run ended before a worker could be killed"
+    workers[0].send_signal(signal.SIGKILL)
+    out, err = p.communicate(timeout=300)
+    assert p.returncode == local_run[0], out + err
+    results = json.loads((report / "results.json").read_text())["results"]
+    assert not [r for r in results if r["status"] == "crashed"]
+    assert (report / "results.json").read_bytes() == local_run[1]
+    assert workers[0].wait() == -signal.SIGKILL and workers[1].poll() is None
 
 
-def test_resume_finishes_a_run_on_a_local_cluster(capsys, tmp_path):
-    rc_full, full, _ = _check(capsys, tmp_path, "full", "--workers", "1")
-    rc, part, _ = _check(capsys, tmp_path, "part", "--scheduler", "local:2")
+def test_resume_finishes_a_run_on_a_local_cluster(tmp_path, local_run):
+    part = tmp_path / "part"
+    rc, out = _check(part, "--scheduler", "local:2")
+    assert rc == local_run[0], out
     lines = (part / "results.jsonl").read_text().splitlines()
     (part / "results.jsonl").write_text("\n".join(lines[:3]) + "\n")   # as if interrupted
     (part / "results.json").unlink()
-    rc = main(["check", "--resume", str(part)])
-    out, err = capsys.readouterr()
-    assert rc == rc_full
-    assert (part / "results.json").read_bytes() == (full / "results.json").read_bytes()
+    p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--resume", str(part)],
+                       cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert p.returncode == local_run[0], p.stdout + p.stderr
+    assert (part / "results.json").read_bytes() == local_run[1]
 
 
 def test_a_bad_scheduler_address_is_a_usage_error(capsys):
+    from ddg_oracle.cli import main
     rc = main(["check", "--impl", "reference", "--only", "D1.6", "--scheduler", "local:zero"])
     _, err = capsys.readouterr()
     assert rc == 2 and "local:N" in err and err.count("\n") == 1
+    assert "distributed" not in sys.modules          # refused before dask is imported
+
+
+def test_an_unreachable_scheduler_is_a_usage_error():
+    p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--impl", "reference",
+                        "--only", "D1.6", "--scheduler", "tcp://127.0.0.1:9"],
+                       cwd=ROOT, capture_output=True, text=True, timeout=120,
+                       env={**os.environ, "DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT": "2s"})
+    assert p.returncode == 2 and "cannot reach the scheduler" in p.stderr, p.stderr
