@@ -300,10 +300,17 @@ def _degenerate(surface: PolyhedralSurface, f: int):
     raise degenerate_face(surface.triangulation, f, surface.positions)   # pragma: no cover
 
 
-def _lengths_data(m: PiecewiseFlatSurface) -> FaceData:
+def _lengths_data(m: PiecewiseFlatSurface, left_out=()) -> FaceData:
+    """Step 1 from squared lengths; the faces in ``left_out`` (irrational squared lengths:
+    :func:`cotan_laplacian_mixed`) get numerators 0, so they contribute nothing."""
     sq, eo = m.squared_lengths, m.triangulation.edge_of
     G, S, N = [], [], []
     for f in range(m.triangulation.n_faces):
+        if f in left_out:
+            G.append(1)
+            S.append(1)
+            N.extend((0, 0, 0))
+            continue
         l0, l1, l2 = sq[eo(3 * f)], sq[eo(3 * f + 1)], sq[eo(3 * f + 2)]
         D = lcm(l0.denominator, l1.denominator, l2.denominator)
         a, b, c = (x.numerator * (D // x.denominator) for x in (l0, l1, l2))
@@ -638,9 +645,53 @@ def cotan_laplacian_fast(surface) -> SparseMatrix:
         return _laplacian(surface)
 
 
-def _laplacian(surface) -> SparseMatrix:
+def partly_applies(surface) -> bool:
+    """Whether :func:`cotan_laplacian_mixed` helps: a :class:`PiecewiseFlatSurface` (after
+    intrinsic flips) whose squared lengths are rational on most edges."""
+    if not isinstance(surface, PiecewiseFlatSurface):
+        return False
+    sq = surface.squared_lengths
+    return 2 * sum(isinstance(x, Fraction) for x in sq) >= len(sq)
+
+
+def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
+    """D3.2 on a piecewise flat surface some of whose squared lengths are irrational (a
+    float mesh after intrinsic flips): the faces with three rational squared lengths by
+    the integers of this module (their numerators of the others set to 0, so that
+    :func:`_laplacian` adds their part alone), then each other face's three half
+    cotangents (the definition's :meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface
+    .corner_cot` formula, exact Surds) added to the four entries of the edge opposite
+    each corner.  Equal (``==``) to :func:`~ddg_oracle.reference.laplacian.
+    cotan_laplacian_from_weights` entry by entry: the same exact terms, summed in another
+    order.
+    """
+    t = m.triangulation
+    sq, eo = m.squared_lengths, t.edge_of
+    left_out = {f for f in range(t.n_faces)
+                if not all(isinstance(sq[eo(3 * f + k)], Fraction) for k in range(3))}
+    with _collector_paused():
+        part = _laplacian(m, _lengths_data(m, left_out), left_out)
+    rows = {i: dict(r) for i, r in part._rows.items()}
+    n = t.n_vertices
+    for f in sorted(left_out):
+        l0, l1, l2 = m.face_squared_lengths(f)      # halfedges 3f, 3f+1, 3f+2
+        inv = 1 / (8 * m.areas[f])                   # half a cotangent: (a + b - o) / (8 A)
+        # halfedge 3f + k is opposite corner (k + 2) % 3
+        for h, half in ((3 * f, (l1 + l2 - l0) * inv), (3 * f + 1, (l0 + l2 - l1) * inv),
+                        (3 * f + 2, (l0 + l1 - l2) * inv)):
+            i, j = t.tail(h), t.head(h)
+            if i == j or not half:
+                continue                           # a loop adds nothing (as the definition)
+            ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
+            for r, a, b, w in ((ri, i, j, -half), (rj, j, i, -half), (ri, i, i, half),
+                               (rj, j, j, half)):
+                r[b] = r[b] + w if b in r else w
+    return SparseMatrix((n, n), rows)
+
+
+def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
     t = surface.triangulation
-    fd = face_data(surface)
+    fd = face_data(surface) if fd is None else fd
     n = t.n_vertices
     N = fd.N
     # diag[i] = [f1, n1, f2, n2, ...]: the faces at vertex i and the numerators of
@@ -648,6 +699,8 @@ def _laplacian(surface) -> SparseMatrix:
     diag: list[list] = [[] for _ in range(n)]
     rational = [True] * n          # every face at i has a square G
     for f, (a, b, c) in enumerate(t.faces):
+        if f in left_out:
+            continue
         n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
         if a != b and b != c and a != c:
             # corner a: halfedges a->b (opposite corner 2) and c->a (opposite corner 1)

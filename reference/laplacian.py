@@ -177,7 +177,10 @@ def cotan_laplacian(surface) -> SparseMatrix:
     surface, or a piecewise flat one with rational squared lengths, this
     returns the equal matrix computed by
     :func:`ddg_oracle.reference.cotan_fast.cotan_laplacian_fast` (integer arithmetic,
-    ~10x faster on float meshes; equality tested entry by entry).
+    ~10x faster on float meshes; equality tested entry by entry); with some irrational
+    squared lengths (after intrinsic flips), mostly rational ones, by
+    :func:`~ddg_oracle.reference.cotan_fast.cotan_laplacian_mixed` (the same, on the
+    rational faces).
 
     >>> from ddg_oracle.reference import surfaces
     >>> L = cotan_laplacian(surfaces.tetrahedron())
@@ -186,6 +189,8 @@ def cotan_laplacian(surface) -> SparseMatrix:
     """
     if cotan_fast.applies(surface):
         return cotan_fast.cotan_laplacian_fast(surface)
+    if cotan_fast.partly_applies(surface):
+        return cotan_fast.cotan_laplacian_mixed(surface)
     return cotan_laplacian_from_weights(surface)
 
 

@@ -89,6 +89,31 @@ def test_fast_cotan_equals_definition_on_float_meshes(case, data):
     assert_same_cotan(s)
 
 
+@settings(max_examples=25)
+@given(closed_meshes(), st.data())
+def test_mixed_route_equals_definition_after_intrinsic_flips(case, data):
+    # float points: after flips to Delaunay some squared lengths are irrational; the faces
+    # with rational ones go the integer route, the others the Surd formula
+    from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed, partly_applies
+    s = _jittered(case, data.draw, [4, 8, 20])
+    d, log = flip_to_delaunay(s.metric())
+    expected = cotan_laplacian_from_weights(d)
+    assert cotan_laplacian_mixed(d) == expected
+    assert cotan_laplacian(d) == expected
+    if log and partly_applies(d):
+        assert not applies(d) or all(isinstance(x, Fraction) for x in d.squared_lengths)
+
+
+def test_mixed_route_on_a_metric_with_every_length_irrational():
+    # every face left out: the fast part is empty, the Surd part is the whole matrix
+    from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed
+    t = surfaces.tetrahedron().triangulation
+    side2 = 2 + sqrt(2)                       # equilateral faces: area sqrt(3)/4 side^2
+    m = PiecewiseFlatSurface(t, [side2] * t.n_edges,
+                             areas=[sqrt(3) * side2 / 4] * t.n_faces)
+    assert cotan_laplacian_mixed(m) == cotan_laplacian_from_weights(m)
+
+
 def _float_area_gradient(s):
     from ddg_oracle.reference.areas import area_gradient
     return [tuple(float(x) for x in g) for g in area_gradient(s)]
