@@ -168,8 +168,17 @@ class MeshExamples:
 
     @property
     def surface(self):
+        from ddg_oracle.properties import memo
+        from ddg_oracle.properties.strategies import surface_key
         from ddg_oracle.reference.polyhedral import PolyhedralSurface
-        return self._get("surface", lambda: PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F))
+
+        def build():
+            s = PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F)
+            # the mesh case's surface is this one (the same exact positions and faces):
+            # its metric is computed once per process, not once per example kind
+            memo.DRAWN.shared(surface_key(s.positions, self.mesh.F), lambda: s)
+            return s
+        return self._get("surface", build)
 
     @property
     def facts(self) -> dict:

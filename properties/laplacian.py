@@ -165,8 +165,7 @@ def _conditioning(metric, f: int) -> tuple[float, list[float]]:
                     [math.copysign(math.sqrt(x * x / H), x) for x in n])
         except OverflowError:
             pass                            # beyond the float range: as the exact route says
-    return (float(max(sq) / (2 * metric.area(f))),
-            [float(metric.corner_cot(f, c)) for c in range(3)])
+    return (float(max(sq) / (2 * metric.area(f))), [float(c) for c in metric.face_cots(f)])
 
 
 class Exact:

@@ -690,10 +690,18 @@ class MeshCase:
         return ([[float(x) for x in p] for p in self.positions], [list(f) for f in self.faces])
 
     def surface(self) -> PolyhedralSurface:
-        return PolyhedralSurface.from_arrays(self.positions, self.faces)
+        """The exact surface, built once per content in this process (:data:`.memo.DRAWN`;
+        a mesh file's is put there by ``compare.MeshExamples``, which built it already)."""
+        return memo.DRAWN.shared(surface_key(self.positions, self.faces),
+                                 lambda: PolyhedralSurface.from_arrays(self.positions, self.faces))
 
     def __repr__(self) -> str:
         return f"MeshCase({self.recipe}; V={self.n}, F={len(self.faces)}, faces={list(self.faces)})"
+
+
+def surface_key(positions, faces) -> tuple:
+    """The :data:`.memo.DRAWN` key of the exact surface of these positions and faces."""
+    return ("mesh surface", tuple(positions), tuple(tuple(f) for f in faces))
 
 
 def mesh_case(positions, faces, recipe) -> MeshCase:

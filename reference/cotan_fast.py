@@ -657,10 +657,10 @@ def partly_applies(surface) -> bool:
 def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     """D3.2 on a piecewise flat surface some of whose squared lengths are irrational (a
     float mesh after intrinsic flips): the faces with three rational squared lengths by
-    the integers of this module (their numerators of the others set to 0, so that
+    the integers of this module (the numerators of the others set to 0, so that
     :func:`_laplacian` adds their part alone), then each other face's three half
-    cotangents (the definition's :meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface
-    .corner_cot` formula, exact Surds) added to the four entries of the edge opposite
+    cotangents (:meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface.face_cots`, the
+    definition's formula, exact Surds) added to the four entries of the edge opposite
     each corner.  Equal (``==``) to :func:`~ddg_oracle.reference.laplacian.
     cotan_laplacian_from_weights` entry by entry: the same exact terms, summed in another
     order.
@@ -674,11 +674,9 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     rows = {i: dict(r) for i, r in part._rows.items()}
     n = t.n_vertices
     for f in sorted(left_out):
-        l0, l1, l2 = m.face_squared_lengths(f)      # halfedges 3f, 3f+1, 3f+2
-        inv = 1 / (8 * m.areas[f])                   # half a cotangent: (a + b - o) / (8 A)
-        # halfedge 3f + k is opposite corner (k + 2) % 3
-        for h, half in ((3 * f, (l1 + l2 - l0) * inv), (3 * f + 1, (l0 + l2 - l1) * inv),
-                        (3 * f + 2, (l0 + l1 - l2) * inv)):
+        c0, c1, c2 = m.face_cots(f)
+        # halfedge 3f + k is opposite corner (k + 2) % 3; its edge gets half that cotangent
+        for h, half in ((3 * f, c2 / 2), (3 * f + 1, c0 / 2), (3 * f + 2, c1 / 2)):
             i, j = t.tail(h), t.head(h)
             if i == j or not half:
                 continue                           # a loop adds nothing (as the definition)

@@ -152,12 +152,19 @@ class PiecewiseFlatSurface:
         """The angle at corner c of face f, an exact angle in (0, pi)."""
         return corner_angle(self.corner_cot(f, c))
 
+    def face_cots(self, f: int) -> tuple[Surd, Surd, Surd]:
+        """The cotangents of corners 0, 1, 2 of face f (as :meth:`corner_cot`), computed for
+        this face alone unless every face's are known already."""
+        if self._cots is not None:
+            return tuple(self._cots[3 * f:3 * f + 3])
+        l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
+        inv = 1 / (4 * self.areas[f])
+        return (l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv, (l1 + l2 - l0) * inv
+
     def _all_cots(self) -> list[Surd]:
         cots = []
         for f in range(self.triangulation.n_faces):
-            l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
-            inv = 1 / (4 * self.areas[f])
-            cots += [(l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv, (l1 + l2 - l0) * inv]
+            cots += self.face_cots(f)
         return cots
 
     def __repr__(self) -> str:
