@@ -48,8 +48,7 @@ from hypothesis import strategies as st
 from ddg_oracle.reference.areas import area_gradient_floats
 from ddg_oracle.reference.dirichlet import directional_derivative
 from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy_pl, dirichlet_inner_product_pl,
-                                 vertex_areas_barycentric, vertex_areas_voronoi,
-                                 weight_sign_by_angles)
+                                 vertex_areas_floats, weight_sign_by_angles)
 from ddg_oracle.reference.exact.rationals import on_common_denominator
 from ddg_oracle.reference.metric import heron16
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
@@ -227,9 +226,8 @@ class Exact:
         (L3.7) at the surface's vertices, each correctly rounded; once per name."""
         kept = self.__dict__.setdefault("_vertex_areas", {})
         if name not in kept:
-            ref = {"vertex_areas_voronoi": vertex_areas_voronoi,
-                   "vertex_areas_barycentric": vertex_areas_barycentric}[name]
-            kept[name] = np.array([float(x) for x in ref(self.surface)], dtype=np.float64)
+            kind = {"vertex_areas_voronoi": "voronoi", "vertex_areas_barycentric": "barycentric"}
+            kept[name] = np.array(vertex_areas_floats(self.surface, kind[name]), dtype=np.float64)
         return kept[name]
 
     def embed(self, M):

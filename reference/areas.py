@@ -24,12 +24,11 @@ True
 from __future__ import annotations
 
 from fractions import Fraction
-from math import isqrt
 from typing import Sequence
 
 from .errors import BadShape, DegenerateFace, InputError
 from .exact import Surd, sqrt
-from .exact.rationals import on_common_denominator
+from .exact.rationals import on_common_denominator, rounded_root_sum
 from .laplacian import cotan_laplacian, cotan_weighted_edges, metric_of_surface
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
@@ -283,35 +282,11 @@ def area_gradient_floats(surface: PolyhedralSurface) -> list[tuple]:
                 n = ww * a[x] - aw * w[x]
                 if n:
                     terms[face[c]][x].append((n, G))
-    return [tuple(_rounded_root_sum(t, 2 * D) for t in vertex) for vertex in terms]
+    return [tuple(rounded_root_sum(t, 2 * D) for t in vertex) for vertex in terms]
 
 
 def _idot(u, v) -> int:
     return sum(x * y for x, y in zip(u, v))
-
-
-def _rounded_root_sum(terms, den: int) -> float:
-    """float(sum n / sqrt(G) / den) over ``terms`` [(n, G)], correctly rounded (see
-    :func:`area_gradient_floats`)."""
-    if not terms:
-        return 0.0
-    k = len(terms)
-    p = 64 + k.bit_length()
-    while p <= 2048:
-        four = 1 << (2 * p)
-        lo = 0
-        for n, G in terms:
-            r = isqrt(n * n * four // G)
-            lo += r if n > 0 else -r - 1
-        scale = den << p
-        a, b = float(Fraction(lo, scale)), float(Fraction(lo + k, scale))
-        if a == b and (a != 0.0 or lo > 0 or lo + k < 0):
-            return a
-        p *= 2
-    exact = _ZERO
-    for n, G in terms:
-        exact = exact + Fraction(n, den) / sqrt(G)
-    return float(exact)
 
 
 def laplacian_of_positions(surface: PolyhedralSurface) -> list[tuple]:

@@ -376,6 +376,50 @@ def vertex_areas_voronoi(surface) -> list:
     return out
 
 
+def vertex_areas_floats(surface, kind: str = "voronoi") -> list[float]:
+    """:func:`vertex_areas_voronoi` (``kind="voronoi"``) or :func:`vertex_areas_barycentric`
+    (``"barycentric"``), each area correctly rounded to a float, from integers (no Surd
+    arithmetic unless an area is within 2^-2048 relative of a rounding boundary).
+
+    Per face, with the squared lengths on their common denominator d (integers L) and
+    ``G = heron16(L) = 16 A^2 d^2``: ``A = sqrt(G) / (4 d)``, ``cot = n / sqrt(G)`` with
+    ``n = a + b - o`` (integers), so each part the definition adds at a vertex is
+    ``N / (D sqrt(G))`` with integers N, D: a Voronoi part ``(L_a n_a + L_b n_b) / (8 d
+    sqrt(G))``, ``A / 2 = G / (8 d sqrt(G))``, ``A / 4``, ``A / 3``; the same obtuse test
+    on the same squared lengths.  Sums of such terms are rounded by
+    :func:`~ddg_oracle.reference.exact.rationals.rounded_root_sum`.
+    """
+    from .exact.rationals import on_common_denominator, rounded_root_sum
+    from .metric import heron16
+    if kind not in ("voronoi", "barycentric"):
+        raise InputError(f"vertex areas: kind must be 'voronoi' or 'barycentric', got {kind!r}")
+    m = metric_of_surface(surface)
+    t = m.triangulation
+    if not all(isinstance(x, Fraction) for x in m.squared_lengths):
+        exact = vertex_areas_voronoi(m) if kind == "voronoi" else vertex_areas_barycentric(m)
+        return [float(a) for a in exact]
+    terms: list[list] = [[] for _ in range(t.n_vertices)]
+    for f, face in enumerate(t.faces):
+        (l0, l1, l2), d = on_common_denominator(m.face_squared_lengths(f))
+        G = heron16(l0, l1, l2)
+        if kind == "barycentric":
+            parts = [(G, 12 * d)] * 3
+        else:
+            sides = ((l0, l2, l1), (l0, l1, l2), (l1, l2, l0))
+            obtuse = [c for c in range(3) if sides[c][2] > sides[c][0] + sides[c][1]]
+            if obtuse:
+                parts = [(G, 8 * d) if c == obtuse[0] else (G, 16 * d) for c in range(3)]
+            else:
+                n0, n1, n2 = l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0     # corners 0, 1, 2
+                parts = [(l0 * n2 + l2 * n1, 8 * d), (l0 * n2 + l1 * n0, 8 * d),
+                         (l1 * n0 + l2 * n1, 8 * d)]
+        for c in range(3):
+            N, D = parts[c]
+            if N:
+                terms[face[c]].append((N, D * D * G))      # N / (D sqrt(G)) = N / sqrt(D^2 G)
+    return [rounded_root_sum(x) for x in terms]
+
+
 # --- E3.12: the sign of a cotan weight ----------------------------------------------------
 
 

@@ -114,6 +114,18 @@ def test_mixed_route_on_a_metric_with_every_length_irrational():
     assert cotan_laplacian_mixed(m) == cotan_laplacian_from_weights(m)
 
 
+@settings(max_examples=30)
+@given(any_meshes(), st.data())
+def test_vertex_area_floats_are_the_exact_areas_correctly_rounded(case, data):
+    # obtuse, right and acute faces; exact and jittered points; both kinds
+    from ddg_oracle.reference.laplacian import (vertex_areas_barycentric, vertex_areas_floats,
+                                                vertex_areas_voronoi)
+    for s in (case.surface(), _jittered(case, data.draw, [4, 20, 60])):
+        assert vertex_areas_floats(s) == [float(a) for a in vertex_areas_voronoi(s)]
+        assert vertex_areas_floats(s, "barycentric") == \
+            [float(a) for a in vertex_areas_barycentric(s)]
+
+
 def _float_area_gradient(s):
     from ddg_oracle.reference.areas import area_gradient
     return [tuple(float(x) for x in g) for g in area_gradient(s)]
