@@ -86,11 +86,12 @@ class ReferenceImplementation:
         return Referenced(V, F).embed(laplacian.cotan_laplacian(self._s(V, F)).to_scipy())
 
     def vertex_areas_barycentric(self, V, F):
-        areas = [_view(a) for a in laplacian.vertex_areas_barycentric(self._s(V, F))]
+        # the exact areas, correctly rounded from integers (== their float views)
+        areas = laplacian.vertex_areas_floats(self._s(V, F), "barycentric")
         return Referenced(V, F).scatter(areas, ISOLATED_VERTEX["vertex_areas_barycentric"])
 
     def vertex_areas_voronoi(self, V, F):
-        areas = [_view(a) for a in laplacian.vertex_areas_voronoi(self._s(V, F))]
+        areas = laplacian.vertex_areas_floats(self._s(V, F), "voronoi")
         return Referenced(V, F).scatter(areas, ISOLATED_VERTEX["vertex_areas_voronoi"])
 
     # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + (c+1) % 3)

@@ -93,7 +93,7 @@ def rounded_root_sum(terms, den: int = 1) -> float:
             r = isqrt(n * n * four // G)
             lo += r if n > 0 else -r - 1
         scale = den << p
-        a, b = float(Fraction(lo, scale)), float(Fraction(lo + k, scale))
+        a, b = _rounded(Fraction(lo, scale)), _rounded(Fraction(lo + k, scale))
         if a == b and (a != 0.0 or lo > 0 or lo + k < 0):
             return a
         p *= 2
@@ -101,4 +101,16 @@ def rounded_root_sum(terms, den: int = 1) -> float:
     exact = Fraction(0)
     for n, G in terms:
         exact = exact + Fraction(n, den) / sqrt(G)
-    return float(exact)
+    try:
+        return float(exact)
+    except OverflowError:
+        return math.inf if exact > 0 else -math.inf
+
+
+def _rounded(x: Fraction) -> float:
+    """float(x), or +-inf beyond the float range (IEEE round to nearest), where float() of
+    a Fraction raises OverflowError."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
