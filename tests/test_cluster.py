@@ -3,8 +3,8 @@ as a user starts them (``dask scheduler``, ``dask worker --nthreads 1``), each a
 its own, and ``local:N``; the results are the local run's byte for byte, a worker killed
 mid-run loses no result, --resume finishes a run on a cluster.
 
-Everything dask runs in processes of its own: this test process never imports distributed
-(its client's threads and garbage-collector hooks stay out of the suite's workers)."""
+Everything dask runs in processes of its own, as for a user: the suite's own processes
+never import distributed."""
 
 import json
 import os
