@@ -132,6 +132,29 @@ class DelaunayExact:
     def interior_pairs(self) -> np.ndarray:
         return self.interior_s.toarray()
 
+    def _weight_floats(self) -> dict:
+        """{edge: float of its exact cotan weight} of the Delaunay triangulation, correctly
+        rounded: minus the float view of L's entry where one edge joins its two vertices
+        (the entry is that weight), else from the exact corner cotangents."""
+        t, m = self.delaunay.triangulation, self.delaunay
+        ends = [t.edge_vertices(e) for e in range(t.n_edges)]
+        count: dict = {}
+        for i, j in ends:
+            key = (min(i, j), max(i, j))
+            count[key] = count.get(key, 0) + 1
+        L = self.L
+        out = {}
+        for e, (i, j) in enumerate(ends):
+            if i != j and count[(min(i, j), max(i, j))] == 1:
+                out[e] = -float(L[i, j])
+            else:                               # a multi-edge or a loop: the edge's own
+                w = 0
+                for h in t.edge_halfedges(e):
+                    if h >= 0:
+                        w = w + m.face_cots(h // 3)[(h % 3 + 2) % 3] / 2
+                out[e] = float(w)
+        return out
+
     def _widen_on_cocircular_cells(self, B):
         """R4.9: on a cell of cocircular triangles (joined across edges of weight exactly 0)
         every choice of diagonals is Delaunay and gives the same operator, so an
@@ -142,9 +165,8 @@ class DelaunayExact:
         as 0: there rounding decides which diagonal is Delaunay.  ``B``: the entry bounds
         (sparse, the Delaunay triangulation's vertices); returns them widened."""
         import scipy.sparse as sp
-        from ddg_oracle.reference.laplacian import cotan_weights
         t = self.delaunay.triangulation
-        w = cotan_weights(self.delaunay)
+        w = self._weight_floats()
         root = list(range(t.n_faces))
 
         def find(f):
@@ -160,7 +182,7 @@ class DelaunayExact:
             return B
         ends = np.array([t.edge_vertices(e) for e in inner], dtype=np.int64).reshape(-1, 2)
         b = _at(B, ends[:, 0], ends[:, 1])
-        zero = [(e, float(be)) for e, be in zip(inner, b) if abs(float(w[e])) <= be]
+        zero = [(e, float(be)) for e, be in zip(inner, b) if abs(w[e]) <= be]
         for e, _ in zero:
             h, tw = t.edge_halfedges(e)
             root[find(h // 3)] = find(tw // 3)

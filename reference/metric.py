@@ -49,7 +49,7 @@ class PiecewiseFlatSurface:
     Surd('1/4*sqrt(3)')
     """
 
-    __slots__ = ("triangulation", "squared_lengths", "areas", "_cots")
+    __slots__ = ("triangulation", "squared_lengths", "areas", "_cots", "_face_cots")
 
     def __init__(self, triangulation: Triangulation, squared_lengths: Sequence, areas=None):
         t = triangulation
@@ -93,6 +93,7 @@ class PiecewiseFlatSurface:
                 checked.append(A)
         self.areas = tuple(checked)
         self._cots = None
+        self._face_cots = {}
 
     @classmethod
     def _trusted(cls, triangulation: Triangulation, squared_lengths, areas) -> "PiecewiseFlatSurface":
@@ -102,6 +103,7 @@ class PiecewiseFlatSurface:
         out.squared_lengths = tuple(squared_lengths)
         out.areas = tuple(areas)
         out._cots = None
+        out._face_cots = {}
         return out
 
     @classmethod
@@ -157,14 +159,19 @@ class PiecewiseFlatSurface:
         this face alone unless every face's are known already."""
         if self._cots is not None:
             return tuple(self._cots[3 * f:3 * f + 3])
-        l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
-        inv = 1 / (4 * self.areas[f])
-        return (l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv, (l1 + l2 - l0) * inv
+        kept = self._face_cots.get(f)
+        if kept is None:
+            l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
+            inv = 1 / (4 * self.areas[f])
+            kept = self._face_cots[f] = ((l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv,
+                                         (l1 + l2 - l0) * inv)
+        return kept
 
     def _all_cots(self) -> list[Surd]:
         cots = []
         for f in range(self.triangulation.n_faces):
             cots += self.face_cots(f)
+        self._face_cots = {}                        # the list holds them now
         return cots
 
     def __repr__(self) -> str:
