@@ -438,7 +438,8 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
         return Comparison(quantity, name, "agrees", worst=0.0, error=0.0,
                           bound=float(bound[i, j]), where=f"entry {(i, j)}",
                           expected=float(W.data[0]), observed=float(A[i, j]), elements=elements)
-    b = np.asarray(bound[err.row, err.col], dtype=np.float64).ravel()
+    from ddg_oracle.properties.laplacian import _at
+    b = _at(bound, err.row, err.col)
     (k,), ratio, over = _worst(err.data, b)
     i, j = int(err.row[k]), int(err.col[k])
     return Comparison(quantity, name, "agrees" if over == 0 else "DIFFERS", worst=ratio,
