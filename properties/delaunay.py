@@ -211,10 +211,6 @@ class DelaunayExact:
         return sp.csr_matrix(B + sp.csr_matrix((vals, (rows, cols)), shape=B.shape))
 
 
-def _matrix(impl, case: MeshCase, pid: str, method: str):
-    return _dense(impl, case, pid, method)
-
-
 def _compare(pid, impl, case, A, exact, B, what):
     """Every entry of ``A`` (dense or sparse) within ``B`` of ``exact`` (sparse)."""
     import scipy.sparse as sp
@@ -376,8 +372,8 @@ def laplace_beltrami_operator(impl, case: MeshCase):
       needs={"intrinsic_delaunay_laplacian"}, strategy=two_triangulations)
 def unique_delaunay_operator(impl, pair):
     c1, c2 = pair
-    A1 = _matrix(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
-    A2 = _matrix(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
+    A1 = _dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
+    A2 = _dense(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
     B = DelaunayExact.of(c1).B + DelaunayExact.of(c2).B
     err = np.abs(A1 - A2)
     _record("T4.5", err, B)
@@ -396,7 +392,7 @@ def unique_delaunay_operator(impl, pair):
       needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
 def delaunay_minimises_the_energy(impl, case: MeshCase):
     L = _dense(impl, case, "T4.21")
-    D = _matrix(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
+    D = _dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
     De = DelaunayExact.of(case)
     M = (L - D + (L - D).T) / 2
     lam = float(np.linalg.eigvalsh(M)[0])
@@ -412,7 +408,7 @@ def delaunay_minimises_the_energy(impl, case: MeshCase):
       "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
       needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
 def valence_one_vertex(impl, case: MeshCase):
-    A = _matrix(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
+    A = _dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
         raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
@@ -566,7 +562,7 @@ def _interior(X: Exact) -> np.ndarray:
       strategy=lambda: planar_meshes(min_size=2))
 def flat_meshes_are_minimal(impl, case: MeshCase):
     pid = "D4.9 / R4.10"
-    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
@@ -592,7 +588,7 @@ def flat_meshes_are_minimal(impl, case: MeshCase):
       needs={"intrinsic_delaunay_laplacian"}, strategy=_interior_meshes)
 def delaunay_minimal_surface_step(impl, case: MeshCase):
     pid = "A4.23"
-    A = _matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)

@@ -261,7 +261,8 @@ class Exact:
 
 
 def total_area_view(metric) -> tuple[float, float]:
-    """(A, err): the total area as ``math.fsum`` of the exact face areas, each correctly
+    """(A, err): the total area (T3.9, L3.7, R2.5's A) as ``math.fsum`` of the exact face
+    areas (D2.6, Heron on exact squared lengths), each correctly
     rounded to float64 (error <= u a_f, u = 2**-53), and a bound on |A - exact total area|:
     u sum a_f for the faces plus u A for the correctly rounded sum.  For a mesh of any size:
     the exact total of a float mesh has one square root per face (float() of it takes

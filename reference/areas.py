@@ -245,7 +245,7 @@ def area_gradient(surface: PolyhedralSurface) -> list[tuple]:
 
 
 def area_gradient_floats(surface: PolyhedralSurface) -> list[tuple]:
-    """:func:`area_gradient` with every coordinate correctly rounded to a float, fast on
+    """L3.8 / T3.9: :func:`area_gradient` with every coordinate correctly rounded, fast on
     float meshes of any size (no Surd arithmetic unless a coordinate is 0 or within
     2^-2048 relative of a float's rounding boundary).
 

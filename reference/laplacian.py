@@ -38,7 +38,8 @@ from typing import Iterable, Sequence
 from . import cotan_fast
 from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
-from .metric import PiecewiseFlatSurface, as_metric
+from .exact.rationals import on_common_denominator, rounded_root_sum
+from .metric import PiecewiseFlatSurface, as_metric, heron16
 from .polyhedral import PolyhedralSurface
 from .sparse import SparseMatrix, _normal, exact_number, exact_sum
 
@@ -377,8 +378,9 @@ def vertex_areas_voronoi(surface) -> list:
 
 
 def vertex_areas_floats(surface, kind: str = "voronoi") -> list[float]:
-    """:func:`vertex_areas_voronoi` (``kind="voronoi"``) or :func:`vertex_areas_barycentric`
-    (``"barycentric"``), each area correctly rounded to a float, from integers (no Surd
+    """L3.7's mass matrices as floats: :func:`vertex_areas_voronoi` (``kind="voronoi"``) or
+    :func:`vertex_areas_barycentric` (``"barycentric"``), each area correctly rounded, from
+    integers (no Surd
     arithmetic unless an area is within 2^-2048 relative of a rounding boundary).
 
     Per face, with the squared lengths on their common denominator d (integers L) and
@@ -389,8 +391,6 @@ def vertex_areas_floats(surface, kind: str = "voronoi") -> list[float]:
     on the same squared lengths.  Sums of such terms are rounded by
     :func:`~ddg_oracle.reference.exact.rationals.rounded_root_sum`.
     """
-    from .exact.rationals import on_common_denominator, rounded_root_sum
-    from .metric import heron16
     if kind not in ("voronoi", "barycentric"):
         raise InputError(f"vertex areas: kind must be 'voronoi' or 'barycentric', got {kind!r}")
     m = metric_of_surface(surface)

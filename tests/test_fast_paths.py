@@ -94,14 +94,26 @@ def test_fast_cotan_equals_definition_on_float_meshes(case, data):
 def test_mixed_route_equals_definition_after_intrinsic_flips(case, data):
     # float points: after flips to Delaunay some squared lengths are irrational; the faces
     # with rational ones go the integer route, the others the Surd formula
-    from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed, partly_applies
+    from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed
     s = _jittered(case, data.draw, [4, 8, 20])
     d, log = flip_to_delaunay(s.metric())
     expected = cotan_laplacian_from_weights(d)
     assert cotan_laplacian_mixed(d) == expected
     assert cotan_laplacian(d) == expected
-    if log and partly_applies(d):
-        assert not applies(d) or all(isinstance(x, Fraction) for x in d.squared_lengths)
+
+
+def test_mixed_route_on_a_flipped_float_torus_uses_both_routes():
+    # deterministic: 24 flips leave irrational squared lengths on some faces and rational
+    # ones on most, so both halves of the mixed route are exercised (a sign or a factor
+    # 1/2 wrong in either breaks ==)
+    from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed, partly_applies
+    rng = random.Random(2)
+    V, F = surfaces.torus(8, 6).to_arrays()
+    V = [[float(x) + rng.uniform(-0.08, 0.08) for x in v] for v in V]
+    d, log = flip_to_delaunay(PolyhedralSurface.from_arrays(V, F).metric())
+    irrational = [x for x in d.squared_lengths if not isinstance(x, Fraction)]
+    assert log and irrational and partly_applies(d) and not applies(d)
+    assert cotan_laplacian_mixed(d) == cotan_laplacian_from_weights(d) == cotan_laplacian(d)
 
 
 def test_mixed_route_on_a_metric_with_every_length_irrational():

@@ -8,6 +8,7 @@ import pytest
 from ddg_oracle.compare import MeshExamples, MeshInput, compare_mesh, run_mesh_properties
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties.runner import FAILED, PASSED
+from tests.planted_bugs import LaplaceBeltramiWithoutHalf
 
 pytest.importorskip("igl")
 from ddg_oracle.oracles.libigl import Libigl  # noqa: E402
@@ -93,3 +94,16 @@ def test_compare_reports_the_wrong_entry_of_a_sparse_matrix(grid):
     assert bad.status == "DIFFERS" and bad.over >= 2
     assert bad.where in {f"entry {(a, b)}" for a in (i, j) for b in (i, j)}
     assert bad.elements >= grid.surface.triangulation.n_edges * 2 + len(grid.mesh.V)
+
+
+def test_the_intrinsic_delaunay_laplacian_is_a_mesh_file_check():
+    # D4.8 / R4.9 on a float mesh that needs flips: libigl passes, the Laplace-Beltrami
+    # weights without their 1/2 fail (the check was not run on mesh files before)
+    V, F = _bumpy_grid(10, seed=5)
+    ex = MeshExamples(MeshInput("small bumpy grid", V.tolist(), F.tolist()))
+    from ddg_oracle.properties.delaunay import DelaunayExact
+    assert DelaunayExact.of(ex.mesh_case()).log          # not Delaunay as given
+    r, = run_mesh_properties(ex, Libigl(), only={"D4.8 / R4.9"})
+    assert r.status == PASSED, (r.note, r.error)
+    r, = run_mesh_properties(ex, LaplaceBeltramiWithoutHalf(), only={"D4.8 / R4.9"})
+    assert r.status == FAILED and "Laplace-Beltrami" in str(r.failure)
