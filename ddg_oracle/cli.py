@@ -87,6 +87,10 @@ def parser() -> argparse.ArgumentParser:
                    help="implementation to check (repeatable; default: every installed one); "
                         "options in parentheses, e.g. 'libigl(boundary=library)'; module:object "
                         "imports your module as Python does, the current directory included")
+    c.add_argument("--drivers", metavar="DIR",
+                   help="without --impl, also check the C++ library drivers built in DIR "
+                        "(cgal_driver, openmesh_driver; default: $DDG_ORACLE_DRIVERS, else "
+                        "examples/cpp/build, where bash examples/cpp/build.sh puts them)")
     c.add_argument("--profile", default="default", choices=("default", "ci", "thorough"),
                    help="Hypothesis profile (ci: derandomized, more examples; default: default)")
     c.add_argument("--seed", type=int, default=None,
@@ -325,7 +329,7 @@ def _check_arguments(argv) -> list[str]:
 
 def _check(args, argv) -> int:
     from ddg_oracle import jobs
-    from ddg_oracle.implementations import available, missing
+    from ddg_oracle.implementations import available, built_drivers, missing
     from ddg_oracle.properties.profiles import profile
     from ddg_oracle.properties.registry import select_properties
     from ddg_oracle.properties.runner import describe
@@ -366,7 +370,12 @@ def _check(args, argv) -> int:
     if not args.impl:
         for name, why in missing().items():
             _warn(f"not checked: {why}")
-    specs = list(dict.fromkeys(args.impl or available()))
+    drivers = [] if args.impl else built_drivers(args.drivers)
+    if not args.impl and not drivers and os.path.exists(os.path.join("examples", "cpp",
+                                                                     "CMakeLists.txt")):
+        _warn("not checked: the C++ drivers (CGAL, OpenMesh) are not built; "
+              "bash examples/cpp/build.sh builds them")
+    specs = list(dict.fromkeys(args.impl or available() + drivers))
     t0 = time.perf_counter()
     options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget)
     if meshes:

@@ -148,6 +148,28 @@ def available() -> list[str]:
     return [name for name in BUILTIN if name not in gone]
 
 
+#: The library drivers of examples/cpp (C++, the executable protocol), by file name.
+DRIVERS = ("cgal_driver", "openmesh_driver")
+
+
+def drivers_directory(directory: str | None = None) -> str:
+    """Where built C++ drivers are looked for: ``directory``, else the environment's
+    ``DDG_ORACLE_DRIVERS``, else ``examples/cpp/build`` under the current directory
+    (where ``bash examples/cpp/build.sh`` of a checkout puts them)."""
+    return directory or os.environ.get("DDG_ORACLE_DRIVERS") or os.path.join(
+        "examples", "cpp", "build")
+
+
+def built_drivers(directory: str | None = None) -> list[str]:
+    """``exec:`` specs of the library drivers (:data:`DRIVERS`) built in
+    :func:`drivers_directory`; the template driver is not one (it checks nothing of a
+    library)."""
+    import shlex
+    where = drivers_directory(directory)
+    found = [os.path.abspath(os.path.join(where, name)) for name in DRIVERS]
+    return ["exec:" + shlex.quote(path) for path in found if os.access(path, os.X_OK)]
+
+
 def missing() -> dict[str, str]:
     """{built-in name: why it is not available}: its library is not installed.  Found
     without importing it (``importlib.util.find_spec``): importing every library only to

@@ -1,7 +1,11 @@
 """Every finding in docs/findings.md is reproduced by its snippet (each asserts the
-disagreement, so a library fix or a wrong entry makes this fail)."""
+disagreement, so a library fix or a wrong entry makes this fail).  A C++ snippet is
+built with the ``// build:`` command of its first line; without its library's headers it
+is skipped, unless DDG_ORACLE_REQUIRE_CPP=1 (set by .ci/run, which installs them)."""
 
+import os
 import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -11,8 +15,8 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 TEXT = (ROOT / "docs" / "findings.md").read_text(encoding="utf-8")
 SECTIONS = {s.split("\n", 1)[0]: s for s in TEXT.split("\n## ")[1:]}
-SNIPPETS = {name: m[1] for name, s in SECTIONS.items()
-            for m in [re.search(r"```python\n(.*?)```", s, re.S)] if m}
+SNIPPETS = {name: (m[1], m[2]) for name, s in SECTIONS.items()
+            for m in [re.search(r"```(python|cpp)\n(.*?)```", s, re.S)] if m}
 
 
 def test_every_finding_of_the_summary_has_a_section_and_a_snippet():
@@ -22,9 +26,27 @@ def test_every_finding_of_the_summary_has_a_section_and_a_snippet():
 
 @pytest.mark.parametrize("finding", sorted(SNIPPETS))
 def test_snippet_reproduces_the_finding(finding, tmp_path):
-    script = tmp_path / f"{finding}.py"
-    script.write_text(SNIPPETS[finding], encoding="utf-8")
-    out = subprocess.run([sys.executable, str(script)], cwd=ROOT, capture_output=True, text=True,
-                         timeout=300)
+    language, code = SNIPPETS[finding]
+    if language == "cpp":
+        out = _built(code, tmp_path)
+    else:
+        script = tmp_path / f"{finding}.py"
+        script.write_text(code, encoding="utf-8")
+        out = subprocess.run([sys.executable, str(script)], cwd=ROOT, capture_output=True,
+                             text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
     assert out.stdout.strip()                         # it prints the values it compares
+
+
+def _built(code: str, where: Path) -> subprocess.CompletedProcess:
+    """Compile a C++ snippet with its ``// build: g++ ... NAME.cpp -o NAME ...`` line, run it."""
+    command = shlex.split(re.match(r"// build: (.*)\n", code)[1])
+    source = next(a for a in command if a.endswith(".cpp"))
+    (where / source).write_text(code, encoding="utf-8")
+    built = subprocess.run(command, cwd=where, capture_output=True, text=True, timeout=600)
+    if built.returncode and "No such file or directory" in built.stderr \
+            and os.environ.get("DDG_ORACLE_REQUIRE_CPP") != "1":
+        pytest.skip(f"its library is not installed: {built.stderr.splitlines()[0]}")
+    assert built.returncode == 0, built.stderr
+    exe = command[command.index("-o") + 1]
+    return subprocess.run([str(where / exe)], capture_output=True, text=True, timeout=300)
