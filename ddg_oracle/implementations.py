@@ -15,7 +15,6 @@ import os
 import re
 import sys
 
-from ddg_oracle.oracles.conventions import DOCUMENTED_CONVENTIONS
 
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
 BUILTIN: dict[str, str] = {
@@ -117,22 +116,6 @@ def load_implementation(spec: str):
         return obj(**options)
     except (TypeError, ValueError) as e:
         raise ImplementationNotFound(f"{spec!r}: {e}") from None
-
-
-def convention_counterpart(spec: str) -> tuple[str, str] | None:
-    """(spec with reference conventions, the findings it differs by) when every option
-    of ``spec`` selects a documented library convention, else None.
-
-    >>> convention_counterpart("pymeshlab(genus=library)")
-    ('pymeshlab', 'P1 (genus of a non-orientable mesh is floor(h / 2))')
-    >>> convention_counterpart("libigl") is None
-    True
-    """
-    base, options = parse_spec(spec)
-    documented = DOCUMENTED_CONVENTIONS.get(base, {})
-    if not options or not all((k, v) in documented for k, v in options.items()):
-        return None
-    return base, "; ".join(documented[(k, v)] for k, v in options.items())
 
 
 #: The library each built-in adapter wraps (None: the core's own dependencies).

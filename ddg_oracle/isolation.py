@@ -30,7 +30,8 @@ from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, call_limit, exit_tex
                                           stderr_tail)
 from ddg_oracle.properties.budget import check_time_left, time_left
 from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
-                                           machine_epsilon, require_protocol)
+                                           declared_conventions, machine_epsilon,
+                                           require_protocol)
 
 
 class ImplementationCrashed(RuntimeError):
@@ -91,7 +92,9 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
     try:
         impl = load_implementation(spec)
         methods = sorted(require_protocol(impl))
-        conn.send(("ready", methods, (getattr(impl, "name", spec), machine_epsilon(impl))))
+        declared_conventions(impl)               # a malformed declaration: refused here
+        conn.send(("ready", methods, (getattr(impl, "name", spec), machine_epsilon(impl),
+                                      dict(getattr(impl, "conventions", None) or {}))))
     except NotAnImplementation as e:
         conn.send(("not-an-implementation", str(e), None))
         return
@@ -166,7 +169,7 @@ class Isolated:
             self._kill()
             raise ImplementationNotFound(payload)
         self.methods = frozenset(payload)
-        self.name, self.machine_epsilon = name
+        self.name, self.machine_epsilon, self.conventions = name
 
     def _abandon(self) -> None:
         """Interrupted (Ctrl-C, the time limit of a property example) while a request or its

@@ -73,14 +73,16 @@ def close_all() -> None:
     _STATE["impls"] = {}
 
 
-def _counterpart(spec: str):
-    from ddg_oracle.implementations import convention_counterpart
+def _counterpart(impl):
+    """(the counterpart, what differs) that ``impl`` declares (its ``conventions``:
+    properties.protocol.declared_conventions), with --expect-conventions; else (None, None)."""
+    from ddg_oracle.properties.protocol import declared_conventions
     opts = _STATE["options"]
-    found = convention_counterpart(spec) if opts.expect_conventions else None
+    found = declared_conventions(impl) if opts.expect_conventions else None
     if found is None:
         return None, None
-    base, convention = found
-    return implementation(base, opts.timeout), convention
+    spec, convention = found
+    return implementation(spec, opts.timeout), convention
 
 
 def run_task(task: Task) -> list:
@@ -93,7 +95,7 @@ def run_task(task: Task) -> list:
     all_properties()
     try:
         impl = implementation(task.spec, opts.timeout)
-        counterpart, convention = _counterpart(task.spec)
+        counterpart, convention = _counterpart(impl)
     except Exception as e:  # noqa: BLE001  (installed but broken: a result, not a dead worker)
         return _crashed(task, f"{task.spec} cannot be loaded: {e}")
     if task.mesh is None:

@@ -2,33 +2,15 @@
 
 An adapter option such as ``boundary="library"`` makes the adapter return the
 library's own value where it follows another convention than the notes (each
-documented in docs/findings.md and docs/conventions.md).  ``ddg-oracle check
---expect-conventions`` reports a failure of such an option as "convention" when
-the same adapter with reference conventions passes the same example.
+documented in docs/findings.md and docs/conventions.md).  Each adapter lists its
+options next to its code (e.g. ``oracles/libigl.py``, ``LIBRARY_CONVENTIONS``) and
+declares the chosen ones with :func:`declare`, through the same ``conventions``
+attribute any implementation may have (``properties.protocol.declared_conventions``);
+``ddg-oracle check --expect-conventions`` reports a failure of such an option as
+"convention" when the same adapter with reference conventions passes the same example.
 """
 
 from __future__ import annotations
-
-#: Adapter options that select a library's own convention instead of the
-#: reference's, each with the finding that documents the difference
-#: (docs/findings.md, docs/conventions.md).  ``ddg-oracle check
-#: --expect-conventions`` reports a failure of such a spec as "convention" when
-#: the same spec without the option passes the same example.
-DOCUMENTED_CONVENTIONS: dict[str, dict[tuple[str, str], str]] = {
-    "libigl": {("boundary", "library"): "L2 (gaussian_curvature: 2 pi - angle sum at "
-                                        "boundary vertices)"},
-    "pymeshlab": {("boundary", "library"): "P2 (boundary term 2 pi - angle sum - phi)",
-                  ("genus", "library"): "P1 (genus of a non-orientable mesh is floor(h / 2))"},
-    "gpytoolbox": {("boundary", "library"): "G1 (angle_defect: 0 at boundary vertices)",
-                   ("dihedral", "library"): "G2 (dihedral_angles: unsigned, reflex edges "
-                                            "count as convex)"},
-    "robust_laplacian": {("boundary", "library"): "R1 (tufted cover: boundary edges are "
-                                                  "flipped in the double of the surface)",
-                         ("mollify", "library"): "R3 (mollify_factor 1e-5 lengthens every "
-                                                 "edge of a nearly degenerate mesh)"},
-    "trimesh": {("boundary", "library"): "TM1 (vertex_defects: 2 pi - angle sum at boundary "
-                                         "vertices)"},
-}
 
 #: The values of an adapter's convention option: the reference's or the library's own.
 CONVENTIONS = ("reference", "library")
@@ -50,3 +32,18 @@ def convention_name(base: str, **options: str) -> str:
             raise ValueError(f"{key} must be one of {CONVENTIONS}, got {value!r}")
     chosen = [f"{k}={v!r}" for k, v in options.items() if v != "reference"]
     return f"{base}({', '.join(chosen)})" if chosen else base
+
+
+def declare(base: str, documented: dict[str, tuple[str, str]], **options: str) -> tuple[str, dict]:
+    """(display name, ``conventions`` declaration) of the adapter ``base`` with these
+    convention options; ``documented`` maps each option to (finding id, what differs).
+
+    >>> declare("libigl", {"boundary": ("L2", "2 pi - angle sum at boundary vertices")},
+    ...         boundary="library")
+    ("libigl(boundary='library')", {'follows': {'L2': '2 pi - angle sum at boundary vertices'}, 'counterpart': 'libigl'})
+    >>> declare("libigl", {"boundary": ("L2", "...")}, boundary="reference")
+    ('libigl', {})
+    """
+    name = convention_name(base, **options)
+    follows = dict(documented[k] for k, v in options.items() if v == "library")
+    return name, ({"follows": follows, "counterpart": base} if follows else {})

@@ -162,7 +162,25 @@ class Executable:
         self.methods = frozenset(methods)
         self.name = str(hello.get("name") or os.path.basename(self.argv[0]))
         self.machine_epsilon = float(hello.get("machine_epsilon", FLOAT64_EPSILON))
-        self.conventions = dict(hello.get("conventions") or {})
+        self.conventions = self._conventions(hello.get("conventions"))
+
+    def _conventions(self, declared) -> dict:
+        """The handshake's ``{"follows": {id: what differs}, "counterpart_arguments":
+        [...]}`` as the protocol's ``conventions`` attribute: the counterpart is this
+        program with those arguments (docs/protocol.md)."""
+        if declared is not None and not isinstance(declared, dict):
+            self.close()
+            raise DriverFailed(f"{self.spec}: conventions must be an object, got "
+                               f"{_short(declared)}")
+        if not declared or not declared.get("follows"):
+            return {}
+        args = declared.get("counterpart_arguments", [])
+        if not isinstance(args, list) or not all(isinstance(a, str) for a in args):
+            self.close()
+            raise DriverFailed(f"{self.spec}: conventions.counterpart_arguments must be a list "
+                               f"of strings, got {_short(args)}")
+        return {"follows": declared["follows"],
+                "counterpart": "exec:" + shlex.join([self.argv[0], *args])}
 
     # --- the process ------------------------------------------------------------------
 

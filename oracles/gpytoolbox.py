@@ -52,9 +52,16 @@ import scipy.sparse
 import gpytoolbox as gpy
 
 from .arrays import checked_arrays
-from .conventions import convention_name
+from .conventions import declare
 
 _arrays = checked_arrays
+
+
+#: option -> (finding, what the library's own convention differs by) (docs/findings.md)
+LIBRARY_CONVENTIONS = {
+    "boundary": ("G1", "angle_defect: 0 at boundary vertices"),
+    "dihedral": ("G2", "dihedral_angles: unsigned, reflex edges count as convex"),
+}
 
 
 class Gpytoolbox:
@@ -63,7 +70,8 @@ class Gpytoolbox:
     name = "gpytoolbox"
 
     def __init__(self, boundary: str = "reference", dihedral: str = "reference"):
-        self.name = convention_name("gpytoolbox", boundary=boundary, dihedral=dihedral)
+        self.name, self.conventions = declare("gpytoolbox", LIBRARY_CONVENTIONS,
+                                              boundary=boundary, dihedral=dihedral)
         self.boundary, self.dihedral = boundary, dihedral
 
     def __repr__(self) -> str:

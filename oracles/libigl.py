@@ -42,7 +42,7 @@ import scipy.sparse
 import igl
 
 from .arrays import checked_arrays
-from .conventions import CONVENTIONS
+from .conventions import declare
 
 
 
@@ -58,17 +58,20 @@ def _pad(x: np.ndarray, n: int) -> np.ndarray:
     return np.concatenate([x, np.zeros(n - len(x), dtype=x.dtype)])
 
 
+#: option -> (finding, what the library's own convention differs by) (docs/findings.md)
+LIBRARY_CONVENTIONS = {
+    "boundary": ("L2", "gaussian_curvature: 2 pi - angle sum at boundary vertices"),
+}
+
+
 class Libigl:
     """libigl as an implementation of the protocol (``properties/protocol.py``)."""
 
     name = "libigl"
 
     def __init__(self, boundary: str = "reference"):
-        if boundary not in CONVENTIONS:
-            raise ValueError(f"boundary must be one of {CONVENTIONS}, got {boundary!r}")
+        self.name, self.conventions = declare("libigl", LIBRARY_CONVENTIONS, boundary=boundary)
         self.boundary = boundary
-        if boundary != "reference":
-            self.name = f"libigl(boundary={boundary!r})"
 
     def __repr__(self) -> str:
         return f"Libigl(boundary={self.boundary!r})"

@@ -56,7 +56,7 @@ import numpy as np
 from ddg_oracle.properties.protocol import ISOLATED_VERTEX
 
 from .arrays import Referenced, checked_arrays
-from .conventions import CONVENTIONS
+from .conventions import declare
 
 import pymeshlab
 
@@ -159,6 +159,13 @@ def boundary_edge_angles(V, F) -> dict[int, float]:
     return phi
 
 
+#: option -> (finding, what the library's own convention differs by) (docs/findings.md)
+LIBRARY_CONVENTIONS = {
+    "boundary": ("P2", "boundary term 2 pi - angle sum - phi"),
+    "genus": ("P1", "genus of a non-orientable mesh is floor(h / 2)"),
+}
+
+
 class PyMeshLab:
     """PyMeshLab as an implementation of the protocol (``properties/protocol.py``)."""
 
@@ -168,16 +175,10 @@ class PyMeshLab:
     name = "pymeshlab"
 
     def __init__(self, boundary: str = "reference", genus: str = "reference"):
-        if boundary not in CONVENTIONS:
-            raise ValueError(f"boundary must be one of {CONVENTIONS}, got {boundary!r}")
-        if genus not in CONVENTIONS:
-            raise ValueError(f"genus must be one of {CONVENTIONS}, got {genus!r}")
+        self.name, self.conventions = declare("pymeshlab", LIBRARY_CONVENTIONS,
+                                              boundary=boundary, genus=genus)
         self.boundary = boundary
         self.genus_convention = genus
-        options = [f"{k}={v!r}" for k, v in (("boundary", boundary), ("genus", genus))
-                   if v != "reference"]
-        if options:
-            self.name = f"pymeshlab({', '.join(options)})"
 
     def __repr__(self) -> str:
         return f"PyMeshLab(boundary={self.boundary!r}, genus={self.genus_convention!r})"

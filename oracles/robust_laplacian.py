@@ -61,7 +61,7 @@ import robust_laplacian
 from ddg_oracle.properties.protocol import OutsideDomain
 
 from .arrays import checked_arrays
-from .conventions import convention_name
+from .conventions import declare
 
 MOLLIFY_FACTOR = {"reference": 0.0, "library": 1e-5}   # mollify option -> mollify_factor
 
@@ -76,13 +76,21 @@ def boundary_edges(F: np.ndarray) -> np.ndarray:
     return uniq[counts == 1]
 
 
+#: option -> (finding, what the library's own convention differs by) (docs/findings.md)
+LIBRARY_CONVENTIONS = {
+    "boundary": ("R1", "tufted cover: boundary edges are flipped in the double of the surface"),
+    "mollify": ("R3", "mollify_factor 1e-5 lengthens every edge of a nearly degenerate mesh"),
+}
+
+
 class RobustLaplacian:
     """robust-laplacian as an implementation of the protocol (``properties/protocol.py``)."""
 
     name = "robust_laplacian"
 
     def __init__(self, boundary: str = "reference", mollify: str = "reference"):
-        self.name = convention_name("robust_laplacian", boundary=boundary, mollify=mollify)
+        self.name, self.conventions = declare("robust_laplacian", LIBRARY_CONVENTIONS,
+                                              boundary=boundary, mollify=mollify)
         self.boundary, self.mollify = boundary, mollify
 
     def __repr__(self) -> str:

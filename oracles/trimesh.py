@@ -38,12 +38,18 @@ import numpy as np
 import trimesh
 
 from .arrays import checked_arrays
-from .conventions import convention_name
+from .conventions import declare
 
 
 def _mesh(V, F) -> "trimesh.Trimesh":
     V, F = checked_arrays(V, F)
     return trimesh.Trimesh(vertices=V, faces=F, process=False, validate=False)
+
+
+#: option -> (finding, what the library's own convention differs by) (docs/findings.md)
+LIBRARY_CONVENTIONS = {
+    "boundary": ("TM1", "vertex_defects: 2 pi - angle sum at boundary vertices"),
+}
 
 
 class Trimesh:
@@ -52,7 +58,7 @@ class Trimesh:
     name = "trimesh"
 
     def __init__(self, boundary: str = "reference"):
-        self.name = convention_name("trimesh", boundary=boundary)
+        self.name, self.conventions = declare("trimesh", LIBRARY_CONVENTIONS, boundary=boundary)
         self.boundary = boundary
 
     def __repr__(self) -> str:

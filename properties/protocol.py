@@ -7,7 +7,10 @@ translate libraries into these conventions; properties call only these names,
 so they never mention a library.
 
 An implementation declares what it has simply by defining the method; a
-property that needs a method the implementation lacks is "not applicable".
+property that needs a method the implementation lacks is "not applicable".  Optional
+attributes: ``name`` (reports), ``machine_epsilon`` (float32: 2**-23; the bounds scale
+with it) and ``conventions`` (a library convention it follows instead of the
+reference's: :func:`declared_conventions`).
 """
 
 from __future__ import annotations
@@ -82,6 +85,41 @@ def machine_epsilon(impl) -> float:
 def eps() -> float:
     """Machine epsilon of the implementation whose property is being checked now."""
     return _epsilon.get()
+
+
+def declared_conventions(impl) -> tuple[str, str] | None:
+    """(counterpart spec, what differs) if ``impl`` declares that it follows a library's
+    convention instead of the reference's, else None.
+
+    The declaration is the attribute ``conventions = {"follows": {id: what differs},
+    "counterpart": spec}``: ``id`` names the documented difference (a finding of
+    docs/findings.md, or the library's own reference), ``spec`` is what
+    ``load_implementation`` loads for the same library on the reference's conventions
+    (``"libigl"``, ``"mypkg.mod:MyLib"``, ``"exec:./driver"``).  ``ddg-oracle check
+    --expect-conventions`` then reports a failure that the counterpart does not have on
+    the same example as ``convention``.  An empty ``follows`` (or no attribute) declares
+    nothing; a malformed declaration is :class:`NotAnImplementation`.
+
+    >>> class Igl:
+    ...     conventions = {"follows": {"L2": "2 pi - angle sum at the boundary"},
+    ...                    "counterpart": "libigl"}
+    >>> declared_conventions(Igl())
+    ('libigl', 'L2 (2 pi - angle sum at the boundary)')
+    >>> declared_conventions(object()) is None
+    True
+    """
+    declared = getattr(impl, "conventions", None) or {}
+    follows = declared.get("follows") if isinstance(declared, dict) else None
+    if isinstance(declared, dict) and not follows:
+        return None
+    counterpart = declared.get("counterpart") if isinstance(declared, dict) else None
+    if not (isinstance(follows, dict) and all(isinstance(k, str) and isinstance(v, str)
+                                              for k, v in follows.items())
+            and isinstance(counterpart, str) and counterpart.strip()):
+        raise NotAnImplementation(
+            f"{implementation_name(impl)}: conventions must be {{'follows': {{id: what "
+            f"differs}}, 'counterpart': spec on the reference's conventions}}, got {declared!r}")
+    return counterpart, "; ".join(f"{k} ({v})" for k, v in follows.items())
 
 
 class OutsideDomain(ValueError):

@@ -5,6 +5,10 @@ developer actually writes; ``planted`` names the protocol methods it changes
 (``python -m benchmarks catch`` checks each bug on the properties that call them).
 """
 
+import math
+
+import numpy as np
+
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from examples.numpy_mesh import NumpyMesh      # its boundary test: edges of one face
 
@@ -356,3 +360,18 @@ class TwinByReversedKey(ReferenceImplementation):
             cols += [j, i, i, j]
             vals += [-w, -w, w, w]
         return sp.csr_matrix((vals, (rows, cols)), shape=(len(V), len(V)))
+
+
+class TwoPiAtTheBoundary(ReferenceImplementation):
+    """A third-party library's convention, declared by the implementation itself:
+    2 pi - angle sum at boundary vertices too (as libigl's gaussian_curvature), with the
+    reference as its counterpart on the notes' conventions."""
+
+    name = "two-pi-at-the-boundary"
+    conventions = {"follows": {"MYLIB-7": "2 pi - angle sum at boundary vertices"},
+                   "counterpart": "reference"}
+
+    def angle_defects(self, V, F):
+        K = super().angle_defects(V, F)
+        boundary = {v for loop in self.boundary_loops(V, F) for v in loop}
+        return np.array([k + math.pi if v in boundary else k for v, k in enumerate(K)])

@@ -120,12 +120,30 @@ def test_expect_conventions_turns_a_documented_convention_into_an_expected_resul
     assert "documented convention L2" in out and "libigl passes the same example" in out
 
 
-def test_expect_conventions_does_not_excuse_an_undocumented_option():
-    from ddg_oracle.implementations import convention_counterpart
-    assert convention_counterpart("libigl(boundary=library)")[0] == "libigl"
-    assert convention_counterpart("pymeshlab(genus=library, boundary=library)")[0] == "pymeshlab"
-    assert convention_counterpart("tests.planted_bugs:ChiIgnoresBoundary") is None
-    assert convention_counterpart("libigl") is None
+def test_conventions_are_declared_by_the_implementation_itself():
+    from ddg_oracle.implementations import load_implementation
+    from ddg_oracle.properties.protocol import NotAnImplementation, declared_conventions
+    assert declared_conventions(load_implementation("libigl(boundary=library)"))[0] == "libigl"
+    assert declared_conventions(load_implementation("pymeshlab(genus=library, boundary=library)")) \
+        == ("pymeshlab", "P2 (boundary term 2 pi - angle sum - phi); "
+                         "P1 (genus of a non-orientable mesh is floor(h / 2))")
+    assert declared_conventions(load_implementation("tests.planted_bugs:ChiIgnoresBoundary")) is None
+    assert declared_conventions(load_implementation("libigl")) is None
+
+    class Malformed:
+        conventions = {"follows": {"X1": "something"}}          # no counterpart
+    with pytest.raises(NotAnImplementation, match="counterpart"):
+        declared_conventions(Malformed())
+
+
+def test_expect_conventions_works_for_a_third_party_implementation(capsys):
+    argv = ["check", "--impl", "tests.planted_bugs:TwoPiAtTheBoundary", "--only", "R2.4",
+            "--profile", "ci", "--workers", "1", "--wide"]
+    rc, out, _ = _run(capsys, *argv)
+    assert rc == 1 and re.search(r"^R2\.4 .*FAILED$", out, re.M)
+    rc, out, _ = _run(capsys, *argv, "--expect-conventions")
+    assert rc == 0 and re.search(r"^R2\.4 .*convention$", out, re.M), out
+    assert "documented convention MYLIB-7" in out and "reference passes the same example" in out
 
 
 # --- the report -----------------------------------------------------------------------------------

@@ -173,3 +173,20 @@ def test_check_without_impl_checks_the_built_drivers(build, tmp_path):
                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
     assert out.returncode == 1, out.stdout + out.stderr          # CG1
     assert "[L3.7] cgal:" in out.stdout and "CG1" in out.stdout, out.stdout
+
+
+def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it(build, tmp_path):
+    from ddg_oracle.properties.protocol import declared_conventions
+    raw = _driver(build, "cgal_driver", "--weights=library")
+    counterpart, what = declared_conventions(raw)
+    raw.close()
+    assert counterpart == f"exec:{build / 'cgal_driver'}" and what.startswith("CG3 (")
+    argv = [sys.executable, "-m", "ddg_oracle", "check", "--impl",
+            f"exec:{build / 'cgal_driver'} --weights=library", "--only", "D3.1", "--workers", "1",
+            "--profile", "ci", "--wide"]
+    out = subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 1 and "FAILED" in out.stdout, out.stdout + out.stderr
+    out = subprocess.run(argv + ["--expect-conventions"], cwd=tmp_path, capture_output=True,
+                         text=True, timeout=600)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "documented convention CG3" in out.stdout and "cgal passes the same example" in out.stdout

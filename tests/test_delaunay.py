@@ -26,7 +26,7 @@ from ddg_oracle.reference.exact import corner_angle
 from ddg_oracle.reference.intrinsic import cot_sum, flip, is_flippable
 from ddg_oracle.reference.laplacian import cotan_laplacian, cotan_weights
 from ddg_oracle.properties.metrics import flat_torus
-from ddg_oracle.reference.metric import PiecewiseFlatSurface, metric_of
+from ddg_oracle.reference.metric import metric_of
 
 SETTINGS = settings(max_examples=40, deadline=None, database=None,
                     suppress_health_check=[HealthCheck.too_slow])

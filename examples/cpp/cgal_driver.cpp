@@ -151,8 +151,12 @@ int main(int argc, char** argv) {
         library_weights ? "cgal-library-weights" : "cgal",
         {"cotan_laplacian", "vertex_areas_voronoi", "vertex_areas_barycentric", "area",
          "intrinsic_delaunay_laplacian", "intrinsic_delaunay_triangulation"}};
-    if (library_weights)
+    if (library_weights) {
         driver.methods = {"cotan_laplacian"};
+        // the library's own factor, declared: with --expect-conventions a failure the
+        // halved weights (this program without arguments) do not have is a convention
+        driver.conventions = R"json({"follows": {"CG3": "Edge_cotangent_weight: 2x the notes' weight 1/2 (cot a + cot b)"}, "counterpart_arguments": []})json";
+    }
     return driver.serve([&](const std::string& method, const ddg::Mesh& mesh) {
         SurfaceMesh sm = surface_mesh(mesh);
         if (method == "cotan_laplacian") return cotan_laplacian(sm, library_weights ? 1.0 : 0.5);
