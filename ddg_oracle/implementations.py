@@ -27,11 +27,13 @@ BUILTIN: dict[str, str] = {
     "robust_laplacian": "ddg_oracle.oracles.robust_laplacian:RobustLaplacian",
     "potpourri3d": "ddg_oracle.oracles.potpourri3d:Potpourri3d",
     "trimesh": "ddg_oracle.oracles.trimesh:Trimesh",
+    "vtk": "ddg_oracle.oracles.vtk:Vtk",
 }
 
 #: The pip extra that installs each built-in adapter's library (reference and scipy: core).
 EXTRAS: dict[str, str] = {"libigl": "libigl", "pymeshlab": "pymeshlab", "gpytoolbox": "peers",
-                          "robust_laplacian": "peers", "potpourri3d": "peers", "trimesh": "peers"}
+                          "robust_laplacian": "peers", "potpourri3d": "peers", "trimesh": "peers",
+                          "vtk": "peers"}
 
 _OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
 
@@ -122,7 +124,8 @@ def load_implementation(spec: str):
 LIBRARIES: dict[str, str | None] = {"reference": None, "libigl": "igl", "pymeshlab": "pymeshlab",
                                     "scipy": "scipy", "gpytoolbox": "gpytoolbox",
                                     "robust_laplacian": "robust_laplacian",
-                                    "potpourri3d": "potpourri3d", "trimesh": "trimesh"}
+                                    "potpourri3d": "potpourri3d", "trimesh": "trimesh",
+                                    "vtk": "vtkmodules"}
 
 
 def available() -> list[str]:
