@@ -124,6 +124,30 @@ def _decode(method: str, value, n: int, m: int):
     raise DriverFailed(f"{method}: not a protocol method")
 
 
+def _manifest(path: str, spec: str) -> dict:
+    """A driver manifest (docs/protocol.md): the handshake's fields plus ``command``, the
+    program and its arguments (files relative to the manifest's directory);
+    ``conventions.counterpart`` may name another manifest, relative to this one."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            manifest = json.load(f)
+    except (OSError, ValueError) as e:
+        raise DriverFailed(f"{spec}: cannot read the manifest: {e}") from None
+    command = manifest.get("command") if isinstance(manifest, dict) else None
+    if not (isinstance(command, list) and command and all(isinstance(a, str) for a in command)):
+        raise DriverFailed(f"{spec}: a manifest needs \"command\": [program, arguments...], "
+                           f"got {_short(manifest)}")
+    here = os.path.dirname(os.path.abspath(path))
+    out = dict(manifest)
+    out["command"] = [os.path.join(here, a) if not os.path.isabs(a) and
+                      os.path.exists(os.path.join(here, a)) else a for a in command]
+    other = (manifest.get("conventions") or {}).get("counterpart")
+    if isinstance(other, str) and other.endswith(".json") and not other.startswith("exec:"):
+        out["conventions"] = {**manifest["conventions"],
+                              "counterpart": "exec:" + os.path.join(here, other)}
+    return out
+
+
 class Executable:
     """A program speaking the executable protocol, as an implementation object.
 
@@ -139,10 +163,14 @@ class Executable:
         # files named relative to here are made absolute, so the spec (and a replay
         # snippet that loads it) works from any directory
         base = cwd or os.getcwd()
-        self.argv = [os.path.abspath(os.path.join(base, a))
-                     if not os.path.isabs(a) and os.path.isfile(os.path.join(base, a)) else a
-                     for a in argv]
-        self.spec = "exec:" + shlex.join(self.argv)
+        argv = [os.path.abspath(os.path.join(base, a))
+                if not os.path.isabs(a) and os.path.isfile(os.path.join(base, a)) else a
+                for a in argv]
+        self.spec = "exec:" + shlex.join(argv)
+        # a manifest (exec:driver.json) says what the handshake would: no hello is sent
+        self.manifest = _manifest(argv[0], self.spec) if len(argv) == 1 and \
+            argv[0].endswith(".json") and os.path.isfile(argv[0]) else None
+        self.argv = self.manifest["command"] if self.manifest else argv
         self.timeout, self.cwd = timeout, cwd
         self._proc = None
         self._next_id = 0
@@ -174,6 +202,8 @@ class Executable:
                                f"{_short(declared)}")
         if not declared or not declared.get("follows"):
             return {}
+        if self.manifest and "counterpart" in declared:      # another manifest, or any spec
+            return {"follows": declared["follows"], "counterpart": declared["counterpart"]}
         args = declared.get("counterpart_arguments", [])
         if not isinstance(args, list) or not all(isinstance(a, str) for a in args):
             self.close()
@@ -195,6 +225,8 @@ class Executable:
             raise DriverFailed(f"{self.spec}: cannot start {self.argv[0]!r}: "
                                f"{e.strerror or e}") from None
         self._buffer = b""
+        if self.manifest:
+            return self.manifest
         self._send({"protocol": "ddg-oracle", "version": PROTOCOL_VERSION, "method": "hello"},
                    "hello")
         hello = self._receive("hello", START_TIMEOUT)

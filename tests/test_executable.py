@@ -146,3 +146,36 @@ def test_an_unstartable_command_is_a_usage_error(capsys):
     assert main(["check", "--impl", "exec:/no/such/driver", "--only", "D1.6"]) == 2
     err = capsys.readouterr().err
     assert "cannot start" in err and "/no/such/driver" in err and err.count("\n") == 1
+
+
+_NO_HANDSHAKE = '''
+import json, sys
+for line in sys.stdin:
+    request = json.loads(line)
+    if request["method"] == "hello":
+        sys.exit(5)                       # a manifest stands for the handshake: none is sent
+    chi = len(request["V"]) - len({tuple(sorted(e)) for f in request["F"]
+                                   for e in zip(f, f[1:] + f[:1])}) + len(request["F"])
+    print(json.dumps({"id": request["id"], "value": chi}), flush=True)
+'''
+
+
+def test_a_manifest_stands_for_the_handshake(tmp_path):
+    import json
+    (tmp_path / "chi.py").write_text(_NO_HANDSHAKE)
+    manifest = {"command": [sys.executable, "chi.py"], "name": "chi-by-manifest",
+                "methods": ["euler_characteristic"],
+                "conventions": {"follows": {"X9": "a declared difference"},
+                                "counterpart": "other.json"}}
+    (tmp_path / "chi.json").write_text(json.dumps(manifest))
+    impl = Executable(str(tmp_path / "chi.json"), cwd="/")
+    assert impl.name == "chi-by-manifest" and impl.methods == {"euler_characteristic"}
+    assert impl.argv[1] == str(tmp_path / "chi.py")             # relative to the manifest
+    assert impl.conventions["counterpart"] == f"exec:{tmp_path / 'other.json'}"
+    V, F = TET
+    assert impl.euler_characteristic(np.array(V, float), np.array(F)) == 2
+    assert run_property(PROPERTIES["D1.6"], impl, profile("ci")).status == PASSED
+    impl.close()
+    (tmp_path / "bad.json").write_text(json.dumps({"methods": ["area"]}))
+    with pytest.raises(DriverFailed, match="command"):
+        Executable(str(tmp_path / "bad.json"))

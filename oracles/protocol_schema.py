@@ -1,0 +1,133 @@
+"""JSON Schemas (draft 2020-12) of the executable protocol, version 1 (docs/protocol.md):
+the handshake, each method's request and each method's answer.
+
+``docs/protocol.schema.json`` is :func:`schema` written by ``python -m
+ddg_oracle.oracles.protocol_schema docs/protocol.schema.json``; a test keeps the two
+equal and validates real traffic (every request ddg-oracle sends, every answer of the
+reference served through the protocol) against it.  ``"$defs"`` holds, per method
+``M``, ``request.M`` and ``answer.M``; ``hello.request``, ``hello.answer`` and
+``error.answer`` are the others, and ``manifest`` the file that may stand for the
+handshake (``exec:driver.json``).  Numbers are JSON numbers; a program may write NaN
+and Infinity as Python's json module reads them (outside strict JSON: they are then
+compared as wrong values, not rejected as garbage).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from ddg_oracle.properties.protocol import METHODS
+
+VERSION = 1
+
+_NUMBER = {"type": "number"}
+_INDEX = {"type": "integer", "minimum": 0}
+
+
+def _array(items: dict, length: int | None = None) -> dict:
+    out = {"type": "array", "items": items}
+    if length is not None:
+        out.update(minItems=length, maxItems=length)
+    return out
+
+
+#: the ``value`` of each method's answer (n vertices, m faces: the request's)
+VALUES: dict[str, dict] = {
+    "euler_characteristic": {"type": "integer"},
+    "genus": {"type": "integer"},
+    "is_orientable": {"type": "boolean"},
+    "boundary_loops": _array(_array(_INDEX)),
+    "corner_angles": _array(_array(_NUMBER, 3)),
+    "angle_defects": _array(_NUMBER),
+    "edge_mean_curvature": _array({"type": "array", "prefixItems": [_INDEX, _INDEX, _NUMBER],
+                                   "minItems": 3, "maxItems": 3}),
+    "area": _NUMBER,
+    "cotan_laplacian": {"$ref": "#/$defs/sparse"},
+    "vertex_areas_barycentric": _array(_NUMBER),
+    "vertex_areas_voronoi": _array(_NUMBER),
+    "is_locally_delaunay": _array(_array({"type": "boolean"}, 3)),
+    "intrinsic_delaunay_laplacian": {"$ref": "#/$defs/sparse"},
+    "intrinsic_delaunay_triangulation": {
+        "type": "object", "required": ["F", "l2"], "additionalProperties": False,
+        "properties": {"F": _array(_array(_INDEX, 3)), "l2": _array(_array(_NUMBER, 3))}},
+    "planar_flip_to_delaunay": _array(_array(_INDEX, 3)),
+    "planar_delaunay": _array(_array(_INDEX, 3)),
+}
+
+_PLANAR_INPUT = {"planar_delaunay"}       # "P" instead of "V" and "F"
+
+
+def schema() -> dict:
+    """The protocol's schemas, one JSON document."""
+    missing = set(METHODS) ^ set(VALUES)
+    if missing:                           # the table must follow the protocol's methods
+        raise AssertionError(f"protocol methods without a value schema: {sorted(missing)}")
+    defs: dict[str, dict] = {
+        "sparse": {"type": "object", "required": ["shape", "rows", "cols", "values"],
+                   "additionalProperties": False,
+                   "properties": {"shape": _array(_INDEX, 2), "rows": _array(_INDEX),
+                                  "cols": _array(_INDEX), "values": _array(_NUMBER)}},
+        "hello.request": {"type": "object", "required": ["protocol", "version", "method"],
+                          "properties": {"protocol": {"const": "ddg-oracle"},
+                                         "version": {"const": VERSION},
+                                         "method": {"const": "hello"}}},
+        "hello.answer": {
+            "type": "object", "required": ["methods"],
+            "properties": {
+                "name": {"type": "string"},
+                "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
+                            "items": {"enum": list(METHODS)}},
+                "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
+                "conventions": {
+                    "type": "object",
+                    "properties": {
+                        "follows": {"type": "object", "additionalProperties": {"type": "string"}},
+                        "counterpart_arguments": _array({"type": "string"})}}}},
+        "manifest": {
+            "type": "object", "required": ["command", "methods"],
+            "properties": {
+                "command": {"type": "array", "minItems": 1, "items": {"type": "string"}},
+                "name": {"type": "string"},
+                "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
+                            "items": {"enum": list(METHODS)}},
+                "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
+                "conventions": {
+                    "type": "object",
+                    "properties": {
+                        "follows": {"type": "object", "additionalProperties": {"type": "string"}},
+                        "counterpart": {"type": "string"}}}}},
+        "error.answer": {
+            "type": "object", "required": ["id", "error"], "additionalProperties": False,
+            "properties": {"id": {"type": "integer"},
+                           "error": {"type": "object", "required": ["kind", "message"],
+                                     "properties": {"kind": {"enum": ["outside_domain", "failed"]},
+                                                    "message": {"type": "string"}}}}},
+    }
+    for method, value in VALUES.items():
+        if method in _PLANAR_INPUT:
+            inputs = {"P": _array(_array(_NUMBER, 2))}
+        else:
+            inputs = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3))}
+        defs[f"request.{method}"] = {
+            "type": "object", "required": ["id", "method", *inputs], "additionalProperties": False,
+            "properties": {"id": {"type": "integer"}, "method": {"const": method}, **inputs}}
+        defs[f"answer.{method}"] = {
+            "type": "object", "required": ["id", "value"], "additionalProperties": False,
+            "properties": {"id": {"type": "integer"}, "value": value}}
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema",
+            "title": f"ddg-oracle executable protocol, version {VERSION}",
+            "description": "One JSON object per line: requests on the program's stdin, "
+                           "answers on its stdout (docs/protocol.md). Validate a message "
+                           "against #/$defs/<kind>.",
+            "version": VERSION, "$defs": defs}
+
+
+def text() -> str:
+    """:func:`schema` as the committed file's text (sorted keys, 2-space indent)."""
+    return json.dumps(schema(), indent=2, sort_keys=True) + "\n"
+
+
+if __name__ == "__main__":
+    with open(sys.argv[1], "w", encoding="utf-8") as out:
+        out.write(text())
