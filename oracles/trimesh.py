@@ -17,6 +17,7 @@ vertices (the protocol's vertices are the input's rows).
 * ``edge_mean_curvature``: H(e) = 1/2 theta l over ``mesh.face_adjacency_edges``,
   theta = ``face_adjacency_angles`` (unsigned) signed by ``face_adjacency_convex``,
   as trimesh's own docstring of ``face_adjacency_angles`` says to; l the edge length.
+  ``dihedral="library"`` keeps the unsigned angle (TM5).
 * ``area``: ``mesh.area``.
 
 Bad input is checked first by :func:`~ddg_oracle.oracles.arrays.checked_arrays`
@@ -49,6 +50,7 @@ def _mesh(V, F) -> "trimesh.Trimesh":
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
     "boundary": ("TM1", "vertex_defects: 2 pi - angle sum at boundary vertices"),
+    "dihedral": ("TM5", "face_adjacency_angles: unsigned, reflex edges count as convex"),
 }
 
 
@@ -57,12 +59,13 @@ class Trimesh:
 
     name = "trimesh"
 
-    def __init__(self, boundary: str = "reference"):
-        self.name, self.conventions = declare("trimesh", LIBRARY_CONVENTIONS, boundary=boundary)
-        self.boundary = boundary
+    def __init__(self, boundary: str = "reference", dihedral: str = "reference"):
+        self.name, self.conventions = declare("trimesh", LIBRARY_CONVENTIONS, boundary=boundary,
+                                              dihedral=dihedral)
+        self.boundary, self.dihedral = boundary, dihedral
 
     def __repr__(self) -> str:
-        return f"Trimesh(boundary={self.boundary!r})"
+        return f"Trimesh(boundary={self.boundary!r}, dihedral={self.dihedral!r})"
 
     def corner_angles(self, V, F) -> np.ndarray:
         """``mesh.face_angles``: (m, 3), column c the angle at vertex F[f, c]."""
@@ -82,9 +85,11 @@ class Trimesh:
 
     def edge_mean_curvature(self, V, F) -> dict[tuple[int, int], float]:
         """{(i, j): 1/2 theta l} over trimesh's face adjacency, theta signed by
-        ``face_adjacency_convex`` (trimesh's recipe)."""
+        ``face_adjacency_convex`` (trimesh's recipe); unsigned with dihedral="library"."""
         m = _mesh(V, F)
-        theta = np.where(m.face_adjacency_convex, 1.0, -1.0) * m.face_adjacency_angles
+        theta = np.asarray(m.face_adjacency_angles, dtype=np.float64)
+        if self.dihedral == "reference":
+            theta = np.where(m.face_adjacency_convex, 1.0, -1.0) * theta
         edges = np.sort(m.face_adjacency_edges, axis=1)
         Vf = np.asarray(m.vertices)
         length = np.linalg.norm(Vf[edges[:, 1]] - Vf[edges[:, 0]], axis=1)

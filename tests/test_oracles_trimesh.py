@@ -69,3 +69,14 @@ def test_check_finds_trimeshs_angles_off_on_needles_TM4_and_zeroed_on_tiny_meshe
     assert np.all(small == 0)                                  # TM3 on the tetrahedron
     # on meshes trimesh's thresholds do not reach, its angles are within the bounds
     assert run_property(PROPERTIES["X2.1"], Trimesh(), profile("ci")).status == PASSED
+
+
+def test_the_library_dihedral_is_unsigned_TM5():
+    inside_out = F[:, ::-1]                          # every edge reflex: H < 0 in the notes
+    ours = Trimesh().edge_mean_curvature(V, inside_out)
+    theirs = Trimesh(dihedral="library").edge_mean_curvature(V, inside_out)
+    assert all(ours[e] < 0 and theirs[e] == pytest.approx(-ours[e]) for e in ours)
+    assert Trimesh(dihedral="library").conventions["follows"] == {
+        "TM5": "face_adjacency_angles: unsigned, reflex edges count as convex"}
+    r = run_property(PROPERTIES["D2.3"], Trimesh(dihedral="library"), profile("ci"))
+    assert r.status == FAILED
