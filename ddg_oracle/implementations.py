@@ -15,7 +15,6 @@ import os
 import re
 import sys
 
-
 # name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
 BUILTIN: dict[str, str] = {
     "reference": "ddg_oracle.oracles.exact_reference:ReferenceImplementation",

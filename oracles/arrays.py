@@ -126,3 +126,12 @@ class Referenced:
     def index(self, v) -> int:
         """The input index of compact vertex v."""
         return int(self.keep[v])
+
+
+def boundary_edges(F: np.ndarray) -> np.ndarray:
+    """(k, 2) sorted vertex pairs of the edges with exactly one face: the boundary edges
+    (their ends are where R2.4 takes the turning angle), for adapters mapping a library's
+    boundary convention."""
+    pairs = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+    uniq, counts = np.unique(pairs, axis=0, return_counts=True)
+    return uniq[counts == 1]

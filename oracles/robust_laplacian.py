@@ -53,27 +53,19 @@ and finite coordinates first and raises the reference's typed ``ValueError``s.
 
 from __future__ import annotations
 
-import numpy as np
 import scipy.sparse
 
 import robust_laplacian
 
 from ddg_oracle.properties.protocol import OutsideDomain
 
-from .arrays import checked_arrays
+from .arrays import boundary_edges, checked_arrays
 from .conventions import declare
 
 MOLLIFY_FACTOR = {"reference": 0.0, "library": 1e-5}   # mollify option -> mollify_factor
 
 
 _arrays = checked_arrays
-
-
-def boundary_edges(F: np.ndarray) -> np.ndarray:
-    """(k, 2) sorted vertex pairs of the edges with exactly one face."""
-    pairs = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
-    uniq, counts = np.unique(pairs, axis=0, return_counts=True)
-    return uniq[counts == 1]
 
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)

@@ -46,7 +46,7 @@ try:                                             # VTK >= 9.4
 except ImportError:                              # VTK 9.2, 9.3
     from vtkmodules.vtkFiltersCore import vtkIdFilter as _IdFilter
 
-from .arrays import checked_arrays
+from .arrays import boundary_edges, checked_arrays
 from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -69,14 +69,6 @@ def polydata(V, F) -> vtkPolyData:
     mesh.SetPoints(points)
     mesh.SetPolys(cells)
     return mesh
-
-
-def _boundary_vertices(F: np.ndarray, n: int) -> np.ndarray:
-    pairs = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
-    uniq, counts = np.unique(pairs, axis=0, return_counts=True)
-    out = np.zeros(n, dtype=bool)
-    out[uniq[counts == 1].ravel()] = True
-    return out
 
 
 class Vtk:
@@ -112,7 +104,9 @@ class Vtk:
         used[F.ravel()] = True
         defects = np.where(used, K * third, math.tau)
         if self.boundary == "reference":
-            defects = defects - math.pi * _boundary_vertices(F, len(V))
+            on_boundary = np.zeros(len(V), dtype=bool)
+            on_boundary[boundary_edges(F).ravel()] = True
+            defects = defects - math.pi * on_boundary
         return defects
 
     def area(self, V, F) -> float:

@@ -15,7 +15,8 @@ import pytest
 
 rl = pytest.importorskip("robust_laplacian")
 
-from ddg_oracle.oracles.robust_laplacian import RobustLaplacian, boundary_edges  # noqa: E402
+from ddg_oracle.oracles.arrays import boundary_edges  # noqa: E402
+from ddg_oracle.oracles.robust_laplacian import RobustLaplacian  # noqa: E402
 from ddg_oracle.properties import PROPERTIES, check_implementation  # noqa: E402
 from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
 from ddg_oracle.properties.laplacian import Exact, entry_bounds, vertex_area_bounds  # noqa: E402

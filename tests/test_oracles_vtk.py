@@ -22,10 +22,7 @@ F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
 
 @pytest.mark.parametrize("name", sorted(MESHES))
 def test_vtk_angle_defects_are_the_gaussian_curvature_times_a_third_of_the_area(name):
-    check_angle_defects(Vtk(), name)
-    K = Vtk().gaussian_curvature(*arrays(name))
-    defects = Vtk(boundary="library").angle_defects(*arrays(name))
-    assert not np.allclose(K, defects) or np.allclose(defects, 0)     # VT2: K is per area
+    check_angle_defects(Vtk(), name)                 # within D2.2 / R2.4's derived bound
 
 
 @pytest.mark.parametrize("name", sorted(MESHES))
