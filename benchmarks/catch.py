@@ -40,7 +40,7 @@ def bugs() -> list[tuple[str, tuple]]:
 
 def properties_calling(methods) -> list[str]:
     from ddg_oracle.properties import PROPERTIES
-    return [pid for pid, p in PROPERTIES.items() if set(p.needs) & set(methods)]
+    return [pid for pid, p in PROPERTIES.items() if set(p.methods) & set(methods)]
 
 
 def _one(spec: str, ids: list[str], seed: int) -> dict:

@@ -386,10 +386,11 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
                 rows.append(Comparison(method, name, "not applicable", note="not orientable"))
                 continue
             if method in ("planar_delaunay", "intrinsic_delaunay_triangulation",
-                          "planar_flip_to_delaunay"):
+                          "planar_flip_to_delaunay", "solve_dirichlet"):
                 rows.append(Comparison(method, name, "not applicable",
-                                       note="not unique or not a mesh quantity: checked by the "
-                                            "properties (T4.1, A4.13, L4.3 / P4.4)"))
+                                       note="not unique, or needs more than a mesh: checked by "
+                                            "the properties (T4.1, A4.13, L4.3 / P4.4, T3.2, "
+                                            "C3.4 / T3.5)"))
                 continue
             try:
                 got = getattr(impl, method)(V, F)
@@ -493,6 +494,13 @@ def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison
     X = exact_laplacian()
     if method == "cotan_laplacian":
         return _matrix(method, name, got, X.Ls, X.Bs)
+    if method == "area_gradient":           # the bound of T3.9 (properties.laplacian)
+        P = np.asarray(ex.mesh_case().arrays()[0])
+        exact = np.zeros_like(P)
+        exact[X.keep] = X.area_gradient
+        bound = X.residual_bound(abs(X.Ls) + X.Bs, P) + cv.eps() * np.abs(exact)
+        return _numeric(method, name, np.asarray(got, dtype=np.float64), exact, bound,
+                        lambda k: f"vertex {k[0]}, coordinate {k[1]}")
     from ddg_oracle.properties.laplacian import vertex_area_bounds
     vb, bb = vertex_area_bounds(X)
     bound = vb if method == "vertex_areas_voronoi" else bb

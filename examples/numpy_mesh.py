@@ -80,3 +80,28 @@ class NumpyMesh(NumpyCotan):
         out = np.zeros(len(V))
         np.add.at(out, F, third[:, None])
         return out
+
+    @staticmethod
+    def area_gradient(V, F):
+        # no cotangent: per face, grad_{v_i} A = 1/2 n x (v_k - v_j) (L3.8), n the unit normal
+        V, F = np.asarray(V, float), np.asarray(F)
+        X = V[F]
+        N = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
+        N /= np.linalg.norm(N, axis=1)[:, None]
+        out = np.zeros_like(V)
+        for c in range(3):
+            j, k = (c + 1) % 3, (c + 2) % 3
+            np.add.at(out, F[:, c], 0.5 * np.cross(N, X[:, k] - X[:, j]))
+        return out
+
+    def solve_dirichlet(self, V, F, boundary, values):
+        # the Dirichlet problem with the cotan Laplacian: L_II u_I = -L_IB c (sparse LU)
+        import scipy.sparse.linalg as sla
+        L = self.cotan_laplacian(V, F).tocsr()
+        boundary = np.asarray(boundary, dtype=np.int64)
+        u = np.zeros(L.shape[0])
+        u[boundary] = values
+        inner = np.setdiff1d(np.arange(L.shape[0]), boundary)
+        if len(inner):
+            u[inner] = sla.spsolve(L[inner][:, inner].tocsc(), -(L[inner][:, boundary] @ u[boundary]))
+        return u

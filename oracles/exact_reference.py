@@ -15,7 +15,7 @@ from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.exact.measures import surd_sum
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from ddg_oracle.properties.protocol import ISOLATED_VERTEX
+from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
 
 from .arrays import Referenced
 
@@ -84,6 +84,48 @@ class ReferenceImplementation:
     # chapter 3
     def cotan_laplacian(self, V, F):
         return Referenced(V, F).embed(laplacian.cotan_laplacian(self._s(V, F)).to_scipy())
+
+    def area_gradient(self, V, F):
+        from ddg_oracle.reference.areas import area_gradient_floats
+        r = Referenced(V, F)
+        out = np.zeros((r.n, 3))              # a vertex used by no face: no area to move
+        out[r.keep] = np.array(area_gradient_floats(self._s(V, F)), dtype=np.float64).reshape(-1, 3)
+        return out
+
+    def solve_dirichlet(self, V, F, boundary, values):
+        """The exact solution (C3.4, exact elimination over the Surd cotan weights; the
+        boundary values taken exactly as the floats they are), correctly rounded.  Only
+        on planar meshes (every z equal: the cotan weights are rational, the elimination
+        is over Fractions); elsewhere :class:`OutsideDomain`, because exact elimination
+        over the square roots of every face does not finish on float meshes (issue 18).
+        The properties do not need it: they check a solver by the exact energy."""
+        from fractions import Fraction
+        from ddg_oracle.reference.dirichlet import solve_dirichlet
+        r = Referenced(V, F)
+        boundary = np.asarray(boundary, dtype=np.int64).reshape(-1)
+        values = np.asarray(values, dtype=np.float64).reshape(-1)
+        if len(boundary) != len(values):
+            raise ValueError(f"solve_dirichlet: {len(boundary)} boundary vertices but "
+                             f"{len(values)} values")
+        if len(r.V) and np.any(r.V[:, 2] != r.V[0, 2]):
+            raise OutsideDomain("the reference solves the Dirichlet problem exactly only on "
+                                "planar meshes (rational cotan weights)")
+        compact = {int(v): k for k, v in enumerate(r.keep)}
+        fixed = {}
+        for v, c in zip(boundary.tolist(), values.tolist()):
+            if not 0 <= v < r.n:
+                raise IndexError(f"solve_dirichlet: boundary vertex {v} is not a vertex 0..{r.n - 1}")
+            if not math.isfinite(c):
+                raise ValueError(f"solve_dirichlet: boundary value {c} at vertex {v} is not finite")
+            fixed[v] = c
+        if r.isolated and any(v not in fixed for v in range(r.n) if v not in compact):
+            raise ValueError("solve_dirichlet: a vertex used by no face is not in the boundary "
+                             "set: its value is not determined")
+        u = solve_dirichlet(self._s(V, F), {compact[v]: Fraction(c) for v, c in fixed.items()
+                                            if v in compact})
+        out = np.array([fixed.get(v, 0.0) for v in range(r.n)], dtype=np.float64)
+        out[r.keep] = [_view(x) for x in u]
+        return out
 
     def vertex_areas_barycentric(self, V, F):
         # the exact areas, correctly rounded from integers (== their float views)

@@ -11,7 +11,8 @@ are one JSON object per line on the program's stdin and stdout:
   implements; the other two optional: float64 and the reference's conventions
   by default);
 - then one request per call: ``{"id": 7, "method": "angle_defects", "V": [[x, y,
-  z], ...], "F": [[i, j, k], ...]}`` (``planar_delaunay``: ``"P": [[x, y], ...]``),
+  z], ...], "F": [[i, j, k], ...]}`` (``planar_delaunay``: ``"P": [[x, y], ...]``;
+  ``solve_dirichlet`` also ``"boundary": [i, ...], "values": [x, ...]``),
   floats written so that they round-trip (read them with ``strtod``), answered
   with ``{"id": 7, "value": ...}`` in the shape docs/protocol.md gives per
   method, or ``{"id": 7, "error": {"kind": "outside_domain" | "failed",
@@ -97,8 +98,11 @@ def _decode(method: str, value, n: int, m: int):
         if not isinstance(value, list) or not all(isinstance(loop, list) for loop in value):
             raise DriverFailed(f"{method}: expected a list of vertex lists, got {_short(value)}")
         return [[int(v) for v in loop] for loop in value]
-    if method in ("angle_defects", "vertex_areas_barycentric", "vertex_areas_voronoi"):
+    if method in ("angle_defects", "vertex_areas_barycentric", "vertex_areas_voronoi",
+                  "solve_dirichlet"):
         return _array(value, method, (n,), np.float64)
+    if method == "area_gradient":
+        return _array(value, method, (n, 3), np.float64)
     if method == "corner_angles":
         return _array(value, method, (m, 3), np.float64)
     if method == "is_locally_delaunay":
@@ -301,7 +305,7 @@ class Executable:
 
     # --- calls ------------------------------------------------------------------------
 
-    def call(self, method: str, V, F=None):
+    def call(self, method: str, V, F=None, boundary=None, values=None):
         if self._proc is None or self._proc.poll() is not None:
             if self._proc is not None:
                 self._stop()
@@ -316,6 +320,9 @@ class Executable:
             V, F = checked_arrays(V, F)
             request = {"id": k, "method": method, "V": V.tolist(), "F": F.tolist()}
             n, m = len(V), len(F)
+            if method == "solve_dirichlet":
+                request["boundary"] = np.asarray(boundary, dtype=np.int64).reshape(-1).tolist()
+                request["values"] = np.asarray(values, dtype=np.float64).reshape(-1).tolist()
         self._send(request, method)
         answer = self._receive(method, call_limit(self.timeout, max(n, m)))
         if not isinstance(answer, dict) or answer.get("id") != k:
@@ -334,6 +341,8 @@ class Executable:
         if method in METHODS and method in self.__dict__.get("methods", ()):
             if method == "planar_delaunay":
                 return lambda P: self.call(method, P)
+            if method == "solve_dirichlet":
+                return lambda V, F, boundary, values: self.call(method, V, F, boundary, values)
             return lambda V, F: self.call(method, V, F)
         raise AttributeError(method)
 
@@ -406,6 +415,11 @@ def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
             try:
                 if method == "planar_delaunay":
                     value = impl.planar_delaunay(np.asarray(request["P"], dtype=np.float64))
+                elif method == "solve_dirichlet":
+                    value = impl.solve_dirichlet(np.asarray(request["V"], dtype=np.float64),
+                                                 np.asarray(request["F"], dtype=np.int64),
+                                                 np.asarray(request["boundary"], dtype=np.int64),
+                                                 np.asarray(request["values"], dtype=np.float64))
                 else:
                     value = getattr(impl, method)(np.asarray(request["V"], dtype=np.float64),
                                                   np.asarray(request["F"], dtype=np.int64))

@@ -157,6 +157,20 @@ class Gpytoolbox:
         V, F = _arrays(V, F)
         return scipy.sparse.csr_matrix(gpy.cotangent_laplacian(V, F))
 
+    def area_gradient(self, V, F) -> np.ndarray:
+        """``gpytoolbox.cotangent_laplacian(V, F) @ V`` (positive semidefinite: no sign change)."""
+        V, F = _arrays(V, F)
+        return np.asarray(gpy.cotangent_laplacian(V, F) @ V)
+
+    def solve_dirichlet(self, V, F, boundary, values) -> np.ndarray:
+        """``gpytoolbox.min_quad_with_fixed(Q=cotangent_laplacian, k=boundary, y=values)``:
+        the minimiser of 1/2 u^T L u with u fixed on the boundary set (T3.5)."""
+        V, F = _arrays(V, F)
+        return np.asarray(gpy.min_quad_with_fixed(
+            scipy.sparse.csr_matrix(gpy.cotangent_laplacian(V, F)),
+            k=np.asarray(boundary, dtype=np.int64).reshape(-1),
+            y=np.asarray(values, dtype=np.float64).reshape(-1))).reshape(-1)
+
     def vertex_areas_barycentric(self, V, F) -> np.ndarray:
         """Diagonal of ``gpytoolbox.massmatrix(V, F, type="barycentric")``: dblA / 6 per
         corner."""

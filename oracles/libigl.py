@@ -194,6 +194,20 @@ class Libigl:
         V, F = _arrays(V, F)
         return scipy.sparse.csr_matrix(-igl.cotmatrix(V, F))
 
+    def area_gradient(self, V, F) -> np.ndarray:
+        """``-igl.cotmatrix(V, F) @ V``: libigl's mean curvature normal before the mass
+        matrix (tutorial 202: HN = -M^-1 L V), the area gradient with the sign changed."""
+        V, F = _arrays(V, F)
+        return np.asarray(-(igl.cotmatrix(V, F) @ V))
+
+    def solve_dirichlet(self, V, F, boundary, values) -> np.ndarray:
+        """``igl.harmonic(V, F, b, bc, 1)``: min_quad_with_fixed on libigl's cotmatrix with
+        the values fixed on b (k = 1: the mass matrix plays no part)."""
+        V, F = _arrays(V, F)
+        b = np.asarray(boundary, dtype=np.int64).reshape(-1)
+        bc = np.asarray(values, dtype=np.float64).reshape(-1, 1)
+        return np.asarray(igl.harmonic(V, F, b, bc, 1)).reshape(-1)[:len(V)]
+
     def vertex_areas_barycentric(self, V, F) -> np.ndarray:
         """Diagonal of ``igl.massmatrix(V, F, MASSMATRIX_TYPE_BARYCENTRIC)``: dblA / 6 per
         corner."""

@@ -44,6 +44,8 @@ VALUES: dict[str, dict] = {
                                    "minItems": 3, "maxItems": 3}),
     "area": _NUMBER,
     "cotan_laplacian": {"$ref": "#/$defs/sparse"},
+    "area_gradient": _array(_array(_NUMBER, 3)),
+    "solve_dirichlet": _array(_NUMBER),
     "vertex_areas_barycentric": _array(_NUMBER),
     "vertex_areas_voronoi": _array(_NUMBER),
     "is_locally_delaunay": _array(_array({"type": "boolean"}, 3)),
@@ -56,6 +58,8 @@ VALUES: dict[str, dict] = {
 }
 
 _PLANAR_INPUT = {"planar_delaunay"}       # "P" instead of "V" and "F"
+#: inputs beyond V and F: the boundary set and its values of the Dirichlet problem
+_EXTRA_INPUT = {"solve_dirichlet": {"boundary": _array(_INDEX), "values": _array(_NUMBER)}}
 
 
 def schema() -> dict:
@@ -108,7 +112,8 @@ def schema() -> dict:
         if method in _PLANAR_INPUT:
             inputs = {"P": _array(_array(_NUMBER, 2))}
         else:
-            inputs = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3))}
+            inputs = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3)),
+                      **_EXTRA_INPUT.get(method, {})}
         defs[f"request.{method}"] = {
             "type": "object", "required": ["id", "method", *inputs], "additionalProperties": False,
             "properties": {"id": {"type": "integer"}, "method": {"const": method}, **inputs}}

@@ -54,7 +54,7 @@ from ddg_oracle.reference.metric import heron16
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
-from .protocol import ISOLATED_VERTEX, eps
+from .protocol import ISOLATED_VERTEX, capabilities, eps
 from .strategies import (MeshCase, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
                          surface_meshes, with_boundary, with_functions, with_isolated)
@@ -476,62 +476,98 @@ def _solve(A, V0, c):
     return u, I
 
 
-@prop("T3.2", "maximum principle: with positive weights, the solution of the Dirichlet problem "
-      "(the implementation's L) takes its max and min on V0, within the propagated bound",
-      needs={"cotan_laplacian"}, strategy=lambda: with_boundary(acute_meshes()))
-def maximum_principle(impl, case: MeshCase):
-    A = _dense(impl, case, "T3.2")
+def _dirichlet_solutions(impl, case: MeshCase, pid: str):
+    """The implementation's solutions of the case's Dirichlet problem (V0 = case.boundary,
+    values case.values there), one per route it has: its matrix (``cotan_laplacian``,
+    solved here by dense LU) and its own solver (``solve_dirichlet``).  Yields (route,
+    X, u, I, M, r): I the unknowns, M a float matrix within the entry bounds of the exact
+    L (the implementation's, or the exact L's float view for its solver), r per row the
+    bound on |(L u)(i)| of a backward-stable solve with a matrix within those bounds."""
     X = Exact.of(case)
     V0 = list(case.boundary)
     c = np.array([float(x) for x in case.values])
-    u, I = _solve(A, V0, c)
-    if not I:
-        return
-    # L_exact,II (u - u*) = r with |r| <= residual bound; ||L_II^-1||_inf from the computed inverse
-    inv_norm = float(np.abs(np.linalg.inv(A[np.ix_(I, I)])).sum(axis=1).max())
-    tol = 2 * inv_norm * float(X.residual_bound(A, u)[I].max())
-    hi, lo = float(c[V0].max()), float(c[V0].min())
-    excess = max(float(u[I].max()) - hi, lo - float(u[I].min()), 0.0)
-    r = _record("T3.2", excess, tol)
-    if r > 1:
-        i = I[int(np.argmax(np.maximum(u[I] - hi, lo - u[I])))]
-        _fail("T3.2", impl, case, "a harmonic function leaves [min, max] of its boundary values",
-              element=f"vertex {i}, V0 = {V0}", expected=f"in [{lo}, {hi}] +- {tol:.3g}",
-              observed=float(u[i]))
+    if "cotan_laplacian" in capabilities(impl):
+        A = _dense(impl, case, pid)
+        u, I = _solve(A, V0, c)
+        yield "cotan_laplacian", X, u, I, A, X.residual_bound(A, u)
+    if "solve_dirichlet" in capabilities(impl):
+        V, F = case.arrays()
+        route = "solve_dirichlet"
+        u = np.asarray(impl.solve_dirichlet(V, F, np.array(V0, dtype=np.int64), c[V0]),
+                       dtype=np.float64)
+        if u.shape != (case.n,):
+            _fail(pid, impl, case, f"{route}: the solution has shape {u.shape}",
+                  expected=(case.n,), observed=u.shape)
+        if not np.all(np.isfinite(u)):
+            i = int(np.argmax(~np.isfinite(u)))
+            _fail(pid, impl, case, f"{route}: the solution is not finite",
+                  element=f"vertex {i}", observed=float(u[i]))
+        # the boundary values are given: a solver keeps them (a penalty method does not)
+        off = np.abs(u[V0] - c[V0])
+        k = int(np.argmax(off)) if len(V0) else 0
+        if len(V0) and off[k] > eps() * abs(c[V0][k]):
+            _fail(pid, impl, case, f"{route}: the solution does not take the given value on "
+                  "the boundary set", element=f"vertex {V0[k]}", expected=float(c[V0][k]),
+                  observed=float(u[V0][k]), bound=eps() * abs(c[V0][k]))
+        I = [v for v in range(case.n) if v not in set(V0)]
+        M = X.Lf
+        yield route, X, u, I, M, X.residual_bound(np.abs(M) + X.B, u)
 
 
-@prop("C3.4 / T3.5", "the Dirichlet solution with the implementation's L is the minimiser of the "
-      "exact piecewise linear energy: its exact gradient vanishes off V0 and E(u + phi) >= E(u)",
-      needs={"cotan_laplacian"},
+@prop("T3.2", "maximum principle: with positive weights, the solution of the Dirichlet problem "
+      "(the implementation's L, and its own solver) takes its max and min on V0, within the "
+      "propagated bound", needs_any={"cotan_laplacian", "solve_dirichlet"},
+      strategy=lambda: with_boundary(acute_meshes()))
+def maximum_principle(impl, case: MeshCase):
+    V0 = list(case.boundary)
+    c = np.array([float(x) for x in case.values])
+    for route, X, u, I, A, res in _dirichlet_solutions(impl, case, "T3.2"):
+        if not I:
+            return
+        # L_exact,II (u - u*) = r with |r| <= residual bound; ||L_II^-1||_inf from the computed inverse
+        inv_norm = float(np.abs(np.linalg.inv(A[np.ix_(I, I)])).sum(axis=1).max())
+        tol = 2 * inv_norm * float(res[I].max())
+        hi, lo = float(c[V0].max()), float(c[V0].min())
+        excess = max(float(u[I].max()) - hi, lo - float(u[I].min()), 0.0)
+        r = _record("T3.2", excess, tol)
+        if r > 1:
+            i = I[int(np.argmax(np.maximum(u[I] - hi, lo - u[I])))]
+            _fail("T3.2", impl, case, f"{route}: a harmonic function leaves [min, max] of its "
+                  "boundary values", element=f"vertex {i}, V0 = {V0}",
+                  expected=f"in [{lo}, {hi}] +- {tol:.3g}", observed=float(u[i]))
+
+
+@prop("C3.4 / T3.5", "the Dirichlet solution (the implementation's L, and its own solver) is "
+      "the minimiser of the exact piecewise linear energy: its exact gradient vanishes off V0 "
+      "and E(u + phi) >= E(u)", needs_any={"cotan_laplacian", "solve_dirichlet"},
       strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
 def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
-    A = _dense(impl, case, "C3.4 / T3.5")
-    X = Exact.of(case)
     V0 = list(case.boundary)
-    c = np.array([float(x) for x in case.values])
-    u, I = _solve(A, V0, c)
-    if not I:
-        return
-    ue = [Fraction(float(x)) for x in u]
-    rb = 4 * X.residual_bound(A, u)
-    errs, bounds = [], []
-    for i in I:
-        e = [Fraction(0)] * X.n
-        e[i] = Fraction(1)
-        g = float(dirichlet_inner_product_pl(X.surface, ue, e))     # dE/du(i), exact
-        errs.append(abs(g))
-        bounds.append(rb[i])
-        if abs(g) > rb[i]:
-            _fail("C3.4 / T3.5", impl, case, "the solution is not a critical point of the energy",
-                  element=f"vertex {i}, V0 = {V0}", expected=f"0 +- {rb[i]:.3g}", observed=g)
-    _record("C3.4 / T3.5", errs, bounds)
-    phi = [Fraction(0) if v in set(V0) else x for v, x in enumerate(case.second)]
-    gain = float(dirichlet_energy_pl(X.surface, [a + b for a, b in zip(ue, phi)])
-                 - dirichlet_energy_pl(X.surface, ue))
-    slack = float(sum(abs(float(p)) * b for p, b in zip(phi, rb)))
-    if gain < -slack:
-        _fail("C3.4 / T3.5", impl, case, "a perturbation vanishing on V0 lowers the energy",
-              element=f"phi = {[str(x) for x in phi]}", expected=f">= {-slack:.3g}", observed=gain)
+    for route, X, u, I, _, res in _dirichlet_solutions(impl, case, "C3.4 / T3.5"):
+        if not I:
+            return
+        ue = [Fraction(float(x)) for x in u]
+        rb = 4 * res
+        errs, bounds = [], []
+        for i in I:
+            e = [Fraction(0)] * X.n
+            e[i] = Fraction(1)
+            g = float(dirichlet_inner_product_pl(X.surface, ue, e))     # dE/du(i), exact
+            errs.append(abs(g))
+            bounds.append(rb[i])
+            if abs(g) > rb[i]:
+                _fail("C3.4 / T3.5", impl, case, f"{route}: the solution is not a critical "
+                      "point of the energy", element=f"vertex {i}, V0 = {V0}",
+                      expected=f"0 +- {rb[i]:.3g}", observed=g)
+        _record("C3.4 / T3.5", errs, bounds)
+        phi = [Fraction(0) if v in set(V0) else x for v, x in enumerate(case.second)]
+        gain = float(dirichlet_energy_pl(X.surface, [a + b for a, b in zip(ue, phi)])
+                     - dirichlet_energy_pl(X.surface, ue))
+        slack = float(sum(abs(float(p)) * b for p, b in zip(phi, rb)))
+        if gain < -slack:
+            _fail("C3.4 / T3.5", impl, case, f"{route}: a perturbation vanishing on V0 lowers "
+                  "the energy", element=f"phi = {[str(x) for x in phi]}",
+                  expected=f">= {-slack:.3g}", observed=gain)
 
 
 @prop("P3.10", "positive weights, u harmonic at i => u(i) in the convex hull of its neighbours: "
@@ -606,45 +642,64 @@ def area_gradient_of_a_triangle(impl, case: MeshCase):
     _area_gradient_check("L3.8", impl, case)
 
 
-def _area_gradient_check(pid, impl, case):
-    A = _sparse(impl, case, pid)
+def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
+    """(L V)(i) of the implementation's matrix, or its own ``area_gradient``, against the
+    exact area gradient.  The bound is that of L V with a matrix within the entry bounds
+    (the implementation's matrix, or the exact L's float view for its own gradient, which
+    may take another route: 1/2 n x (v_k - v_j) has the same conditioning, 1 / sin of the
+    face's smallest angle, as the cotangents)."""
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
-    got = A @ P
+    if route == "cotan_laplacian":
+        A = _sparse(impl, case, pid)
+        got = A @ P
+    else:
+        V, F = case.arrays()
+        got = np.asarray(impl.area_gradient(V, F), dtype=np.float64)
+        if got.shape != P.shape:
+            _fail(pid, impl, case, f"area_gradient has shape {got.shape}", expected=P.shape,
+                  observed=got.shape)
+        A = abs(X.Ls) + X.Bs
     exact = np.zeros_like(P)                 # an isolated vertex: no face, no gradient
     exact[X.keep] = X.area_gradient
     bound = X.residual_bound(A, P) + eps() * np.abs(exact)
     err = np.abs(got - exact)
+    err[~np.isfinite(got)] = np.inf
     _record(pid, err, bound)
     (i, k), r = _worst(err, bound)
     if r > 1:
         planar = all(p[2] == case.positions[0][2] for p in case.positions)
         what = " (linear precision fails: a planar interior vertex)" if planar and \
             i in X.keep and not X.triangulation.is_boundary_vertex(X.keep.index(i)) else ""
-        _fail(pid, impl, case, f"(L V)(i) is not the area gradient ({r:.3g} x the bound){what}",
+        label = "(L V)(i)" if route == "cotan_laplacian" else "area_gradient"
+        _fail(pid, impl, case, f"{label} is not the area gradient ({r:.3g} x the bound){what}",
               element=f"vertex {i}, coordinate {k}", expected=exact[i].tolist(),
               observed=got[i].tolist())
 
 
 @prop("T3.9", "area as Dirichlet energy: sum_k x_k^T L x_k / 2 = A(S) and L V = grad A (so L V = 0 "
-      "at interior vertices of a planar mesh: linear precision)",
-      needs={"cotan_laplacian"},
+      "at interior vertices of a planar mesh: linear precision); the implementation's own "
+      "area_gradient equals grad A too", needs_any={"cotan_laplacian", "area_gradient"},
       strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes(),
                                  surface_meshes(isolated=True)))
 def area_as_dirichlet_energy(impl, case: MeshCase):
-    A = _sparse(impl, case, "T3.9")
-    X = Exact.of(case)
-    P = np.array([[float(x) for x in p] for p in case.positions])
-    energy = float(sum(P[:, k] @ (A @ P[:, k]) for k in range(3))) / 2
-    area, area_err = total_area_view(X.metric)
-    aP, absA = np.abs(P), abs(A)
-    bound = 0.5 * sum(aP[:, k] @ (X.Bs @ aP[:, k]) + gamma(2 * X.n + 6) * (aP[:, k] @ (absA @ aP[:, k]))
-                      for k in range(3)) + eps() * area + area_err
-    r = _record("T3.9", abs(energy - area), bound)
-    if r > 1:
-        _fail("T3.9", impl, case, f"sum_k E(x_k) is not the area ({r:.3g} x the bound)",
-              expected=area, observed=energy, bound=bound)
-    _area_gradient_check("T3.9", impl, case)
+    caps = capabilities(impl)
+    if "cotan_laplacian" in caps:
+        A = _sparse(impl, case, "T3.9")
+        X = Exact.of(case)
+        P = np.array([[float(x) for x in p] for p in case.positions])
+        energy = float(sum(P[:, k] @ (A @ P[:, k]) for k in range(3))) / 2
+        area, area_err = total_area_view(X.metric)
+        aP, absA = np.abs(P), abs(A)
+        bound = 0.5 * sum(aP[:, k] @ (X.Bs @ aP[:, k]) + gamma(2 * X.n + 6) * (aP[:, k] @ (absA @ aP[:, k]))
+                          for k in range(3)) + eps() * area + area_err
+        r = _record("T3.9", abs(energy - area), bound)
+        if r > 1:
+            _fail("T3.9", impl, case, f"sum_k E(x_k) is not the area ({r:.3g} x the bound)",
+                  expected=area, observed=energy, bound=bound)
+        _area_gradient_check("T3.9", impl, case)
+    if "area_gradient" in caps:
+        _area_gradient_check("T3.9", impl, case, route="area_gradient")
 
 
 @prop("A3.6", "one minimal surface step (solve L_S x = 0 off the boundary with the "

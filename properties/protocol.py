@@ -36,6 +36,14 @@ METHODS: dict[str, str] = {
     # chapter 3: Laplacians and mass matrices
     "cotan_laplacian": "(n, n) scipy.sparse: (L f)(i) = sum_j nu(ij) (f(i) - f(j)), "
                        "nu = 1/2 (cot a + cot b), boundary 1/2 cot a; positive semidefinite",
+    "area_gradient": "(n, 3) float array: the gradient of the total area with respect to each "
+                     "vertex position, grad_v A = (L V)(v) with L as cotan_laplacian (T3.9, L3.8): "
+                     "the integrated mean curvature normal, pointing where the area grows (outward "
+                     "at a convex vertex); zero at a vertex used by no face",
+    "solve_dirichlet": "solve_dirichlet(V, F, boundary, values): (n,) float array u with "
+                       "u[boundary] = values ((k,) int and (k,) float arrays) and (L u)(i) = 0 at "
+                       "every other vertex, L as cotan_laplacian: the discrete Dirichlet problem "
+                       "(C3.4 / T3.5); every component of the mesh meets the boundary set",
     "vertex_areas_barycentric": "(n,) float array: one third of the area of each incident face",
     "vertex_areas_voronoi": "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, "
                             "obtuse-triangle rule)",
@@ -66,6 +74,7 @@ ISOLATED_VERTEX: dict[str, float] = {
     "angle_defects": math.tau,
     "vertex_areas_barycentric": 0.0,
     "vertex_areas_voronoi": 0.0,
+    "area_gradient": 0.0,
 }
 
 
@@ -151,6 +160,9 @@ KNOWN_ALIASES: dict[str, str] = {
     "euler": "euler_characteristic", "euler_number": "euler_characteristic",
     "intrinsic_delaunay_cotmatrix": "intrinsic_delaunay_laplacian",
     "delaunay": "planar_delaunay", "mean_curvature": "edge_mean_curvature",
+    "mean_curvature_normal": "area_gradient", "area_grad": "area_gradient",
+    "harmonic": "solve_dirichlet", "min_quad_with_fixed": "solve_dirichlet",
+    "dirichlet": "solve_dirichlet",
 }
 
 
@@ -191,7 +203,7 @@ def require_protocol(impl) -> frozenset[str]:
     >>> require_protocol(Typo())
     Traceback (most recent call last):
     ...
-    ddg_oracle.properties.protocol.NotAnImplementation: Typo defines none of the protocol's methods (did you mean `angle_defects` for `angle_defect`?); the methods are: euler_characteristic, boundary_loops, is_orientable, genus, corner_angles, angle_defects, edge_mean_curvature, area, cotan_laplacian, vertex_areas_barycentric, vertex_areas_voronoi, is_locally_delaunay, intrinsic_delaunay_laplacian, intrinsic_delaunay_triangulation, planar_flip_to_delaunay, planar_delaunay (ddg_oracle.properties.protocol.METHODS)
+    ddg_oracle.properties.protocol.NotAnImplementation: Typo defines none of the protocol's methods (did you mean `angle_defects` for `angle_defect`?); the methods are: euler_characteristic, boundary_loops, is_orientable, genus, corner_angles, angle_defects, edge_mean_curvature, area, cotan_laplacian, area_gradient, solve_dirichlet, vertex_areas_barycentric, vertex_areas_voronoi, is_locally_delaunay, intrinsic_delaunay_laplacian, intrinsic_delaunay_triangulation, planar_flip_to_delaunay, planar_delaunay (ddg_oracle.properties.protocol.METHODS)
     """
     caps = capabilities(impl)
     if caps:

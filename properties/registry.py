@@ -121,16 +121,32 @@ class Property:
     needs: frozenset[str]        # protocol methods the implementation must have
     strategy: Callable[[], Any]  # () -> hypothesis strategy of examples
     check: Callable[[Any, Any], None] = field(repr=False)
+    # at least one of these too, when given: the property checks each one the
+    # implementation has (T3.2 on its matrix and on its own Dirichlet solver)
+    needs_any: frozenset[str] = frozenset()
+
+    @property
+    def methods(self) -> frozenset[str]:
+        """Every protocol method the check may call."""
+        return self.needs | self.needs_any
 
     def applies_to(self, caps: frozenset[str]) -> bool:
-        return self.needs <= caps
+        return self.needs <= caps and (not self.needs_any or bool(self.needs_any & caps))
+
+    def lacks(self, caps: frozenset[str]) -> str:
+        """What an implementation with ``caps`` lacks for this property, as text ('' if none)."""
+        missing = sorted(self.needs - caps)
+        if self.needs_any and not self.needs_any & caps:
+            missing.append(" or ".join(sorted(self.needs_any)))
+        return ", ".join(missing)
 
 
 PROPERTIES: dict[str, Property] = {}
 
 
-def prop(catalog_id: str, statement: str, *, needs, strategy):
-    """Register ``check(impl, example)`` as the property of ``catalog_id``."""
+def prop(catalog_id: str, statement: str, *, needs=(), strategy, needs_any=()):
+    """Register ``check(impl, example)`` as the property of ``catalog_id``: it applies to an
+    implementation with every method of ``needs`` and at least one of ``needs_any``."""
     def register(check):
         if catalog_id in PROPERTIES:
             raise ValueError(f"property {catalog_id} registered twice")
@@ -146,7 +162,8 @@ def prop(catalog_id: str, statement: str, *, needs, strategy):
                 _epsilon.reset(token)
 
         PROPERTIES[catalog_id] = Property(
-            catalog_id, check.__name__, statement, frozenset(needs), strategy, checked)
+            catalog_id, check.__name__, statement, frozenset(needs), strategy, checked,
+            frozenset(needs_any))
         check.property_id = catalog_id
         return check
     return register

@@ -195,10 +195,9 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     """
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
-        missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE,
-                      note=f"lacks {', '.join(missing)} (protocol method"
-                           f"{'s' if len(missing) > 1 else ''} this property needs)")
+                      note=f"lacks {p.lacks(capabilities(impl))} (protocol methods this "
+                           "property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
              "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
              "stopped": None, "shrink": budget.shrink if budget is not None else None}
@@ -397,9 +396,8 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     ``counterpart`` and ``convention`` as in :func:`run_property`."""
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
-        missing = sorted(p.needs - capabilities(impl))
         return Result(p.id, p.name, name, NOT_APPLICABLE, source=source,
-                      note=f"lacks {', '.join(missing)}")
+                      note=f"lacks {p.lacks(capabilities(impl))}")
     state = {"n": 1, "last": example, "ties": 0, "tie": None, "outside": 0, "why": None}
     t0 = time.perf_counter()
     try:

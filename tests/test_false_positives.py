@@ -16,6 +16,7 @@ from examples.numpy_mesh import NumpyMesh
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.protocol import capabilities
 from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, TIE, run_property
 
 PROFILE = "ci" if os.environ.get("CI") else "default"
@@ -28,7 +29,7 @@ ALLOWED = {"reference": {PASSED, NOT_APPLICABLE}, "numpy": {PASSED, TIE, NOT_APP
 def _applicable(name):
     impl = IMPLEMENTATIONS[name]
     return [pid for pid, p in PROPERTIES.items()
-            if all(callable(getattr(impl, m, None)) for m in p.needs)]
+            if p.applies_to(capabilities(impl))]
 
 
 @pytest.mark.parametrize("name, pid", [(n, pid) for n in IMPLEMENTATIONS for pid in _applicable(n)])

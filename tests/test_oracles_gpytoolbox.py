@@ -136,14 +136,16 @@ def test_bad_input_raises_a_value_error_before_gpytoolbox():
            (np.where(np.arange(12).reshape(4, 3) == 4, np.nan, V), F), (V, F[:, :2])]
     for method in sorted(capabilities(GPY)):
         for W, G in bad:
+            extra = ([0], [1.0]) if method == "solve_dirichlet" else ()
             with pytest.raises(ValueError):
-                getattr(GPY, method)(W, G)
+                getattr(GPY, method)(W, G, *extra)
 
 
 def test_capabilities_are_what_gpytoolbox_computes():
     """No orientability, genus or Delaunay functions in gpytoolbox: not applicable."""
     assert capabilities(GPY) == {"euler_characteristic", "boundary_loops", "corner_angles",
                             "angle_defects", "edge_mean_curvature", "area", "cotan_laplacian",
+                            "area_gradient", "solve_dirichlet",
                             "vertex_areas_barycentric", "vertex_areas_voronoi"}
 
 
