@@ -190,3 +190,12 @@ def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it
                          text=True, timeout=600)
     assert out.returncode == 0, out.stdout + out.stderr
     assert "documented convention CG3" in out.stdout and "cgal passes the same example" in out.stdout
+
+
+@pytest.mark.parametrize("pid", ["T3.2", "C3.4 / T3.5", "T3.9"])
+def test_cgal_area_gradient_and_dirichlet_solver_pass(cgal, pid):
+    # T3.2 and C3.4 / T3.5 check the driver's own solve (Eigen's SparseLU on CGAL's
+    # weights) besides its matrix; T3.9 its own L V
+    assert {"area_gradient", "solve_dirichlet"} <= cgal.methods
+    r = run_property(PROPERTIES[pid], cgal, profile("ci"))
+    assert r.status == PASSED and r.examples > 0, r.failure or r.error

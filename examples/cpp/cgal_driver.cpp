@@ -13,6 +13,9 @@
 //   vertex_areas_voronoi          Weights::mixed_voronoi_area(p, q, r) per corner q
 //   vertex_areas_barycentric      Weights::barycentric_area(p, q, r) per corner q
 //   area                          Polygon_mesh_processing::area
+//   area_gradient                 L V with the same (halved) Edge_cotangent_weight
+//   solve_dirichlet               L_II u_I = -L_IB c with the same weights, Eigen's
+//                                 SparseLU (the solver CGAL's Eigen traits offer)
 //   intrinsic_delaunay_laplacian  Heat_method_3's Intrinsic_Delaunay_triangulation_3
 //                                 (the heat method's iDT mode): cotan weights read off
 //                                 its per-face layouts (hcmap), 1/2 (cot a + cot b)
@@ -26,6 +29,9 @@
 #include <CGAL/Weights/barycentric_region_weights.h>
 #include <CGAL/Weights/cotangent_weights.h>
 #include <CGAL/Weights/mixed_voronoi_region_weights.h>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
 
 #include "ddg_protocol.hpp"
 
@@ -52,7 +58,7 @@ static SurfaceMesh surface_mesh(const ddg::Mesh& mesh) {
     return sm;
 }
 
-static std::string cotan_laplacian(const SurfaceMesh& sm, double factor) {
+static ddg::Triplets cotan_triplets(const SurfaceMesh& sm, double factor) {
     CGAL::Weights::Edge_cotangent_weight<SurfaceMesh> weight(sm, sm.points());
     ddg::Triplets L;
     L.n = sm.number_of_vertices();
@@ -62,7 +68,63 @@ static std::string cotan_laplacian(const SurfaceMesh& sm, double factor) {
         if (sm.is_border(h)) h = sm.opposite(h);
         L.add_edge_weight(sm.source(h).idx(), sm.target(h).idx(), factor * weight(h));
     }
-    return L.json();
+    return L;
+}
+
+static std::string cotan_laplacian(const SurfaceMesh& sm, double factor) {
+    return cotan_triplets(sm, factor).json();
+}
+
+// grad_v A = (L V)(v) (T3.9), L with the notes' weights
+static std::string area_gradient(const SurfaceMesh& sm) {
+    ddg::Triplets L = cotan_triplets(sm, 0.5);
+    std::vector<std::array<double, 3>> G(L.n, {0.0, 0.0, 0.0});
+    for (size_t k = 0; k < L.values.size(); ++k) {
+        const Point& p = sm.point(VertexIndex(L.cols[k]));
+        for (int d = 0; d < 3; ++d) G[L.rows[k]][d] += L.values[k] * p[d];
+    }
+    return ddg::list(G, [](const std::array<double, 3>& g) {
+        return "[" + ddg::num(g[0]) + "," + ddg::num(g[1]) + "," + ddg::num(g[2]) + "]";
+    });
+}
+
+// the Dirichlet problem (C3.4): u = c on the boundary set, (L u)(i) = 0 elsewhere
+static std::string solve_dirichlet(const SurfaceMesh& sm, const ddg::Mesh& mesh) {
+    const long n = long(sm.number_of_vertices());
+    if (mesh.boundary.size() != mesh.values.size())
+        throw std::runtime_error("boundary and values differ in length");
+    std::vector<double> u(n, 0.0);
+    std::vector<long> slot(n, -1);          // index among the unknowns, -1 on the boundary
+    std::vector<bool> fixed(n, false);
+    for (size_t k = 0; k < mesh.boundary.size(); ++k) {
+        const long b = mesh.boundary[k];
+        if (b < 0 || b >= n) throw std::runtime_error("boundary vertex out of range");
+        fixed[b] = true;
+        u[b] = mesh.values[k];
+    }
+    long m = 0;
+    for (long v = 0; v < n; ++v)
+        if (!fixed[v]) slot[v] = m++;
+    if (m == 0) return ddg::numbers(u);
+    ddg::Triplets L = cotan_triplets(sm, 0.5);
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m);
+    for (size_t k = 0; k < L.values.size(); ++k) {
+        const long i = L.rows[k], j = L.cols[k];
+        if (slot[i] < 0) continue;
+        if (slot[j] >= 0) entries.emplace_back(slot[i], slot[j], L.values[k]);
+        else rhs[slot[i]] -= L.values[k] * u[j];
+    }
+    Eigen::SparseMatrix<double> A(m, m);
+    A.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    lu.compute(A);
+    if (lu.info() != Eigen::Success)
+        throw std::runtime_error("SparseLU: the Dirichlet system is singular");
+    Eigen::VectorXd x = lu.solve(rhs);
+    for (long v = 0; v < n; ++v)
+        if (slot[v] >= 0) u[v] = x[slot[v]];
+    return ddg::numbers(u);
 }
 
 template <class Area>
@@ -149,8 +211,8 @@ int main(int argc, char** argv) {
     }
     ddg::Driver driver{
         library_weights ? "cgal-library-weights" : "cgal",
-        {"cotan_laplacian", "vertex_areas_voronoi", "vertex_areas_barycentric", "area",
-         "intrinsic_delaunay_laplacian", "intrinsic_delaunay_triangulation"}};
+        {"cotan_laplacian", "area_gradient", "solve_dirichlet", "vertex_areas_voronoi",
+         "vertex_areas_barycentric", "area", "intrinsic_delaunay_laplacian", "intrinsic_delaunay_triangulation"}};
     if (library_weights) {
         driver.methods = {"cotan_laplacian"};
         // the library's own factor, declared: with --expect-conventions a failure the
@@ -169,6 +231,8 @@ int main(int argc, char** argv) {
                 return CGAL::Weights::barycentric_area(p, q, r);
             });
         if (method == "area") return ddg::num(PMP::area(sm));
+        if (method == "area_gradient") return area_gradient(sm);
+        if (method == "solve_dirichlet") return solve_dirichlet(sm, mesh);
         if (method == "intrinsic_delaunay_laplacian") {
             if (sm.number_of_faces() == 0) throw ddg::OutsideDomain("no faces");
             return intrinsic_delaunay_laplacian(sm);

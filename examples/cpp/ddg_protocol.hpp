@@ -143,6 +143,9 @@ struct Triplets {
 struct Mesh {
     std::vector<std::array<double, 3>> V;
     std::vector<std::array<long, 3>> F;
+    // solve_dirichlet only: the boundary set and its values
+    std::vector<long> boundary;
+    std::vector<double> values;
 };
 
 struct OutsideDomain : std::runtime_error {
@@ -184,6 +187,8 @@ struct Driver {
             for (const auto& f : request["F"].items)
                 mesh.F.push_back({long(f.items[0].number), long(f.items[1].number),
                                   long(f.items[2].number)});
+            for (const auto& b : request["boundary"].items) mesh.boundary.push_back(long(b.number));
+            for (const auto& x : request["values"].items) mesh.values.push_back(x.number);
             std::string answer;
             try {
                 answer = "\"value\":" + handle(method, mesh);
