@@ -88,7 +88,7 @@ class ReferenceImplementation:
     def area_gradient(self, V, F):
         from ddg_oracle.reference.areas import area_gradient_floats
         r = Referenced(V, F)
-        out = np.zeros((r.n, 3))              # a vertex used by no face: no area to move
+        out = np.full((r.n, 3), ISOLATED_VERTEX["area_gradient"])   # no face: no area to move
         out[r.keep] = np.array(area_gradient_floats(self._s(V, F)), dtype=np.float64).reshape(-1, 3)
         return out
 

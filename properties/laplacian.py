@@ -253,6 +253,22 @@ class Exact:
         used = set(keep)
         return comps + [[v] for v in range(self.case.n) if v not in used]
 
+    def own_route_bound(self, u):
+        """:meth:`residual_bound` for an implementation's own solver or gradient, whose
+        matrix is unseen: any matrix within the entry bounds of the exact L (|A| <= |L's
+        float view| + B), used backward-stably."""
+        return self.residual_bound(abs(self.Ls) + self.Bs, u)
+
+    def area_gradient_bound(self, P) -> tuple[np.ndarray, np.ndarray]:
+        """(n, 3) exact area gradient (correctly rounded; the protocol's value at an
+        isolated vertex) and the bound on an implementation's own ``area_gradient`` at the
+        float positions P (T3.9): L V with a matrix within the entry bounds, plus its
+        rounding.  Its own route may differ (1/2 n x (v_k - v_j)); that one has the same
+        conditioning, 1 / sin of the face's smallest angle, as the cotangents."""
+        exact = np.full(np.shape(P), ISOLATED_VERTEX["area_gradient"])
+        exact[self.keep] = self.area_gradient
+        return exact, self.own_route_bound(P) + eps() * np.abs(exact)
+
     def residual_bound(self, A, u):
         """Per row: sum_j (B_ij + gamma_{3n} |A_ij|) |u_j| (u: n or n x k): how far A u may be
         from the exact L u through the entry errors and a backward-stable evaluation or solve."""
@@ -510,8 +526,7 @@ def _dirichlet_solutions(impl, case: MeshCase, pid: str):
                   "the boundary set", element=f"vertex {V0[k]}", expected=float(c[V0][k]),
                   observed=float(u[V0][k]), bound=eps() * abs(c[V0][k]))
         I = [v for v in range(case.n) if v not in set(V0)]
-        M = X.Lf
-        yield route, X, u, I, M, X.residual_bound(np.abs(M) + X.B, u)
+        yield route, X, u, I, X.Lf, X.own_route_bound(u)
 
 
 @prop("T3.2", "maximum principle: with positive weights, the solution of the Dirichlet problem "
@@ -644,25 +659,21 @@ def area_gradient_of_a_triangle(impl, case: MeshCase):
 
 def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
     """(L V)(i) of the implementation's matrix, or its own ``area_gradient``, against the
-    exact area gradient.  The bound is that of L V with a matrix within the entry bounds
-    (the implementation's matrix, or the exact L's float view for its own gradient, which
-    may take another route: 1/2 n x (v_k - v_j) has the same conditioning, 1 / sin of the
-    face's smallest angle, as the cotangents)."""
+    exact area gradient (T3.9, L3.8), within :meth:`Exact.residual_bound` of its matrix,
+    or :meth:`Exact.area_gradient_bound` for its own gradient."""
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
+    exact, bound = X.area_gradient_bound(P)
     if route == "cotan_laplacian":
         A = _sparse(impl, case, pid)
         got = A @ P
+        bound = X.residual_bound(A, P) + eps() * np.abs(exact)
     else:
         V, F = case.arrays()
         got = np.asarray(impl.area_gradient(V, F), dtype=np.float64)
         if got.shape != P.shape:
             _fail(pid, impl, case, f"area_gradient has shape {got.shape}", expected=P.shape,
                   observed=got.shape)
-        A = abs(X.Ls) + X.Bs
-    exact = np.zeros_like(P)                 # an isolated vertex: no face, no gradient
-    exact[X.keep] = X.area_gradient
-    bound = X.residual_bound(A, P) + eps() * np.abs(exact)
     err = np.abs(got - exact)
     err[~np.isfinite(got)] = np.inf
     _record(pid, err, bound)

@@ -68,9 +68,19 @@ def test_a_solver_with_uniform_weights_is_caught_by_the_energy():
     assert "solve_dirichlet: the solution is not a critical point" in str(r.failure)
 
 
-def test_half_the_area_gradient_is_caught():
-    r = _run("T3.9", HalfGradient())
+class LibiglSign(_Only):
+    """Planted: libigl's cotmatrix @ V taken as it is (negative semidefinite: the sign)."""
+    name = "libigl-sign-gradient"
+
+    def area_gradient(self, V, F):
+        return -self._m.area_gradient(V, F)
+
+
+@pytest.mark.parametrize("planted", [HalfGradient, LibiglSign])
+def test_a_wrong_factor_or_sign_of_the_area_gradient_is_caught(planted):
+    r = _run("T3.9", planted())
     assert r.status == FAILED and "area_gradient is not the area gradient" in str(r.failure)
+    assert len(r.failure.mesh[1]) <= 2             # shrunk to a face or two
 
 
 @pytest.mark.parametrize("spec", ["libigl", "gpytoolbox"])
