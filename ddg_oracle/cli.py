@@ -157,6 +157,42 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("--timeout", type=float, default=60.0,
                    help="seconds per call, per 10,000 faces of the input (never less; default 60)")
 
+    v = sub.add_parser(
+        "vectors", formatter_class=fmt, help="write the portable test vectors (JSON)",
+        description="Write the test-vector corpus: per protocol method a JSON file of cases "
+                    "(input, exact value, correctly rounded float64, float64 and float32 "
+                    "tolerances), manifest.json, schema.json and a README for suites in any "
+                    "language.  Deterministic: the same ddg-oracle writes the same bytes.",
+        epilog=_epilog("""
+            ddg-oracle vectors --out vectors/
+            ddg-oracle verify vectors/ my_answers.jsonl""", EXIT_CODES.replace(
+            "  1  a property failed or a checked implementation crashed\n", "")))
+    v.add_argument("--out", required=True, metavar="DIR", help="directory to write (created)")
+
+    w = sub.add_parser(
+        "verify", formatter_class=fmt, help="check an answers file against the test vectors",
+        description="Check an implementation's answers (JSON Lines, one {\"id\", \"value\"} or "
+                    "{\"id\", \"error\"} per case, values as in the executable protocol) against "
+                    "a corpus written by 'ddg-oracle vectors': one line per failing case.  With "
+                    "--impl, the answers are computed by that implementation (any spec 'check' "
+                    "takes, e.g. 'exec:./my_driver').",
+        epilog=_epilog("""
+            ddg-oracle verify vectors/ answers.jsonl
+            ddg-oracle verify vectors/ answers.jsonl --float32
+            ddg-oracle verify vectors/ --impl 'exec:./my_driver' --write-answers answers.jsonl""",
+                       EXIT_CODES.replace("a property failed or a checked implementation "
+                                          "crashed", "a case failed")))
+    w.add_argument("corpus", metavar="DIR", help="a directory written by 'ddg-oracle vectors'")
+    w.add_argument("answers", nargs="?", metavar="ANSWERS", help="the answers file (JSON Lines)")
+    w.add_argument("--impl", metavar="NAME|module:object|exec:PROGRAM",
+                   help="compute the answers with this implementation instead of reading them")
+    w.add_argument("--write-answers", metavar="FILE", help="with --impl: also save its answers")
+    w.add_argument("--float32", action="store_true",
+                   help="hold the answers to the float32 tolerances (default: float64; with "
+                        "--impl: the implementation's declared machine_epsilon)")
+    w.add_argument("--timeout", type=float, default=60.0,
+                   help="with --impl: seconds per call, per 10,000 faces (default 60)")
+
     t = sub.add_parser(
         "theorems", formatter_class=fmt, help="print the traceability table",
         description="Print the traceability table: catalog ID, status, reference function "
@@ -185,6 +221,10 @@ def main(argv=None) -> int:
             return _check(args, None if argv is None else list(argv)[1:])
         if args.command == "compare":
             return _compare(args)
+        if args.command == "vectors":
+            return _vectors(args)
+        if args.command == "verify":
+            return _verify(args)
         return _theorems(args)
     except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)
@@ -500,6 +540,53 @@ def _compare(args) -> int:
         for impl in started.values():
             getattr(impl, "close", lambda: None)()
     return 1 if worse else 0
+
+
+def _vectors(args) -> int:
+    from ddg_oracle import vectors
+    written = vectors.write(args.out)
+    corpus = vectors.load(args.out)
+    n = sum(len(f["cases"]) for f in corpus.values())
+    print(f"wrote {len(written)} files, {n} cases of {len(corpus)} methods, to {args.out} "
+          f"(format {vectors.FORMAT} {vectors.VERSION})")
+    return 0
+
+
+def _verify(args) -> int:
+    import json
+    from ddg_oracle import vectors
+    from ddg_oracle.properties.protocol import FLOAT64_EPSILON, implementation_name, machine_epsilon
+
+    corpus = vectors.load(args.corpus)
+    if (args.answers is None) == (args.impl is None):
+        raise UsageError("verify: give an answers file or --impl SPEC (one of them)")
+    if args.write_answers and not args.impl:
+        raise UsageError("verify: --write-answers needs --impl")
+    float32 = args.float32
+    if args.impl:
+        started = _start([args.impl], args.timeout)
+        impl = started[args.impl]
+        try:
+            lines = vectors.answers(corpus, impl)
+            float32 = float32 or machine_epsilon(impl) > FLOAT64_EPSILON
+            name = implementation_name(impl)
+        finally:
+            getattr(impl, "close", lambda: None)()
+        if args.write_answers:
+            Path(args.write_answers).write_text(
+                "".join(json.dumps(x, allow_nan=False) + "\n" for x in lines), encoding="utf-8")
+    else:
+        lines = vectors.read_answers(args.answers)
+        name = args.answers
+    verdicts = vectors.verify(corpus, lines, float32=float32)
+    for x in verdicts:
+        if x.status == "FAIL":
+            print(f"FAIL {x.id}: {x.message}")
+    counts = {s: sum(x.status == s for x in verdicts)
+              for s in ("pass", "FAIL", "acceptable", "not applicable")}
+    print(f"{name}: {len(verdicts)} cases ({'float32' if float32 else 'float64'} tolerances): "
+          + ", ".join(f"{n} {s}" for s, n in counts.items() if n or s in ("pass", "FAIL")))
+    return 1 if counts["FAIL"] else 0
 
 
 if __name__ == "__main__":

@@ -27,7 +27,6 @@ they run on meshes of any size.
 from __future__ import annotations
 
 import math
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -308,14 +307,9 @@ class Comparison:
     note: str | None = None
 
 
-@contextmanager
 def _epsilon_of(impl):
-    from ddg_oracle.properties.protocol import _epsilon, machine_epsilon
-    token = _epsilon.set(machine_epsilon(impl))
-    try:
-        yield
-    finally:
-        _epsilon.reset(token)
+    from ddg_oracle.properties.protocol import at_machine_epsilon, machine_epsilon
+    return at_machine_epsilon(machine_epsilon(impl))
 
 
 def _worst(err: np.ndarray, bound: np.ndarray):
@@ -348,7 +342,6 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
 
 def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``."""
-    from ddg_oracle.properties import curvature as cv
     from ddg_oracle.properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
 
     ex = MeshExamples(mesh)
@@ -367,10 +360,6 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
             else:
                 expected_cache[method] = getattr(reference, method)(V, F)
         return expected_cache[method]
-
-    def exact_laplacian():
-        from ddg_oracle.properties.laplacian import Exact
-        return Exact.of(ex.mesh_case())       # once per mesh (shared with the properties)
 
     rows = []
     for impl in impls:
@@ -403,7 +392,7 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
                 rows.append(Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}"))
                 continue
             with _epsilon_of(impl):
-                rows.append(_compare_one(method, name, got, expected(method), ex, exact_laplacian, cv))
+                rows.append(_compare_one(method, name, got, expected(method), ex))
     return rows
 
 
@@ -446,9 +435,38 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
                       elements=elements)
 
 
-def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison:
-    case = ex.curvature_case() if method in ("corner_angles", "angle_defects",
-                                             "edge_mean_curvature", "area") else None
+def derived_bound(method: str, ex: MeshExamples, want=None):
+    """The derived bound on |implementation - exact| for each element of ``method``'s
+    answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): an array
+    of the answer's shape, a scipy matrix (Laplacians), or {edge: bound}
+    (``edge_mean_curvature``).  ``want``: the reference's ``area`` answer (a (total,
+    widening) pair above :data:`EXACT_SUM_LIMIT` faces).  Used by ``compare`` and by the
+    test vectors (:mod:`ddg_oracle.vectors`)."""
+    from ddg_oracle.properties import curvature as cv
+    from ddg_oracle.properties.laplacian import Exact, vertex_area_bounds
+    if method in ("corner_angles", "angle_defects", "edge_mean_curvature", "area"):
+        case = ex.curvature_case()
+        if method == "corner_angles":
+            return cv.corner_tolerances(case)
+        if method == "angle_defects":
+            return cv.vertex_tolerances(case, cv.corner_tolerances(case))
+        if method == "edge_mean_curvature":
+            return cv.edge_mean_curvature_tolerances(case)
+        extra = want[1] if isinstance(want, tuple) else 0.0
+        return cv.area_tolerance(case) + extra
+    if method == "intrinsic_delaunay_laplacian":
+        from ddg_oracle.properties.delaunay import DelaunayExact
+        return DelaunayExact.of(ex.mesh_case()).Bs
+    X = Exact.of(ex.mesh_case())            # once per mesh (shared with the properties)
+    if method == "cotan_laplacian":
+        return X.Bs
+    if method == "area_gradient":           # T3.9's bound on an implementation's own gradient
+        return X.area_gradient_bound(ex.mesh_case().arrays()[0])[1]
+    vb, bb = vertex_area_bounds(X)
+    return vb if method == "vertex_areas_voronoi" else bb
+
+
+def _compare_one(method, name, got, want, ex) -> Comparison:
     if method in ("euler_characteristic", "is_orientable", "genus"):
         same = type(want)(got) == want
         return Comparison(method, name, "agrees" if same else "DIFFERS", expected=want,
@@ -462,26 +480,6 @@ def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison
                           expected=f"{len(want)} loops", observed=f"{len(got)} loops",
                           elements=1, over=int(not same),
                           note=None if same else f"loops {[list(map(int, x)) for x in got]}"[:300])
-    if method == "corner_angles":
-        tol = cv.corner_tolerances(case)
-        return _numeric(method, name, got, want, tol, lambda k: f"face {k[0]}, corner {k[1]}")
-    if method == "angle_defects":
-        tol = cv.vertex_tolerances(case, cv.corner_tolerances(case))
-        return _numeric(method, name, np.asarray(got).reshape(-1), want, tol,
-                        lambda k: f"vertex {k[0]}")
-    if method == "edge_mean_curvature":
-        tol = cv.edge_mean_curvature_tolerances(case)
-        got = {(int(min(i, j)), int(max(i, j))): float(h) for (i, j), h in dict(got).items()}
-        if set(got) != set(want):
-            return Comparison(method, name, "DIFFERS", note="not the same set of interior edges",
-                              expected=len(want), observed=len(got))
-        keys = sorted(want)
-        return _numeric(method, name, [got[k] for k in keys], [want[k] for k in keys],
-                        np.array([tol[k] for k in keys]), lambda k: f"edge {keys[k[0]]}")
-    if method == "area":
-        want, extra = want if isinstance(want, tuple) else (want, 0.0)
-        return _numeric(method, name, [float(got)], [float(want)],
-                        cv.area_tolerance(case) + extra, lambda k: "total")
     if method == "is_locally_delaunay":
         got, want = np.asarray(got, dtype=bool), np.asarray(want, dtype=bool)
         diff = np.argwhere(got != want)
@@ -489,20 +487,30 @@ def _compare_one(method, name, got, want, ex, exact_laplacian, cv) -> Comparison
                                            "ties may go either way)")
         return Comparison(method, name, "agrees" if not len(diff) else "DIFFERS",
                           elements=int(want.size), over=int(len(diff)), note=note)
-    if method == "intrinsic_delaunay_laplacian":
+    bound = derived_bound(method, ex, want)
+    if method == "corner_angles":
+        return _numeric(method, name, got, want, bound, lambda k: f"face {k[0]}, corner {k[1]}")
+    if method == "edge_mean_curvature":
+        got = {(int(min(i, j)), int(max(i, j))): float(h) for (i, j), h in dict(got).items()}
+        if set(got) != set(want):
+            return Comparison(method, name, "DIFFERS", note="not the same set of interior edges",
+                              expected=len(want), observed=len(got))
+        keys = sorted(want)
+        return _numeric(method, name, [got[k] for k in keys], [want[k] for k in keys],
+                        np.array([bound[k] for k in keys]), lambda k: f"edge {keys[k[0]]}")
+    if method == "area":
+        total = want[0] if isinstance(want, tuple) else want
+        return _numeric(method, name, [float(got)], [float(total)], bound, lambda k: "total")
+    if method in ("cotan_laplacian", "intrinsic_delaunay_laplacian"):
         from ddg_oracle.properties.delaunay import DelaunayExact
-        D = DelaunayExact.of(ex.mesh_case())
-        return _matrix(method, name, got, D.Ls, D.Bs)
-    X = exact_laplacian()
-    if method == "cotan_laplacian":
-        return _matrix(method, name, got, X.Ls, X.Bs)
-    if method == "area_gradient":           # T3.9's bound on an implementation's own gradient
-        exact, bound = X.area_gradient_bound(ex.mesh_case().arrays()[0])
+        from ddg_oracle.properties.laplacian import Exact
+        exact = (Exact if method == "cotan_laplacian" else DelaunayExact).of(ex.mesh_case())
+        return _matrix(method, name, got, exact.Ls, bound)
+    if method == "area_gradient":
+        from ddg_oracle.properties.laplacian import Exact
+        exact = Exact.of(ex.mesh_case()).area_gradient_bound(ex.mesh_case().arrays()[0])[0]
         return _numeric(method, name, np.asarray(got, dtype=np.float64), exact, bound,
                         lambda k: f"vertex {k[0]}, coordinate {k[1]}")
-    from ddg_oracle.properties.laplacian import vertex_area_bounds
-    vb, bb = vertex_area_bounds(X)
-    bound = vb if method == "vertex_areas_voronoi" else bb
     return _numeric(method, name, np.asarray(got).reshape(-1), want, bound,
                     lambda k: f"vertex {k[0]}")
 

@@ -79,9 +79,11 @@ class Libigl:
     # --- chapter 1: topology ------------------------------------------------------------
 
     def euler_characteristic(self, V, F) -> int:
-        """``igl.euler_characteristic(F)``: (max(F) + 1) - #unique edges + #F."""
-        _, F = _arrays(V, F)
-        return int(igl.euler_characteristic(F))
+        """``igl.euler_characteristic(F)``: (max(F) + 1) - #unique edges + #F, plus the
+        vertices after max(F) (libigl sees only F; the protocol counts every vertex of V,
+        a vertex used by no face as a point)."""
+        V, F = _arrays(V, F)
+        return int(igl.euler_characteristic(F)) + len(V) - (int(F.max()) + 1 if F.size else 0)
 
     def boundary_loops(self, V, F) -> list[list[int]]:
         """``igl.boundary_loop_all(F)``: every loop, walked along the faces' orientation.
@@ -239,7 +241,10 @@ class Libigl:
         cotmatrix)."""
         V, F = _arrays(V, F)
         L, _, _ = igl.intrinsic_delaunay_cotmatrix(V, F)
-        return scipy.sparse.csr_matrix(-L)
+        L = scipy.sparse.csr_matrix(-L)
+        if L.shape[0] < len(V):             # sized by max(F) + 1: the vertices after it are
+            L.resize((len(V), len(V)))      # used by no face, their rows and columns zero
+        return L
 
     def intrinsic_delaunay_triangulation(self, V, F):
         """``(F2, l**2)`` of ``igl.intrinsic_delaunay_triangulation(igl.edge_lengths(V, F), F)``:

@@ -59,7 +59,7 @@ import robust_laplacian
 
 from ddg_oracle.properties.protocol import OutsideDomain
 
-from .arrays import boundary_edges, checked_arrays
+from .arrays import Referenced, boundary_edges, checked_arrays
 from .conventions import declare
 
 MOLLIFY_FACTOR = {"reference": 0.0, "library": 1e-5}   # mollify option -> mollify_factor
@@ -97,8 +97,11 @@ class RobustLaplacian:
 
     def intrinsic_delaunay_laplacian(self, V, F) -> scipy.sparse.csr_matrix:
         """L of :meth:`mesh_laplacian`, unchanged (sign and factor 1/2 already the
-        reference's); with boundary="reference" a mesh with boundary raises OutsideDomain."""
-        V, F = _arrays(V, F)
+        reference's) on the vertices the faces use; a vertex used by no face gets the
+        protocol's zero row and column (the library puts 1 on its diagonal); with
+        boundary="reference" a mesh with boundary raises OutsideDomain."""
+        r = Referenced(V, F)
+        V, F = r.V, r.F
         if self.boundary == "reference":
             b = boundary_edges(F)
             if len(b):
@@ -107,4 +110,4 @@ class RobustLaplacian:
                     f"boundary (edge {tuple(int(x) for x in b[0])} has one face): the tufted "
                     "cover flips boundary edges (docs/findings.md R1); "
                     "use robust_laplacian(boundary=library) for its own operator")
-        return self.mesh_laplacian(V, F)[0]
+        return scipy.sparse.csr_matrix(r.embed(self.mesh_laplacian(V, F)[0]))

@@ -291,6 +291,15 @@ def _interior_meshes():
 # --- properties --------------------------------------------------------------------------------
 
 
+def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
+    """(cot a + cot b of edge e as float, the bound on a float evaluation's error): an edge
+    whose sum is within the bound of 0 is an (exact or near) tie, which rounding decides
+    (D4.4; boundary edges: the one corner)."""
+    hs = [x for x in X.triangulation.edge_halfedges(e) if x >= 0]
+    s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
+    return s, sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
+
+
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
       "cot a + cot b >= 0 on every edge (boundary edges are Delaunay); exact ties accept both",
       needs={"is_locally_delaunay"}, strategy=delaunay_meshes)
@@ -310,9 +319,7 @@ def locally_delaunay_edges(impl, case: MeshCase):
             want = is_delaunay_edge(X.metric, e)
             if bool(got[f, c]) == want:
                 continue
-            hs = [x for x in t.edge_halfedges(e) if x >= 0]
-            s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
-            bound = sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
+            s, bound = cot_sum_with_bound(X, e)
             if abs(s) <= bound:                     # an (exact or near) tie: rounding decides
                 tie = tie or (f, c, e, want, bool(got[f, c]), s, bound)
                 continue
@@ -470,6 +477,13 @@ def _angles_from_squared_lengths(l2):
     return out, area
 
 
+def total_area_bound(area, rho, amp: float) -> float:
+    """Bound on the total area of a triangulation recomputed from its float squared lengths
+    (A4.13): Heron from lengths is conditioned by rho = l_max^2 / (2 A), K_COT eps rho A
+    per face, times the flips' amplification ``amp``; plus the sum's rounding."""
+    return K_COT * eps() * amp * float(np.sum(area * rho)) + gamma(len(area)) * float(np.sum(area))
+
+
 @prop("A4.13", "intrinsic_delaunay_triangulation returns a triangulation of the same metric "
       "(every vertex's angle sum and the total area unchanged) whose edges are all Delaunay",
       needs={"intrinsic_delaunay_triangulation"}, strategy=delaunay_meshes)
@@ -498,7 +512,7 @@ def flip_algorithm_result(impl, case: MeshCase):
         _fail(pid, impl, case, f"the angle sum at vertex {v} changed ({r:.3g} x the bound): the "
               "metric is not kept", element=v, expected=float(exact[v]), observed=float(sums[v]))
     total, want = float(area.sum()), float(D.X.metric.total_area())
-    if abs(total - want) > K_COT * eps() * amp * float(np.sum(area * rho)) + gamma(len(area)) * total:
+    if abs(total - want) > total_area_bound(area, rho, amp):
         _fail(pid, impl, case, "the total area changed", expected=want, observed=total)
     # Delaunay: pair the two corners opposite each unordered vertex pair used exactly twice
     opposite: dict[tuple[int, int], list[tuple[int, int]]] = {}

@@ -269,6 +269,25 @@ class Exact:
         exact[self.keep] = self.area_gradient
         return exact, self.own_route_bound(P) + eps() * np.abs(exact)
 
+    def dirichlet_solution_bound(self, boundary, u) -> np.ndarray:
+        """(n,) bound on |u~ - u| for an implementation's ``solve_dirichlet`` answer u~ whose
+        exact solution (C3.4) is ``u`` (floats): eps |u| on the ``boundary`` set (the given
+        values are kept); elsewhere |L_II^-1| times :meth:`own_route_bound` at the interior
+        rows, the first-order error of a backward-stable solve with any matrix within the
+        entry bounds (u~ - u = L_II^-1 (r) for a residual r within that bound), doubled to
+        cover the second-order terms and the float inverse.  Dense: for small meshes (the
+        test vectors); L_II is invertible when every component meets the boundary set."""
+        u = np.asarray(u, dtype=np.float64)
+        fixed = np.zeros(self.n, dtype=bool)
+        fixed[np.asarray(boundary, dtype=np.int64)] = True
+        inner = np.flatnonzero(~fixed)
+        out = eps() * np.abs(u)
+        if len(inner):
+            r = self.own_route_bound(u)[inner]
+            inverse = np.linalg.inv(self.Ls[inner][:, inner].toarray())
+            out[inner] = 2 * (np.abs(inverse) @ r) + eps() * np.abs(u[inner])
+        return out
+
     def residual_bound(self, A, u):
         """Per row: sum_j (B_ij + gamma_{3n} |A_ij|) |u_j| (u: n or n x k): how far A u may be
         from the exact L u through the entry errors and a backward-stable evaluation or solve."""
@@ -313,8 +332,31 @@ def _sparse(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian"):
                               expected=(case.n, case.n), observed=A.shape)
     A.sum_duplicates()
     if not np.all(np.isfinite(A.data)):
-        raise PropertyFailure(pid, impl, f"{method} has non-finite entries", mesh=case.mesh)
+        C = A.tocoo()
+        bad = ~np.isfinite(C.data)
+        beyond = _beyond_float_resolution(case)
+        pairs = set(zip(C.row[bad].tolist(), C.col[bad].tolist()))
+        if pairs <= beyond:
+            raise TieDisagreement(pid, impl, f"{method} has non-finite entries, all at faces "
+                                  "beyond float resolution (K_COT eps rho >= 1: the float area "
+                                  "from the coordinates may be 0)", mesh=case.mesh)
+        i, j = min(pairs - beyond)
+        raise PropertyFailure(pid, impl, f"{method} has non-finite entries (first: {(i, j)})",
+                              mesh=case.mesh, element=(i, j))
     return A
+
+
+def _beyond_float_resolution(case: MeshCase) -> set:
+    """Vertex pairs (i, j), i == j included, of the faces whose conditioning puts their
+    float area out of reach: K_COT eps rho >= 1 (rho = l_max^2 / (2 A), exact A).  There a
+    float cross product can be 0 although the exact face is not degenerate, and a cotangent
+    from it infinite: rounding decides, as at a tie."""
+    X = Exact.of(case)
+    out = set()
+    for f in np.flatnonzero(K_COT * eps() * np.asarray(X.rho) >= 1).tolist():
+        face = [X.keep[v] for v in X.triangulation.faces[f]]
+        out.update((a, b) for a in face for b in face)
+    return out
 
 
 def _dense(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian") -> np.ndarray:

@@ -15,6 +15,7 @@ reference's: :func:`declared_conventions`).
 
 from __future__ import annotations
 
+import contextlib
 import contextvars
 import math
 
@@ -94,6 +95,18 @@ def machine_epsilon(impl) -> float:
 def eps() -> float:
     """Machine epsilon of the implementation whose property is being checked now."""
     return _epsilon.get()
+
+
+@contextlib.contextmanager
+def at_machine_epsilon(e: float):
+    """Derive bounds for an implementation of machine epsilon ``e`` inside this block
+    (:func:`eps`; the runner sets it per implementation, ``compare`` and the test vectors
+    with this)."""
+    token = _epsilon.set(float(e))
+    try:
+        yield
+    finally:
+        _epsilon.reset(token)
 
 
 def declared_conventions(impl) -> tuple[str, str] | None:

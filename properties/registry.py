@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from .profiles import example_time_limit
-from .protocol import _epsilon, implementation_name, machine_epsilon
+from .protocol import at_machine_epsilon, implementation_name, machine_epsilon
 
 
 class PropertyFailure(AssertionError):
@@ -154,12 +154,9 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, needs_any=()):
         @functools.wraps(check)
         def checked(impl, example):
             # tolerances inside the check read the implementation's own epsilon
-            token = _epsilon.set(machine_epsilon(impl))
-            try:
-                with example_time_limit(f"[{catalog_id}] {implementation_name(impl)}"):
-                    check(impl, example)
-            finally:
-                _epsilon.reset(token)
+            with at_machine_epsilon(machine_epsilon(impl)), \
+                    example_time_limit(f"[{catalog_id}] {implementation_name(impl)}"):
+                check(impl, example)
 
         PROPERTIES[catalog_id] = Property(
             catalog_id, check.__name__, statement, frozenset(needs), strategy, checked,

@@ -199,3 +199,24 @@ def test_cgal_area_gradient_and_dirichlet_solver_pass(cgal, pid):
     assert {"area_gradient", "solve_dirichlet"} <= cgal.methods
     r = run_property(PROPERTIES[pid], cgal, profile("ci"))
     assert r.status == PASSED and r.examples > 0, r.failure or r.error
+
+
+def test_the_test_vectors_find_cg1_cg2_and_om1(cgal, openmesh):
+    """`ddg-oracle verify vectors/` on the drivers: CGAL's mixed Voronoi areas of obtuse
+    triangles (CG1) and its layouts of a needle (CG2), OpenMesh's boundary weights (OM1);
+    and nothing on the cases those findings do not touch."""
+    from ddg_oracle import vectors
+    corpus = vectors.load(ROOT / "vectors")
+
+    def failed(impl):
+        return {v.id for v in vectors.verify(corpus, vectors.answers(corpus, impl))
+                if v.status == "FAIL"}
+    cg = failed(cgal)
+    assert {"vertex_areas_voronoi/obtuse-fan", "intrinsic_delaunay_laplacian/needle-2^-30"} <= cg
+    assert not any(i.startswith(("cotan_laplacian/", "area/", "vertex_areas_barycentric/"))
+                   for i in cg)
+    om = failed(openmesh)
+    with_boundary = {f"cotan_laplacian/{c['name']}" for c in corpus["cotan_laplacian"]["cases"]
+                     if "boundary" in c["flags"] and c["result"] == "valid"}
+    assert {"cotan_laplacian/single-triangle", "cotan_laplacian/grid-4x4"} <= om
+    assert om - with_boundary <= {"cotan_laplacian/cap-2^-30"}

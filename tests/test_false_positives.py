@@ -43,3 +43,31 @@ def test_the_numpy_implementation_is_checked_on_the_curvature_and_laplacian_prop
     # the test above is not vacuous: the numpy implementation reaches these properties
     assert {"D2.2", "R2.4", "T2.6", "D2.6", "D2.3", "R2.5", "D3.1", "T3.6", "C3.3",
             "T3.9"} <= set(_applicable("numpy"))
+
+
+def test_an_infinite_cotangent_is_a_tie_only_beyond_float_resolution():
+    """A triangle whose float cross product is exactly 0 although its exact area is not
+    (2^-104 against edges of length ~1.4): numpy's cotangent is infinite, which rounding
+    decided (a tie); an implementation with NaN on a plain triangle fails, naming the entry."""
+    from fractions import Fraction
+    import numpy as np
+    from ddg_oracle.properties.runner import FAILED, run_on_example
+    from ddg_oracle.properties.strategies import MeshCase
+    e = 2.0 ** -52
+    pts = [(0.0, 0.0, 0.0), (1.0, 1.0 + e, 0.0), (1.0 + e, 1.0 + 2 * e, 0.0)]
+    u, v = np.subtract(pts[1], pts[0]), np.subtract(pts[2], pts[0])
+    assert np.cross(u, v)[2] == 0                   # in floats: degenerate
+    exact = [tuple(Fraction(x) for x in p) for p in pts]
+    cap = MeshCase(tuple(exact), ((0, 1, 2),), "cross product below float resolution")
+    r = run_on_example(PROPERTIES["T3.6"], NumpyMesh(), cap, "cap")
+    assert r.status == TIE and "beyond float resolution" in str(r.failure)
+
+    class NaNWeights(NumpyMesh):
+        def cotan_laplacian(self, V, F):
+            L = super().cotan_laplacian(V, F).tolil()
+            L[0, 1] = np.nan
+            return L.tocsr()
+    plain = MeshCase(((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),
+                      (Fraction(0), Fraction(1), Fraction(0))), ((0, 1, 2),), "triangle")
+    r = run_on_example(PROPERTIES["T3.6"], NaNWeights(), plain, "triangle")
+    assert r.status == FAILED and "non-finite entries (first: (0, 1))" in str(r.failure)

@@ -203,3 +203,17 @@ def test_cli_says_which_libraries_are_not_installed(installed):
                 "--workers", "1"], cwd=installed["project"])
     assert out.returncode == 0, out.stdout + out.stderr
     assert "libigl is not installed" in out.stderr and "pip install 'ddg-oracle[libigl]'" in out.stderr
+
+
+def test_the_wheel_writes_the_committed_test_vectors(installed, tmp_path):
+    """With only the hard dependencies and no repository around: the same bytes."""
+    out = _run([str(installed["bin"] / "ddg-oracle"), "vectors", "--out", str(tmp_path)],
+               cwd=installed["project"])
+    assert out.returncode == 0, out.stdout + out.stderr
+    committed = ROOT / "vectors"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in committed.iterdir())
+    for p in committed.iterdir():
+        assert (tmp_path / p.name).read_bytes() == p.read_bytes(), p.name
+    out = _run([str(installed["bin"] / "ddg-oracle"), "verify", str(tmp_path), "--impl",
+                "reference"], cwd=installed["project"])
+    assert out.returncode == 0 and " 0 FAIL" in out.stdout, out.stdout + out.stderr

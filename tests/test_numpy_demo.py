@@ -12,14 +12,15 @@ from examples.numpy_cotan import (AbsoluteThreshold, BoundaryWithoutHalf, NumpyC
 from ddg_oracle.properties import check_implementation
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.runner import FAILED, PASSED, run_property
+from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def test_the_obvious_numpy_implementation_passes_in_one_line():
     results = check_implementation(NumpyCotan())            # raises on any failure
-    ran = [r for r in results if r.status == PASSED]
+    # a tie (rounding decided: a face beyond float resolution) is not a failure
+    ran = [r for r in results if r.status in (PASSED, TIE)]
     assert {"D3.1", "T3.6", "T3.9", "E3.12", "P4.10", "L4.18"} <= {r.property_id for r in ran}
 
 
