@@ -133,3 +133,25 @@ def test_a_T4_5_failure_is_written_as_one_mesh_in_the_report(tmp_path):
     assert p.returncode == 1, p.stderr[-2000:]
     [obj] = report.glob("failures/*T4.5*/mesh.obj")
     assert "the other triangulation" in p.stdout and obj.read_text().count("\nf ") >= 1
+
+
+def test_the_intrinsic_properties_draw_non_orientable_surfaces():
+    """L6 was missed by check while these strategies drew orientable meshes only: they now
+    draw RP^2, the Klein bottle and Moebius strips, and the reference passes on them."""
+    from hypothesis import given, settings, HealthCheck
+    from ddg_oracle.properties.delaunay import non_orientable_meshes
+    from ddg_oracle.properties.runner import run_on_example
+    seen = set()
+
+    @settings(max_examples=30, deadline=None, database=None, derandomize=True,
+              suppress_health_check=list(HealthCheck))
+    @given(non_orientable_meshes())
+    def run(case):
+        assert not case.surface().triangulation.is_orientable()
+        seen.add(case.recipe.split(",")[0].split(" at ")[0])
+        for pid in ("A4.13", "D4.8 / R4.9"):
+            r = run_on_example(PROPERTIES[pid], ReferenceImplementation(), case, case.recipe)
+            assert r.status == "passed", (pid, r.failure)
+    run()
+    assert seen == {"Moebius strip", "projective plane", "Klein bottle"}
+    assert PROPERTIES["A4.13"].strategy.__name__ == "intrinsic_meshes"

@@ -278,6 +278,8 @@ def test_usage_errors_exit_2(corpus_dir, tmp_path, capsys):
     ("libigl", "boundary_loops/mobius-strip", "L1"),
     ("libigl", "cotan_laplacian/cap-2^-30", "L5"),
     ("libigl", "intrinsic_delaunay_triangulation/projective-plane", "L6"),
+    ("libigl", "intrinsic_delaunay_laplacian/cap-2^-30", "L7"),
+    ("robust_laplacian", "intrinsic_delaunay_laplacian/cap-2^-30", "L7"),
     ("gpytoolbox", "angle_defects/octahedron-scale-2^-60", "G3"),
     ("gpytoolbox", "corner_angles/needle-2^-30", "G4"),
     ("pymeshlab", "angle_defects/mobius-strip", "P3"),
