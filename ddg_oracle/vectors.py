@@ -515,10 +515,9 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
                            _reference_answer("intrinsic_delaunay_laplacian", req).tocsr(),
                            _embedded(_bounds("intrinsic_delaunay_laplacian", ex), r),
                            len(req["V"]), r.keep)
-    area = _numbers(exact_text(surd_sum(ex.surface.metric().areas)), None, {})
-    area["float64"] = _view(surd_sum(ex.surface.metric().areas))
-    for k, e in EPSILONS.items():
-        area[f"tolerance{k}"] = rounded_up(_intrinsic_area_bound(l2, amp, e))
+    total = surd_sum(ex.surface.metric().areas)
+    area = _numbers(exact_text(total), _view(total),
+                    {k: _intrinsic_area_bound(l2, amp, e) for k, e in EPSILONS.items()})
     return {"faces": len(req["F"]), "laplacian": lap, "area": area,
             "one_answer": {"F": np.asarray(F2).tolist(), "l2": np.asarray(l2).tolist()}}
 
