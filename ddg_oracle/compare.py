@@ -435,6 +435,14 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
                       elements=elements)
 
 
+def loop_edges(loops) -> list:
+    """The undirected edges of boundary loops (consecutive vertices, the last to the first),
+    sorted: two answers of ``boundary_loops`` agree when these and the loop counts do (a
+    loop may start anywhere and run either way)."""
+    return sorted(tuple(sorted((int(a), int(b)))) for loop in loops
+                  for a, b in zip(loop, list(loop[1:]) + list(loop[:1])))
+
+
 def derived_bound(method: str, ex: MeshExamples, want=None):
     """The derived bound on |implementation - exact| for each element of ``method``'s
     answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): an array
@@ -472,10 +480,7 @@ def _compare_one(method, name, got, want, ex) -> Comparison:
         return Comparison(method, name, "agrees" if same else "DIFFERS", expected=want,
                           observed=got, elements=1, over=int(not same))
     if method == "boundary_loops":
-        def edges(loops):
-            return sorted(tuple(sorted((int(a), int(b)))) for loop in loops
-                          for a, b in zip(loop, list(loop[1:]) + list(loop[:1])))
-        same = len(got) == len(want) and edges(got) == edges(want)
+        same = len(got) == len(want) and loop_edges(got) == loop_edges(want)
         return Comparison(method, name, "agrees" if same else "DIFFERS",
                           expected=f"{len(want)} loops", observed=f"{len(got)} loops",
                           elements=1, over=int(not same),

@@ -314,10 +314,15 @@ def two_triangulations(draw):
     return c, other
 
 
+#: X4.2: a flat tetrahedron (positions, faces) whose Delaunay triangulation has a vertex
+#: of valence 1 inside a loop
+X42 = ([(0, 0, 0), (10, 0, 0), (0, 1, 0), (1, Fraction(1, 3), Fraction(1, 10))],
+       [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)])
+
+
 def x42_tetrahedron():
-    """X4.2: a flat tetrahedron whose Delaunay triangulation has a vertex of valence 1."""
-    return st.just(mesh_case([(0, 0, 0), (10, 0, 0), (0, 1, 0), (1, Fraction(1, 3), Fraction(1, 10))],
-                         [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)], "X4.2 tetrahedron"))
+    """X4.2 (:data:`X42`) as the one example of its property."""
+    return st.just(mesh_case(*X42, "X4.2 tetrahedron"))
 
 
 def _interior_meshes():
@@ -771,13 +776,58 @@ def _planar_triangulations():
     return planar_triangulations()
 
 
+class NotPlanarDelaunay(Exception):
+    """What :func:`planar_delaunay_problems` found first: ``message`` and the
+    PropertyFailure details (element, expected, observed, bound)."""
+
+    def __init__(self, message: str, **details):
+        super().__init__(message)
+        self.message, self.details = message, details
+
+
+def planar_delaunay_problems(pts, tris, boundary) -> int:
+    """L4.3 / P4.4 / D4.1 on a triangulation ``tris`` (vertex triples) of exact planar
+    points ``pts``: every face counterclockwise and non-degenerate, no directed edge used
+    twice, the directed edges used once exactly ``boundary``, and every interior edge
+    (a, b) with opposite corners c, d Delaunay: in_circle(a, b, c, d) <= 0, or within
+    Shewchuk's float bound of 0 (:func:`incircle_with_bound`, at :func:`eps`).  Raises
+    :class:`NotPlanarDelaunay` for the first problem; returns the number of edges
+    non-Delaunay within the bound (near ties, which rounding decides).  Shared by the
+    property and the test vectors (``ddg_oracle.vectors``)."""
+    from ddg_oracle.reference.planar import in_circle, orientation
+    for k, t in enumerate(tris):
+        if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
+            raise NotPlanarDelaunay(f"face {k} {t} is degenerate or clockwise",
+                                    element=f"face {k}")
+    got = {(f[c], f[(c + 1) % 3]): f[(c + 2) % 3] for f in tris for c in range(3)}
+    if len(got) < 3 * len(tris):
+        raise NotPlanarDelaunay("a directed edge is used twice: faces overlap")
+    edges = {e for e in got if e[::-1] not in got}
+    if edges != set(boundary):
+        raise NotPlanarDelaunay("the boundary edges are not the expected ones (flips keep the "
+                                "polygon)", expected=sorted(boundary), observed=sorted(edges))
+    ties = 0
+    for (a, b), c in sorted(got.items()):
+        if a < b and (b, a) in got:
+            d = got[(b, a)]
+            if in_circle(pts[a], pts[b], pts[c], pts[d]) > 0:
+                det, bound = incircle_with_bound(pts[a], pts[b], pts[c], pts[d])
+                if abs(det) > bound:
+                    raise NotPlanarDelaunay(
+                        f"interior edge {(a, b)} is not Delaunay: point {d} is inside the circle "
+                        f"through {(a, b)} and {c} (in-circle determinant {det:.3g}, float bound "
+                        f"{bound:.3g})", element=(a, b), expected="<= 0", observed=det, bound=bound)
+                ties += 1
+    return ties
+
+
 @prop("L4.3 / P4.4", "planar_flip_to_delaunay returns a triangulation of the same polygon (same "
       "vertices and boundary edges, faces counterclockwise) whose interior edges all have "
       "opposite angles summing to at most pi (L4.3: exact in-circle test on the float points); "
       "started on the convex hull, the Delaunay tessellation (T4.1)",
       needs={"planar_flip_to_delaunay"}, strategy=_planar_triangulations)
 def planar_flips_reach_delaunay(impl, example):
-    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation, in_circle, orientation
+    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
     pid = "L4.3 / P4.4"
     pts, faces, on_hull = example
     V = np.array([[float(x), float(y), 0.0] for x, y in pts])
@@ -791,41 +841,14 @@ def planar_flips_reach_delaunay(impl, example):
                               expected=(len(faces), 3), observed=getattr(out, "shape", None))
     tris = [tuple(int(v) for v in f) for f in out]
     result = f" (result faces {faces_text(tris)})"
-    for k, t in enumerate(tris):
-        if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
-            raise PropertyFailure(pid, impl, f"face {k} {t} is degenerate or clockwise" + result,
-                                  mesh=mesh, element=f"face {k}")
 
-    def sides(fs):                  # directed edge -> (face, opposite vertex)
-        return {(f[c], f[(c + 1) % 3]): (k, f[(c + 2) % 3])
-                for k, f in enumerate(fs) for c in range(3)}
-
-    got, given = sides(tris), sides(faces)
-    if len(got) < 3 * len(tris):
-        raise PropertyFailure(pid, impl, "a directed edge is used twice: faces overlap" + result,
-                              mesh=mesh)
-    boundary = {e for e in got if e[::-1] not in got}
-    want = {e for e in given if e[::-1] not in given}
-    if boundary != want:
-        raise PropertyFailure(pid, impl, "the boundary edges changed: flips must keep the "
-                              "polygon" + result, mesh=mesh, expected=sorted(want),
-                              observed=sorted(boundary))
-    real, ties = [], 0
-    for (a, b), (k, c) in got.items():
-        if a < b and (b, a) in got:
-            d = got[(b, a)][1]
-            if in_circle(pts[a], pts[b], pts[c], pts[d]) > 0:
-                det, bound = incircle_with_bound(pts[a], pts[b], pts[c], pts[d])
-                if abs(det) <= bound:
-                    ties += 1
-                else:
-                    real.append(((a, b), c, d, det, bound))
-    if real:
-        e, c, d, det, bound = real[0]
-        raise PropertyFailure(pid, impl, f"interior edge {e} is not Delaunay: point {d} is "
-                              f"inside the circle through {e} and {c} (in-circle determinant "
-                              f"{det:.3g}, float bound {bound:.3g})" + result, mesh=mesh, element=e,
-                              expected="<= 0", observed=det, bound=bound)
+    def sides(fs):
+        return {(f[c], f[(c + 1) % 3]) for f in fs for c in range(3)}
+    given = sides(faces)
+    try:
+        ties = planar_delaunay_problems(pts, tris, {e for e in given if e[::-1] not in given})
+    except NotPlanarDelaunay as e:
+        raise PropertyFailure(pid, impl, e.message + result, mesh=mesh, **e.details) from None
     if ties:
         _near_tie(pid, impl, mesh, f"{ties} interior edge(s) non-Delaunay within the float "
                   "in-circle bound: nearly cocircular points split the other way" + result)
