@@ -194,17 +194,20 @@ def parser() -> argparse.ArgumentParser:
                    help="with --impl: seconds per call, per 10,000 faces (default 60)")
 
     t = sub.add_parser(
-        "theorems", formatter_class=fmt, help="print the traceability table",
-        description="Print the traceability table: catalog ID, status, reference function "
-                    "and property.",
+        "theorems", formatter_class=fmt, help="print the traceability table and the notes' items",
+        description="Print the traceability table (catalog ID, status, reference function "
+                    "and property) and every numbered item of chapters 1-4 of the notes "
+                    "with its line and status (verified, erratum, definition, not "
+                    "verifiable, open).",
         epilog=_epilog("""
             ddg-oracle theorems
             ddg-oracle theorems --check""",
                        EXIT_CODES.replace("a property failed or a checked implementation "
                                           "crashed", "--check: the table is not true")))
     t.add_argument("--check", action="store_true",
-                   help="exit 1 unless every named function, property and test exists "
-                        "and every row of a claimed chapter is verified")
+                   help="exit 1 unless every named function, property and test exists, "
+                        "every row of a claimed chapter is verified, and every numbered "
+                        "item of the notes is listed at its line with rows or a reason")
     return top
 
 
@@ -253,6 +256,15 @@ def _theorems(args) -> int:
     counts = {s: sum(e.status == s for e in entries) for s in traceability.STATUSES}
     print(f"\n{len(entries)} rows: " + ", ".join(f"{n} {s}" for s, n in counts.items())
           + f"; claimed chapters: {', '.join(map(str, claimed)) or 'none'}")
+    items = traceability.load_notes()
+    width = max(len(i.name) for i in items)
+    print(f"\nThe notes, chapters 1-4 (ddg_oracle/notes.toml):\n"
+          f"{'item'.ljust(width)}  {'line':>4}  {'status':14}  rows / reason")
+    for i in items:
+        print(f"{i.name.ljust(width)}  {i.line:>4}  {i.status:14}  "
+              f"{', '.join(i.rows) if i.rows else i.reason}")
+    tally = {s: sum(i.status == s for i in items) for s in traceability.NOTE_STATUSES}
+    print(f"\n{len(items)} items: " + ", ".join(f"{n} {s}" for s, n in tally.items()))
     if not args.check:
         return 0
     problems = traceability.check()
@@ -260,7 +272,7 @@ def _theorems(args) -> int:
         print(f"NOT TRUE: {p}", file=sys.stderr)
     if problems:
         return 1
-    print("traceability table: true")
+    print("traceability table and notes table: true")
     return 0
 
 

@@ -280,7 +280,7 @@ def known_findings() -> list[dict]:
     path = Path(__file__).with_name("data") / "findings.md"
     rows = []
     for line in path.read_text(encoding="utf-8").splitlines():
-        m = re.match(r"^\| \[([A-Z]+\d+)\]\(#[a-z0-9]+\) \| (\S+)[^|]*\| ([^|(]*)[^|]*\|[^|]*\|"
+        m = re.match(r"^\| \[(F-[a-z0-9-]+-\d+)\]\(#[a-z0-9-]+\) \| (\S+)[^|]*\| ([^|(]*)[^|]*\|[^|]*\|"
                      r" ([^|]*)\|$", line)
         if not m:
             continue

@@ -7,6 +7,12 @@ an erratum listed in the errata, ``docs/errata.md``, installed as
 ``ddg_oracle/data/errata.md``); where the repository is at hand (a checkout,
 or an editable install) also every named test exists and every row of the
 catalog ``../shared/THEOREMS.md`` is present.
+
+The notes table ``ddg_oracle/notes.toml`` lists every numbered item of chapters 1-4
+of the notes with its line and a status (:data:`NOTE_STATUSES`); :func:`check_notes`
+verifies it, against the notes' text where it is at hand (``$DDG_NOTES``, else
+``../shared/seed/*.txt`` beside the repository): every heading of the text is an
+item, every item's line holds its heading.
 """
 
 from __future__ import annotations
@@ -20,6 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 TABLE = Path(__file__).with_name("traceability.toml")
+NOTES = Path(__file__).with_name("notes.toml")
 DATA = Path(__file__).with_name("data")          # errata.md, findings.md (links into docs/)
 
 
@@ -41,6 +48,8 @@ class Entry:
     tests: tuple[str, ...]
     status: str
     erratum: str = ""
+    scope: str = ""
+    source: str = "catalog"
 
 
 def load(path: Path | None = None) -> tuple[list[int], list[Entry]]:
@@ -51,7 +60,8 @@ def load(path: Path | None = None) -> tuple[list[int], list[Entry]]:
     entries = [Entry(id=k, chapter=v["chapter"], statement=v["statement"],
                      reference=tuple(v.get("reference", ())), property=tuple(v.get("property", ())),
                      tests=tuple(v.get("tests", ())), status=v.get("status", "not yet"),
-                     erratum=v.get("erratum", ""))
+                     erratum=v.get("erratum", ""), scope=v.get("scope", ""),
+                     source=v.get("source", "catalog"))
                for k, v in data.items()]
     return claimed, entries
 
@@ -113,9 +123,15 @@ def _test_exists(spec: str) -> bool | None:
 
 
 def errata_ids() -> set[str]:
-    """IDs of the entries of the errata (docs/errata.md, headings '## E<n>: ...')."""
+    """IDs of the entries of the errata (docs/errata.md, headings '## ER-<n>: ...')."""
     path = DATA / "errata.md"
-    return set(re.findall(r"^## (E\d+)\b", path.read_text(encoding="utf-8"), re.M))
+    return set(re.findall(r"^## (ER-\d+):", path.read_text(encoding="utf-8"), re.M))
+
+
+def scope_ids() -> set[str]:
+    """IDs of the scope notes of docs/errata.md (headings '### SC-<n>: ...')."""
+    path = DATA / "errata.md"
+    return set(re.findall(r"^### (SC-\d+):", path.read_text(encoding="utf-8"), re.M))
 
 
 def check(path: Path | None = None) -> list[str]:
@@ -129,9 +145,10 @@ def check(path: Path | None = None) -> list[str]:
         for i, ch in ids.items():
             if i not in by_id:
                 problems.append(f"{i}: catalog row (chapter {ch}) missing from the table")
-        for i in by_id:
-            if i not in ids:
-                problems.append(f"{i}: in the table but not in the catalog {cat}")
+        for i, e in by_id.items():
+            if i not in ids and e.source != "notes":
+                problems.append(f"{i}: in the table but not in the catalog {cat} "
+                                "(a statement of the notes only needs source = \"notes\")")
     errata = errata_ids()
     for e in entries:
         if e.status not in STATUSES:
@@ -144,10 +161,104 @@ def check(path: Path | None = None) -> list[str]:
                     problems.append(f"{e.id}: no {kind} named")
         if e.status == "erratum" and e.erratum not in errata:
             problems.append(f"{e.id}: erratum {e.erratum!r} is not in docs/errata.md")
+        if e.scope and e.scope not in scope_ids():
+            problems.append(f"{e.id}: scope note {e.scope!r} is not in docs/errata.md")
         for name in e.reference + e.property:
             if not _resolve(name):
                 problems.append(f"{e.id}: {name} does not exist")
         for t in e.tests:
             if _test_exists(t) is False:
                 problems.append(f"{e.id}: test {t} does not exist")
+    return problems + check_notes(entries=entries)
+
+
+# --- the notes' numbered items ----------------------------------------------------------------
+
+NOTE_STATUSES = ("verified", "erratum", "definition", "not verifiable", "open")
+
+#: A numbered item's heading at the start of a line of the notes' text (Algorithms are
+#: the captions of Figures 3.6 and 4.23, which the text calls Algorithm 3.6 / 4.23).
+HEADING = re.compile(r"^ ?(Definition|Theorem|Lemma|Proposition|Corollary|Remark|Example|Claim)"
+                     r" ([1-4]\.\d+)\b|^Figure ([34]\.\d+)\. Simplicial minimal surface algorithm")
+
+
+@dataclass(frozen=True)
+class NoteItem:
+    name: str                    # "Theorem 2.6", "Algorithm 4.23", "Section 1.2: ..."
+    line: int
+    title: str
+    status: str
+    rows: tuple[str, ...] = ()
+    reason: str = ""
+
+
+def load_notes(path: Path | None = None) -> list[NoteItem]:
+    """The items of ``notes.toml`` (default: ours), in the notes' order."""
+    with open(path or NOTES, "rb") as fh:
+        data = tomllib.load(fh)
+    return [NoteItem(name=k, line=v["line"], title=v.get("title", ""), status=v["status"],
+                     rows=tuple(v.get("rows", ())), reason=v.get("reason", ""))
+            for k, v in data.items()]
+
+
+def notes_path() -> Path | None:
+    """The notes' text: $DDG_NOTES, else ../shared/seed/*.txt beside the repository."""
+    env = os.environ.get("DDG_NOTES")
+    if env:
+        return Path(env) if Path(env).is_file() else None
+    repo = repository()
+    if repo is None:
+        return None
+    return next(iter(sorted((repo.parent / "shared" / "seed").glob("*.txt"))), None)
+
+
+def note_headings(path: Path) -> dict[str, int]:
+    """{item name: line} of every numbered heading of chapters 1-4 in the notes' text (the
+    first occurrence at the start of a line)."""
+    found: dict[str, int] = {}
+    for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        m = HEADING.match(line)
+        if m:
+            name = f"{m.group(1)} {m.group(2)}" if m.group(1) else f"Algorithm {m.group(3)}"
+            found.setdefault(name, n)
+    return found
+
+
+def check_notes(path: Path | None = None, entries=None) -> list[str]:
+    """Every way the notes table is not true, as messages; empty when it is."""
+    problems: list[str] = []
+    items = load_notes(path)
+    rows = {e.id: e for e in (entries if entries is not None else load()[1])}
+    for it in items:
+        if it.status not in NOTE_STATUSES:
+            problems.append(f"{it.name}: unknown status {it.status!r}")
+        if it.status in ("verified", "erratum"):
+            if not it.rows:
+                problems.append(f"{it.name}: {it.status} but no traceability row named")
+            for r in it.rows:
+                if r not in rows:
+                    problems.append(f"{it.name}: row {r!r} is not in the traceability table")
+                elif rows[r].status not in ("verified", "erratum"):
+                    problems.append(f"{it.name}: row {r} is {rows[r].status!r}")
+            if it.status == "erratum" and not any(rows.get(r) and rows[r].status == "erratum"
+                                                  for r in it.rows):
+                problems.append(f"{it.name}: 'erratum' but none of its rows is an erratum")
+        elif not it.reason:
+            problems.append(f"{it.name}: status {it.status!r} needs a reason")
+    text = notes_path()
+    if text is not None:
+        lines = text.read_text(encoding="utf-8").splitlines()
+        headings = note_headings(text)
+        named = {it.name for it in items}
+        for name, n in headings.items():
+            if name not in named:
+                problems.append(f"{name} (line {n} of the notes) is not in ddg_oracle/notes.toml")
+        for it in items:
+            if it.name in headings and headings[it.name] != it.line:
+                problems.append(f"{it.name}: line {it.line}, but the notes have it at line "
+                                f"{headings[it.name]}")
+            elif it.name not in headings and not it.name.startswith("Section "):
+                problems.append(f"{it.name}: no such heading in the notes")
+            elif not 1 <= it.line <= len(lines):
+                problems.append(f"{it.name}: line {it.line} is past the end of the notes")
     return problems

@@ -38,10 +38,10 @@ def declare(base: str, documented: dict[str, tuple[str, str]], **options: str) -
     """(display name, ``conventions`` declaration) of the adapter ``base`` with these
     convention options; ``documented`` maps each option to (finding id, what differs).
 
-    >>> declare("libigl", {"boundary": ("L2", "2 pi - angle sum at boundary vertices")},
+    >>> declare("libigl", {"boundary": ("F-libigl-2", "2 pi - angle sum at boundary vertices")},
     ...         boundary="library")
-    ("libigl(boundary='library')", {'follows': {'L2': '2 pi - angle sum at boundary vertices'}, 'counterpart': 'libigl'})
-    >>> declare("libigl", {"boundary": ("L2", "...")}, boundary="reference")
+    ("libigl(boundary='library')", {'follows': {'F-libigl-2': '2 pi - angle sum at boundary vertices'}, 'counterpart': 'libigl'})
+    >>> declare("libigl", {"boundary": ("F-libigl-2", "...")}, boundary="reference")
     ('libigl', {})
     """
     name = convention_name(base, **options)

@@ -59,8 +59,8 @@ _arrays = checked_arrays
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("G1", "angle_defect: 0 at boundary vertices"),
-    "dihedral": ("G2", "dihedral_angles: unsigned, reflex edges count as convex"),
+    "boundary": ("F-gpytoolbox-1", "angle_defect: 0 at boundary vertices"),
+    "dihedral": ("F-gpytoolbox-2", "dihedral_angles: unsigned, reflex edges count as convex"),
 }
 
 
@@ -98,7 +98,7 @@ class Gpytoolbox:
         """``gpytoolbox.tip_angles(V, F)``: column c is the angle at vertex F[f, c],
         ``arccos((a + b - c) / (2 sqrt(a b)))`` of squared lengths; where the opposite
         squared length is below sqrt(float eps) (absolute) the chord 2 sin(angle / 2)
-        instead (docs/findings.md, G3, G4)."""
+        instead (docs/findings.md, F-gpytoolbox-3, F-gpytoolbox-4)."""
         V, F = _arrays(V, F)
         return np.asarray(gpy.tip_angles(V, F), dtype=np.float64)
 
@@ -145,7 +145,7 @@ class Gpytoolbox:
     def area(self, V, F) -> float:
         """``gpytoolbox.doublearea(V, F)`` summed with math.fsum and halved; gpytoolbox takes
         it from the square roots of the squared edge lengths (Kahan's product, unsorted), so
-        a cap loses precision (docs/findings.md, G4)."""
+        a cap loses precision (docs/findings.md, F-gpytoolbox-4)."""
         V, F = _arrays(V, F)
         return math.fsum(np.asarray(gpy.doublearea(V, F)).ravel()) / 2
 

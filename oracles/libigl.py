@@ -60,7 +60,7 @@ def _pad(x: np.ndarray, n: int) -> np.ndarray:
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("L2", "gaussian_curvature: 2 pi - angle sum at boundary vertices"),
+    "boundary": ("F-libigl-2", "gaussian_curvature: 2 pi - angle sum at boundary vertices"),
 }
 
 
@@ -89,7 +89,7 @@ class Libigl:
         """``igl.boundary_loop_all(F)``: every loop, walked along the faces' orientation.
 
         On a non-orientable surface this walk breaks the boundary into pieces
-        (docs/findings.md, L1): returned as libigl gives it.
+        (docs/findings.md, F-libigl-1): returned as libigl gives it.
         """
         _, F = _arrays(V, F)
         return [[int(v) for v in loop] for loop in igl.boundary_loop_all(F)]

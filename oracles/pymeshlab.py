@@ -161,8 +161,8 @@ def boundary_edge_angles(V, F) -> dict[int, float]:
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("P2", "boundary term 2 pi - angle sum - phi"),
-    "genus": ("P1", "genus of a non-orientable mesh is floor(h / 2)"),
+    "boundary": ("F-pymeshlab-2", "boundary term 2 pi - angle sum - phi"),
+    "genus": ("F-pymeshlab-1", "genus of a non-orientable mesh is floor(h / 2)"),
 }
 
 

@@ -22,7 +22,7 @@ glued along the boundary): a boundary edge becomes an interior edge between
 the two copies of its face, and is flipped when its opposite angle is obtuse,
 whereas the notes never flip a boundary edge (D4.4).  The two operators agree
 exactly when the notes' operator has no negative weight on a boundary edge
-(docs/findings.md, R1); where it has one, robust-laplacian's weights are all
+(docs/findings.md, F-robust-laplacian-1); where it has one, robust-laplacian's weights are all
 >= 0 and no mapping of its output gives the notes' operator back.
 
 Options (the defaults give the reference's conventions)
@@ -37,7 +37,7 @@ mollification.  ``mollify="library"``: the library's default
 ``mollify_factor=1e-5``: every edge length is increased by the same epsilon
 = max over corners of (l_c - l_a - l_b + 1e-5 x mean edge length), 0 unless
 some triangle is that close to degenerate (geometry-central
-``intrinsic_mollification.cpp`` l. 20-37); then every weight changes (R3).
+``intrinsic_mollification.cpp`` l. 20-37); then every weight changes (F-robust-laplacian-3).
 
 Bad input: the C++ code indexes vertices by the face list unchecked;
 :func:`_arrays` (``ddg_oracle.oracles.arrays.checked_arrays``) checks shapes, index ranges
@@ -70,8 +70,8 @@ _arrays = checked_arrays
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("R1", "tufted cover: boundary edges are flipped in the double of the surface"),
-    "mollify": ("R3", "mollify_factor 1e-5 lengthens every edge of a nearly degenerate mesh"),
+    "boundary": ("F-robust-laplacian-1", "tufted cover: boundary edges are flipped in the double of the surface"),
+    "mollify": ("F-robust-laplacian-3", "mollify_factor 1e-5 lengthens every edge of a nearly degenerate mesh"),
 }
 
 
@@ -108,6 +108,6 @@ class RobustLaplacian:
                 raise OutsideDomain(
                     f"robust_laplacian(boundary=reference) has no value on a mesh with "
                     f"boundary (edge {tuple(int(x) for x in b[0])} has one face): the tufted "
-                    "cover flips boundary edges (docs/findings.md R1); "
+                    "cover flips boundary edges (docs/findings.md F-robust-laplacian-1); "
                     "use robust_laplacian(boundary=library) for its own operator")
         return scipy.sparse.csr_matrix(r.embed(self.mesh_laplacian(V, F)[0]))

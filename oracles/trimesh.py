@@ -17,7 +17,7 @@ vertices (the protocol's vertices are the input's rows).
 * ``edge_mean_curvature``: H(e) = 1/2 theta l over ``mesh.face_adjacency_edges``,
   theta = ``face_adjacency_angles`` (unsigned) signed by ``face_adjacency_convex``,
   as trimesh's own docstring of ``face_adjacency_angles`` says to; l the edge length.
-  ``dihedral="library"`` keeps the unsigned angle (TM5).
+  ``dihedral="library"`` keeps the unsigned angle (F-trimesh-5).
 * ``area``: ``mesh.area``.
 
 Bad input is checked first by :func:`~ddg_oracle.oracles.arrays.checked_arrays`
@@ -49,8 +49,8 @@ def _mesh(V, F) -> "trimesh.Trimesh":
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("TM1", "vertex_defects: 2 pi - angle sum at boundary vertices"),
-    "dihedral": ("TM5", "face_adjacency_angles: unsigned, reflex edges count as convex"),
+    "boundary": ("F-trimesh-1", "vertex_defects: 2 pi - angle sum at boundary vertices"),
+    "dihedral": ("F-trimesh-5", "face_adjacency_angles: unsigned, reflex edges count as convex"),
 }
 
 

@@ -6,12 +6,12 @@ change of convention; the numbers compared are VTK's.
 
 * ``angle_defects``: ``vtkCurvatures`` with ``SetCurvatureTypeToGaussian`` gives, per
   vertex, (2 pi - angle sum) / (A(v) / 3), A(v) the area of the faces at v (VTK 9
-  ``vtkCurvatures::GetGaussianCurvature``; measured, VT2).  The adapter multiplies by
+  ``vtkCurvatures::GetGaussianCurvature``; measured, F-vtk-2).  The adapter multiplies by
   A(v) / 3, each face's area from ``vtkTriangle::TriangleArea`` (the area VTK divides
   by), to get the integrated angle defect back.  VTK's value at a boundary vertex is
   2 pi - angle sum too; with ``boundary="reference"`` the adapter adds -pi there (ends
   of edges of one face), the turning angle pi - angle sum of R2.4;
-  ``boundary="library"`` keeps 2 pi - sum (VT1).  A vertex of no face has no area to
+  ``boundary="library"`` keeps 2 pi - sum (F-vtk-1).  A vertex of no face has no area to
   divide by: the protocol's 2 pi - 0 (VTK gives 0, not a curvature).
 * ``area``: ``vtkMassProperties.GetSurfaceArea``.
 * ``euler_characteristic``: V - E + F, E the lines of ``vtkExtractEdges``.
@@ -51,7 +51,7 @@ from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
 LIBRARY_CONVENTIONS = {
-    "boundary": ("VT1", "vtkCurvatures Gaussian: 2 pi - angle sum at boundary vertices"),
+    "boundary": ("F-vtk-1", "vtkCurvatures Gaussian: 2 pi - angle sum at boundary vertices"),
 }
 
 

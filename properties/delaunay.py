@@ -109,7 +109,7 @@ class DelaunayExact:
         self.Ls = X.embed(self.L.to_scipy())
         self.Bs = X.embed(self._widen_on_cocircular_cells(self.bounds.B))
         # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
-        # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, E4)
+        # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, SC-1)
         pairs = {False: set(), True: set()}
         for e in range(t.n_edges):
             i, j = t.edge_vertices(e)
@@ -273,7 +273,7 @@ def non_orientable_meshes(draw):
     """The 6-vertex projective plane, a 3 x 3 Klein bottle (at drawn dyadic points: an
     immersion, whose metric is all an intrinsic triangulation needs) or a Moebius strip:
     D4.8, A4.13, C4.19 and L4.20 hold for any piecewise flat surface, orientable or not
-    (docs/findings.md L6: a flip algorithm that assumes an orientation breaks there)."""
+    (docs/findings.md F-libigl-6: a flip algorithm that assumes an orientation breaks there)."""
     from ddg_oracle.reference import surfaces
     from ddg_oracle.reference.errors import InputError
     kind = draw(st.sampled_from(["Moebius strip", "projective plane", "Klein bottle"]))

@@ -123,10 +123,10 @@ def declared_conventions(impl) -> tuple[str, str] | None:
     nothing; a malformed declaration is :class:`NotAnImplementation`.
 
     >>> class Igl:
-    ...     conventions = {"follows": {"L2": "2 pi - angle sum at the boundary"},
+    ...     conventions = {"follows": {"F-libigl-2": "2 pi - angle sum at the boundary"},
     ...                    "counterpart": "libigl"}
     >>> declared_conventions(Igl())
-    ('libigl', 'L2 (2 pi - angle sum at the boundary)')
+    ('libigl', 'F-libigl-2 (2 pi - angle sum at the boundary)')
     >>> declared_conventions(object()) is None
     True
     """

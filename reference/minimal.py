@@ -432,7 +432,7 @@ def delaunay_minimal_surface_step(surface: PolyhedralSurface, fixed: Sequence[in
 
     per face area <= energy; f~ minimises E_T~ (T3.5); the Delaunay weights nu~
     are >= 0 (P4.10) and each chord |f(i) - f(j)| is at most the intrinsic length
-    l~ of the edge ij of T~ (a path on S); the last equality is T3.9 (E2) on the
+    l~ of the edge ij of T~ (a path on S); the last equality is T3.9 (ER-2) on the
     metric of T~.
 
     Returns ``(delaunay_metric, new_positions)``.

@@ -31,6 +31,13 @@ tolerance decides anything.  Catalog rows:
   :func:`laplacian_difference`: ``L_T - L_Delaunay`` is positive
   semidefinite (:func:`ddg_oracle.reference.sparse.is_positive_semidefinite`), so the
   Delaunay triangulation minimises the Dirichlet energy of every function.
+* L4.8 -- :func:`inscribed_angle_cot`, :func:`tangent_chord_cot`: the
+  tangent-chord angle equals the inscribed angle, as exact cotangents.
+* R4.1 -- :func:`quad_tessellation_faces`: the Voronoi-Delaunay quad
+  tessellation, each face a kite with orthogonal diagonals, the Delaunay one
+  bisected; dual edges cross iff both opposite angles are at most pi/2.
+* R4.2 -- :func:`stereographic_lift`, :func:`is_lifted_hull_facet`: Delaunay
+  triangles are the hull facets of the points lifted to the sphere.
 
 Triangulations are returned as :class:`~ddg_oracle.reference.polyhedral.PolyhedralSurface`
 with two-dimensional positions (the input points, in input order: vertex ``i``
@@ -70,7 +77,8 @@ __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_posit
            "voronoi_edges", "empty_disk_violations", "is_empty_disk_edge", "angle_criterion",
            "is_delaunay_by_angles", "invert", "inversion", "cells_avoiding",
            "inversion_obstructions", "all_triangulations", "triangulation_key",
-           "laplacian_difference"]
+           "laplacian_difference", "inscribed_angle_cot", "tangent_chord_cot",
+           "quad_tessellation_faces", "stereographic_lift", "plane_side", "is_lifted_hull_facet"]
 
 _ZERO = Fraction(0)
 
@@ -781,3 +789,144 @@ def laplacian_difference(surface, other) -> SparseMatrix:
     if a.shape != b.shape:
         raise BadShape(f"Laplacians of shapes {a.shape} and {b.shape}: not the same vertex set")
     return SparseMatrix.from_entries(a.shape, a.entries() + [(i, j, -v) for i, j, v in b.entries()])
+
+
+# --- circles, the Voronoi-Delaunay quad tessellation, the sphere (L4.8, R4.1, R4.2) --------
+
+
+def _sub(p, q):
+    return (p[0] - q[0], p[1] - q[1])
+
+
+def _dot2(u, v):
+    return u[0] * v[0] + u[1] * v[1]
+
+
+def _det2(u, v):
+    return u[0] * v[1] - u[1] * v[0]
+
+
+def inscribed_angle_cot(b, s, c) -> Fraction:
+    """L4.8: ``cot`` of the inscribed angle ``alpha = angle BSC`` at ``s``, exact
+    (``cot = (u . v) / |u x v|`` for ``u = b - s``, ``v = c - s``; an angle in
+    (0, pi) is determined by its cotangent).
+
+    >>> inscribed_angle_cot((1, 0), (0, 1), (-1, 0))       # Thales: a right angle
+    Fraction(0, 1)
+    """
+    b, s, c = as_point(b, "B"), as_point(s, "S"), as_point(c, "C")
+    u, v = _sub(b, s), _sub(c, s)
+    if not _det2(u, v):
+        raise CollinearPoints(f"B, S, C = {b}, {s}, {c} are collinear: no angle BSC in (0, pi)")
+    return _dot2(u, v) / abs(_det2(u, v))
+
+
+def tangent_chord_cot(b, s, c) -> Fraction:
+    """L4.8: ``cot`` of the angle between the tangent at ``b`` to the circle through
+    ``b, s, c`` and the secant ``BC``, on the side of ``BC`` away from ``s`` (the
+    alternate segment), exact.  The tangent direction is ``(B - O)`` turned by 90
+    degrees, ``O`` the centre (:func:`circumcircle`); Lemma 4.8 says this equals
+    :func:`inscribed_angle_cot` ``(b, s, c)``.
+
+    >>> tangent_chord_cot((1, 0), (0, 1), (-1, 0))
+    Fraction(0, 1)
+    """
+    b, s, c = as_point(b, "B"), as_point(s, "S"), as_point(c, "C")
+    o, _ = circumcircle(b, s, c)
+    r = _sub(b, o)
+    t = (-r[1], r[0])
+    chord = _sub(c, b)
+    # the tangent ray on the other side of the line BC than S
+    if _sign(_det2(chord, t)) == _sign(_det2(chord, _sub(s, b))):
+        t = (-t[0], -t[1])
+    return _dot2(t, chord) / abs(_det2(t, chord))
+
+
+def quad_tessellation_faces(points) -> list[dict]:
+    """R4.1: the faces of the Voronoi-Delaunay quad tessellation of planar points, one
+    per interior edge ``ij`` of the Delaunay tessellation, exact.
+
+    Each is ``{"edge": (i, j), "voronoi": (q, r), "orthogonal": (q - r) . (pj - pi)
+    == 0, "bisected": the line qr passes through the midpoint of ij, "kite": |q - pi|
+    == |q - pj| and |r - pi| == |r - pj|, "crossing": the segments qr and ij meet
+    (closed segments), "acute": both angles opposite ij are at most pi/2 in the
+    triangles ``i j k`` of the cells (``k`` any other vertex of the cell)}``.  The
+    notes: every face is a (convex or non-convex) kite with orthogonal diagonals, the
+    Delaunay diagonal bisected; the dual edges need not cross.  ``crossing ==
+    acute`` holds exactly (a cell's centre lies on the far side of a chord iff the
+    inscribed angle over it is obtuse)."""
+    pts = as_point_set(points)
+    cells = delaunay_tessellation(pts)
+    sides: dict = {}
+    for cell in cells:
+        ring = cell_boundary(pts, cell)
+        for e in zip(ring, ring[1:] + ring[:1]):
+            sides.setdefault(frozenset(e), []).append((cell, ring))
+    centres = voronoi_vertices(pts, cells)
+    out = []
+    for e, cs in sorted(sides.items(), key=lambda x: sorted(x[0])):
+        if len(cs) != 2:
+            continue
+        i, j = sorted(e)
+        pi_, pj = pts[i], pts[j]
+        q, r = centres[cs[0][0]], centres[cs[1][0]]
+        mid = ((pi_[0] + pj[0]) / 2, (pi_[1] + pj[1]) / 2)
+        d2 = lambda x, y: _dot2(_sub(x, y), _sub(x, y))   # noqa: E731
+        qr = _sub(r, q)
+        if q == r:                  # cannot happen: distinct cells have distinct circles
+            raise AssertionError("two Delaunay cells share a circumcentre")
+
+        def opposite_cot(cell_ring):
+            k = next(v for v in cell_ring if v not in e)
+            return _dot2(_sub(pi_, pts[k]), _sub(pj, pts[k]))   # the sign of cot at k
+
+        crossing = (_sign(_det2(qr, _sub(pi_, q))) * _sign(_det2(qr, _sub(pj, q))) <= 0
+                    and _sign(_det2(_sub(pj, pi_), _sub(q, pi_)))
+                    * _sign(_det2(_sub(pj, pi_), _sub(r, pi_))) <= 0)
+        out.append({
+            "edge": (i, j), "voronoi": (q, r),
+            "orthogonal": _dot2(qr, _sub(pj, pi_)) == 0,
+            "bisected": _det2(qr, _sub(mid, q)) == 0,
+            "kite": d2(q, pi_) == d2(q, pj) and d2(r, pi_) == d2(r, pj),
+            "crossing": crossing,
+            "acute": all(opposite_cot(ring) >= 0 for _, ring in cs),
+        })
+    return out
+
+
+def stereographic_lift(p) -> tuple[Fraction, Fraction, Fraction]:
+    """R4.2: the inverse stereographic projection of the plane onto the unit sphere
+    from the north pole ``(0, 0, 1)``: ``(2x, 2y, x^2 + y^2 - 1) / (x^2 + y^2 + 1)``;
+    rational points go to rational points, exactly.
+
+    >>> stereographic_lift((0, 0))
+    (Fraction(0, 1), Fraction(0, 1), Fraction(-1, 1))
+    """
+    x, y = as_point(p)
+    n = x * x + y * y + 1
+    return (2 * x / n, 2 * y / n, (n - 2) / n)
+
+
+NORTH_POLE = (Fraction(0), Fraction(0), Fraction(1))
+
+
+def plane_side(a, b, c, d) -> int:
+    """The sign of ``det(b - a, c - a, d - a)`` for points of R^3, exact: the side of
+    the plane through ``a, b, c`` that ``d`` is on (0: on the plane)."""
+    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+           + u[2] * (v[0] * w[1] - v[1] * w[0]))
+    return _sign(det)
+
+
+def is_lifted_hull_facet(points, i: int, j: int, k: int) -> bool:
+    """R4.2: whether the lifted triangle ``i j k`` (:func:`stereographic_lift`) spans a
+    supporting plane of the convex hull of the lifted points and the north pole: every
+    other lifted point and the pole on one closed side.  The notes: this holds iff the
+    planar triangle ``i j k`` is a Delaunay triangle (no point strictly inside its
+    circumcircle), cocircular points lifting to coplanar ones."""
+    pts = as_point_set(points)
+    lifted = [stereographic_lift(p) for p in pts] + [NORTH_POLE]
+    a, b, c = lifted[i], lifted[j], lifted[k]
+    sides = {plane_side(a, b, c, d) for n, d in enumerate(lifted) if n not in (i, j, k)}
+    return not (1 in sides and -1 in sides)

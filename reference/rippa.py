@@ -29,7 +29,7 @@ Catalog rows:
   function.  A flip to the Delaunay diagonal never increases ``E``, and
   strictly decreases it unless the quadrilateral is circular or ``u`` is
   affine on it (then ``u0 = u0*``).  The notes' Corollary 4.16 says "unless
-  all of ``u1..u4`` are equal", which is not enough: erratum E6
+  all of ``u1..u4`` are equal", which is not enough: erratum ER-6
   (``docs/errata.md``).
 
 Vertices are numbered 1..4 in the notes and 0..3 here (list positions).

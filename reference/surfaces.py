@@ -27,7 +27,7 @@ from .polyhedral import PolyhedralSurface
 
 __all__ = ["tetrahedron", "octahedron", "cube", "icosahedron", "torus", "genus_surface",
            "disk", "annulus", "grid", "mobius_strip", "projective_plane", "klein_bottle",
-           "connected_sum"]
+           "connected_sum", "convex_hull"]
 
 
 def _count(name: str, value, minimum: int) -> int:
@@ -75,6 +75,49 @@ def tetrahedron() -> PolyhedralSurface:
     """
     return _surface([(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)],
                     [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)])
+
+
+def convex_hull(points) -> PolyhedralSurface:
+    """X1.1 / X1.2 (1): the boundary of the convex hull of points of R^3 in general
+    position (no 4 coplanar), as a triangulated sphere with outward faces, exact.
+
+    A triple ``i j k`` is a facet iff every other point is strictly on one side of
+    its plane (the sign of an exact 3 x 3 determinant); O(n^4), for small point sets.
+    Every point is a vertex (general position with n >= 4 also needs every point on
+    the hull; an interior point raises).  Raises :class:`InputError` naming 4
+    coplanar points, or a point inside the hull.
+
+    >>> convex_hull([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]).triangulation.n_faces
+    4
+    """
+    from itertools import combinations
+    pts = [tuple(Fraction(c) for c in p) for p in points]
+    if len(pts) < 4 or any(len(p) != 3 for p in pts):
+        raise InputError(f"convex_hull needs at least 4 points of R^3, got {len(pts)}")
+
+    def side(a, b, c, d):
+        u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+        det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+               + u[2] * (v[0] * w[1] - v[1] * w[0]))
+        return (det > 0) - (det < 0)
+
+    faces = []
+    for i, j, k in combinations(range(len(pts)), 3):
+        signs = set()
+        for m in range(len(pts)):
+            if m not in (i, j, k):
+                s = side(pts[i], pts[j], pts[k], pts[m])
+                if s == 0:
+                    raise InputError(f"points {i}, {j}, {k}, {m} are coplanar "
+                                     "(convex_hull needs general position)")
+                signs.add(s)
+        if len(signs) == 1:                      # outward: the others on the negative side
+            faces.append((i, j, k) if signs == {-1} else (i, k, j))
+    used = {v for f in faces for v in f}
+    inner = sorted(set(range(len(pts))) - used)
+    if inner:
+        raise InputError(f"point {inner[0]} is inside the convex hull (not a vertex)")
+    return _surface(faces, pts)
 
 
 def octahedron() -> PolyhedralSurface:

@@ -117,7 +117,7 @@ def test_expect_conventions_turns_a_documented_convention_into_an_expected_resul
     assert rc == 0
     assert re.search(r"^R2\.4 .*convention$", out, re.M)
     assert re.search(r"^D2\.2 .*passed", out, re.M)
-    assert "documented convention L2" in out and "libigl passes the same example" in out
+    assert "documented convention F-libigl-2" in out and "libigl passes the same example" in out
 
 
 def test_conventions_are_declared_by_the_implementation_itself():
@@ -125,8 +125,8 @@ def test_conventions_are_declared_by_the_implementation_itself():
     from ddg_oracle.properties.protocol import NotAnImplementation, declared_conventions
     assert declared_conventions(load_implementation("libigl(boundary=library)"))[0] == "libigl"
     assert declared_conventions(load_implementation("pymeshlab(genus=library, boundary=library)")) \
-        == ("pymeshlab", "P2 (boundary term 2 pi - angle sum - phi); "
-                         "P1 (genus of a non-orientable mesh is floor(h / 2))")
+        == ("pymeshlab", "F-pymeshlab-2 (boundary term 2 pi - angle sum - phi); "
+                         "F-pymeshlab-1 (genus of a non-orientable mesh is floor(h / 2))")
     assert declared_conventions(load_implementation("tests.planted_bugs:ChiIgnoresBoundary")) is None
     assert declared_conventions(load_implementation("libigl")) is None
 
@@ -374,8 +374,8 @@ def test_convention_status_from_run_property():
     from ddg_oracle.oracles.libigl import Libigl
     quick = settings(max_examples=20, deadline=None, database=None, derandomize=True)
     r = run_property(PROPERTIES["R2.4"], Libigl(boundary="library"), quick,
-                     counterpart=Libigl(), convention="L2")
-    assert r.status == CONVENTION and r.ok and "L2" in r.note
+                     counterpart=Libigl(), convention="F-libigl-2")
+    assert r.status == CONVENTION and r.ok and "F-libigl-2" in r.note
 
 
 def test_report_of_a_failure_on_a_large_mesh_file_reads_the_obj(tmp_path, capsys):
@@ -556,9 +556,9 @@ def test_the_compact_report_fits_100_columns_with_every_kind_of_result():
     for heading in ("FAILED (", "crashed (", "tie disagreements (", "conventions (",
                     "passed (of the applicable checks)", "not applicable ("):
         assert any(line.startswith(heading) for line in lines), heading
-    assert re.search(r"^  R1\.6 +libigl +wrong number of boundary loops +\(known: L1\)$",
+    assert re.search(r"^  R1\.6 +libigl +wrong number of boundary loops +\(known: F-libigl-1\)$",
                      out.stdout, re.M)
-    assert any(re.match(r"exit 1: \d+ checks failed or crashed; known findings L1", line)
+    assert any(re.match(r"exit 1: \d+ checks failed or crashed; known findings F-libigl-1", line)
                for line in lines[-6:]), lines[-6:]
     # without a terminal: a line per finished applicable task on stderr
     assert re.search(r"^\[\d+/\d+ \d+ s\] R1\.6 libigl: FAILED$", out.stderr, re.M)

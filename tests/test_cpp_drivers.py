@@ -1,6 +1,6 @@
 """The C++ library drivers of examples/cpp (CGAL 5.5, OpenMesh 9), built here with CMake
 from the repository's files and checked through ``exec:``: what agrees with the notes
-passes, the findings CG1, CG2 and OM1 (docs/findings.md) fail where they say, and the
+passes, the findings F-cgal-1, F-cgal-2 and F-openmesh-1 (docs/findings.md) fail where they say, and the
 library conventions (CGAL's and OpenMesh's factor 2) are exactly 2x the notes.
 
 Without CMake, CGAL or OpenMesh these tests are skipped, unless DDG_ORACLE_REQUIRE_CPP=1
@@ -138,7 +138,7 @@ def test_CG2_cgal_intrinsic_layout_loses_accuracy_on_a_needle(cgal):
     # ~75 eps on the short edge, which the area's condition l_max^2 / 2A = 324 amplifies
     assert rel.max() > 16 * EPS
     # A4.13 on this needle (the search finds such needles in some runs; the test vector
-    # needle-2^-30 finds CG2 every time: test_the_test_vectors_find_cg1_cg2_and_om1)
+    # needle-2^-30 finds F-cgal-2 every time: test_the_test_vectors_find_cg1_cg2_and_om1)
     from fractions import Fraction
     from ddg_oracle.properties.runner import run_on_example
     from ddg_oracle.properties.strategies import MeshCase
@@ -177,8 +177,8 @@ def test_check_without_impl_checks_the_built_drivers(build, tmp_path):
     out = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--drivers", str(build),
                           "--only", "L3.7", "--workers", "1", "--profile", "ci", "--wide"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
-    assert out.returncode == 1, out.stdout + out.stderr          # CG1
-    assert "[L3.7] cgal:" in out.stdout and "CG1" in out.stdout, out.stdout
+    assert out.returncode == 1, out.stdout + out.stderr          # F-cgal-1
+    assert "[L3.7] cgal:" in out.stdout and "F-cgal-1" in out.stdout, out.stdout
 
 
 def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it(build, tmp_path):
@@ -186,7 +186,7 @@ def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it
     raw = _driver(build, "cgal_driver", "--weights=library")
     counterpart, what = declared_conventions(raw)
     raw.close()
-    assert counterpart == f"exec:{build / 'cgal_driver'}" and what.startswith("CG3 (")
+    assert counterpart == f"exec:{build / 'cgal_driver'}" and what.startswith("F-cgal-3 (")
     argv = [sys.executable, "-m", "ddg_oracle", "check", "--impl",
             f"exec:{build / 'cgal_driver'} --weights=library", "--only", "D3.1", "--workers", "1",
             "--profile", "ci", "--wide"]
@@ -195,7 +195,7 @@ def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it
     out = subprocess.run(argv + ["--expect-conventions"], cwd=tmp_path, capture_output=True,
                          text=True, timeout=600)
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "documented convention CG3" in out.stdout and "cgal passes the same example" in out.stdout
+    assert "documented convention F-cgal-3" in out.stdout and "cgal passes the same example" in out.stdout
 
 
 @pytest.mark.parametrize("pid", ["T3.2", "C3.4 / T3.5", "T3.9"])
@@ -209,7 +209,7 @@ def test_cgal_area_gradient_and_dirichlet_solver_pass(cgal, pid):
 
 def test_the_test_vectors_find_cg1_cg2_and_om1(cgal, openmesh):
     """`ddg-oracle verify vectors/` on the drivers: CGAL's mixed Voronoi areas of obtuse
-    triangles (CG1) and its layouts of a needle (CG2), OpenMesh's boundary weights (OM1);
+    triangles (F-cgal-1) and its layouts of a needle (F-cgal-2), OpenMesh's boundary weights (F-openmesh-1);
     and nothing on the cases those findings do not touch."""
     from ddg_oracle import vectors
     corpus = vectors.load(ROOT / "vectors")
@@ -219,7 +219,7 @@ def test_the_test_vectors_find_cg1_cg2_and_om1(cgal, openmesh):
                 if v.status == "FAIL"}
     cg = failed(cgal)
     assert {"vertex_areas_voronoi/obtuse-fan", "intrinsic_delaunay_laplacian/needle-2^-30",
-            "intrinsic_delaunay_laplacian/cap-2^-30"} <= cg            # CG1, CG2, L7
+            "intrinsic_delaunay_laplacian/cap-2^-30"} <= cg            # F-cgal-1, F-cgal-2, F-libigl-7
     assert not any(i.startswith(("cotan_laplacian/", "area/", "vertex_areas_barycentric/"))
                    for i in cg)
     om = failed(openmesh)

@@ -20,7 +20,7 @@ SNIPPETS = {name: (m[1], m[2]) for name, s in SECTIONS.items()
 
 
 def test_every_finding_of_the_summary_has_a_section_and_a_snippet():
-    summary = re.findall(r"^\| \[(\w+)\]\(#\w+\)", TEXT, re.M)
+    summary = re.findall(r"^\| \[([\w-]+)\]\(#[\w-]+\)", TEXT, re.M)
     assert summary and set(summary) == set(SNIPPETS)
 
 

@@ -24,7 +24,7 @@ pytestmark = pytest.mark.skipif(not (CHROMIUM and DRIVER),
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
-    """A report with a failure in R^3 (libigl's boundary loops on a Moebius strip, L1) and a
+    """A report with a failure in R^3 (libigl's boundary loops on a Moebius strip, F-libigl-1) and a
     planar one (an implementation whose Delaunay flips stop one flip short)."""
     pytest.importorskip("igl")
     d = tmp_path_factory.mktemp("html") / "report"

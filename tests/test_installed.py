@@ -195,7 +195,7 @@ def test_theorems_check_passes_from_the_wheel(installed):
     out = _run([str(installed["bin"] / "ddg-oracle"), "theorems", "--check"],
                cwd=installed["project"])
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "traceability table: true" in out.stdout
+    assert "traceability table and notes table: true" in out.stdout
 
 
 def test_cli_says_which_libraries_are_not_installed(installed):

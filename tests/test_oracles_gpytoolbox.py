@@ -74,7 +74,7 @@ def test_voronoi_uses_the_obtuse_triangle_rule():
 @pytest.mark.parametrize("name", ["disk(6)", "grid(3,3)", "annulus(5)", "mobius_strip(5)"])
 def test_boundary_library_is_angle_defect_with_zero_at_the_boundary(name):
     """angle_defect_intrinsic.py l. 51: ``k[b] = 0.``; the reference option puts the turning
-    angle pi - (sum of gpytoolbox's tip angles) there (finding G1)."""
+    angle pi - (sum of gpytoolbox's tip angles) there (finding F-gpytoolbox-1)."""
     V, F = pc.arrays(name)
     raw = Gpytoolbox(boundary="library").angle_defects(V, F)
     np.testing.assert_array_equal(raw, gpy.angle_defect(V, F))
@@ -90,7 +90,7 @@ def test_boundary_library_is_angle_defect_with_zero_at_the_boundary(name):
 @pytest.mark.parametrize("name", ["genus_surface(1)", "cube", "torus(5,4)"])
 def test_dihedral_library_is_the_unsigned_angle(name):
     """dihedral_angles.py l. 64: arctan2(|n1 x n2|, n1 . n2) in [0, pi]: H >= 0 on every edge,
-    and |H| of the reference option (finding G2)."""
+    and |H| of the reference option (finding F-gpytoolbox-2)."""
     V, F = pc.arrays(name)
     raw = Gpytoolbox(dihedral="library").edge_mean_curvature(V, F)
     signed = GPY.edge_mean_curvature(V, F)
@@ -107,11 +107,11 @@ def test_unknown_options_are_rejected():
     assert Gpytoolbox(boundary="library").name == "gpytoolbox(boundary='library')"
 
 
-# --- finding G3: the small-angle branch of tip_angles -----------------------------------------
+# --- finding F-gpytoolbox-3: the small-angle branch of tip_angles -----------------------------------------
 
 
 @pytest.mark.parametrize("scale, wrong", [(1.0, False), (1e-3, False), (1e-4, True), (1e-6, True)])
-def test_finding_G3_tip_angles_of_a_small_equilateral_triangle(scale, wrong):
+def test_finding_F_gpytoolbox_3_tip_angles_of_a_small_equilateral_triangle(scale, wrong):
     """tip_angles_intrinsic.py l. 48-53: where the opposite *squared* length is below
     sqrt(float eps) = 1.49e-8 (an absolute threshold), the angle is computed as
     sqrt((c - (sqrt a - sqrt b)^2) / sqrt(a b)) = 2 sin(gamma / 2), the chord, not the
@@ -150,7 +150,7 @@ def test_capabilities_are_what_gpytoolbox_computes():
 
 
 def _sliver(V, F) -> bool:
-    """Some face is a needle or a cap: an edge or the area far below the longest edge (G4's
+    """Some face is a needle or a cap: an edge or the area far below the longest edge (F-gpytoolbox-4's
     law of cosines shows beyond its bound from about 2^-8 on)."""
     X = np.asarray(V, float)[np.asarray(F)]
     edges = np.linalg.norm(X[:, [1, 2, 0]] - X, axis=2)
@@ -164,8 +164,8 @@ def test_every_applicable_property_passes_but_on_the_meshes_of_findings_G3_and_G
     results = run_properties(GPY, profile="default", seed=0)         # reproducible
     for r in results:
         if r.status == FAILED:
-            # G3: tip_angles' absolute threshold (the curvature strategy scales by 2^k);
-            # G4: angles and areas from squared lengths lose needles and caps (slivers)
+            # F-gpytoolbox-3: tip_angles' absolute threshold (the curvature strategy scales by 2^k);
+            # F-gpytoolbox-4: angles and areas from squared lengths lose needles and caps (slivers)
             V, F = r.failure.mesh
             # the size of the surface: an isolated vertex (used by no face) may sit far
             # away, and a budget-cut shrink may leave it there

@@ -264,7 +264,7 @@ def test_boundary_loops_and_genus_on_orientable_surfaces(name):
 
 
 @pytest.mark.parametrize("n", [3, 5])
-def test_finding_L1_boundary_loop_all_breaks_the_boundary_of_a_mobius_strip(n):
+def test_finding_F_libigl_1_boundary_loop_all_breaks_the_boundary_of_a_mobius_strip(n):
     """libigl walks boundary edges along each face's orientation (boundary_loop.cpp:
     next = F(f, vLoc + 1) where TT(f, vLoc) < 0).  On a non-orientable strip the
     orientation flips once, so the walk stops and restarts: the one boundary loop of
@@ -288,7 +288,7 @@ def test_is_orientable_on_closed_non_orientable_surfaces():
         assert IGL.genus(V, F) == t.classify().genus
 
 
-CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS", "T1.1 / C1.2"]      # R1.6: finding L1 (below)
+CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS", "T1.1 / C1.2"]      # R1.6: finding F-libigl-1 (below)
 
 
 @pytest.mark.parametrize("pid", CHAPTER1)
@@ -502,7 +502,7 @@ def test_intrinsic_delaunay_api_conventions():
     assert igl.intrinsic_delaunay_triangulation(igl.edge_lengths(Q, G), G)[1].tolist() == G.tolist()
 
 
-def test_finding_L3_is_delaunay_reads_only_x_and_y():
+def test_finding_F_libigl_3_is_delaunay_reads_only_x_and_y():
     """is_delaunay.cpp: incircle of (V(v, 0), V(v, 1)): the same rhombus stood up in the
     xz-plane is reported Delaunay everywhere, although its long diagonal is not."""
     V = np.array([[0.0, 0, 0], [1, 0, -0.2], [2, 0, 0], [1, 0, 0.2]])

@@ -175,7 +175,7 @@ def _closed(t):
     return V, np.array(t.to_face_list())
 
 
-def test_finding_P1_library_genus_of_non_orientable_surfaces_is_half_the_crosscaps():
+def test_finding_F_pymeshlab_1_library_genus_of_non_orientable_surfaces_is_half_the_crosscaps():
     """filter_measure.cpp computeTopologicalMeasures -> vcg Clean::MeshGenus:
     genus = -((V + F - E + holes - 2 C) / 2) with C++ integer division.  For h crosscaps
     that is h / 2 rounded toward zero: RP^2 0, Klein bottle 1, RP^2 # RP^2 # RP^2 1,
@@ -239,7 +239,7 @@ def test_angle_defects(name):
 
 
 @pytest.mark.parametrize("name", ["disk(6)", "grid(3,3)", "annulus(5)", "disk(3)"])
-def test_finding_P2_library_boundary_term_is_2pi_minus_sum_minus_boundary_angle(name):
+def test_finding_F_pymeshlab_2_library_boundary_term_is_2pi_minus_sum_minus_boundary_angle(name):
     """curvature.h MeanAndGaussian: at a boundary vertex KG = 2 pi - sum - phi, phi the
     angle in R^3 between the two boundary edges.  On planar convex boundary vertices
     (phi = sum) that is twice the turning angle pi - sum, not the turning angle (R2.4)."""
@@ -264,7 +264,7 @@ def test_finding_P2_library_boundary_term_is_2pi_minus_sum_minus_boundary_angle(
 
 
 @pytest.mark.parametrize("n", [3, 5])
-def test_finding_P3_boundary_term_follows_face_orientation_on_a_mobius_strip(n):
+def test_finding_F_pymeshlab_3_boundary_term_follows_face_orientation_on_a_mobius_strip(n):
     """vcg subtracts phi at vertex V(i) of each border edge i of a face, i.e. at the tail
     of the edge in that face's orientation.  On a Moebius strip the orientation flips,
     so one boundary vertex gets phi twice and another none: the angle defect there is
@@ -287,7 +287,7 @@ def test_finding_P3_boundary_term_follows_face_orientation_on_a_mobius_strip(n):
     assert off[n] == pytest.approx(-phi[n], abs=1e-5)
 
 
-def test_finding_P4_curvature_is_zeroed_below_an_absolute_area_threshold():
+def test_finding_F_pymeshlab_4_curvature_is_zeroed_below_an_absolute_area_threshold():
     """curvature.h:513: ``if (A <= numeric_limits<ScalarType>::epsilon()) KG = KH = 0``
     compares an absolute mixed area with a relative epsilon (2.2e-16 in this double
     build).  The tetrahedron scaled by 1e-9 (mixed areas ~ 1e-19) gets angle defect 0
@@ -299,7 +299,7 @@ def test_finding_P4_curvature_is_zeroed_below_an_absolute_area_threshold():
     np.testing.assert_allclose(PML.angle_defects(c.V * 1e-7, c.F), want, rtol=0, atol=1e-5)
 
 
-def test_finding_P5_single_precision_overflow_and_underflow():
+def test_finding_F_pymeshlab_5_single_precision_overflow_and_underflow():
     """Squared edge lengths are ``float`` in MeanAndGaussian (curvature.h:434) and the total
     area is ``float Area`` (filter_measure.cpp:424): the tetrahedron scaled by 1e20 has area
     2.4e40 > FLT_MAX, reported as inf, and its angle defects as 0; scaled by 1e-20 the

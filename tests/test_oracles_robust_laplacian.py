@@ -47,12 +47,12 @@ def test_closed_meshes_give_the_laplace_beltrami_operator(name):
 @pytest.mark.parametrize("name", WITH_BOUNDARY)
 def test_meshes_with_boundary_are_outside_the_reference_conventions_domain(name):
     V, F = pc.arrays(name)
-    with pytest.raises(OutsideDomain, match="R1"):
+    with pytest.raises(OutsideDomain, match="F-robust-laplacian-1"):
         RL.intrinsic_delaunay_laplacian(V, F)
     assert isinstance(OutsideDomain("x"), ValueError)
 
 
-# --- the tufted cover at the boundary (finding R1), exactly ------------------------------------
+# --- the tufted cover at the boundary (finding F-robust-laplacian-1), exactly ------------------------------------
 
 
 def double(V, F):
@@ -107,7 +107,7 @@ def test_tufted_cover_is_half_the_folded_operator_of_the_double(name):
     np.testing.assert_array_equal(got, rl.mesh_laplacian(V, F, mollify_factor=0)[0].toarray())
 
 
-def test_finding_R1_differs_from_the_notes_exactly_where_they_have_a_negative_boundary_weight():
+def test_finding_F_robust_laplacian_1_differs_from_the_notes_exactly_where_they_have_a_negative_boundary_weight():
     """disk(3): three 120-degree corners at the centre, opposite the three boundary edges.
     The notes never flip a boundary edge (D4.4): weight 1/2 cot 120 < 0 there.  The cover
     flips them (in the double they are interior, with opposite angles summing to 240)."""
@@ -122,7 +122,7 @@ def test_finding_R1_differs_from_the_notes_exactly_where_they_have_a_negative_bo
     assert np.all(off <= 1e-15)                        # no negative weight anywhere
 
 
-# --- finding R2: the flip threshold delaunayEPS = 1e-6 -----------------------------------------
+# --- finding F-robust-laplacian-2: the flip threshold delaunayEPS = 1e-6 -----------------------------------------
 
 
 def pillow(d):
@@ -133,7 +133,7 @@ def pillow(d):
     return V, F
 
 
-def test_finding_R2_an_edge_with_weight_above_minus_1e_6_is_not_flipped():
+def test_finding_F_robust_laplacian_2_an_edge_with_weight_above_minus_1e_6_is_not_flipped():
     """simple_idt.h l. 16-17: flipToDelaunay(..., delaunayEPS = 1e-6) flips only edges whose
     weight is < -1e-6 (simple_idt.cpp l. 111-112); tufted_laplacian.cpp l. 29 uses the
     default.  With d = 2e-7 the non-Delaunay diagonal (weight -1e-7) stays."""
@@ -147,7 +147,7 @@ def test_finding_R2_an_edge_with_weight_above_minus_1e_6_is_not_flipped():
     pc.check_intrinsic_delaunay_laplacian(RL, pc.mesh_case(V, F, "pillow"))
 
 
-# --- mollification (finding R3) -----------------------------------------------------------------
+# --- mollification (finding F-robust-laplacian-3) -----------------------------------------------------------------
 
 
 def needle_tetrahedron():
@@ -158,7 +158,7 @@ def needle_tetrahedron():
     return V, F
 
 
-def test_finding_R3_mollify_library_changes_a_mesh_with_a_short_edge():
+def test_finding_F_robust_laplacian_3_mollify_library_changes_a_mesh_with_a_short_edge():
     """intrinsic_mollification.cpp l. 20-37: every edge length gets + max(0, max over corners
     of l_c - l_a - l_b + 1e-5 mean(l)); here ~9e-6 on every edge, which turns the needles'
     cotangents (~1e6) into others: entries off by ~8e5.  mollify="reference" (0) gives the
@@ -221,7 +221,7 @@ def test_runner_skips_examples_outside_the_domain():
     """D4.9 draws planar meshes only (all with boundary): not applicable, with the reason;
     X4.2 (a closed tetrahedron) is checked; a single given example outside: not applicable."""
     d49 = run_property(PROPERTIES["D4.9 / R4.10"], RL, profile("default"))
-    assert d49.status == NOT_APPLICABLE and d49.examples == 0 and "R1" in d49.note
+    assert d49.status == NOT_APPLICABLE and d49.examples == 0 and "F-robust-laplacian-1" in d49.note
     tufted = run_property(PROPERTIES["D4.9 / R4.10"], TUFTED, profile("default"))
     assert tufted.examples > 0 and tufted.note is None        # the library option checks them
     x42 = run_property(PROPERTIES["X4.2"], RL, profile("default"))
@@ -234,7 +234,7 @@ def test_outside_domain_crosses_the_worker_process():
     from ddg_oracle.isolation import Isolated
     V, F = pc.arrays("disk(6)")
     with Isolated("robust_laplacian", timeout=60) as impl:
-        with pytest.raises(OutsideDomain, match="R1"):
+        with pytest.raises(OutsideDomain, match="F-robust-laplacian-1"):
             impl.intrinsic_delaunay_laplacian(V, F)
         W, G = pc.arrays("cube")
         assert impl.intrinsic_delaunay_laplacian(W, G).shape == (8, 8)

@@ -1,6 +1,6 @@
 """trimesh on the reference's conventions (ddg_oracle.oracles.trimesh): the adapter maps only
-the documented convention (TM1), and ``ddg-oracle check`` finds trimesh's small-scale
-bugs (TM2, TM3) from generated meshes, not only from hand-made files."""
+the documented convention (F-trimesh-1), and ``ddg-oracle check`` finds trimesh's small-scale
+bugs (F-trimesh-2, F-trimesh-3) from generated meshes, not only from hand-made files."""
 
 import math
 
@@ -25,7 +25,7 @@ def test_turning_angles_at_the_boundary_and_the_library_convention():
     exact = curvature.turning_angles(surfaces.tetrahedron().__class__.from_arrays(V, open_F))
     for v, k in exact.items():
         assert ours[v] == pytest.approx(float(k), abs=1e-14)
-        assert theirs[v] - ours[v] == pytest.approx(math.pi)      # TM1: 2 pi - sum
+        assert theirs[v] - ours[v] == pytest.approx(math.pi)      # F-trimesh-1: 2 pi - sum
     assert Trimesh(boundary="library").name == "trimesh(boundary='library')"
 
 
@@ -50,7 +50,7 @@ def test_check_finds_the_small_scale_dihedral_bug_TM2_from_generated_meshes():
     assert r.status == FAILED
     Vf, Ff = r.failure.mesh
     assert len(Ff) <= 6
-    # shrunk to a mesh below TM2's threshold: some face with |cross| <= 1e-13
+    # shrunk to a mesh below F-trimesh-2's threshold: some face with |cross| <= 1e-13
     X = np.asarray(Vf)[np.asarray(Ff)]
     cross = np.linalg.norm(np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]), axis=1)
     assert cross.min() <= 1e-13
@@ -62,11 +62,11 @@ def test_check_finds_trimeshs_angles_off_on_needles_TM4_and_zeroed_on_tiny_meshe
     Vf, Ff = r.failure.mesh
     X = np.asarray(Vf)[np.asarray(Ff)]
     edges = np.linalg.norm(X[:, [1, 2, 0]] - X, axis=2)
-    tiny = edges.max() < 1e-6                                  # TM3: every angle zeroed
-    needle = (edges.min(1) < edges.max(1) / 16).any()         # TM4: pi minus two arccos
+    tiny = edges.max() < 1e-6                                  # F-trimesh-3: every angle zeroed
+    needle = (edges.min(1) < edges.max(1) / 16).any()         # F-trimesh-4: pi minus two arccos
     assert (tiny and r.failure.observed == 0.0) or needle, r.failure
     small = Trimesh().corner_angles(V * 2.0 ** -44, F)
-    assert np.all(small == 0)                                  # TM3 on the tetrahedron
+    assert np.all(small == 0)                                  # F-trimesh-3 on the tetrahedron
     # on meshes trimesh's thresholds do not reach, its angles are within the bounds
     assert run_property(PROPERTIES["X2.1"], Trimesh(), profile("ci")).status == PASSED
 
@@ -77,6 +77,6 @@ def test_the_library_dihedral_is_unsigned_TM5():
     theirs = Trimesh(dihedral="library").edge_mean_curvature(V, inside_out)
     assert all(ours[e] < 0 and theirs[e] == pytest.approx(-ours[e]) for e in ours)
     assert Trimesh(dihedral="library").conventions["follows"] == {
-        "TM5": "face_adjacency_angles: unsigned, reflex edges count as convex"}
+        "F-trimesh-5": "face_adjacency_angles: unsigned, reflex edges count as convex"}
     r = run_property(PROPERTIES["D2.3"], Trimesh(dihedral="library"), profile("ci"))
     assert r.status == FAILED

@@ -1,5 +1,5 @@
 """VTK on the reference's conventions (ddg_oracle.oracles.vtk): vtkCurvatures' Gaussian
-curvature is per area (VT2) and 2 pi - angle sum at the boundary too (VT1); undone, VTK
+curvature is per area (F-vtk-2) and 2 pi - angle sum at the boundary too (F-vtk-1); undone, VTK
 passes every applicable property, with the bounds the properties derive."""
 
 import math
@@ -38,9 +38,9 @@ def test_vtk_area_euler_characteristic_and_boundary_loops(name):
 def test_vtk_boundary_convention_is_pi_more_at_boundary_vertices():
     open_F = F[1:]                                   # the tetrahedron minus a face
     ours, theirs = Vtk().angle_defects(V, open_F), Vtk(boundary="library").angle_defects(V, open_F)
-    assert np.allclose((theirs - ours)[:3], math.pi) and theirs[3] == ours[3]   # VT1
+    assert np.allclose((theirs - ours)[:3], math.pi) and theirs[3] == ours[3]   # F-vtk-1
     assert Vtk(boundary="library").conventions["follows"] == {
-        "VT1": "vtkCurvatures Gaussian: 2 pi - angle sum at boundary vertices"}
+        "F-vtk-1": "vtkCurvatures Gaussian: 2 pi - angle sum at boundary vertices"}
     r = run_property(PROPERTIES["R2.4"], Vtk(boundary="library"), profile("ci"))
     assert r.status == FAILED and len(r.mesh[1]) <= 3
 
@@ -49,4 +49,4 @@ def test_vtk_passes_the_curvature_and_topology_properties():
     for pid in ("D2.2", "T2.6", "R2.4", "R2.2", "D1.6", "CS"):
         r = run_property(PROPERTIES[pid], Vtk(), profile("ci"))
         assert r.status == PASSED, (pid, r.summary())
-    assert run_property(PROPERTIES["L2.4"], Vtk(), profile("ci")).status in (PASSED, TIE)  # T8
+    assert run_property(PROPERTIES["L2.4"], Vtk(), profile("ci")).status in (PASSED, TIE)  # F-vtk-3

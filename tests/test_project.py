@@ -78,7 +78,9 @@ def test_every_claimed_row_has_a_registered_property():
     registered = {f"{p.check.__module__}:{p.name}" for p in all_properties()}
     for e in entries:
         if e.chapter in claimed:
-            assert set(e.property) <= registered | {p for p in e.property if ".structure:" in p}, e.id
+            # structure / statements: properties of the reference's own values, no protocol
+            structural = {p for p in e.property if ".structure:" in p or ".statements:" in p}
+            assert set(e.property) <= registered | structural, e.id
 
 
 def test_traceability_check_catches_a_missing_test_and_an_unverified_claimed_row(tmp_path):
@@ -95,7 +97,7 @@ def test_traceability_check_catches_a_missing_test_and_an_unverified_claimed_row
 
 def test_cli_theorems_check_exits_zero(capsys):
     assert main(["theorems", "--check"]) == 0
-    assert "traceability table: true" in capsys.readouterr().out
+    assert "traceability table and notes table: true" in capsys.readouterr().out
 
 
 def test_cli_check_passes_on_the_reference(capsys):
@@ -133,3 +135,54 @@ def test_cli_check_reports_a_segfaulting_implementation_and_goes_on(capsys):
     assert "crashed" in out and "SIGSEGV" in out
     # the run went on: T1.1 / C1.2 passed on both, R1.6 on the reference
     assert re.search(r"^  segfaults-on-boundary 1/2, reference 2/2$", out, re.M), out
+
+
+def _notes_copy(tmp_path, edit):
+    from ddg_oracle import traceability
+    text = traceability.NOTES.read_text(encoding="utf-8")
+    path = tmp_path / "notes.toml"
+    path.write_text(edit(text), encoding="utf-8")
+    return traceability.check_notes(path)
+
+
+def test_notes_table_lists_every_heading_of_the_notes_at_its_line():
+    from ddg_oracle import traceability
+    text = traceability.notes_path()
+    if text is None:
+        pytest.skip("the notes' text (../shared/seed) is not beside the repository")
+    headings = traceability.note_headings(text)
+    items = {i.name: i for i in traceability.load_notes()}
+    assert len(headings) >= 115 and set(headings) <= set(items)
+    assert all(items[n].line == line for n, line in headings.items())
+    assert traceability.check_notes() == []
+
+
+def test_notes_check_fails_on_a_missing_item_a_wrong_line_and_an_unknown_row(tmp_path):
+    from ddg_oracle import traceability
+    if traceability.notes_path() is None:
+        pytest.skip("the notes' text (../shared/seed) is not beside the repository")
+    import re as _re
+    dropped = _notes_copy(tmp_path, lambda t: _re.sub(r'\["Lemma 4\.8"\]\n(.+\n)+', "", t))
+    assert any(p.startswith("Lemma 4.8 (line 2099 of the notes) is not in") for p in dropped)
+    moved = _notes_copy(tmp_path, lambda t: t.replace("line = 2099", "line = 2100"))
+    assert "Lemma 4.8: line 2100, but the notes have it at line 2099" in moved
+    unknown = _notes_copy(tmp_path, lambda t: t.replace('rows = ["L4.8"]', 'rows = ["L9.9"]'))
+    assert "Lemma 4.8: row 'L9.9' is not in the traceability table" in unknown
+    bare = _notes_copy(tmp_path, lambda t: t.replace(
+        'reason = "pure existence statement (Burago', 'note = "pure existence statement (Burago'))
+    assert "Theorem 2.9: status 'not verifiable' needs a reason" in bare
+
+
+def test_readme_counts_of_the_notes_items_and_errata_are_true():
+    from ddg_oracle import traceability
+    readme = (Path(__file__).parent.parent / "README.md").read_text(encoding="utf-8")
+    readme = " ".join(readme.split())
+    items = traceability.load_notes()
+    count = {s: sum(i.status == s for i in items) for s in traceability.NOTE_STATUSES}
+    assert f"**{len(items)} items**" in readme
+    assert f"{count['verified'] + count['erratum']} verified ({count['erratum']} of them" in readme
+    assert f"{count['definition']} definitions, {count['not verifiable']} not verifiable" in readme
+    assert f"**{count['open']} open**" in readme
+    claimed, rows = traceability.load()
+    assert f"table has {len(rows)} rows, {sum(r.source == 'notes' for r in rows)} of them" in readme
+    assert f"**{len(traceability.errata_ids())} misprints**" in readme

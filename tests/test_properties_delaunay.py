@@ -46,7 +46,7 @@ def test_forgetting_to_flip_is_caught_on_a_few_faces():
 
 
 def test_one_flip_past_delaunay_is_caught():
-    # what PyMeshLab's Delaunay flip filter does (docs/findings.md P7)
+    # what PyMeshLab's Delaunay flip filter does (docs/findings.md F-pymeshlab-7)
     r = assert_caught("L4.3 / P4.4", OneFlipTooMany(), 4)
     assert "is not Delaunay" in r.failure.message
 
@@ -63,7 +63,7 @@ def test_laplace_beltrami_without_half_is_caught_on_one_triangle():
     assert_caught("A4.23", LaplaceBeltramiWithoutHalf(), 8)       # E(x) = 2 A > A
 
 
-def test_E4_boundary_weight_of_a_delaunay_triangle_is_negative():
+def test_SC1_boundary_weight_of_a_delaunay_triangle_is_negative():
     s = PolyhedralSurface.from_arrays([(0, 0), (4, 0), (2, 1)], [(0, 1, 2)])
     assert is_delaunay(s)
     t = s.triangulation
@@ -84,7 +84,7 @@ def test_flip_amplification_replays_the_log():
 
 
 def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points():
-    """Finding S1 (docs/findings.md): Qhull merges nearly coplanar lifted facets and 'Qt'
+    """Finding F-scipy-2 (docs/findings.md): Qhull merges nearly coplanar lifted facets and 'Qt'
     re-triangulates them, giving a triangle whose circumdisk strictly holds another point,
     by far more than a float in-circle evaluation could err."""
     from ddg_oracle.oracles.scipy_spatial import ScipySpatial
@@ -136,7 +136,7 @@ def test_a_T4_5_failure_is_written_as_one_mesh_in_the_report(tmp_path):
 
 
 def test_the_intrinsic_properties_draw_non_orientable_surfaces():
-    """L6 was missed by check while these strategies drew orientable meshes only: they now
+    """F-libigl-6 was missed by check while these strategies drew orientable meshes only: they now
     draw RP^2, the Klein bottle and Moebius strips, and the reference passes on them."""
     from hypothesis import given, settings, HealthCheck
     from ddg_oracle.properties.delaunay import non_orientable_meshes

@@ -72,17 +72,17 @@ def test_planted_boundary_loop_bug_is_caught():
     assert r.failure.expected != r.failure.observed
 
 
-def test_finding_L1_is_caught_by_R1_6_on_the_smallest_mobius_strip():
+def test_finding_F_libigl_1_is_caught_by_R1_6_on_the_smallest_mobius_strip():
     from ddg_oracle.oracles.libigl import Libigl
     r = _caught("R1.6", Libigl())
     assert len(r.failure.mesh[1]) == 6                      # mobius_strip(3)
     assert (r.failure.expected, r.failure.observed) == (1, 4)
 
 
-def test_finding_P1_is_caught_by_T1_1_and_explained_by_the_documented_convention():
+def test_finding_F_pymeshlab_1_is_caught_by_T1_1_and_explained_by_the_documented_convention():
     from ddg_oracle.oracles.pymeshlab import PyMeshLab
     r = run_property(PROPERTIES["T1.1 / C1.2"], PyMeshLab(genus="library"), profile("ci"),
-                     counterpart=PyMeshLab(), convention="P1")
+                     counterpart=PyMeshLab(), convention="F-pymeshlab-1")
     assert r.status == "convention" and r.failure.expected == 2 * r.failure.observed + 1
     assert len(r.failure.mesh[1]) == 10                     # the projective plane
 

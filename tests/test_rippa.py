@@ -4,7 +4,7 @@ Rows: L4.14 (Rippa's lemma: both sides computed independently, on integer
 quadrilaterals where r_i and sin(theta) are irrational and on Q(r1, r2, r3,
 r4, theta) with rational parameters), L4.15 (circularity against the angle
 criterion and the in-circle predicate), C4.16 (a flip to the Delaunay diagonal
-never increases E; strictly unless circular or u affine; erratum E6).
+never increases E; strictly unless circular or u affine; erratum ER-6).
 """
 
 from fractions import Fraction

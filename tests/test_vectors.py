@@ -275,17 +275,17 @@ def test_usage_errors_exit_2(corpus_dir, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("spec, case, finding", [
-    ("libigl", "boundary_loops/mobius-strip", "L1"),
-    ("libigl", "cotan_laplacian/cap-2^-30", "L5"),
-    ("libigl", "intrinsic_delaunay_triangulation/projective-plane", "L6"),
-    ("libigl", "intrinsic_delaunay_laplacian/cap-2^-30", "L7"),
-    ("robust_laplacian", "intrinsic_delaunay_laplacian/cap-2^-30", "L7"),
-    ("gpytoolbox", "angle_defects/octahedron-scale-2^-60", "G3"),
-    ("gpytoolbox", "corner_angles/needle-2^-30", "G4"),
-    ("pymeshlab", "angle_defects/mobius-strip", "P3"),
-    ("pymeshlab", "planar_flip_to_delaunay/obtuse-fan", "P7"),
-    ("trimesh", "angle_defects/octahedron-scale-2^-60", "TM3"),
-    ("trimesh", "edge_mean_curvature/octahedron-scale-2^-60", "TM2"),
+    ("libigl", "boundary_loops/mobius-strip", "F-libigl-1"),
+    ("libigl", "cotan_laplacian/cap-2^-30", "F-libigl-5"),
+    ("libigl", "intrinsic_delaunay_triangulation/projective-plane", "F-libigl-6"),
+    ("libigl", "intrinsic_delaunay_laplacian/cap-2^-30", "F-libigl-7"),
+    ("robust_laplacian", "intrinsic_delaunay_laplacian/cap-2^-30", "F-libigl-7"),
+    ("gpytoolbox", "angle_defects/octahedron-scale-2^-60", "F-gpytoolbox-3"),
+    ("gpytoolbox", "corner_angles/needle-2^-30", "F-gpytoolbox-4"),
+    ("pymeshlab", "angle_defects/mobius-strip", "F-pymeshlab-3"),
+    ("pymeshlab", "planar_flip_to_delaunay/obtuse-fan", "F-pymeshlab-7"),
+    ("trimesh", "angle_defects/octahedron-scale-2^-60", "F-trimesh-3"),
+    ("trimesh", "edge_mean_curvature/octahedron-scale-2^-60", "F-trimesh-2"),
 ])
 def test_the_vectors_find_the_documented_findings(corpus, spec, case, finding):
     """Each of these findings of docs/findings.md fails its test vector, and the library

@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
         driver.methods = {"cotan_laplacian"};
         // the library's own factor, declared: with --expect-conventions a failure the
         // halved weights (this program without arguments) do not have is a convention
-        driver.conventions = R"json({"follows": {"CG3": "Edge_cotangent_weight: 2x the notes' weight 1/2 (cot a + cot b)"}, "counterpart_arguments": []})json";
+        driver.conventions = R"json({"follows": {"F-cgal-3": "Edge_cotangent_weight: 2x the notes' weight 1/2 (cot a + cot b)"}, "counterpart_arguments": []})json";
     }
     return driver.serve([&](const std::string& method, const ddg::Mesh& mesh) {
         SurfaceMesh sm = surface_mesh(mesh);

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
         driver.methods = {"cotan_laplacian"};
         // the library's own factor, declared: with --expect-conventions a failure the
         // halved weights (this program without arguments) do not have is a convention
-        driver.conventions = R"json({"follows": {"OM2": "LaplaceSmootherT CotWeighting: cot a + cot b, 2x the notes' weight"}, "counterpart_arguments": []})json";
+        driver.conventions = R"json({"follows": {"F-openmesh-2": "LaplaceSmootherT CotWeighting: cot a + cot b, 2x the notes' weight"}, "counterpart_arguments": []})json";
     }
     return driver.serve([&](const std::string& method, const ddg::Mesh& mesh) -> std::string {
         TriMesh tm;

@@ -1,0 +1,136 @@
+"""Numbered statements of the notes without a protocol method (properties.statements):
+X1.1 / X1.2 (1), the identities of section 1.2, X3.1, L4.8, R4.1, R4.2, R2.8.
+
+Each property runs on drawn examples, and each is shown able to fail: a planted
+mistake (a wrong side, a missing factor) is caught on an explicit input."""
+
+from fractions import Fraction
+
+import pytest
+from hypothesis import given
+
+from ddg_oracle.properties import statements as S
+from ddg_oracle.properties.strategies import closed_surfaces
+from ddg_oracle.reference import planar, surfaces
+from ddg_oracle.reference.errors import InputError
+
+
+@given(S.sphere_point_sets())
+def test_X1_1_convex_polyhedra_are_strongly_regular_spheres(points):
+    S.convex_polyhedron_is_a_strongly_regular_sphere(points)
+
+
+def test_X1_1_hull_refuses_coplanar_and_interior_points():
+    with pytest.raises(InputError, match="coplanar"):
+        surfaces.convex_hull([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1)])
+    with pytest.raises(InputError, match="point 4 is inside"):
+        surfaces.convex_hull([(0, 0, 0), (4, 0, 0), (0, 4, 0), (0, 0, 4), (1, 1, 1)])
+
+
+def test_X1_1_a_bipyramid_hull():
+    # a bipyramid over a scalene triangle: V = 5, E = 9, F = 6, every face outward
+    pts = [(0, 0, 0), (4, 0, 1), (1, 5, 0), (1, 1, 4), (2, 2, -3)]
+    hull = surfaces.convex_hull(pts)
+    t = hull.triangulation
+    assert (t.n_vertices, t.n_edges, t.n_faces) == (5, 9, 6)
+    from ddg_oracle.reference.planar import plane_side
+    for f in t.faces:                         # outward: the centroid is on the negative side
+        centroid = tuple(sum(Fraction(p[k]) for p in pts) / 5 for k in range(3))
+        assert plane_side(*(pts[v] for v in f), centroid) == -1
+    S.convex_polyhedron_is_a_strongly_regular_sphere(pts)
+
+
+@given(closed_surfaces(max_genus=2))
+def test_section_1_2_connected_sum_identities(case):
+    S.connected_sum_identities(case.triangulation)
+
+
+def test_section_1_2_identities_distinguish_what_they_should():
+    from ddg_oracle.reference.combinatorics import connected_sum
+    rp2, torus = surfaces.projective_plane(), surfaces.torus(3, 3)
+    # K # RP^2 = T^2 # RP^2, yet T^2 and K differ, and T^2 # T^2 is not K # K
+    assert torus.triangulation.classify() != surfaces.klein_bottle().classify()
+    tt = connected_sum(torus, torus).classify()
+    kk = connected_sum(surfaces.klein_bottle(), surfaces.klein_bottle()).classify()
+    assert tt.euler_characteristic == kk.euler_characteristic == -2 and tt != kk
+    assert connected_sum(rp2, rp2).classify().euler_characteristic == 0
+
+
+@given(S.lattice_functions())
+def test_X3_1_combinatorial_laplacian_on_Z_and_Z2(case):
+    S.combinatorial_laplacian_on_lattices(case)
+
+
+def test_X3_1_the_printed_left_side_swaps_m_and_n():
+    """ER: Example 3.1 prints (Lap f)(n, m) = 4 f(m, n) - ...; the left side is
+    (Lap f)(m, n).  On f(m, n) = m the two differ at (1, 2) of a 4 x 4 window."""
+    from ddg_oracle.reference.laplacian import graph_laplacian
+    size = 4
+    idx = lambda m, n: m * size + n                           # noqa: E731
+    edges = [(idx(m, n), idx(m + a, n + b), 1) for m in range(size) for n in range(size)
+             for a, b in ((1, 0), (0, 1)) if m + a < size and n + b < size]
+    def f(m, n):
+        return m ** 3
+    lap = graph_laplacian(size * size, edges).matvec(
+        [f(m, n) for m in range(size) for n in range(size)])
+    m, n = 1, 2
+    rhs = 4 * f(m, n) - f(m - 1, n) - f(m + 1, n) - f(m, n - 1) - f(m, n + 1)
+    assert lap[idx(m, n)] == rhs == -6
+    assert lap[idx(n, m)] == -12 != rhs                        # the printed left side (n, m)
+
+
+@given(S.circle_triples())
+def test_L4_8_tangent_chord_angle(triple):
+    S.tangent_chord_angle(triple)
+
+
+def test_L4_8_the_other_tangent_ray_gives_the_supplement():
+    b, s, c = (5, 0), (3, 4), (0, 5)            # S on the short arc: alpha = 135 degrees
+    assert planar.inscribed_angle_cot(b, s, c) == -1
+    assert planar.tangent_chord_cot(b, s, c) == -1
+    assert planar.tangent_chord_cot(b, (-3, -4), c) == 1      # S on the long arc: 45 degrees
+    with pytest.raises(InputError, match="collinear"):
+        planar.inscribed_angle_cot((0, 0), (1, 1), (2, 2))
+
+
+@given(S.planar_points())
+def test_R4_1_voronoi_delaunay_quads_are_kites(points):
+    S.voronoi_delaunay_kites(points)
+
+
+def test_R4_1_dual_edges_need_not_cross():
+    # an obtuse triangle beside an acute one: the obtuse cell's centre is beyond the edge
+    pts = [(0, 0), (6, 0), (3, 1), (3, -20)]
+    faces = {f["edge"]: f for f in planar.quad_tessellation_faces(pts)}
+    shared = faces[(0, 1)]
+    assert not shared["acute"] and not shared["crossing"]
+    assert shared["orthogonal"] and shared["bisected"] and shared["kite"]
+    S.voronoi_delaunay_kites(pts)
+
+
+@given(S.planar_points())
+def test_R4_2_delaunay_triangles_are_lifted_hull_facets(points):
+    S.delaunay_is_the_lifted_hull(points)
+
+
+def test_R4_2_lift_is_on_the_sphere_and_a_non_delaunay_triangle_is_not_a_facet():
+    for p in [(0, 0), (3, -2), (Fraction(1, 3), 5)]:
+        x, y, z = planar.stereographic_lift(p)
+        assert x * x + y * y + z * z == 1
+    pts = [(0, 0), (4, 0), (2, 1), (2, -3)]     # 0 1 2 is not Delaunay (3 inside its circle)
+    assert planar.circle_position(pts[0], pts[1], pts[2], pts[3]) == 1
+    assert not planar.is_lifted_hull_facet(pts, 0, 1, 2)
+    assert planar.is_lifted_hull_facet(pts, 0, 2, 3)
+
+
+def test_R2_8_a_flipped_tetrahedron_comes_from_no_polyhedral_surface():
+    """R2.8: the regular tetrahedron with one edge flipped (X2.5) is a geodesic
+    triangulation with two edges between vertices 2 and 3 of lengths 1 and sqrt(3);
+    in a polyhedral surface both would be the segment p2 p3, so no polyhedral
+    surface realises it."""
+    from ddg_oracle.reference.intrinsic import regular_tetrahedron_flip
+    m = regular_tetrahedron_flip()
+    t = m.triangulation
+    between = [e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {2, 3}]
+    assert sorted(m.squared_lengths[e] for e in between) == [1, 3]
+    assert t.is_regular() and not t.is_strongly_regular()
