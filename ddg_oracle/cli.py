@@ -262,7 +262,8 @@ def _theorems(args) -> int:
           f"{'item'.ljust(width)}  {'line':>4}  {'status':14}  rows / reason")
     for i in items:
         print(f"{i.name.ljust(width)}  {i.line:>4}  {i.status:14}  "
-              f"{', '.join(i.rows) if i.rows else i.reason}")
+              f"{', '.join(i.rows) if i.rows else i.reason}"
+              + (f" ({i.note})" if i.note else ""))
     tally = {s: sum(i.status == s for i in items) for s in traceability.NOTE_STATUSES}
     print(f"\n{len(items)} items: " + ", ".join(f"{n} {s}" for s, n in tally.items()))
     if not args.check:

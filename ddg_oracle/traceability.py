@@ -190,6 +190,7 @@ class NoteItem:
     status: str
     rows: tuple[str, ...] = ()
     reason: str = ""
+    note: str = ""                 # what of the item the rows leave out, if anything
 
 
 def load_notes(path: Path | None = None) -> list[NoteItem]:
@@ -197,7 +198,8 @@ def load_notes(path: Path | None = None) -> list[NoteItem]:
     with open(path or NOTES, "rb") as fh:
         data = tomllib.load(fh)
     return [NoteItem(name=k, line=v["line"], title=v.get("title", ""), status=v["status"],
-                     rows=tuple(v.get("rows", ())), reason=v.get("reason", ""))
+                     rows=tuple(v.get("rows", ())), reason=v.get("reason", ""),
+                     note=v.get("note", ""))
             for k, v in data.items()]
 
 

@@ -165,3 +165,176 @@ def delaunay_is_the_lifted_hull(points) -> None:
         empty = all(p <= 0 for p in positions)
         assert planar.is_lifted_hull_facet(pts, i, j, k) == empty, \
             f"R4.2: triangle {(i, j, k)} Delaunay={empty} but its lift disagrees"
+
+
+def _catalan(n: int) -> int:
+    from math import comb
+    return comb(2 * n, n) // (n + 1)
+
+
+def delaunay_triangulations_are_the_cells_triangulated(points) -> None:
+    """R4.4 (second bullet) / R4.7 in the plane: the Delaunay triangulations of a point
+    set are exactly the triangulations of the cells of its unique Delaunay tessellation
+    (their number is the product of Catalan(k - 2) over the cells, k the number of
+    vertices of a cell: unique iff no cell is a circular polygon with more than 3
+    vertices), and deleting the edges of weight 0 from any of them gives the
+    tessellation back.  All triangulations are enumerated (the flip graph)."""
+    pts = planar.as_point_set(points)
+    cells = planar.delaunay_tessellation(pts)
+    delaunay = [t for t in planar.all_triangulations(pts) if planar.is_delaunay_by_angles(t)]
+    want = 1
+    for c in cells:
+        want *= _catalan(len(c) - 2)
+    assert len(delaunay) == want, \
+        f"R4.4: {len(delaunay)} Delaunay triangulations, the cells {sorted(map(sorted, cells))} " \
+        f"have {want}"
+    for t in delaunay:
+        got = planar.cocircular_cells(pts, t.triangulation.faces)
+        assert got == cells, "R4.4: a Delaunay triangulation minus its ties is not the tessellation"
+
+
+def cube_faces(choices):
+    """The unit cube with the diagonal of square ``k`` flipped where ``choices[k]``
+    (every one of the 2^6 straight triangulations of its squares), as a piecewise flat
+    surface (intrinsic flips of the reference's cube)."""
+    from ddg_oracle.reference.intrinsic import flip
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
+    cube = surfaces.cube()
+    t = cube.triangulation
+    m = PiecewiseFlatSurface(t, [sum((a - b) ** 2 for a, b in zip(
+        cube.positions[t.edge_vertices(e)[0]], cube.positions[t.edge_vertices(e)[1]]))
+        for e in range(t.n_edges)])
+    diagonals = [e for e in range(t.n_edges) if m.squared_lengths[e] == 2]
+    for e, c in zip(diagonals, choices):
+        if c:
+            m = flip(m, e)
+    return m
+
+
+def voronoi_tessellation_of_the_cube(choices) -> None:
+    """X4.1: on the cube with V its 8 vertices, every triangulation by face diagonals is
+    Delaunay, each diagonal with weight exactly 0 (its two triangles share a circle: the
+    square's, centred at the face centre, a Voronoi vertex); the Delaunay tessellation
+    is the 6 squares (its 12 edges the cube's, weight 1), chi = 8 - 12 + 6 = 2."""
+    from ddg_oracle.reference.delaunay import delaunay_tessellation_edges, is_delaunay
+    from ddg_oracle.reference.laplacian import cotan_weights
+    m = cube_faces(choices)
+    assert is_delaunay(m), "X4.1: a triangulation of the cube's squares is not Delaunay"
+    w = cotan_weights(m)
+    kept = delaunay_tessellation_edges(m)
+    t = m.triangulation
+    assert len(kept) == 12 and all(m.squared_lengths[e] == 1 for e in kept), \
+        "X4.1: the tessellation's edges are not the cube's 12 edges"
+    assert all(w[e] == 0 for e in range(t.n_edges) if e not in kept), \
+        "X4.1: a face diagonal is not a tie"
+    assert all(w[e] == 1 for e in kept), "X4.1: a cube edge has weight != 1"
+    assert t.n_vertices - len(kept) + (t.n_faces - (t.n_edges - len(kept))) == 2
+
+
+# --- Remark 2.3: the converses of Lemma 2.4 fail ------------------------------------------
+
+def _star(p, ring):
+    from ddg_oracle.reference.combinatorics import Triangulation
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    n = len(ring)
+    t = Triangulation.from_faces([(0, 1 + i, 1 + (i + 1) % n) for i in range(n)])
+    return PolyhedralSurface(t, [p] + list(ring))
+
+
+_HEXAGON = [(2, 0), (1, 2), (-1, 2), (-2, 0), (-1, -2)]
+_CROWN = [(2, 0), (1, 1), (0, 2), (-1, 1), (-2, 0), (-1, -1), (0, -2), (1, -1)]
+
+#: R2.3: a star for each converse of Lemma 2.4 that fails, vertex 0 the centre:
+#: elliptic, not convex (a cone with one neighbour pulled in); flat, not planar (the
+#: middle of a straight crease); hyperbolic, not a saddle (a zigzag crown below p).
+CONVERSE_COUNTEREXAMPLES = {
+    "elliptic, not convex": ((0, 0, 4), [(x, y, 0) for x, y in _HEXAGON]
+                             + [(Fraction(1, 4), Fraction(-1, 2), 1)]),
+    "flat, not planar": ((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 1)]),
+    "hyperbolic, not a saddle": ((0, 0, 0), [(x, y, -Fraction(1, 10) if i % 2 == 0 else -3)
+                                             for i, (x, y) in enumerate(_CROWN)]),
+}
+
+
+@st.composite
+def moved_counterexamples(draw):
+    """(name, star) of :data:`CONVERSE_COUNTEREXAMPLES` under a drawn rational rotation
+    (Cayley), scale and translation: the vertex types and star predicates are invariant."""
+    from ddg_oracle.reference.curvature import cayley_rotation, rigid_motion
+    name = draw(st.sampled_from(sorted(CONVERSE_COUNTEREXAMPLES)))
+    p, ring = CONVERSE_COUNTEREXAMPLES[name]
+    k = Fraction(draw(st.integers(1, 9)), draw(st.integers(1, 9)))
+    scaled = _star(tuple(k * x for x in p), [tuple(k * x for x in q) for q in ring])
+    abc = draw(st.tuples(*[st.integers(-4, 4)] * 3))
+    shift = draw(st.tuples(*[st.integers(-9, 9)] * 3))
+    return name, rigid_motion(scaled, cayley_rotation(*abc), shift)
+
+
+def converses_of_lemma_2_4_fail(case) -> None:
+    """R2.3: none of the implications of Lemma 2.4 (convex => elliptic, planar => flat,
+    saddle => hyperbolic) is reversible: each star is of the curvature type but not of
+    the shape (vertex_type exact; is_convex_star, is_planar_star, is_saddle_star)."""
+    from ddg_oracle.reference.curvature import (is_convex_star, is_planar_star,
+                                                is_saddle_star, vertex_type)
+    name, s = case
+    kind, shape = {"elliptic, not convex": ("elliptic", is_convex_star),
+                   "flat, not planar": ("flat", is_planar_star),
+                   "hyperbolic, not a saddle": ("hyperbolic", is_saddle_star)}[name]
+    assert vertex_type(s, 0) == kind, f"R2.3: the '{name}' star is {vertex_type(s, 0)}"
+    assert not shape(s, 0), f"R2.3: the '{name}' star is {shape.__name__} after all"
+
+
+# --- Definition 2.4, Remark 2.6, Example 2.2: the intrinsic distance of the cube ----------
+
+@st.composite
+def cube_surface_points(draw, n: int = 3):
+    """``n`` rational points of the unit cube's surface (often on edges and vertices)."""
+    out = []
+    for _ in range(n):
+        axis, side = draw(st.integers(0, 2)), draw(st.integers(0, 1))
+        den = draw(st.integers(1, 6))
+        u, v = (Fraction(draw(st.integers(0, den)), den) for _ in range(2))
+        rest = iter((u, v))
+        out.append(tuple(Fraction(side) if k == axis else next(rest) for k in range(3)))
+    return out
+
+
+def cube_distance_is_a_metric(points) -> None:
+    """D2.4 / R2.6: the intrinsic distance of the cube's surface is a metric (d(p, p) = 0,
+    d > 0 between distinct points, symmetric, triangle inequality, exactly on squares),
+    at least the chord |p - q| and equal to it on a common face."""
+    from ddg_oracle.reference.geodesics import (cube_faces_of, cube_squared_distance,
+                                                root_sum_at_least)
+    d = {}
+    for x, y in ((0, 1), (1, 2), (0, 2)):
+        a, b = points[x], points[y]
+        d[x, y] = d[y, x] = cube_squared_distance(a, b)
+        chord = sum((s - t) ** 2 for s, t in zip(a, b))
+        assert (d[x, y] == 0) == (a == b), f"D2.4: d({a}, {b}) = 0 between distinct points"
+        assert d[x, y] >= chord, f"R2.6: d({a}, {b})^2 = {d[x, y]} < chord^2 {chord}"
+        if set(cube_faces_of(a)) & set(cube_faces_of(b)):
+            assert d[x, y] == chord, f"R2.6: on a common face d({a}, {b}) is not the chord"
+    assert cube_squared_distance(points[0], points[0]) == 0, "D2.4: d(p, p) != 0"
+    assert cube_squared_distance(points[1], points[0]) == d[0, 1], "D2.4: d is not symmetric"
+    for x, y, z in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        assert root_sum_at_least(d[x, z], d[x, y], d[y, z]), \
+            f"D2.4: triangle inequality fails for {points[x]}, {points[y]}, {points[z]}"
+
+
+@st.composite
+def opposite_cube_points(draw):
+    """A rational point of the cube's bottom face and one of its top face."""
+    den = draw(st.integers(1, 8))
+    u1, v1, u2, v2 = (Fraction(draw(st.integers(0, den)), den) for _ in range(4))
+    return (u1, v1, Fraction(0)), (u2, v2, Fraction(1))
+
+
+def straight_unfoldings_need_not_be_shortest(points) -> None:
+    """X2.2: between points of opposite faces of the cube, the straight segments of the
+    unfoldings are paths on the surface and the shortest is d(p, q); some is longer."""
+    from ddg_oracle.reference.geodesics import cube_squared_distance, cube_unfoldings
+    p, q = points
+    lengths = sorted({length for _, length in cube_unfoldings(p, q)})
+    assert lengths[0] == cube_squared_distance(p, q)
+    assert lengths[0] >= 1, "X2.2: a path between opposite faces shorter than their distance 1"
+    assert len(lengths) > 1, f"X2.2: every unfolding from {p} to {q} is shortest"

@@ -23,7 +23,8 @@ definitions they are tested against stay public: ``cotan_weights_from_corners``,
 Chapter by chapter (the modules keep their own ``__all__``):
 
 - chapter 1: :mod:`.combinatorics`, :mod:`.surfaces`;
-- chapter 2: :mod:`.metric`, :mod:`.polyhedral`, :mod:`.curvature`, :mod:`.intrinsic`
+- chapter 2: :mod:`.metric`, :mod:`.polyhedral`, :mod:`.curvature`, :mod:`.geodesics`,
+  :mod:`.intrinsic`
   (``flip`` there is ``intrinsic_flip`` here);
 - chapter 3: :mod:`.laplacian`, :mod:`.sparse`, :mod:`.dirichlet`, :mod:`.areas`,
   :mod:`.minimal`;
@@ -31,13 +32,14 @@ Chapter by chapter (the modules keep their own ``__all__``):
   there is ``rippa_energy_difference`` here).
 """
 
-from . import (areas, combinatorics, curvature, delaunay, dirichlet, errors, exact, intrinsic,
-               laplacian, metric, minimal, planar, polyhedral, rippa, sparse, surfaces)
+from . import (areas, combinatorics, curvature, delaunay, dirichlet, errors, exact, geodesics,
+               intrinsic, laplacian, metric, minimal, planar, polyhedral, rippa, sparse, surfaces)
 from .areas import *  # noqa: F401,F403  (each module's __all__)
 from .combinatorics import *  # noqa: F401,F403
 from .curvature import *  # noqa: F401,F403
 from .delaunay import *  # noqa: F401,F403
 from .dirichlet import *  # noqa: F401,F403
+from .geodesics import *  # noqa: F401,F403
 from .intrinsic import *  # noqa: F401,F403
 from .intrinsic import flip as intrinsic_flip
 from .laplacian import *  # noqa: F401,F403
@@ -53,7 +55,7 @@ from .sparse import *  # noqa: F401,F403
 _AMBIGUOUS = {"flip", "energy_difference"}
 del flip, energy_difference  # noqa: F821  (star-imported above)
 
-_CHAPTERS = (combinatorics, metric, polyhedral, curvature, intrinsic, laplacian, sparse,
+_CHAPTERS = (combinatorics, metric, polyhedral, curvature, geodesics, intrinsic, laplacian, sparse,
              dirichlet, areas, minimal, delaunay, planar, rippa)
 __all__ = sorted({name for m in _CHAPTERS for name in m.__all__} - _AMBIGUOUS
                  | {"intrinsic_flip", "rippa_energy_difference", "errors", "exact", "surfaces"})

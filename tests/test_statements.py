@@ -7,7 +7,8 @@ mistake (a wrong side, a missing factor) is caught on an explicit input."""
 from fractions import Fraction
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ddg_oracle.properties import statements as S
 from ddg_oracle.properties.strategies import closed_surfaces
@@ -134,3 +135,87 @@ def test_R2_8_a_flipped_tetrahedron_comes_from_no_polyhedral_surface():
     between = [e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {2, 3}]
     assert sorted(m.squared_lengths[e] for e in between) == [1, 3]
     assert t.is_regular() and not t.is_strongly_regular()
+
+
+@given(S.planar_points())
+def test_R4_4_delaunay_triangulations_triangulate_the_cells(points):
+    S.delaunay_triangulations_are_the_cells_triangulated(points)
+
+
+def test_R4_4_a_cocircular_hexagon_has_catalan_4_delaunay_triangulations():
+    from ddg_oracle.properties.planar_points import CIRCLE5
+    hexagon = [(5, 0), (4, 3), (0, 5), (-4, 3), (-5, 0), (0, -5)]
+    assert set(hexagon) <= set(CIRCLE5)
+    delaunay = [t for t in planar.all_triangulations(hexagon) if planar.is_delaunay_by_angles(t)]
+    assert len(delaunay) == 14 == len(planar.all_triangulations(hexagon))
+    S.delaunay_triangulations_are_the_cells_triangulated(hexagon)
+    moved = hexagon[:-1] + [(0, -6)]               # off the circle: the cells split
+    S.delaunay_triangulations_are_the_cells_triangulated(moved)
+    assert len(planar.delaunay_tessellation(moved)) > 1
+
+
+@given(st.lists(st.booleans(), min_size=6, max_size=6))
+def test_X4_1_the_cube_tessellation_is_its_six_squares(choices):
+    S.voronoi_tessellation_of_the_cube(choices)
+
+
+def test_X4_1_a_bent_square_is_not_a_tie():
+    from ddg_oracle.reference.laplacian import cotan_weights
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ddg_oracle.reference.combinatorics import Triangulation
+    # a square folded along its diagonal: the diagonal's weight is no longer 0
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3)])
+    flat = PolyhedralSurface(t, [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
+    bent = PolyhedralSurface(t, [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 1)])
+    diagonal = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {0, 2})
+    assert cotan_weights(flat)[diagonal] == 0 and cotan_weights(bent)[diagonal] != 0
+
+
+@given(S.moved_counterexamples())
+def test_R2_3_none_of_the_implications_of_lemma_2_4_is_reversible(case):
+    S.converses_of_lemma_2_4_fail(case)
+
+
+def test_R2_3_the_forward_implications_hold_where_the_shapes_do():
+    from ddg_oracle.reference.curvature import is_convex_star, is_planar_star, vertex_type
+    cone = S._star((0, 0, 4), [(x, y, 0) for x, y in S._HEXAGON] + [(1, -2, 0)])
+    assert is_convex_star(cone, 0) and vertex_type(cone, 0) == "elliptic"
+    flat = S._star((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 0)])
+    assert is_planar_star(flat, 0) and vertex_type(flat, 0) == "flat"
+    with pytest.raises(AssertionError, match="R2.3"):          # a star that is convex too
+        S.converses_of_lemma_2_4_fail(("elliptic, not convex", cone))
+
+
+# the intrinsic distance enumerates every unfolding: 70 ms an example, so fewer examples
+@settings(max_examples=20)
+@given(S.cube_surface_points())
+def test_D2_4_the_cube_distance_is_a_metric(points):
+    S.cube_distance_is_a_metric(points)
+
+
+@settings(max_examples=30)
+@given(S.opposite_cube_points())
+def test_X2_2_straight_unfoldings_need_not_be_shortest(points):
+    S.straight_unfoldings_need_not_be_shortest(points)
+
+
+def test_X2_2_the_two_ways_around_an_edge_and_known_distances():
+    from ddg_oracle.reference.geodesics import (cube_squared_distance, cube_unfoldings,
+                                                root_sum_at_least)
+    p, q = (Fraction(1, 4), Fraction(1, 2), 0), (Fraction(1, 4), Fraction(1, 2), 1)
+    lengths = {seq: length for seq, length in cube_unfoldings(p, q)}
+    near, far = ((2, 0), (0, 0), (2, 1)), ((2, 0), (0, 1), (2, 1))
+    assert lengths[near] == Fraction(9, 4) == cube_squared_distance(p, q)   # over x = 0
+    assert lengths[far] == Fraction(25, 4)                                   # over x = 1: longer
+    assert cube_squared_distance((0, 0, 0), (1, 1, 1)) == 5                  # opposite corners
+    centre = (Fraction(1, 2), Fraction(1, 2), 0)
+    assert cube_squared_distance(centre, (Fraction(1, 2), Fraction(1, 2), 1)) == 4
+    assert root_sum_at_least(4, 1, 1) and not root_sum_at_least(5, 1, 1)
+
+
+def test_D2_4_points_off_the_surface_are_refused():
+    from ddg_oracle.reference.geodesics import cube_squared_distance
+    with pytest.raises(InputError, match="inside the unit cube"):
+        cube_squared_distance((Fraction(1, 2),) * 3, (0, 0, 0))
+    with pytest.raises(InputError, match="not a point of the unit cube"):
+        cube_squared_distance((2, 0, 0), (0, 0, 0))
