@@ -263,4 +263,6 @@ def check_notes(path: Path | None = None, entries=None) -> list[str]:
                 problems.append(f"{it.name}: no such heading in the notes")
             elif not 1 <= it.line <= len(lines):
                 problems.append(f"{it.name}: line {it.line} is past the end of the notes")
+            elif it.name.startswith("Section ") and "#" not in lines[it.line - 1]:
+                problems.append(f"{it.name}: line {it.line} of the notes holds no connected sum")
     return problems

@@ -18,6 +18,7 @@ from ddg_oracle.reference.combinatorics import connected_sum
 from ddg_oracle.reference.errors import InputError
 from ddg_oracle.reference.laplacian import graph_laplacian
 from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.polyhedral import orientation3d
 
 from .planar_points import integer_point_sets, unit_circle_point
 
@@ -160,7 +161,7 @@ def delaunay_is_the_lifted_hull(points) -> None:
         for d in range(len(pts)):
             if d not in (i, j, k):
                 on_circle = planar.circle_position(pts[i], pts[j], pts[k], pts[d]) == 0
-                on_plane = planar.plane_side(lifts[i], lifts[j], lifts[k], lifts[d]) == 0
+                on_plane = orientation3d(lifts[i], lifts[j], lifts[k], lifts[d]) == 0
                 assert on_circle == on_plane, f"R4.2: point {d} and triangle {(i, j, k)}"
         empty = all(p <= 0 for p in positions)
         assert planar.is_lifted_hull_facet(pts, i, j, k) == empty, \

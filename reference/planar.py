@@ -68,7 +68,7 @@ from .exact import corner_angle, pi
 from .exact.rationals import rational
 from .intrinsic import flip, is_flippable
 from .laplacian import cotan_laplacian
-from .polyhedral import PolyhedralSurface
+from .polyhedral import PolyhedralSurface, orientation3d
 from .sparse import SparseMatrix
 
 __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
@@ -78,7 +78,7 @@ __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_posit
            "is_delaunay_by_angles", "invert", "inversion", "cells_avoiding",
            "inversion_obstructions", "all_triangulations", "triangulation_key",
            "laplacian_difference", "inscribed_angle_cot", "tangent_chord_cot",
-           "quad_tessellation_faces", "stereographic_lift", "plane_side", "is_lifted_hull_facet"]
+           "quad_tessellation_faces", "stereographic_lift", "is_lifted_hull_facet"]
 
 _ZERO = Fraction(0)
 
@@ -871,10 +871,7 @@ def quad_tessellation_faces(points) -> list[dict]:
         pi_, pj = pts[i], pts[j]
         q, r = centres[cs[0][0]], centres[cs[1][0]]
         mid = ((pi_[0] + pj[0]) / 2, (pi_[1] + pj[1]) / 2)
-        d2 = lambda x, y: _dot2(_sub(x, y), _sub(x, y))   # noqa: E731
         qr = _sub(r, q)
-        if q == r:                  # cannot happen: distinct cells have distinct circles
-            raise AssertionError("two Delaunay cells share a circumcentre")
 
         def opposite_cot(cell_ring):
             k = next(v for v in cell_ring if v not in e)
@@ -887,7 +884,8 @@ def quad_tessellation_faces(points) -> list[dict]:
             "edge": (i, j), "voronoi": (q, r),
             "orthogonal": _dot2(qr, _sub(pj, pi_)) == 0,
             "bisected": _det2(qr, _sub(mid, q)) == 0,
-            "kite": d2(q, pi_) == d2(q, pj) and d2(r, pi_) == d2(r, pj),
+            "kite": (_dot2(_sub(q, pi_), _sub(q, pi_)) == _dot2(_sub(q, pj), _sub(q, pj))
+                     and _dot2(_sub(r, pi_), _sub(r, pi_)) == _dot2(_sub(r, pj), _sub(r, pj))),
             "crossing": crossing,
             "acute": all(opposite_cot(ring) >= 0 for _, ring in cs),
         })
@@ -910,15 +908,6 @@ def stereographic_lift(p) -> tuple[Fraction, Fraction, Fraction]:
 NORTH_POLE = (Fraction(0), Fraction(0), Fraction(1))
 
 
-def plane_side(a, b, c, d) -> int:
-    """The sign of ``det(b - a, c - a, d - a)`` for points of R^3, exact: the side of
-    the plane through ``a, b, c`` that ``d`` is on (0: on the plane)."""
-    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
-    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-           + u[2] * (v[0] * w[1] - v[1] * w[0]))
-    return _sign(det)
-
-
 def is_lifted_hull_facet(points, i: int, j: int, k: int) -> bool:
     """R4.2: whether the lifted triangle ``i j k`` (:func:`stereographic_lift`) spans a
     supporting plane of the convex hull of the lifted points and the north pole: every
@@ -928,5 +917,5 @@ def is_lifted_hull_facet(points, i: int, j: int, k: int) -> bool:
     pts = as_point_set(points)
     lifted = [stereographic_lift(p) for p in pts] + [NORTH_POLE]
     a, b, c = lifted[i], lifted[j], lifted[k]
-    sides = {plane_side(a, b, c, d) for n, d in enumerate(lifted) if n not in (i, j, k)}
+    sides = {orientation3d(a, b, c, d) for n, d in enumerate(lifted) if n not in (i, j, k)}
     return not (1 in sides and -1 in sides)

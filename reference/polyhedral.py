@@ -16,7 +16,7 @@ from .errors import BadShape, EmptyMesh, IndexOutOfRange, InputError, Unreferenc
 from .exact.rationals import rational
 from .metric import PiecewiseFlatSurface, metric_of
 
-__all__ = ["PolyhedralSurface"]
+__all__ = ["PolyhedralSurface", "orientation3d"]
 
 
 class PolyhedralSurface:
@@ -128,3 +128,18 @@ def _point(p, i: int) -> tuple[Fraction, ...]:
     if len(coords) < 2:
         raise BadShape(f"vertex {i} has {len(coords)} coordinate(s); need at least 2")
     return tuple(rational(x, where=f"vertex {i}, coordinate {j}") for j, x in enumerate(coords))
+
+
+def orientation3d(a, b, c, d) -> int:
+    """The side of the plane through ``a, b, c`` (points of R^3) that ``d`` is on: the
+    sign of ``det(b - a, c - a, d - a)``, exact (0: the four points are coplanar).  Used
+    by the convex hull (X1.1) and the stereographic lift (R4.2).
+
+    >>> orientation3d((0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1))
+    1
+    """
+    a, b, c, d = ([Fraction(x) for x in p] for p in (a, b, c, d))
+    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+           + u[2] * (v[0] * w[1] - v[1] * w[0]))
+    return (det > 0) - (det < 0)

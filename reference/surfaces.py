@@ -23,7 +23,7 @@ from fractions import Fraction
 
 from .combinatorics import Triangulation, connected_sum
 from .errors import InputError
-from .polyhedral import PolyhedralSurface
+from .polyhedral import PolyhedralSurface, orientation3d
 
 __all__ = ["tetrahedron", "octahedron", "cube", "icosahedron", "torus", "genus_surface",
            "disk", "annulus", "grid", "mobius_strip", "projective_plane", "klein_bottle",
@@ -82,7 +82,7 @@ def convex_hull(points) -> PolyhedralSurface:
     position (no 4 coplanar), as a triangulated sphere with outward faces, exact.
 
     A triple ``i j k`` is a facet iff every other point is strictly on one side of
-    its plane (the sign of an exact 3 x 3 determinant); O(n^4), for small point sets.
+    its plane (:func:`~ddg_oracle.reference.polyhedral.orientation3d`); O(n^4), for small point sets.
     Every point is a vertex (general position with n >= 4 also needs every point on
     the hull; an interior point raises).  Raises :class:`InputError` naming 4
     coplanar points, or a point inside the hull.
@@ -95,18 +95,12 @@ def convex_hull(points) -> PolyhedralSurface:
     if len(pts) < 4 or any(len(p) != 3 for p in pts):
         raise InputError(f"convex_hull needs at least 4 points of R^3, got {len(pts)}")
 
-    def side(a, b, c, d):
-        u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
-        det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-               + u[2] * (v[0] * w[1] - v[1] * w[0]))
-        return (det > 0) - (det < 0)
-
     faces = []
     for i, j, k in combinations(range(len(pts)), 3):
         signs = set()
         for m in range(len(pts)):
             if m not in (i, j, k):
-                s = side(pts[i], pts[j], pts[k], pts[m])
+                s = orientation3d(pts[i], pts[j], pts[k], pts[m])
                 if s == 0:
                     raise InputError(f"points {i}, {j}, {k}, {m} are coplanar "
                                      "(convex_hull needs general position)")

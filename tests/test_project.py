@@ -171,6 +171,8 @@ def test_notes_check_fails_on_a_missing_item_a_wrong_line_and_an_unknown_row(tmp
     bare = _notes_copy(tmp_path, lambda t: t.replace(
         'reason = "pure existence statement (Burago', 'note = "pure existence statement (Burago'))
     assert "Theorem 2.9: status 'not verifiable' needs a reason" in bare
+    off = _notes_copy(tmp_path, lambda t: t.replace("line = 203", "line = 204"))
+    assert "Section 1.2: M # S^2 = M: line 204 of the notes holds no connected sum" in off
 
 
 def test_readme_counts_of_the_notes_items_and_errata_are_true():

@@ -34,10 +34,10 @@ def test_X1_1_a_bipyramid_hull():
     hull = surfaces.convex_hull(pts)
     t = hull.triangulation
     assert (t.n_vertices, t.n_edges, t.n_faces) == (5, 9, 6)
-    from ddg_oracle.reference.planar import plane_side
+    from ddg_oracle.reference.polyhedral import orientation3d
     for f in t.faces:                         # outward: the centroid is on the negative side
         centroid = tuple(sum(Fraction(p[k]) for p in pts) / 5 for k in range(3))
-        assert plane_side(*(pts[v] for v in f), centroid) == -1
+        assert orientation3d(*(pts[v] for v in f), centroid) == -1
     S.convex_polyhedron_is_a_strongly_regular_sphere(pts)
 
 
@@ -219,3 +219,52 @@ def test_D2_4_points_off_the_surface_are_refused():
         cube_squared_distance((Fraction(1, 2),) * 3, (0, 0, 0))
     with pytest.raises(InputError, match="not a point of the unit cube"):
         cube_squared_distance((2, 0, 0), (0, 0, 0))
+
+
+# --- each property catches a planted bug in the quantity it checks -------------------------
+
+def _planted(monkeypatch, module, name, wrong):
+    import importlib
+    monkeypatch.setattr(importlib.import_module(module), name, wrong)
+
+
+def test_planted_bugs_are_caught(monkeypatch):
+    from ddg_oracle.reference import geodesics, laplacian
+    cases = []
+    # L4.8: the tangent ray on S's side (the supplement)
+    right = planar.tangent_chord_cot
+    cases.append(("ddg_oracle.reference.planar", "tangent_chord_cot",
+                  lambda b, s, c: -right(b, s, c),
+                  lambda: S.tangent_chord_angle(((5, 0), (3, 4), (0, 5)))))
+    # R4.1: the opposite angle's sign swapped (acute read as obtuse)
+    faces = planar.quad_tessellation_faces
+    cases.append(("ddg_oracle.reference.planar", "quad_tessellation_faces",
+                  lambda pts: [dict(f, acute=not f["acute"]) for f in faces(pts)],
+                  lambda: S.voronoi_delaunay_kites([(0, 0), (6, 0), (3, 1), (3, -20)])))
+    # R4.2: the lift from the south pole instead of the north one
+    lift = planar.stereographic_lift
+    cases.append(("ddg_oracle.reference.planar", "stereographic_lift",
+                  lambda p: (lambda x, y, z: (x, y, -z))(*lift(p)),
+                  lambda: S.delaunay_is_the_lifted_hull([(0, 0), (4, 0), (2, 1), (2, -3), (5, 5)])))
+    # X3.1: the graph Laplacian with a factor 1/2
+    graph = laplacian.graph_laplacian
+    cases.append(("ddg_oracle.properties.statements", "graph_laplacian",
+                  lambda n, edges: graph(n, [(i, j, Fraction(w) / 2) for i, j, w in edges]),
+                  lambda: S.combinatorial_laplacian_on_lattices((2, 3, [i * i for i in range(9)]))))
+    # D2.4: a squared distance halved
+    dist = geodesics.cube_squared_distance
+    cases.append(("ddg_oracle.reference.geodesics", "cube_squared_distance",
+                  lambda p, q: dist(p, q) / 2,
+                  lambda: S.cube_distance_is_a_metric([(0, 0, 0), (1, 1, 1), (1, 0, 0)])))
+    # X4.1: cotan weights with a factor 2
+    weights = laplacian.cotan_weights
+    cases.append(("ddg_oracle.reference.laplacian", "cotan_weights",
+                  lambda m: {e: 2 * w for e, w in weights(m).items()},
+                  lambda: S.voronoi_tessellation_of_the_cube([False] * 6)))
+    for module, name, wrong, run in cases:
+        run()                                               # passes as it is
+        with monkeypatch.context() as mp:
+            _planted(mp, module, name, wrong)
+            with pytest.raises(AssertionError):
+                run()
+                print(f"planted bug in {module}.{name} not caught")
