@@ -134,6 +134,29 @@ def scope_ids() -> set[str]:
     return set(re.findall(r"^### (SC-\d+):", path.read_text(encoding="utf-8"), re.M))
 
 
+#: the fields every erratum has (docs/errata.md, "Format of an entry")
+ERRATUM_FIELDS = ("line", "printed", "correct", "evidence", "relied on")
+
+
+def errata_problems(path: Path | None = None) -> list[str]:
+    """Every entry of the errata (default: ours) without one of :data:`ERRATUM_FIELDS`, or
+    naming a test (```tests/...::name```) that does not exist; empty when the list is true."""
+    text = (path or DATA / "errata.md").read_text(encoding="utf-8")
+    problems = []
+    for m in re.finditer(r"^## (ER-\d+):.*?(?=^## |^### |\Z)", text, re.M | re.S):
+        entry, eid = m.group(0), m.group(1)
+        for field in ERRATUM_FIELDS:
+            if not re.search(rf"^- {field}:", entry, re.M):
+                problems.append(f"{eid}: no '- {field}:' line in docs/errata.md")
+        named = re.findall(r"`(tests/[\w/]+\.py::\w+)`", entry)
+        if not named:
+            problems.append(f"{eid}: names no test that settles it")
+        for t in named:
+            if _test_exists(t) is False:
+                problems.append(f"{eid}: test {t} does not exist")
+    return problems
+
+
 def check(path: Path | None = None) -> list[str]:
     """Every way the table is not true, as messages; empty when it is."""
     problems: list[str] = []
@@ -169,7 +192,7 @@ def check(path: Path | None = None) -> list[str]:
         for t in e.tests:
             if _test_exists(t) is False:
                 problems.append(f"{e.id}: test {t} does not exist")
-    return problems + check_notes(entries=entries)
+    return problems + errata_problems() + check_notes(entries=entries)
 
 
 # --- the notes' numbered items ----------------------------------------------------------------

@@ -1,14 +1,25 @@
-"""Misprints inside proofs of the notes (docs/errata.md), each settled by a computation
-independent of the reference: exact rationals for areas, mpmath at 50 digits for the
-derivatives of the angles of a triangle with respect to its side lengths."""
+"""Misprints of the notes (docs/errata.md), most of them inside proofs, each settled by a
+computation independent of the printed formula: exact rationals (areas, gradients of affine
+functions, polynomial integrals), the exact reference where it computes the quantity by
+another route, and mpmath at 50 digits for the derivatives of the angles of a triangle with
+respect to its side lengths."""
 
 from fractions import Fraction
 
 import mpmath
-from hypothesis import given
+from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.planar import circumcircle
+from ddg_oracle.reference import surfaces
+from ddg_oracle.reference.delaunay import harmonic_index
+from ddg_oracle.reference.dirichlet import (kernel_dimension, satisfies_maximum_principle,
+                                            solve_dirichlet)
+from ddg_oracle.reference.exact import Surd, sqrt
+from ddg_oracle.reference.laplacian import (cotan_laplacian, dirichlet_energy,
+                                            dirichlet_energy_pl, graph_laplacian)
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.planar import circumcircle, quad_tessellation_faces
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 
 def _cross(o, a, b):
@@ -66,3 +77,334 @@ def test_ER_10_the_angle_sum_is_differentiated_in_a_i_not_a_j(sides):
             for j in range(3))
         # each alpha_j grows with its own opposite side: the printed sum is positive
         assert printed > mpmath.mpf(10) ** -3
+
+
+# --- ER-11: section 3.1, Green's formula (a lost sign) --------------------------------------------
+
+
+def _padd(p, q):
+    out = dict(p)
+    for k, v in q.items():
+        out[k] = out.get(k, 0) + v
+    return out
+
+
+def _pmul(p, q):
+    out: dict = {}
+    for (a, b), x in p.items():
+        for (c, d), y in q.items():
+            out[(a + c, b + d)] = out.get((a + c, b + d), 0) + x * y
+    return out
+
+
+def _pd(p, axis):
+    """d/dx (axis 0) or d/dy (axis 1) of a polynomial {(i, j): coefficient of x^i y^j}."""
+    out: dict = {}
+    for (a, b), x in p.items():
+        k = (a, b)[axis]
+        if k:
+            key = (a - 1, b) if axis == 0 else (a, b - 1)
+            out[key] = out.get(key, 0) + k * x
+    return out
+
+
+def _integral_over_square(p):
+    """The exact integral over [-1, 1]^2: odd powers vanish, x^(2k) gives 2 / (2k + 1)."""
+    return sum(Fraction(x) * Fraction(2, a + 1) * Fraction(2, b + 1)
+               for (a, b), x in p.items() if a % 2 == 0 and b % 2 == 0)
+
+
+#: phi = (1 - x^2)^2 (1 - y^2)^2: C^1 on R^2 and zero with its gradient outside the open
+#: square, an admissible test function of section 3.1 (Omega the open square)
+_ONE_MINUS_X2, _ONE_MINUS_Y2 = {(0, 0): 1, (2, 0): -1}, {(0, 0): 1, (0, 2): -1}
+_PHI = _pmul(_pmul(_ONE_MINUS_X2, _ONE_MINUS_X2), _pmul(_ONE_MINUS_Y2, _ONE_MINUS_Y2))
+
+
+def _green_terms(f):
+    gradient_term = _integral_over_square(_padd(_pmul(_pd(f, 0), _pd(_PHI, 0)),
+                                                _pmul(_pd(f, 1), _pd(_PHI, 1))))
+    lap_f = _padd(_pd(_pd(f, 0), 0), _pd(_pd(f, 1), 1))
+    return gradient_term, _integral_over_square(_pmul(_PHI, lap_f))
+
+
+@given(st.dictionaries(st.tuples(st.integers(0, 4), st.integers(0, 4)), st.integers(-5, 5),
+                       min_size=1, max_size=6))
+def test_ER_11_greens_formula_has_a_minus_sign(f):
+    """Section 3.1 (line 867): with Lap f = sum d^2 f / dx_i^2 (the notes' definition) and
+    phi in C^1_0, integral <grad f, grad phi> dA = - integral phi Lap f dA; the notes print
+    + integral phi Lap f dA.  Exact integrals of polynomials over the square."""
+    gradient_term, laplacian_term = _green_terms(f)
+    assert gradient_term == -laplacian_term
+    if laplacian_term:
+        assert gradient_term != laplacian_term          # the printed sign
+
+
+def test_ER_11_on_f_equal_to_x_squared():
+    gradient_term, laplacian_term = _green_terms({(2, 0): 1})   # Lap f = 2 > 0
+    assert laplacian_term == 2 * _integral_over_square(_PHI) == Fraction(512, 225)
+    assert gradient_term == -laplacian_term
+
+
+# --- ER-12: Theorem 3.2, the maximum principle (false as printed) ---------------------------------
+
+
+def test_ER_12_printed_maximum_principle_fails_on_a_path():
+    """Theorem 3.2 (line 1009) prints: f harmonic on V \\ V0 'can not attain its maximum
+    (and minimum) on V \\ V0'.  On the path 0 - 1 - 2 - 3 with unit weights and
+    V0 = {0, 2, 3}, c = (1, ., 1, 0), the solution has f(1) = 1 = max f, attained at
+    1 in V \\ V0, and f is not constant.  What holds (and what the reference checks) is
+    the weak form: max and min over each component are attained on V0."""
+    L = graph_laplacian(4, [(0, 1, 1), (1, 2, 1), (2, 3, 1)])
+    f = solve_dirichlet(L, {0: 1, 2: 1, 3: 0})
+    assert f == [1, 1, 1, 0]
+    assert L.matvec(f)[1] == 0                          # harmonic at 1 (the premise)
+    assert f[1] == max(f)                               # the printed statement fails
+    assert satisfies_maximum_principle(L, f, {0, 2, 3})  # the weak form holds
+
+
+@given(st.integers(3, 8), st.data())
+def test_ER_12_constant_boundary_values_defeat_the_printed_statement(n, data):
+    """Any connected graph with positive weights, any V0 with V \\ V0 nonempty, and a
+    constant c: the solution is constant, so it attains its max on V \\ V0; the proof's
+    'Lap f(i) > 0 at a local maximum' holds only at a strict one (here Lap f = 0)."""
+    extra = data.draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)),
+                               max_size=n))
+    edges = [(i, i + 1, data.draw(st.integers(1, 5))) for i in range(n - 1)]
+    edges += [(i, j, data.draw(st.integers(1, 5))) for i, j in extra if i != j]
+    V0 = data.draw(st.sets(st.integers(0, n - 1), min_size=1, max_size=n - 1))
+    c = data.draw(st.fractions(-5, 5, max_denominator=7))
+    L = graph_laplacian(n, edges)
+    f = solve_dirichlet(L, {v: c for v in V0})
+    interior = [i for i in range(n) if i not in V0]
+    assert all(x == c for x in f) and all(L.matvec(f)[i] == 0 for i in interior)
+    assert max(f[i] for i in interior) == max(f)        # printed: impossible
+    assert satisfies_maximum_principle(L, f, V0)
+
+
+# --- ER-13: proof of Theorem 3.5, a lost square ---------------------------------------------------
+
+
+def test_ER_13_printed_energy_bound_fails_below_one():
+    """Proof of Theorem 3.5 (line 1065): from footnote 11, sum over a path gamma_k of
+    (f(i) - f(j))^2 >= (R - c0)^2 / |E|, so E(f) >= 1/2 nu0 (R - c0)^2 / |E|; the notes
+    print 1/2 nu0 (R - c0) / |E|, which fails for R - c0 < 1: one edge of weight 1,
+    V0 = {0}, c = 0, R = 1/4 and f(1) = 1/3 > R give E = 1/18 < 1/8."""
+    f, R, c0, nu0, n_edges = [0, Fraction(1, 3)], Fraction(1, 4), 0, 1, 1
+    E = dirichlet_energy([(0, 1, 1)], f)
+    assert E == Fraction(1, 18)
+    assert E < Fraction(1, 2) * nu0 * (R - c0) / n_edges                # printed
+    assert E >= Fraction(1, 2) * nu0 * (R - c0) ** 2 / n_edges          # corrected
+
+
+@given(st.lists(st.fractions(-4, 4, max_denominator=5), min_size=2, max_size=7),
+       st.lists(st.fractions(Fraction(1, 4), 4, max_denominator=4), min_size=6, max_size=6),
+       st.fractions(0, 1, max_denominator=9))
+def test_ER_13_corrected_bound_holds_on_paths(values, weights, fraction_of_gap):
+    """On a path 0 - 1 - ... - k with V0 = {0}: for any R in [c0, f(k)), E(f) >=
+    1/2 nu0 (R - c0)^2 / |E|, exactly."""
+    n = len(values)
+    edges = [(i, i + 1, weights[i]) for i in range(n - 1)]
+    c0, top = values[0], values[-1]
+    assume(top > c0)
+    R = c0 + fraction_of_gap * (top - c0)
+    nu0 = min(w for _, _, w in edges)
+    assert dirichlet_energy(edges, values) >= Fraction(1, 2) * nu0 * (R - c0) ** 2 / len(edges)
+
+
+# --- ER-14, ER-15: proof of Theorem 3.6, equation (3.4) and the inner product of gradients --------
+
+
+def _affine_gradients(v):
+    """grad phi_i of the hat functions of the planar triangle v (exact): phi_i is 1 at v_i,
+    0 at the other two corners; solved from two linear equations, no formula of the notes."""
+    out = []
+    for i in range(3):
+        j, k = (i + 1) % 3, (i + 2) % 3
+        # grad . (v_j - v_i) = -1 and grad . (v_k - v_i) = -1
+        a, b = (v[j][0] - v[i][0], v[j][1] - v[i][1]), (v[k][0] - v[i][0], v[k][1] - v[i][1])
+        det = a[0] * b[1] - a[1] * b[0]
+        out.append((Fraction(-b[1] + a[1], det), Fraction(b[0] - a[0], det)))
+    return out
+
+
+def _dot(u, w):
+    return u[0] * w[0] + u[1] * w[1]
+
+
+def _equation_3_4(g, f):
+    """(|sum f_i grad phi_i|^2, its expansion as it should be, the printed left side
+    |sum f_i^2 grad phi_i|^2, the printed right side sum f_i |grad phi_i|^2 + ...)."""
+    def norm2(c):
+        vec = tuple(sum(c[i] * g[i][k] for i in range(3)) for k in range(2))
+        return _dot(vec, vec)
+    cross = 2 * sum(f[i] * f[(i + 1) % 3] * _dot(g[i], g[(i + 1) % 3]) for i in range(3))
+    return (norm2(f), sum(f[i] ** 2 * _dot(g[i], g[i]) for i in range(3)) + cross,
+            norm2([x * x for x in f]), sum(f[i] * _dot(g[i], g[i]) for i in range(3)) + cross)
+
+
+@given(triangles, st.lists(st.integers(-6, 6), min_size=3, max_size=3))
+def test_ER_14_the_square_of_equation_3_4_belongs_to_f_i_on_the_right(tri, f):
+    """(3.4), line 1185: |sum f_i grad phi_i|^2 = sum f_i^2 |grad phi_i|^2 + 2 sum f_i
+    f_(i+1) <grad phi_i, grad phi_(i+1)>; the notes print the square on f_i in the left
+    side and drop it on the right."""
+    g = _affine_gradients([tuple(map(Fraction, p)) for p in tri])
+    left, right, _, _ = _equation_3_4(g, f)
+    assert left == right
+
+
+def test_ER_14_the_printed_sides_on_f_equal_to_2_0_0():
+    g = _affine_gradients([(Fraction(0), Fraction(0)), (Fraction(1), Fraction(0)),
+                           (Fraction(0), Fraction(1))])
+    left, right, printed_left, printed_right = _equation_3_4(g, [2, 0, 0])
+    n0 = _dot(g[0], g[0])                           # |grad phi_1|^2 = 2 on this triangle
+    assert (left, right, printed_left, printed_right) == (4 * n0, 4 * n0, 16 * n0, 2 * n0)
+    assert n0 == 2
+
+
+@given(triangles)
+def test_ER_15_the_inner_product_of_two_sides_has_a_minus_sign(tri):
+    """Proof of Theorem 3.6, line 1229: <w_i, w_(i+1)> = - a_i a_(i+1) cos alpha_(i-1)
+    (w_i = v_(i-1) - v_(i+1) and w_(i+1) = v_i - v_(i-1) both run around the triangle,
+    so at v_(i-1) the angle is between -w_i and w_(i+1)); the notes print it without the
+    minus, then go on to the right -cot alpha_(i-1) / (2 A)."""
+    v = [tuple(map(Fraction, p)) for p in tri]
+    g = _affine_gradients(v)
+    area2 = abs((v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0]))
+    for i in range(3):
+        p, q, o = v[(i - 1) % 3], v[(i + 1) % 3], v[i]
+        w_i = (p[0] - q[0], p[1] - q[1])                         # v_(i-1) - v_(i+1)
+        w_next = (o[0] - p[0], o[1] - p[1])                      # v_i - v_(i-1)
+        # a_i a_(i+1) cos alpha_(i-1), from the two sides at v_(i-1)
+        at_corner = _dot((q[0] - p[0], q[1] - p[1]), (o[0] - p[0], o[1] - p[1]))
+        cot = at_corner / area2                                   # cot alpha_(i-1)
+        assert _dot(w_i, w_next) == -at_corner
+        assert _dot(g[i], g[(i + 1) % 3]) == _dot(w_i, w_next) / area2 ** 2 == -cot / area2
+        if at_corner:                                             # not a right angle
+            assert _dot(w_i, w_next) != at_corner
+
+
+# --- ER-16: Remark 3.3, positive semidefinite, not definite ---------------------------------------
+
+
+def test_ER_16_cotan_dirichlet_energy_vanishes_on_constants():
+    """Remark 3.3 (line 1299) prints 'the discrete Dirichlet energy with cotan-weights is
+    always positive definite'.  E(1) = 0 on every mesh (each row of L sums to 0), so E is
+    positive semidefinite with the locally constant functions as kernel (C3.3), and
+    positive definite on F_(V0,0) when V0 meets every component: that is what makes the
+    Dirichlet problem uniquely solvable."""
+    for s in (surfaces.grid(3, 2), surfaces.torus(3, 4), surfaces.octahedron()):
+        L = cotan_laplacian(s)
+        n = s.triangulation.n_vertices
+        assert dirichlet_energy(L, [1] * n) == 0
+        assert kernel_dimension(L) == len(s.triangulation.components()) == 1
+    grid = surfaces.grid(3, 2)
+    L = cotan_laplacian(grid)
+    boundary = [v for v in range(12) if grid.triangulation.is_boundary_vertex(v)]
+    assert len(boundary) < 12
+    # restricted to F_(V0,0) (V0 = the boundary) E is definite: the Dirichlet problem with
+    # c = 0 has the zero solution only (a singular system would raise)
+    assert solve_dirichlet(L, {v: 0 for v in boundary}) == [0] * 12
+
+
+# --- ER-17: proof of Lemma 4.14 (Rippa), u0 for u0* ----------------------------------------------
+
+
+@given(st.lists(st.fractions(Fraction(1, 5), 5, max_denominator=5), min_size=4, max_size=4),
+       st.lists(st.fractions(-4, 4, max_denominator=3), min_size=4, max_size=4))
+def test_ER_17_the_second_identity_of_rippas_proof_has_u0_star(r, u):
+    """Proof of Lemma 4.14, line 2665: u2/r2 + u4/r4 = u0* (r2 + r4) / (r2 r4), with u0*
+    = (r4 u2 + r2 u4) / (r2 + r4) the value of u24 at the crossing of the diagonals; the
+    notes print u0.  The next line of the proof uses u0* again."""
+    r1, r2, r3, r4 = r
+    u1, u2, u3, u4 = u
+    u0 = (r3 * u1 + r1 * u3) / (r1 + r3)
+    u0s = (r4 * u2 + r2 * u4) / (r2 + r4)
+    assert u1 / r1 + u3 / r3 == u0 * (r1 + r3) / (r1 * r3)        # the first, as printed
+    assert u2 / r2 + u4 / r4 == u0s * (r2 + r4) / (r2 * r4)
+    if u0 != u0s:
+        assert u2 / r2 + u4 / r4 != u0 * (r2 + r4) / (r2 * r4)     # the printed second
+
+
+# --- ER-18: proof of Lemma 4.20, a lost square ----------------------------------------------------
+
+
+def _regular_tetrahedron(squared_side):
+    t = surfaces.tetrahedron().triangulation
+    return PiecewiseFlatSurface(t, [squared_side] * t.n_edges)
+
+
+@given(st.integers(0, 12))
+def test_ER_18_harmonic_index_bounds_the_squared_longest_edge(k):
+    """Proof of Lemma 4.20, line 2879: h(T) >= l(T)^2 / A (h(Delta) = (a^2 + b^2 + c^2) /
+    A(Delta) >= l^2 / A(M)); the notes print l(T) / A, which scaling refutes: h is scale
+    invariant while l / A grows like 1 / scale.  Regular tetrahedron of side s = 2^-k:
+    h = 16 sqrt 3, A = sqrt 3 s^2, so h A = 48 s^2 >= s^2 always, >= s only for s >= 1/48."""
+    m = _regular_tetrahedron(Fraction(1, 4 ** k))
+    h, A, l2 = harmonic_index(m), m.total_area(), max(m.squared_lengths)
+    assert h * h == 768                                           # h = 16 sqrt 3, any scale
+    assert h * A >= l2                                            # corrected: l^2 <= h A
+    printed = h * A >= sqrt(l2)                                   # printed: l <= h A
+    assert printed == (k <= 5)
+
+
+# --- ER-19: Theorem 4.21, the Dirichlet energy without its 1/2 ------------------------------------
+
+
+@given(triangles, st.lists(st.integers(-6, 6), min_size=3, max_size=3))
+def test_ER_19_the_energy_of_theorem_4_21_is_half_the_integral(tri, f):
+    """Theorem 4.21 (line 2895) writes E(f_T) = integral_M |grad f_T|^2 dA; everywhere else
+    (section 3.1, T3.6, D3.2) E = 1/2 integral |grad f|^2 dA = 1/2 sum nu (f(i) - f(j))^2.
+    On a triangle: the integral, from the exact gradient of the affine interpolant times
+    the area, is twice the cotan energy."""
+    v = [tuple(map(Fraction, p)) for p in tri]
+    g = _affine_gradients(v)
+    grad = tuple(sum(f[i] * g[i][k] for i in range(3)) for k in range(2))
+    area = abs(_cross(*v)) / 2
+    integral = _dot(grad, grad) * area
+    s = PolyhedralSurface.from_arrays(v, [(0, 1, 2)])
+    assert dirichlet_energy(cotan_laplacian(s), f) == integral / 2 == dirichlet_energy_pl(s, f)
+    if integral:
+        assert dirichlet_energy(cotan_laplacian(s), f) != integral    # the printed E
+
+
+# --- ER-20: Remark 4.1, the Voronoi edge and the Delaunay edge ------------------------------------
+
+
+def test_ER_20_the_voronoi_edge_need_not_bisect_its_delaunay_edge():
+    """Remark 4.1 (line 1805): 'corresponding edges ... do not necessarily intersect ...
+    The Voronoi edge bisects the corresponding Delaunay edge.'  The *line* through the
+    Voronoi edge bisects it (the quad-tessellation bullet says so); the Voronoi edge, the
+    segment between the centres of the two cells, does not when they do not intersect.
+    Obtuse triangle (0,0), (6,0), (3,1) beside (0,0), (6,0), (3,-20): the midpoint (3, 0)
+    of the Delaunay edge is not on the segment between the two circumcentres."""
+    pts = [(0, 0), (6, 0), (3, 1), (3, -20)]
+    face = {f["edge"]: f for f in quad_tessellation_faces(pts)}[(0, 1)]
+    (qx, qy), (rx, ry) = face["voronoi"]
+    assert qx == rx == 3                                 # on the perpendicular bisector x = 3
+    assert face["bisected"] and not face["crossing"]
+    assert min(qy, ry) > 0 or max(qy, ry) < 0           # the segment misses y = 0
+    o, _ = circumcircle(*(tuple(map(Fraction, pts[i])) for i in (0, 1, 2)))
+    assert o == (3, -4)                                  # the obtuse cell's centre is beyond
+
+
+# --- ER-21: proof of Theorem 3.9, a factor 1/4 and a lost square ----------------------------------
+
+
+@given(st.integers(0, 3), st.integers(1, 3))
+def test_ER_21_area_as_a_sum_over_corners(which, scale):
+    """Proof of Theorem 3.9, line 1549: A(S) = sum over faces of A(f(i), f(j), f(k)) (the
+    notes print 1/4 of that sum) = 1/4 sum over the corners of cot alpha_ij |f(i) - f(j)|^2
+    (the notes print |f(i) - f(j)| without the square; their factor 1/2 belongs to (3.10),
+    ER-2).  Exact on closed and bordered surfaces: the face areas from the metric, the
+    corner sum from exact cotangents; scaling the positions by k multiplies the area by
+    k^2 while an unsquared sum would scale by k."""
+    base = (surfaces.octahedron(), surfaces.grid(2, 3), surfaces.torus(3, 4),
+            surfaces.icosahedron())[which]
+    s = base.with_positions([tuple(scale * x for x in p) for p in base.positions])
+    m = s.metric()
+    t = s.triangulation
+    faces_sum = sum((m.area(f) for f in range(t.n_faces)), Surd(0))
+    corner_sum = sum((m.corner_cot(f, c) * m.squared_length(3 * f + (c + 1) % 3)
+                      for f in range(t.n_faces) for c in range(3)), Surd(0)) / 4
+    assert faces_sum == corner_sum == m.total_area()
+    assert faces_sum / 4 != m.total_area()                       # the printed 1/4

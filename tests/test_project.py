@@ -175,6 +175,21 @@ def test_notes_check_fails_on_a_missing_item_a_wrong_line_and_an_unknown_row(tmp
     assert "Section 1.2: M # S^2 = M: line 204 of the notes holds no connected sum" in off
 
 
+def test_every_erratum_has_its_fields_and_an_existing_test(tmp_path):
+    from ddg_oracle import traceability
+    assert traceability.errata_problems() == []
+    text = (traceability.DATA / "errata.md").read_text(encoding="utf-8")
+    broken = tmp_path / "errata.md"
+    broken.write_text(text.replace("- relied on: nothing (existence", "- used by: nothing (existence")
+                      .replace("test_ER_17_the_second_identity_of_rippas_proof_has_u0_star",
+                               "test_ER_17_gone"), encoding="utf-8")
+    problems = traceability.errata_problems(broken)
+    assert "ER-13: no '- relied on:' line in docs/errata.md" in problems
+    if traceability.repository() is not None:
+        assert ("ER-17: test tests/test_errata_proofs.py::test_ER_17_gone does not exist"
+                in problems)
+
+
 def test_readme_counts_of_the_notes_items_and_errata_are_true():
     from ddg_oracle import traceability
     readme = (Path(__file__).parent.parent / "README.md").read_text(encoding="utf-8")

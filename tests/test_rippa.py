@@ -150,7 +150,7 @@ def shoelace(points):
     return sum(p[0] * q[1] - p[1] * q[0] for p, q in zip(points, points[1:] + points[:1])) / 2
 
 
-def test_C4_16_printed_corollary_fails_for_affine_u_erratum_E6():
+def test_C4_16_printed_corollary_fails_for_affine_u_erratum_ER_6():
     """Corollary 4.16 as printed: "not all u_i equal => (E(u13) = E(u24) iff Q circular)".
     u = x on a kite that is not circular: the u_i are not all equal, Q is not circular
     (24 is strictly Delaunay), yet the energies are equal."""
