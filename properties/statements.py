@@ -1,5 +1,5 @@
 """Properties of numbered statements of the notes that no protocol method asks about
-(X1.1, the identities of section 1.2, X3.1, L4.8, R4.1, R4.2).
+(X1.1, the identities of section 1.2, X3.1, L4.8, R4.1, R4.2, X4.3 / X4.4).
 
 Each checks the reference's exact values on drawn inputs against an independent
 formulation of the statement and raises AssertionError naming the item; an
@@ -339,3 +339,32 @@ def straight_unfoldings_need_not_be_shortest(points) -> None:
     assert lengths[0] == cube_squared_distance(p, q)
     assert lengths[0] >= 1, "X2.2: a path between opposite faces shorter than their distance 1"
     assert len(lengths) > 1, f"X2.2: every unfolding from {p} to {q} is shortest"
+
+
+# --- Examples 4.3 / 4.4: T_(M,V) of the cube is infinite ---------------------------------------
+
+
+def cube_triangulations_grow_without_bound(flips: int, sequence=None) -> None:
+    """X4.3 / X4.4: ``flips`` twisting flips in the cube's belt
+    (:func:`~ddg_oracle.reference.triangulations.cube_belt_twist`) give geodesic
+    triangulations of the *same* surface with vertex set V (12 faces, chi = 2, every
+    angle sum 3 pi / 2 and area 6, exactly), and the longest edge after n flips has
+    l^2 >= 1 + ((n - 2) / 4)^2, so l(T) is unbounded on T_(M,V) and T_(M,V) infinite.
+    ``sequence(flips)`` replaces ``cube_belt_twist`` (to check another construction)."""
+    from ddg_oracle.reference.curvature import angle_sums
+    from ddg_oracle.reference.exact import pi
+    from ddg_oracle.reference.triangulations import cube_belt_twist, longest_squared_length
+    previous = None
+    for n, s in enumerate((sequence or cube_belt_twist)(flips)):
+        t = s.triangulation
+        assert (t.n_vertices, t.n_faces, t.euler_characteristic()) == (8, 12, 2), \
+            f"X4.3: flip {n} left the cube's vertex set or topology"
+        assert all(a == 3 * pi / 2 for a in angle_sums(s)), \
+            f"X4.3: flip {n} changed an angle sum: not the cube's metric"
+        assert s.total_area() == 6, f"X4.3: flip {n} changed the area"
+        longest = longest_squared_length(s)
+        if n >= 2:
+            assert longest >= 1 + Fraction(n - 2, 4) ** 2, \
+                f"X4.4: after {n} flips the longest edge is only sqrt({longest})"
+        assert t != previous, f"X4.3: flip {n} changed nothing"
+        previous = t

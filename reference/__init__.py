@@ -28,12 +28,13 @@ Chapter by chapter (the modules keep their own ``__all__``):
   (``flip`` there is ``intrinsic_flip`` here);
 - chapter 3: :mod:`.laplacian`, :mod:`.sparse`, :mod:`.dirichlet`, :mod:`.areas`,
   :mod:`.minimal`;
-- chapter 4: :mod:`.delaunay`, :mod:`.planar`, :mod:`.rippa` (``energy_difference``
+- chapter 4: :mod:`.delaunay`, :mod:`.triangulations`, :mod:`.planar`, :mod:`.rippa` (``energy_difference``
   there is ``rippa_energy_difference`` here).
 """
 
 from . import (areas, combinatorics, curvature, delaunay, dirichlet, errors, exact, geodesics,
-               intrinsic, laplacian, metric, minimal, planar, polyhedral, rippa, sparse, surfaces)
+               intrinsic, laplacian, metric, minimal, planar, polyhedral, rippa, sparse, surfaces,
+               triangulations)
 from .areas import *  # noqa: F401,F403  (each module's __all__)
 from .combinatorics import *  # noqa: F401,F403
 from .curvature import *  # noqa: F401,F403
@@ -50,12 +51,13 @@ from .polyhedral import *  # noqa: F401,F403
 from .rippa import *  # noqa: F401,F403
 from .rippa import energy_difference as rippa_energy_difference
 from .sparse import *  # noqa: F401,F403
+from .triangulations import *  # noqa: F401,F403
 
 # names that read ambiguously without their module stay in it only
 _AMBIGUOUS = {"flip", "energy_difference"}
 del flip, energy_difference  # noqa: F821  (star-imported above)
 
 _CHAPTERS = (combinatorics, metric, polyhedral, curvature, geodesics, intrinsic, laplacian, sparse,
-             dirichlet, areas, minimal, delaunay, planar, rippa)
+             dirichlet, areas, minimal, delaunay, triangulations, planar, rippa)
 __all__ = sorted({name for m in _CHAPTERS for name in m.__all__} - _AMBIGUOUS
                  | {"intrinsic_flip", "rippa_energy_difference", "errors", "exact", "surfaces"})

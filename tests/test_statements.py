@@ -5,6 +5,7 @@ Each property runs on drawn examples, and each is shown able to fail: a planted
 mistake (a wrong side, a missing factor) is caught on an explicit input."""
 
 from fractions import Fraction
+from math import isqrt
 
 import pytest
 from hypothesis import given, settings
@@ -268,3 +269,43 @@ def test_planted_bugs_are_caught(monkeypatch):
             with pytest.raises(AssertionError):
                 run()
                 print(f"planted bug in {module}.{name} not caught")
+
+
+@given(st.integers(0, 120))
+@settings(deadline=None)
+def test_X4_3_X4_4_the_cubes_triangulations_have_unbounded_edges(flips):
+    S.cube_triangulations_grow_without_bound(flips)
+
+
+def test_X4_3_each_flip_adds_two_to_the_sum_of_the_shifts():
+    """The module's argument, measured: once every rung has shift d >= 1 (from flip 8 on;
+    the squared length d^2 + 1 then gives d), each flip adds exactly 2 to the sum of the 8
+    shifts, and every 8 flips each rung's shift has grown by 2 (one Dehn twist per 16)."""
+    from ddg_oracle.reference.triangulations import belt_rungs, cube_belt_twist
+    seq = list(cube_belt_twist(64))[8:]
+    shifts = []
+    for s in seq:
+        sq = [int(s.squared_lengths[e]) for e in belt_rungs(s)]
+        assert len(sq) == 8 and all(x >= 2 and isqrt(x - 1) ** 2 == x - 1 for x in sq)
+        shifts.append(sorted(isqrt(x - 1) for x in sq))
+    assert [sum(b) - sum(a) for a, b in zip(shifts, shifts[1:])] == [2] * (len(shifts) - 1)
+    assert all([y - x for x, y in zip(a, b)] == [2] * 8
+               for a, b in zip(shifts[8::8], shifts[16::8]))
+
+
+def test_X4_4_a_sequence_that_does_not_twist_is_caught():
+    """Planted: flipping one diagonal of a side square back and forth stays among two
+    triangulations, so the longest edge stays sqrt 2 and the property fails."""
+    from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
+    from ddg_oracle.reference.triangulations import belt_rungs
+
+    def back_and_forth(flips):
+        w = IntrinsicTriangulation(surfaces.cube().metric())
+        e = next(e for e in belt_rungs(w.surface()) if w.is_flippable(e))
+        yield w.surface()
+        for _ in range(flips):
+            w.flip(e)
+            yield w.surface()
+
+    with pytest.raises(AssertionError, match="X4.4: after 7 flips the longest edge is only sqrt.2."):
+        S.cube_triangulations_grow_without_bound(12, back_and_forth)
