@@ -1,5 +1,6 @@
 """Properties of numbered statements of the notes that no protocol method asks about
-(X1.1, the identities of section 1.2, X3.1, L4.8, R4.1, R4.2, X4.3 / X4.4).
+(X1.1, the identities of section 1.2, T2.10 (uniqueness), X3.1, L4.8, R4.1, R4.2,
+X4.3 / X4.4).
 
 Each checks the reference's exact values on drawn inputs against an independent
 formulation of the statement and raises AssertionError naming the item; an
@@ -64,6 +65,37 @@ def connected_sum_identities(m) -> None:
         "K # RP^2 != T^2 # RP^2"
     # and the monoid is commutative on classifications (section 1.2)
     assert connected_sum(m, rp2).classify() == connected_sum(rp2, m).classify()
+
+
+# --- Theorem 2.10 (Alexandrov), the uniqueness half on examples ------------------------------
+
+
+def alexandrov_uniqueness_on_examples(points, face: int) -> None:
+    """T2.10 (uniqueness): the convex hull P of drawn points in general position is
+    infinitesimally rigid (Dehn: its isometric first-order motions are the 6 rigid ones,
+    exact rank of the rigidity matrix); so is P with a low pyramid on a drawn face.
+    Reflecting the pyramid's apex through its base keeps the triangulation and every
+    edge length (the same metric) but gives a surface that is neither congruent to the
+    capped P nor convex: among the realisations of this metric, the convex one is the
+    one the theorem names, and without convexity uniqueness fails."""
+    from ddg_oracle.reference import rigidity
+    try:
+        hull = surfaces.convex_hull(points)
+    except InputError:
+        assume(False)                          # 4 coplanar points: not general position
+    assert rigidity.is_convex_surface(hull), "T2.10: the hull is not convex"
+    motions = rigidity.infinitesimal_motions(hull)
+    assert motions == 6, f"T2.10: the convex hull flexes ({motions} motions, not 6)"
+    capped = rigidity.capped(hull, face % hull.triangulation.n_faces)
+    assert rigidity.is_infinitesimally_rigid(capped), "T2.10: the capped polytope flexes"
+    apex = capped.n_vertices - 1
+    popped = rigidity.popped_vertex(capped, apex)
+    assert popped.metric().squared_lengths == capped.metric().squared_lengths, \
+        "T2.10: the reflected apex changed an edge length"
+    assert not rigidity.is_congruent(popped, capped), \
+        "T2.10: the popped surface is congruent to the convex one"
+    assert not rigidity.is_convex_surface(popped), \
+        "T2.10: a second convex polytope with the same metric"
 
 
 # --- chapter 3 ---------------------------------------------------------------------------

@@ -24,7 +24,7 @@ Chapter by chapter (the modules keep their own ``__all__``):
 
 - chapter 1: :mod:`.combinatorics`, :mod:`.surfaces`;
 - chapter 2: :mod:`.metric`, :mod:`.polyhedral`, :mod:`.curvature`, :mod:`.geodesics`,
-  :mod:`.intrinsic`
+  :mod:`.rigidity`, :mod:`.intrinsic`
   (``flip`` there is ``intrinsic_flip`` here);
 - chapter 3: :mod:`.laplacian`, :mod:`.sparse`, :mod:`.dirichlet`, :mod:`.areas`,
   :mod:`.minimal`;
@@ -33,8 +33,8 @@ Chapter by chapter (the modules keep their own ``__all__``):
 """
 
 from . import (areas, combinatorics, curvature, delaunay, dirichlet, errors, exact, geodesics,
-               intrinsic, laplacian, metric, minimal, planar, polyhedral, rippa, sparse, surfaces,
-               triangulations)
+               intrinsic, laplacian, metric, minimal, planar, polyhedral, rigidity, rippa, sparse,
+               surfaces, triangulations)
 from .areas import *  # noqa: F401,F403  (each module's __all__)
 from .combinatorics import *  # noqa: F401,F403
 from .curvature import *  # noqa: F401,F403
@@ -48,6 +48,7 @@ from .metric import *  # noqa: F401,F403
 from .minimal import *  # noqa: F401,F403
 from .planar import *  # noqa: F401,F403
 from .polyhedral import *  # noqa: F401,F403
+from .rigidity import *  # noqa: F401,F403
 from .rippa import *  # noqa: F401,F403
 from .rippa import energy_difference as rippa_energy_difference
 from .sparse import *  # noqa: F401,F403
@@ -57,7 +58,7 @@ from .triangulations import *  # noqa: F401,F403
 _AMBIGUOUS = {"flip", "energy_difference"}
 del flip, energy_difference  # noqa: F821  (star-imported above)
 
-_CHAPTERS = (combinatorics, metric, polyhedral, curvature, geodesics, intrinsic, laplacian, sparse,
-             dirichlet, areas, minimal, delaunay, triangulations, planar, rippa)
+_CHAPTERS = (combinatorics, metric, polyhedral, curvature, geodesics, rigidity, intrinsic,
+             laplacian, sparse, dirichlet, areas, minimal, delaunay, triangulations, planar, rippa)
 __all__ = sorted({name for m in _CHAPTERS for name in m.__all__} - _AMBIGUOUS
                  | {"intrinsic_flip", "rippa_energy_difference", "errors", "exact", "surfaces"})

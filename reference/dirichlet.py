@@ -45,7 +45,7 @@ from typing import Callable, Mapping, Sequence
 from .errors import BadShape, InputError
 from .exact import limits
 from .laplacian import cotan_laplacian, dirichlet_energy
-from .sparse import SparseMatrix, _normal, exact_number
+from .sparse import SparseMatrix, _normal, exact_number, rank
 
 __all__ = ["SingularDirichletProblem", "solve_dirichlet", "matrix_components",
            "kernel_dimension", "is_harmonic_at", "energy_gradient", "directional_derivative",
@@ -176,47 +176,6 @@ def _terms(x) -> int:
     return x.n_terms if hasattr(x, "n_terms") else 1
 
 
-def _rank(rows: dict[int, dict[int, object]]) -> int:
-    """Exact rank by division-free elimination: ``row_i <- p row_i - a_ic row_p``.
-
-    No inverse is ever formed, so Surd entries never go through conjugate
-    inversion (the costly step); a term count grows at most to the number of
-    products of the radicands involved.  Pivots: diagonal first, short rows,
-    few terms.
-    """
-    rows = {i: dict(r) for i, r in rows.items()}
-    remaining, cols_left, rank = set(rows), set(), 0
-    for r in rows.values():
-        cols_left.update(r)
-    while remaining:
-        best = None
-        for i in remaining:
-            for c, v in rows[i].items():
-                if c in cols_left:
-                    key = (c != i, len(rows[i]), _terms(v))
-                    if best is None or key < best[0]:
-                        best = (key, i, c)
-        if best is None:
-            break
-        _, p, c = best
-        prow, pv = rows[p], rows[p][c]
-        remaining.discard(p)
-        cols_left.discard(c)
-        rank += 1
-        for i in remaining:
-            r = rows[i]
-            a = r.get(c)
-            if a is None:
-                continue
-            new = {}
-            for j in set(r) | set(prow):
-                if j != c:
-                    x = r.get(j, _ZERO) * pv - a * prow.get(j, _ZERO)
-                    if x:
-                        new[j] = x
-            rows[i] = new
-    return rank
-
 
 def kernel_dimension(L: SparseMatrix) -> int:
     """``n - rank(L)``, the rank found by exact (division-free) elimination (C3.3 / R3.3).
@@ -229,7 +188,7 @@ def kernel_dimension(L: SparseMatrix) -> int:
     >>> kernel_dimension(graph_laplacian(4, [(0, 1, 1), (2, 3, 5)]))
     2
     """
-    return L.shape[0] - _rank({i: L.row(i) for i in range(L.shape[0])})
+    return L.shape[0] - rank({i: L.row(i) for i in range(L.shape[0])})
 
 
 def solve_dirichlet(operator, boundary_values: Mapping, *, term_limit: int | None = None) -> list:

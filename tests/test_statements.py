@@ -309,3 +309,32 @@ def test_X4_4_a_sequence_that_does_not_twist_is_caught():
 
     with pytest.raises(AssertionError, match="X4.4: after 7 flips the longest edge is only sqrt.2."):
         S.cube_triangulations_grow_without_bound(12, back_and_forth)
+
+
+@given(S.sphere_point_sets(max_points=8), st.integers(0, 20))
+@settings(deadline=None)
+def test_T2_10_convex_polytopes_are_rigid_and_the_convex_one_is_unique(points, face):
+    S.alexandrov_uniqueness_on_examples(points, face)
+
+
+def test_T2_10_a_vertex_inside_a_face_flexes_and_a_pop_is_isometric():
+    """The checks can fail: a vertex at a face's centroid (a polytope that is not strictly
+    convex) has 7 infinitesimal motions, not 6; the octahedron capped and popped keeps its
+    metric, loses its convexity, and is not congruent to the capped one."""
+    from ddg_oracle.reference import rigidity
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    o = surfaces.octahedron()
+    assert rigidity.infinitesimal_motions(o) == 6 and rigidity.is_convex_surface(o)
+    t, p = o.triangulation, list(o.positions)
+    i, j, k = t.faces[0]
+    centroid = tuple(sum(p[v][c] for v in (i, j, k)) / 3 for c in range(3))
+    flat = PolyhedralSurface.from_arrays(
+        p + [centroid], [f for g, f in enumerate(t.faces) if g] + [(i, j, 6), (j, k, 6), (k, i, 6)])
+    assert rigidity.is_convex_surface(flat) and rigidity.infinitesimal_motions(flat) == 7
+    capped = rigidity.capped(o, 0)
+    popped = rigidity.popped_vertex(capped, 6)
+    assert popped.positions[6] == tuple(2 * c - a for c, a in zip(centroid, capped.positions[6]))
+    assert popped.metric().squared_lengths == capped.metric().squared_lengths
+    assert not rigidity.is_convex_surface(popped) and not rigidity.is_congruent(popped, capped)
+    with pytest.raises(InputError, match="valence 4"):
+        rigidity.popped_vertex(o, 0)
