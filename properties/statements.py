@@ -1,6 +1,6 @@
 """Properties of numbered statements of the notes that no protocol method asks about
 (X1.1, the identities of section 1.2, T2.10 (uniqueness), X3.1, L4.8, R4.1, R4.2,
-X4.3 / X4.4).
+D4.3 / C4.6, X4.3 / X4.4).
 
 Each checks the reference's exact values on drawn inputs against an independent
 formulation of the statement and raises AssertionError naming the item; an
@@ -371,6 +371,64 @@ def straight_unfoldings_need_not_be_shortest(points) -> None:
     assert lengths[0] == cube_squared_distance(p, q)
     assert lengths[0] >= 1, "X2.2: a path between opposite faces shorter than their distance 1"
     assert len(lengths) > 1, f"X2.2: every unfolding from {p} to {q} is shortest"
+
+
+# --- Definition 4.3 / Claim 4.6: the tessellation by empty immersed disks -------------------------
+
+
+def closed_rational_metrics():
+    """Closed surfaces with rational metrics (flat tori, polycubes) after drawn intrinsic
+    flips, and half of them flipped on to Delaunay (so both answers of T4.7 are drawn)."""
+    from ddg_oracle.reference.delaunay import flip_to_delaunay
+    from .metrics import flat_tori, polycube_surfaces, randomly_flipped
+    base = randomly_flipped(st.one_of(flat_tori(), polycube_surfaces(max_genus=1).map(
+        lambda s: s.metric())), max_flips=30)
+    return st.tuples(base, st.booleans()).map(
+        lambda x: flip_to_delaunay(x[0])[0] if x[1] else x[0])
+
+
+def empty_disks_give_the_tessellation(metric) -> None:
+    """D4.3 / C4.6 (and T4.7 in its empty-disk form): developing each face's circumdisk
+    over the surface (:func:`~ddg_oracle.reference.empty_disks.circumdisk`), every disk is
+    empty iff the triangulation is Delaunay (angle criterion); on a Delaunay
+    triangulation each disk's cell ``conv phi^-1(V)`` is a k-gon triangulated by k - 2
+    distinct faces, the cells are exactly the faces glued across the edges of weight 0
+    (R4.7's tessellation), and they form a cell decomposition: V - E + F = chi."""
+    from ddg_oracle.reference.delaunay import delaunay_tessellation_edges, is_delaunay
+    from ddg_oracle.reference.empty_disks import circumdisk
+    t = metric.triangulation
+    disks = [circumdisk(metric, f) for f in range(t.n_faces)]
+    delaunay = is_delaunay(metric)
+    assert all(d.empty for d in disks) == delaunay, (
+        "D4.3 / T4.7: " + ("a Delaunay triangulation has a vertex inside the circumdisk of "
+                           f"face {next(d.face for d in disks if not d.empty)}" if delaunay
+                           else "a non-Delaunay triangulation has every circumdisk empty"))
+    if not delaunay:
+        return
+    kept = delaunay_tessellation_edges(metric)
+    parent = list(range(t.n_faces))
+
+    def root(f):
+        while parent[f] != f:
+            parent[f] = parent[parent[f]]
+            f = parent[f]
+        return f
+
+    for e in range(t.n_edges):
+        if e not in kept:
+            h, g = t.edge_halfedges(e)
+            parent[root(h // 3)] = root(g // 3)
+    for d in disks:
+        k = len(d.on_circle)
+        assert len(d.cell) == len(d.cell_faces) == k - 2, (
+            f"C4.6: the cell of face {d.face} has {k} vertices on its circle but "
+            f"{len(d.cell)} faces ({len(d.cell_faces)} distinct)")
+        assert d.cell_faces == {g for g in range(t.n_faces) if root(g) == root(d.face)}, (
+            f"D4.3: the empty disk of face {d.face} gives the cell {sorted(d.cell_faces)}, "
+            "not the faces glued across weight-0 edges")
+    cells = {d.cell_faces for d in disks}
+    assert t.n_vertices - len(kept) + len(cells) == t.euler_characteristic(), \
+        "C4.6: the empty-disk cells do not form a cell decomposition (V - E + F != chi)"
 
 
 # --- Examples 4.3 / 4.4: T_(M,V) of the cube is infinite ---------------------------------------

@@ -28,18 +28,19 @@ Chapter by chapter (the modules keep their own ``__all__``):
   (``flip`` there is ``intrinsic_flip`` here);
 - chapter 3: :mod:`.laplacian`, :mod:`.sparse`, :mod:`.dirichlet`, :mod:`.areas`,
   :mod:`.minimal`;
-- chapter 4: :mod:`.delaunay`, :mod:`.triangulations`, :mod:`.planar`, :mod:`.rippa` (``energy_difference``
-  there is ``rippa_energy_difference`` here).
+- chapter 4: :mod:`.delaunay`, :mod:`.empty_disks`, :mod:`.triangulations`, :mod:`.planar`,
+  :mod:`.rippa` (``energy_difference`` there is ``rippa_energy_difference`` here).
 """
 
-from . import (areas, combinatorics, curvature, delaunay, dirichlet, errors, exact, geodesics,
-               intrinsic, laplacian, metric, minimal, planar, polyhedral, rigidity, rippa, sparse,
-               surfaces, triangulations)
+from . import (areas, combinatorics, curvature, delaunay, dirichlet, empty_disks, errors, exact,
+               geodesics, intrinsic, laplacian, metric, minimal, planar, polyhedral, rigidity,
+               rippa, sparse, surfaces, triangulations)
 from .areas import *  # noqa: F401,F403  (each module's __all__)
 from .combinatorics import *  # noqa: F401,F403
 from .curvature import *  # noqa: F401,F403
 from .delaunay import *  # noqa: F401,F403
 from .dirichlet import *  # noqa: F401,F403
+from .empty_disks import *  # noqa: F401,F403
 from .geodesics import *  # noqa: F401,F403
 from .intrinsic import *  # noqa: F401,F403
 from .intrinsic import flip as intrinsic_flip
@@ -59,6 +60,7 @@ _AMBIGUOUS = {"flip", "energy_difference"}
 del flip, energy_difference  # noqa: F821  (star-imported above)
 
 _CHAPTERS = (combinatorics, metric, polyhedral, curvature, geodesics, rigidity, intrinsic,
-             laplacian, sparse, dirichlet, areas, minimal, delaunay, triangulations, planar, rippa)
+             laplacian, sparse, dirichlet, areas, minimal, delaunay, empty_disks, triangulations, planar,
+             rippa)
 __all__ = sorted({name for m in _CHAPTERS for name in m.__all__} - _AMBIGUOUS
                  | {"intrinsic_flip", "rippa_energy_difference", "errors", "exact", "surfaces"})

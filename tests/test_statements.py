@@ -338,3 +338,73 @@ def test_T2_10_a_vertex_inside_a_face_flexes_and_a_pop_is_isometric():
     assert not rigidity.is_convex_surface(popped) and not rigidity.is_congruent(popped, capped)
     with pytest.raises(InputError, match="valence 4"):
         rigidity.popped_vertex(o, 0)
+
+
+@given(S.closed_rational_metrics())
+@settings(deadline=None)
+def test_D4_3_C4_6_empty_immersed_disks_give_the_delaunay_tessellation(metric):
+    S.empty_disks_give_the_tessellation(metric)
+
+
+@pytest.mark.parametrize("name", ["octahedron", "icosahedron", "cube", "tetrahedron"])
+def test_D4_3_on_surfaces_with_irrational_areas(name):
+    """Surds in the development: the icosahedron's and octahedron's areas are irrational;
+    flipped to Delaunay after a flip that breaks it."""
+    from ddg_oracle.reference.delaunay import flip_to_delaunay
+    from ddg_oracle.reference.intrinsic import flip, is_flippable
+    m = getattr(surfaces, name)().metric()
+    S.empty_disks_give_the_tessellation(m)
+    e = next(e for e in range(m.triangulation.n_edges) if is_flippable(m, e))
+    flipped = flip(m, e)
+    S.empty_disks_give_the_tessellation(flipped)
+    S.empty_disks_give_the_tessellation(flip_to_delaunay(flipped)[0])
+
+
+def _one_vertex_square_torus():
+    """The unit square with opposite sides glued: one vertex, edges 0 (bottom = top),
+    1 (right = left), 2 (the diagonal), faces (A, B, C) and (A, C, D)."""
+    from ddg_oracle.reference.combinatorics import Triangulation
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
+    t = Triangulation([[0, 0, 0], [0, 0, 0]], [(0, 4, False), (1, 5, False), (2, 3, False)])
+    return PiecewiseFlatSurface(t, [1, 1, 2])
+
+
+def test_D4_3_the_square_torus_with_one_vertex_is_one_cell():
+    """One vertex, two triangles, three edges: one Delaunay cell (the square, 4 lifts of
+    the vertex on its circle) and two tessellation edges: V - E + F = 1 - 2 + 1 = 0 =
+    chi.  The disk wraps: it meets both faces at several places."""
+    from ddg_oracle.reference.empty_disks import circumdisk, empty_disk_cells
+    m = _one_vertex_square_torus()
+    d = circumdisk(m, 0)
+    assert d.empty and len(d.on_circle) == 4 and d.cell_faces == {0, 1}
+    assert {v for _, v in d.on_circle} == {0} and d.copies > 2
+    assert empty_disk_cells(m) == [frozenset({0, 1})]
+    S.empty_disks_give_the_tessellation(m)
+
+
+def test_D4_3_a_vertex_inside_is_found_and_named(monkeypatch):
+    """The sheared flat torus (lattice (1, 0), (2, 1)) split along long diagonals is not
+    Delaunay: circumdisks hold vertices, found by the development and named (vertex 1 at
+    (2, 1) in face 0's plane, inside the circle through (0, 0), (1, 0), (3, 1)); the
+    property fails if told the opposite (a planted wrong Delaunay test)."""
+    from ddg_oracle.reference.delaunay import is_delaunay
+    from ddg_oracle.reference.empty_disks import circumdisk, empty_disk_cells
+    from ddg_oracle.properties.metrics import flat_torus
+    m = flat_torus(3, 3, (1, 0), (2, 1))
+    assert not is_delaunay(m)
+    d = circumdisk(m, 0)
+    assert d.inside == (1, (2, 1))
+    with pytest.raises(InputError, match="face 0: vertex 1 lies inside its circumdisk"):
+        empty_disk_cells(m)
+    import ddg_oracle.reference.delaunay as D
+    monkeypatch.setattr(D, "is_delaunay", lambda s: True)      # planted: says Delaunay
+    with pytest.raises(AssertionError, match="D4.3 / T4.7: a Delaunay triangulation"):
+        S.empty_disks_give_the_tessellation(m)
+
+
+def test_D4_3_refuses_boundary_and_a_runaway_development():
+    from ddg_oracle.reference.empty_disks import DevelopmentLimitExceeded, circumdisk
+    with pytest.raises(InputError, match="without boundary"):
+        circumdisk(surfaces.grid(2, 2).metric(), 0)
+    with pytest.raises(DevelopmentLimitExceeded, match="more than 2 faces"):
+        circumdisk(_one_vertex_square_torus(), 0, limit=2)
