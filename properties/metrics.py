@@ -9,6 +9,9 @@ arithmetic on them, and cocircular ties are everywhere.
   embedded surface of genus g with integer vertices (usable by any implementation).
 * :func:`randomly_flipped`: a metric after drawn intrinsic flips (non-Delaunay, and in
   time non-regular: loops, double edges).
+* :func:`bump` / :func:`bumps`: a square grid of unit squares with a box-shaped bump of
+  integer height: a disk with integer vertices whose faces lie in coordinate planes, so
+  its Delaunay weights and the Dirichlet solutions on it are rational (A4.23, R4.11).
 
 Strategies draw small integers and build the surface, so failures shrink.
 """
@@ -24,7 +27,8 @@ from ddg_oracle.reference.intrinsic import flip, is_flippable
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-__all__ = ["flat_torus", "flat_tori", "polycube", "polycube_surfaces", "randomly_flipped"]
+__all__ = ["flat_torus", "flat_tori", "polycube", "polycube_surfaces", "randomly_flipped",
+           "bump", "bumps"]
 
 
 def flat_torus(m: int, n: int, u=(1, 0), v=(0, 1)) -> PiecewiseFlatSurface:
@@ -138,3 +142,52 @@ def randomly_flipped(metrics, max_flips: int = 40):
                 m = flip(m, e)
         return m
     return build()
+
+
+def bump(size: int, box: tuple, height: int, diagonals=()) -> PolyhedralSurface:
+    """The ``size x size`` grid of unit squares in the plane z = 0 with the cells
+    ``x0 <= x < x1, y0 <= y < y1`` (``box``, inside the rim) raised to z = ``height``, walls
+    included: a disk bounded by the grid's rim, every face in a coordinate plane,
+    oriented consistently (upward on the top, outward on the walls).  Each unit square
+    is split along ``diagonals[k]`` (cycled; default False) for the k-th square."""
+    x0, x1, y0, y1 = box
+    if not (1 <= x0 < x1 <= size - 1 and 1 <= y0 < y1 <= size - 1) or height < 1:
+        raise ValueError(f"the box {box} must lie inside the rim of the {size} x {size} grid "
+                         f"and the height {height} be >= 1")
+    index: dict[tuple, int] = {}
+    faces = []
+    squares = []
+
+    def z(x, y):
+        return height if x0 <= x < x1 and y0 <= y < y1 else 0
+
+    for x in range(size):
+        for y in range(size):
+            h = z(x, y)
+            squares.append(((x, y, h), (x + 1, y, h), (x + 1, y + 1, h), (x, y + 1, h)))
+    for k in range(height):                 # the walls, outward counterclockwise
+        for x in range(x0, x1):
+            squares.append(((x + 1, y0, k), (x, y0, k), (x, y0, k + 1), (x + 1, y0, k + 1)))
+            squares.append(((x, y1, k), (x + 1, y1, k), (x + 1, y1, k + 1), (x, y1, k + 1)))
+        for y in range(y0, y1):
+            squares.append(((x0, y, k), (x0, y + 1, k), (x0, y + 1, k + 1), (x0, y, k + 1)))
+            squares.append(((x1, y + 1, k), (x1, y, k), (x1, y, k + 1), (x1, y + 1, k + 1)))
+    for k, quad in enumerate(squares):
+        a, b, c, d = (index.setdefault(p, len(index)) for p in quad)
+        flipped = bool(diagonals[k % len(diagonals)]) if diagonals else False
+        faces += [(a, b, c), (a, c, d)] if not flipped else [(a, b, d), (b, c, d)]
+    return PolyhedralSurface.from_arrays(sorted(index, key=index.get), faces)
+
+
+@st.composite
+def bumps(draw, max_size: int = 4):
+    """A :func:`bump` of drawn grid size, box, height and diagonals; shrinks to the 3 x 3
+    grid with its centre raised by 1."""
+    size = draw(st.integers(3, max_size))
+    x0 = draw(st.integers(1, size - 2))
+    x1 = draw(st.integers(x0 + 1, size - 1))
+    y0 = draw(st.integers(1, size - 2))
+    y1 = draw(st.integers(y0 + 1, size - 1))
+    height = draw(st.integers(1, 2))
+    diagonals = draw(st.lists(st.booleans(), min_size=1, max_size=16))
+    return bump(size, (x0, x1, y0, y1), height, diagonals)

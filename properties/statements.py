@@ -1,6 +1,6 @@
 """Properties of numbered statements of the notes that no protocol method asks about
 (X1.1, the identities of section 1.2, T2.10 (uniqueness), X3.1, L4.8, R4.1, R4.2,
-D4.3 / C4.6, X4.3 / X4.4).
+D4.3 / C4.6, X4.3 / X4.4, R4.11).
 
 Each checks the reference's exact values on drawn inputs against an independent
 formulation of the statement and raises AssertionError naming the item; an
@@ -458,3 +458,32 @@ def cube_triangulations_grow_without_bound(flips: int, sequence=None) -> None:
                 f"X4.4: after {n} flips the longest edge is only sqrt({longest})"
         assert t != previous, f"X4.3: flip {n} changed nothing"
         previous = t
+
+
+# --- Remark 4.11: the state of Algorithm 4.23 is the pair (S, T) ---------------------------------
+
+
+def minimal_surface_state(surface) -> bool:
+    """R4.11: one step of Algorithm 4.23 replaces (S, T) by (S~, T~): T~ is a Delaunay
+    triangulation of the metric of S (A4.13), the new positions f~ are harmonic for the
+    cotan Laplacian of (S, T~) off the boundary, which stays where it was, and
+    :func:`~ddg_oracle.reference.minimal.next_surface` is f~ on the combinatorics of T~.
+    Returns whether T~ is still Delaunay for S~ (the remark: it need not be)."""
+    from ddg_oracle.reference.delaunay import is_delaunay
+    from ddg_oracle.reference.laplacian import cotan_laplacian
+    from ddg_oracle.reference.minimal import delaunay_minimal_surface_step, next_surface
+    t = surface.triangulation
+    boundary = t.boundary_vertices()
+    delaunay, new = delaunay_minimal_surface_step(surface)
+    assert is_delaunay(delaunay), "R4.11: T~ is not Delaunay for the metric of S"
+    L = cotan_laplacian(delaunay)
+    for k in range(len(new[0])):
+        lap = L.matvec([p[k] for p in new])
+        assert all(lap[v] == 0 for v in range(t.n_vertices) if v not in boundary), \
+            "R4.11: f~ is not harmonic for the Laplacian of (S, T~)"
+    assert all(new[v] == surface.positions[v] for v in boundary), "R4.11: the boundary moved"
+    following = next_surface(surface)
+    assert following.triangulation == delaunay.triangulation and \
+        following.positions == tuple(tuple(p) for p in new), \
+        "R4.11: the next surface is not f~ on T~"
+    return is_delaunay(following)

@@ -58,7 +58,7 @@ from .polyhedral import PolyhedralSurface
 __all__ = ["minimal_surface_step", "area_decrease_certificate", "AreaDecrease",
            "area_enclosure", "minimal_surface_iteration", "MinimalSurfaceRun",
            "figure_3_7_star", "is_minimal_wide", "is_minimal_narrow",
-           "delaunay_neighbour_hull", "delaunay_minimal_surface_step"]
+           "delaunay_neighbour_hull", "delaunay_minimal_surface_step", "next_surface"]
 
 _ZERO = Fraction(0)
 
@@ -443,3 +443,36 @@ def delaunay_minimal_surface_step(surface: PolyhedralSurface, fixed: Sequence[in
     delaunay, _ = flip_to_delaunay(metric_of_surface(surface))
     values = {v: surface.positions[v] for v in fixed}
     return delaunay, solve_dirichlet(cotan_laplacian(delaunay), values, term_limit=term_limit)
+
+
+def next_surface(surface: PolyhedralSurface, fixed: Sequence[int] | None = None,
+                 *, term_limit: int | None = None) -> PolyhedralSurface:
+    """A4.23 / R4.11: the next state of the algorithm, the simplicial surface S~ given by
+    the new positions f~ on the combinatorics of T~ (:func:`delaunay_minimal_surface_step`).
+
+    R4.11: the state is the pair (S, T); T~ is Delaunay for the metric of S, and need
+    not be Delaunay for S~ (``is_delaunay(next_surface(s))`` may be False).  Needs
+    rational positions f~ (rational Delaunay weights, e.g. faces in coordinate planes);
+    otherwise the new surface is outside the exact field of
+    :class:`~ddg_oracle.reference.polyhedral.PolyhedralSurface` and :class:`InputError`
+    says so.  T~ must not have a loop (an edge from a vertex to itself has no straight
+    realisation).
+
+    >>> from ddg_oracle.reference import surfaces
+    >>> c = surfaces.cube()
+    >>> box = PolyhedralSurface.from_arrays(          # the cube without its top
+    ...     c.positions, [f for f in c.triangulation.faces
+    ...                   if any(c.positions[v][2] == 0 for v in f)])
+    >>> s = next_surface(box)                  # the bottom comes up into the top plane
+    >>> s.positions[0], is_delaunay(s)
+    ((Fraction(2, 3), Fraction(1, 3), Fraction(1, 1)), True)
+    """
+    delaunay, new = delaunay_minimal_surface_step(surface, fixed, term_limit=term_limit)
+    t = delaunay.triangulation
+    loops = [e for e in range(t.n_edges) if len(set(t.edge_vertices(e))) == 1]
+    if loops:
+        raise InputError(f"T~ has loop edges {loops[:5]}: no simplicial surface realises it")
+    if any(isinstance(x, Surd) for p in new for x in p):
+        raise InputError("the new positions are irrational (Surds): the next surface's "
+                         "metric would need square roots of Surds")
+    return PolyhedralSurface(t, new)

@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ddg_oracle.properties import statements as S
+from ddg_oracle.properties.metrics import bump, bumps
 from ddg_oracle.properties.strategies import closed_surfaces
 from ddg_oracle.reference import planar, surfaces
 from ddg_oracle.reference.errors import InputError
@@ -408,3 +409,69 @@ def test_D4_3_refuses_boundary_and_a_runaway_development():
         circumdisk(surfaces.grid(2, 2).metric(), 0)
     with pytest.raises(DevelopmentLimitExceeded, match="more than 2 faces"):
         circumdisk(_one_vertex_square_torus(), 0, limit=2)
+
+
+@given(bumps())
+@settings(deadline=None)
+def test_R4_11_one_step_of_algorithm_4_23(surface):
+    S.minimal_surface_state(surface)
+
+
+def test_R4_11_the_delaunay_triangulation_of_S_need_not_be_delaunay_for_the_next_surface():
+    """R4.11, both ways: the 3 x 3 grid with its centre raised by 1: T~ (Delaunay for S)
+    is not Delaunay for S~, whose bump comes down into the plane, so its walls' long
+    edges now face obtuse angles summing past pi; the cube without its top: T~ stays
+    Delaunay for S~ (the bottom comes up into the top plane)."""
+    from ddg_oracle.reference.delaunay import is_delaunay, non_delaunay_edges
+    from ddg_oracle.reference.minimal import next_surface
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = bump(3, (1, 2, 1, 2), 1)
+    assert is_delaunay(s)
+    assert S.minimal_surface_state(s) is False
+    following = next_surface(s)
+    assert non_delaunay_edges(following) == [2, 35]
+    assert all(p[2] == 0 for p in following.positions)      # the bump is flattened
+    c = surfaces.cube()
+    box = PolyhedralSurface.from_arrays(c.positions, [f for f in c.triangulation.faces
+                                                      if any(c.positions[v][2] == 0 for v in f)])
+    assert S.minimal_surface_state(box) is True
+
+
+def _skewed_flat_grid():
+    """The 3 x 2 grid in the plane with its bottom row split by the long diagonal from
+    (0, 0) to (2, 1): that edge faces two angles of 3 pi / 4, so the triangulation is not
+    Delaunay (one intrinsic flip fixes it); interior vertices (1, 1), (2, 1)."""
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    pts = [(x, y, 0) for y in range(3) for x in range(4)]
+    v = {(x, y): 4 * y + x for y in range(3) for x in range(4)}
+    b = [v[(x, 0)] for x in range(4)]
+    m = [v[(x, 1)] for x in range(4)]
+    faces = [(b[0], b[1], m[2]), (b[0], m[2], m[1]), (b[0], m[1], m[0]), (b[1], b[2], m[2]),
+             (b[2], b[3], m[3]), (b[2], m[3], m[2])]
+    for x in range(3):
+        a, c, d, e = v[(x, 1)], v[(x + 1, 1)], v[(x + 1, 2)], v[(x, 2)]
+        faces += [(a, c, d), (a, d, e)]
+    return PolyhedralSurface.from_arrays(pts, faces)
+
+
+def test_R4_11_a_step_that_keeps_the_old_triangulation_is_caught(monkeypatch):
+    """On the skewed flat grid T~ differs from T (the long diagonal is flipped) and S~ is
+    S's positions on T~ (flat: the Laplace-Beltrami operator keeps linear functions).
+    Planted: a next surface on the *old* combinatorics T, Algorithm 3.6's state, is
+    caught."""
+    import ddg_oracle.reference.minimal as M
+    from ddg_oracle.reference.delaunay import is_delaunay
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = _skewed_flat_grid()
+    assert not is_delaunay(s)
+    assert S.minimal_surface_state(s) is True
+    following = M.next_surface(s)
+    assert following.triangulation != s.triangulation and following.positions == s.positions
+    real = M.next_surface
+
+    def stale(surface, fixed=None, **kw):
+        return PolyhedralSurface(surface.triangulation, real(surface, fixed, **kw).positions)
+
+    monkeypatch.setattr(M, "next_surface", stale)
+    with pytest.raises(AssertionError, match="R4.11: the next surface is not f~ on T~"):
+        S.minimal_surface_state(s)
