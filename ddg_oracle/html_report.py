@@ -59,7 +59,7 @@ canvas { border: 1px solid #ccc; background: #fff; width: 100%; height: 420px; }
 </div>
 <main>
   <div id="list"><table><thead><tr><th>ID</th><th>property</th><th>implementation</th>
-    <th>status</th><th>examples</th></tr></thead><tbody id="rows"></tbody></table></div>
+    <th>status</th><th>examples</th><th>finding</th></tr></thead><tbody id="rows"></tbody></table></div>
   <div id="detail"><p id="hint">Click a result that did not pass to see its counterexample.</p>
     <div id="view" hidden>
       <h2 id="v-title" style="font-size:16px"></h2>
@@ -79,6 +79,7 @@ window.addEventListener("error", function (e) {
 });
 const DATA = JSON.parse(document.getElementById("data").textContent);
 const RESULTS = DATA.results;
+const KNOWN = DATA.known || {};
 const $ = (id) => document.getElementById(id);
 
 function statusClass(s) { return "s-" + s.split(" ")[0]; }
@@ -115,7 +116,8 @@ function render() {
     const tr = document.createElement("tr");
     tr.className = "result";
     tr.dataset.index = k;
-    for (const v of [r.property_id, r.property_name, r.implementation, r.status, r.examples]) {
+    for (const v of [r.property_id, r.property_name, r.implementation, r.status, r.examples,
+                     KNOWN[k] || ""]) {
       const td = document.createElement("td");
       td.textContent = v;
       tr.appendChild(td);
@@ -152,6 +154,8 @@ function show(k) {
     values = "<div>" + esc(r.crash) + "</div>";
   }
   if (r.note) values += "<div><i>" + esc(r.note) + "</i></div>";
+  if (KNOWN[k]) values += "<div>documented finding <b>" + esc(KNOWN[k]) +
+                          "</b> (docs/findings.md)</div>";
   $("v-values").innerHTML = values;
   $("v-text").textContent = (r.files ? "files: " + r.files.obj + ", " + r.files.snippet + "\n" : "") +
     (r.mesh && r.mesh.V ? "V = " + JSON.stringify(r.mesh.V) + "\nF = " + JSON.stringify(r.mesh.F) : "");
@@ -277,10 +281,14 @@ if (location.hash.startsWith("#result-")) show(+location.hash.slice(8));
 """
 
 
-def write_html(directory, results_json: str) -> Path:
-    """Write ``index.html`` for ``results_json`` (the text of results.json)."""
+def write_html(directory, results_json: str, known: dict | None = None) -> Path:
+    """Write ``index.html`` for ``results_json`` (the text of results.json); ``known`` maps
+    a result's index to the documented finding it is (docs/findings.md), shown beside it."""
     path = Path(directory) / "index.html"
     doc = json.loads(results_json)
+    if known:
+        doc["known"] = {str(i): k for i, k in known.items()}
+        results_json = json.dumps(doc, sort_keys=True)
     data = results_json.replace("</", "<\\/")          # safe inside <script>
     title = html.escape(", ".join(f"{n} {s}" for s, n in doc.get("counts", {}).items() if n))
     path.write_text(_PAGE.replace("__TITLE__", title).replace("__DATA__", data),

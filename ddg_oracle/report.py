@@ -519,7 +519,10 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
            "interrupted": interrupted}
     text = dumps(doc)
     (directory / "results.json").write_text(text, encoding="utf-8")
-    write_html(directory, text)
+    findings = known_findings()
+    write_html(directory, text, {i: k for i, r in enumerate(results)
+                                 if r.status not in (PASSED, NOT_APPLICABLE)
+                                 and (k := known_finding(r, findings))})
     (directory / "timings.json").write_text(json.dumps(timings, indent=1, sort_keys=True) + "\n",
                                             encoding="utf-8")
     c = counts(results)

@@ -88,6 +88,9 @@ def test_clicking_a_failure_shows_its_mesh(report, browser, tmp_path):
     assert browser.find_element(By.ID, "view").is_displayed()
     assert "[R1.6] libigl: FAILED" in browser.find_element(By.ID, "v-title").text
     assert "expected: 1, observed: 4" in browser.find_element(By.ID, "v-values").text
+    # the documented finding it is (docs/findings.md), in the view and in the table
+    assert "documented finding F-libigl-1" in browser.find_element(By.ID, "v-values").text
+    assert failed[0].find_elements(By.TAG_NAME, "td")[5].text == "F-libigl-1"
     pixels = _canvas_pixels(browser)
     drawn = pixels[pixels[:, 3] > 0]
     assert len(drawn) > 0.05 * len(pixels)                      # the strip, not a blank canvas
