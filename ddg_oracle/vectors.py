@@ -35,6 +35,7 @@ import numpy as np
 
 from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain, at_machine_epsilon
 from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.combinatorics import next_corner, prev_corner
 
 FORMAT = "ddg-oracle-test-vectors"
 #: the corpus format's version: bumped when a field changes meaning (new cases do not)
@@ -369,7 +370,7 @@ def expected(method: str, case: Case, req: dict) -> dict:
     from ddg_oracle.oracles.arrays import Referenced
     from ddg_oracle.reference import curvature, delaunay, laplacian
     from ddg_oracle.reference.areas import area_gradient
-    from ddg_oracle.reference.exact.measures import surd_sum
+    from ddg_oracle.reference.exact import exact_sum
 
     try:
         answer = _reference_answer(method, req)
@@ -404,7 +405,7 @@ def expected(method: str, case: Case, req: dict) -> dict:
         b = {k: _scatter(v, keep, n, 0.0) for k, v in _bounds(method, ex).items()}
         return _numbers(per_vertex(values, "2*pi"), _nested(answer), b)
     if method == "area":
-        return _numbers(exact_text(surd_sum(s.metric().areas)), float(answer),
+        return _numbers(exact_text(exact_sum(s.metric().areas)), float(answer),
                         {k: float(v) for k, v in _bounds(method, ex).items()})
     if method == "edge_mean_curvature":
         t = s.triangulation
@@ -457,7 +458,7 @@ def _embedded(bounds: dict, r) -> dict:
 
 def _boundary_edges(F) -> set:
     """Directed boundary edges (a, b) of counterclockwise faces: used by one face only."""
-    directed = {(f[c], f[(c + 1) % 3]) for f in F for c in range(3)}
+    directed = {(f[c], f[next_corner(c)]) for f in F for c in range(3)}
     return {e for e in directed if e[::-1] not in directed}
 
 
@@ -472,7 +473,7 @@ def _flags_expected(answer, ex) -> dict:
             either = []
             for f in range(t.n_faces):
                 for c in range(3):
-                    s, bound = cot_sum_with_bound(X, t.edge_of(3 * f + (c + 1) % 3))
+                    s, bound = cot_sum_with_bound(X, t.edge_of(3 * f + next_corner(c)))
                     if abs(s) <= bound:
                         either.append([f, c])
         out[f"either{k}"] = either
@@ -498,7 +499,7 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
     """The Laplace-Beltrami operator (the same for every intrinsic Delaunay triangulation,
     R4.9) and the total area, which any answer's (F2, l2) must reproduce."""
     from ddg_oracle.reference import delaunay
-    from ddg_oracle.reference.exact.measures import surd_sum
+    from ddg_oracle.reference.exact import exact_sum
     from ddg_oracle.properties.delaunay import DelaunayExact
     F2, l2 = answer
     amp = max(DelaunayExact.of(ex.mesh_case()).amplification)   # flips' amplification
@@ -506,7 +507,7 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
                            _reference_answer("intrinsic_delaunay_laplacian", req).tocsr(),
                            _embedded(_bounds("intrinsic_delaunay_laplacian", ex), r),
                            len(req["V"]), r.keep)
-    total = surd_sum(ex.surface.metric().areas)
+    total = exact_sum(ex.surface.metric().areas)
     area = _numbers(exact_text(total), _view(total),
                     {k: _intrinsic_area_bound(l2, amp, e) for k, e in EPSILONS.items()})
     return {"faces": len(req["F"]), "laplacian": lap, "area": area,
@@ -859,7 +860,7 @@ def _cotan_from_lengths(F2, l2, n: int):
     ang, area = _angles_from_squared_lengths(l2)
     rows, cols, vals = [], [], []
     for c in range(3):
-        i, j = F2[:, (c + 1) % 3], F2[:, (c + 2) % 3]
+        i, j = F2[:, next_corner(c)], F2[:, prev_corner(c)]
         w = 0.5 / np.tan(ang[:, c])
         keep = i != j                                 # a loop edge adds nothing to L
         i, j, w = i[keep], j[keep], w[keep]

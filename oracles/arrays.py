@@ -17,6 +17,7 @@ import numpy as np
 
 from ddg_oracle.reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, NegativeIndex,
                               NonFiniteValue, NonIntegerIndex, NotANumber)
+from ddg_oracle.reference.combinatorics import corner_of, face_of
 
 
 def _array(x, what: str) -> np.ndarray:
@@ -59,7 +60,7 @@ def checked_arrays(V, F) -> tuple[np.ndarray, np.ndarray]:
         flat = F.reshape(-1).tolist()
         k = next((k for k, x in enumerate(flat)
                   if not (isinstance(x, float) and x.is_integer())), 0)
-        raise NonIntegerIndex(f"F has dtype {F.dtype} (face {k // 3}, corner {k % 3} is "
+        raise NonIntegerIndex(f"F has dtype {F.dtype} (face {face_of(k)}, corner {corner_of(k)} is "
                               f"{flat[k]!r}); face indices must be integers")
     # range before the int64 cast: a uint64 index above 2**63 would wrap negative
     n = V.shape[0]

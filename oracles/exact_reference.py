@@ -11,8 +11,8 @@ import math
 import numpy as np
 
 from ddg_oracle.reference import curvature, delaunay, laplacian
-from ddg_oracle.reference.combinatorics import Triangulation
-from ddg_oracle.reference.exact.measures import surd_sum
+from ddg_oracle.reference.combinatorics import Triangulation, next_corner
+from ddg_oracle.reference.exact import exact_sum
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
@@ -79,7 +79,7 @@ class ReferenceImplementation:
                 for e, h in curvature.mean_curvature(s).items()}
 
     def area(self, V, F) -> float:
-        return _view(surd_sum(self._s(V, F).metric().areas))
+        return _view(exact_sum(self._s(V, F).metric().areas))
 
     # chapter 3
     def cotan_laplacian(self, V, F):
@@ -136,11 +136,11 @@ class ReferenceImplementation:
         areas = laplacian.vertex_areas_floats(self._s(V, F), "voronoi")
         return Referenced(V, F).scatter(areas, ISOLATED_VERTEX["vertex_areas_voronoi"])
 
-    # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + (c+1) % 3)
+    # chapter 4 (column c: the edge opposite corner c, i.e. halfedge 3f + c + 1 (mod 3))
     def is_locally_delaunay(self, V, F):
         m = self._s(V, F).metric()
         t = m.triangulation
-        return np.array([[delaunay.is_delaunay_edge(m, t.edge_of(3 * f + (c + 1) % 3))
+        return np.array([[delaunay.is_delaunay_edge(m, t.edge_of(3 * f + next_corner(c)))
                           for c in range(3)] for f in range(t.n_faces)], dtype=bool)
 
     def intrinsic_delaunay_laplacian(self, V, F):
@@ -149,7 +149,7 @@ class ReferenceImplementation:
     def intrinsic_delaunay_triangulation(self, V, F):
         d, _ = delaunay.flip_to_delaunay(self._s(V, F).metric())
         t = d.triangulation
-        l2 = [[_view(d.face_squared_lengths(f)[(c + 1) % 3]) for c in range(3)]
+        l2 = [[_view(d.face_squared_lengths(f)[next_corner(c)]) for c in range(3)]
               for f in range(t.n_faces)]
         keep = Referenced(V, F).keep
         return keep[np.array(t.faces, dtype=np.int64)], np.array(l2, dtype=float)

@@ -53,6 +53,7 @@ import gpytoolbox as gpy
 
 from .arrays import checked_arrays
 from .conventions import declare
+from ddg_oracle.reference.combinatorics import next_corner, prev_corner
 
 _arrays = checked_arrays
 
@@ -134,7 +135,7 @@ class Gpytoolbox:
             g = int(TT[f, c])
             if g <= f:
                 continue                    # each edge once, from its lower face (-1: no face)
-            i, j = int(F[f, (c + 1) % 3]), int(F[f, (c + 2) % 3])
+            i, j = int(F[f, next_corner(c)]), int(F[f, prev_corner(c)])
             t = float(theta[f, c])
             if self.dihedral == "reference":
                 side = float(np.cross(N[f], N[g]) @ (V[j] - V[i]))

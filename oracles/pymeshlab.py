@@ -59,6 +59,7 @@ from .arrays import Referenced, checked_arrays
 from .conventions import declare
 
 import pymeshlab
+from ddg_oracle.reference.combinatorics import next_corner, prev_corner
 
 
 
@@ -135,7 +136,7 @@ def _mixed_areas_from_metric(metric) -> list:
             if obtuse:
                 a = A / 2 if c == obtuse[0] else A / 4
             else:
-                a = (sq[c] * cot[(c + 2) % 3] + sq[(c + 2) % 3] * cot[(c + 1) % 3]) / 8
+                a = (sq[c] * cot[prev_corner(c)] + sq[prev_corner(c)] * cot[next_corner(c)]) / 8
             acc[face[c]] = acc[face[c]] + a
     return acc
 

@@ -32,7 +32,7 @@ from hypothesis import assume, strategies as st
 
 from ddg_oracle.reference import curvature as ref
 from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.combinatorics import Triangulation, next_corner, prev_corner
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -200,7 +200,7 @@ def _float_geometry(case: CurvatureCase) -> dict:
     angles = np.empty(F.shape)
     inv_sin = np.empty(F.shape)
     for k in range(3):
-        a, b = X[:, (k + 1) % 3] - X[:, k], X[:, (k + 2) % 3] - X[:, k]
+        a, b = X[:, next_corner(k)] - X[:, k], X[:, prev_corner(k)] - X[:, k]
         la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
         angles[:, k] = np.arctan2(twice_area, (a * b).sum(axis=1))
         inv_sin[:, k] = la * lb / twice_area
@@ -208,7 +208,7 @@ def _float_geometry(case: CurvatureCase) -> dict:
     face_of = {}
     for f, face in enumerate(F.tolist()):
         for k in range(3):
-            face_of[(face[k], face[(k + 1) % 3])] = f
+            face_of[(face[k], face[next_corner(k)])] = f
     edges = {}
     for (i, j), f in face_of.items():
         g = face_of.get((j, i))
@@ -228,8 +228,8 @@ def _input_scale(case: CurvatureCase) -> np.ndarray:
     size = np.abs(X).max(axis=(1, 2))
     out = np.empty(F.shape, dtype=np.float64)
     for c in range(3):
-        a = np.linalg.norm(X[:, (c + 1) % 3] - X[:, c], axis=1)
-        b = np.linalg.norm(X[:, (c + 2) % 3] - X[:, c], axis=1)
+        a = np.linalg.norm(X[:, next_corner(c)] - X[:, c], axis=1)
+        b = np.linalg.norm(X[:, prev_corner(c)] - X[:, c], axis=1)
         out[:, c] = size / np.minimum(a, b)
     return out
 

@@ -52,6 +52,8 @@ from .strategies import (MeshCase, acute_meshes, closed_meshes, grid_faces,
 from .metrics import polycube_surfaces
 from .protocol import eps
 from .registry import PropertyFailure, TieDisagreement, faces_text, prop
+from ddg_oracle.reference.combinatorics import (corner_of, cyclic, face_of, next_corner,
+                                                opposite_corner, prev_corner)
 
 
 # --- the exact Delaunay operator on a case, with its error model ---------------------------------
@@ -61,11 +63,10 @@ def _magnitude(m, e: int) -> float:
     """cond = M / new of the closed flip formula for edge ``e`` of metric ``m`` (module doc)."""
     t = m.triangulation
     h, tw = t.edge_halfedges(e)
-    f, g = h // 3, tw // 3
+    f, g = face_of(h), face_of(tw)
     Lf, Lg = m.face_squared_lengths(f), m.face_squared_lengths(g)
-    e2 = float(Lf[h % 3])
-    a, b = float(Lf[(h + 1) % 3]), float(Lf[(h + 2) % 3])
-    c, d = float(Lg[(tw + 1) % 3]), float(Lg[(tw + 2) % 3])
+    e2, a, b = (float(x) for x in cyclic(Lf, corner_of(h)))
+    _, c, d = (float(x) for x in cyclic(Lg, corner_of(tw)))
     A1, A2 = float(m.areas[f]), float(m.areas[g])
     M = b + c + abs((e2 + b - a) * (e2 + c - d)) / (2 * e2) + 8 * A1 * A2 / e2
     return M, (f, g)
@@ -152,7 +153,7 @@ class DelaunayExact:
                 w = 0
                 for h in t.edge_halfedges(e):
                     if h >= 0:
-                        w = w + m.face_cots(h // 3)[(h % 3 + 2) % 3] / 2
+                        w = w + m.face_cots(face_of(h))[opposite_corner(h)] / 2
                 out[e] = float(w)
         return out
 
@@ -186,10 +187,10 @@ class DelaunayExact:
         zero = [(e, float(be)) for e, be in zip(inner, b) if abs(w[e]) <= be]
         for e, _ in zero:
             h, tw = t.edge_halfedges(e)
-            root[find(h // 3)] = find(tw // 3)
+            root[find(face_of(h))] = find(face_of(tw))
         bound: dict[int, float] = {}
         for e, be in zero:
-            r = find(t.edge_halfedges(e)[0] // 3)
+            r = find(face_of(t.edge_halfedges(e)[0]))
             bound[r] = max(bound.get(r, 0.0), be)
         cells: dict[int, set] = {}
         for f in range(t.n_faces):
@@ -338,8 +339,8 @@ def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
     whose sum is within the bound of 0 is an (exact or near) tie, which rounding decides
     (D4.4; boundary edges: the one corner)."""
     hs = [x for x in X.triangulation.edge_halfedges(e) if x >= 0]
-    s = sum(float(X.metric.corner_cot(x // 3, (x + 2) % 3)) for x in hs)
-    return s, sum(X.beta[x // 3, (x + 2) % 3] for x in hs) + 2 * eps() * abs(s)
+    s = sum(float(X.metric.corner_cot(face_of(x), opposite_corner(x))) for x in hs)
+    return s, sum(X.beta[face_of(x), opposite_corner(x)] for x in hs) + 2 * eps() * abs(s)
 
 
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
@@ -356,7 +357,7 @@ def locally_delaunay_edges(impl, case: MeshCase):
     tie = None
     for f in range(t.n_faces):
         for c in range(3):
-            h = 3 * f + (c + 1) % 3                 # the halfedge opposite corner c
+            h = 3 * f + next_corner(c)                 # the halfedge opposite corner c
             e = t.edge_of(h)
             want = is_delaunay_edge(X.metric, e)
             if bool(got[f, c]) == want:
@@ -514,7 +515,7 @@ def _angles_from_squared_lengths(l2):
     area = 0.25 * np.sqrt(np.maximum((a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c)),
                                      0))
     for c in range(3):
-        o, p, q = l2[:, c], l2[:, (c + 1) % 3], l2[:, (c + 2) % 3]
+        o, p, q = l2[:, c], l2[:, next_corner(c)], l2[:, prev_corner(c)]
         out[:, c] = np.arctan2(4 * area, p + q - o)
     return out, area
 
@@ -799,7 +800,7 @@ def planar_delaunay_problems(pts, tris, boundary) -> int:
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
             raise NotPlanarDelaunay(f"face {k} {t} is degenerate or clockwise",
                                     element=f"face {k}")
-    got = {(f[c], f[(c + 1) % 3]): f[(c + 2) % 3] for f in tris for c in range(3)}
+    got = {(f[c], f[next_corner(c)]): f[prev_corner(c)] for f in tris for c in range(3)}
     if len(got) < 3 * len(tris):
         raise NotPlanarDelaunay("a directed edge is used twice: faces overlap")
     edges = {e for e in got if e[::-1] not in got}
@@ -843,7 +844,7 @@ def planar_flips_reach_delaunay(impl, example):
     result = f" (result faces {faces_text(tris)})"
 
     def sides(fs):
-        return {(f[c], f[(c + 1) % 3]) for f in fs for c in range(3)}
+        return {(f[c], f[next_corner(c)]) for f in fs for c in range(3)}
     given = sides(faces)
     try:
         ties = planar_delaunay_problems(pts, tris, {e for e in given if e[::-1] not in given})

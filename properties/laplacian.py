@@ -59,6 +59,7 @@ from .strategies import (MeshCase, acute_meshes, any_meshes, closed_meshes, jitt
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
                          surface_meshes, with_boundary, with_functions, with_isolated)
 from .registry import PropertyFailure, TieDisagreement, prop
+from ddg_oracle.reference.combinatorics import face_of, opposite_corner
 
 K_COT = 32
 
@@ -117,7 +118,7 @@ def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
         for h in t.edge_halfedges(e):
             if h < 0:
                 continue
-            f, c = h // 3, (h + 2) % 3
+            f, c = face_of(h), opposite_corner(h)
             for x, y in ((i, j), (j, i), (i, i), (j, j)):
                 rows.append(x)
                 cols.append(y)

@@ -22,7 +22,7 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.combinatorics import Triangulation, next_corner
 from ddg_oracle.reference.intrinsic import flip, is_flippable
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
@@ -54,7 +54,7 @@ def flat_torus(m: int, n: int, u=(1, 0), v=(0, 1)) -> PiecewiseFlatSurface:
     sq = [None] * t.n_edges
     for f, p in enumerate(corners):
         for c in range(3):
-            (a, b), (x, y) = p[c], p[(c + 1) % 3]
+            (a, b), (x, y) = p[c], p[next_corner(c)]
             dx, dy = x - a, y - b
             w = (dx * u[0] + dy * v[0], dx * u[1] + dy * v[1])
             sq[t.edge_of(3 * f + c)] = w[0] ** 2 + w[1] ** 2

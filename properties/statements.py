@@ -15,7 +15,7 @@ from hypothesis import assume
 from hypothesis import strategies as st
 
 from ddg_oracle.reference import planar
-from ddg_oracle.reference.combinatorics import connected_sum
+from ddg_oracle.reference.combinatorics import connected_sum, face_of
 from ddg_oracle.reference.errors import InputError
 from ddg_oracle.reference.laplacian import graph_laplacian
 from ddg_oracle.reference import surfaces
@@ -417,7 +417,7 @@ def empty_disks_give_the_tessellation(metric) -> None:
     for e in range(t.n_edges):
         if e not in kept:
             h, g = t.edge_halfedges(e)
-            parent[root(h // 3)] = root(g // 3)
+            parent[root(face_of(h))] = root(face_of(g))
     for d in disks:
         k = len(d.on_circle)
         assert len(d.cell) == len(d.cell_faces) == k - 2, (

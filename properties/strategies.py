@@ -388,7 +388,7 @@ _CLOSED = {
     "octahedron": lambda a, b: surfaces.octahedron(),
     "cube": lambda a, b: surfaces.cube(),
     "icosahedron": lambda a, b: surfaces.icosahedron(),
-    "torus": lambda a, b: surfaces.torus(3 + a % 3, 3 + b % 2),
+    "torus": lambda a, b: surfaces.torus(3 + a % 3, 3 + b % 2),      # sizes, not corners
     "double torus": lambda a, b: surfaces.genus_surface(2),
 }
 _CHI = {"tetrahedron": 2, "octahedron": 2, "cube": 2, "icosahedron": 2, "torus": 0,
@@ -396,7 +396,7 @@ _CHI = {"tetrahedron": 2, "octahedron": 2, "cube": 2, "icosahedron": 2, "torus":
 _WITH_BOUNDARY = {
     "disk": (lambda a, b: surfaces.disk(3 + a % 6), 1),
     "annulus": (lambda a, b: surfaces.annulus(3 + a % 4), 0),
-    "grid": (lambda a, b: surfaces.grid(1 + a % 3, 1 + b % 3), 1),
+    "grid": (lambda a, b: surfaces.grid(1 + a % 3, 1 + b % 3), 1),    # sizes, not corners
 }
 #: second components (name -> (surface, chi, closed)): small, so a shrunk union stays small
 _COMPONENTS = {

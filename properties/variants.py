@@ -23,7 +23,7 @@ import math
 import random
 from fractions import Fraction
 
-from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.combinatorics import Triangulation, cyclic, face_of, opposite_corner
 from ddg_oracle.reference.exact.rationals import on_common_denominator
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
@@ -55,7 +55,7 @@ def _cross(u, v):
 
 def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
                 lift: int | None = None) -> PolyhedralSurface:
-    """Face f = halfedge // 3 split 1-to-3 at a new point p, with (a, b) the edge of that
+    """Face f = face_of(halfedge) split 1-to-3 at a new point p, with (a, b) the edge of that
     halfedge and c the third corner:
 
     * ``kind="needle"``: p = x_a + 2**-k (centroid - x_a): the two faces at a
@@ -70,7 +70,7 @@ def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
     """
     faces = [tuple(f) for f in s.triangulation.faces]
     f, r = divmod(halfedge % (3 * len(faces)), 3)
-    a, b, c = faces[f][r], faces[f][(r + 1) % 3], faces[f][(r + 2) % 3]
+    a, b, c = cyclic(faces[f], r)
     x = s.positions
     t = Fraction(1, 2 ** k)
     if kind == "needle":
@@ -187,7 +187,7 @@ def has_fold(s: PolyhedralSurface) -> bool:
         if g < 0:
             continue
         a, b = t.tail(h), t.head(h)
-        p, q = (t.faces[k // 3][(k + 2) % 3] for k in (h, g))
+        p, q = (t.faces[face_of(k)][opposite_corner(k)] for k in (h, g))
         d = [x[b][i] - x[a][i] for i in range(3)]
         u, w = ([x[r][i] - x[a][i] for i in range(3)] for r in (p, q))
         # with n = d x u and m = d x w: p, q and the edge are coplanar iff n . w = 0, and

@@ -32,7 +32,8 @@ from .exact.rationals import on_common_denominator, rounded_root_sum
 from .laplacian import cotan_laplacian, cotan_weighted_edges, metric_of_surface
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
-from .sparse import _normal, exact_sum
+from .exact.surds import exact_sum, simplest
+from .combinatorics import next_corner, prev_corner
 
 __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",
            "heron_partial_derivatives", "area_length_derivatives", "area_gradient_cotan",
@@ -88,7 +89,7 @@ def triangle_cotangents(points) -> tuple[Surd, Surd, Surd]:
     p = _triangle(points)
     out = []
     for i in range(3):
-        u, v = _sub(p[(i + 1) % 3], p[i]), _sub(p[(i + 2) % 3], p[i])
+        u, v = _sub(p[next_corner(i)], p[i]), _sub(p[prev_corner(i)], p[i])
         uv = _dot(u, v)
         w2 = _dot(u, u) * _dot(v, v) - uv * uv
         if w2 <= 0:
@@ -107,7 +108,7 @@ def area_from_cotangents(squared_lengths: Sequence, cotangents: Sequence) -> Sur
     acc = _ZERO
     for a2, c in zip(squared_lengths, cotangents):
         acc = acc + Fraction(a2) * c
-    return _normal(acc / 4)
+    return simplest(acc / 4)
 
 
 def heron_partial_derivatives(a2, b2, c2) -> tuple[Fraction, Fraction, Fraction]:
@@ -140,7 +141,7 @@ def area_length_derivatives(a2, b2, c2) -> tuple[Surd, Surd, Surd]:
     """
     area = triangle_area_heron(a2, b2, c2)
     dh = heron_partial_derivatives(a2, b2, c2)
-    return tuple(_normal(d * 2 * sqrt(x) / (32 * area)) for d, x in zip(dh, (a2, b2, c2)))
+    return tuple(simplest(d * 2 * sqrt(x) / (32 * area)) for d, x in zip(dh, (a2, b2, c2)))
 
 
 # --- L3.8: the area gradient at a vertex --------------------------------------------------------
@@ -153,9 +154,9 @@ def area_gradient_cotan(points, i: int) -> tuple:
     :func:`triangle_cotangents`).  A vector of R^N with Surd coordinates.
     """
     p = _triangle(points)
-    j, k = (i + 1) % 3, (i + 2) % 3
+    j, k = next_corner(i), prev_corner(i)
     cot = triangle_cotangents(p)
-    return tuple(_normal((cot[j] * (a - c) + cot[k] * (a - b)) / 2)
+    return tuple(simplest((cot[j] * (a - c) + cot[k] * (a - b)) / 2)
                  for a, b, c in zip(p[i], p[j], p[k]))
 
 
@@ -168,14 +169,14 @@ def area_gradient_direct(points, i: int) -> tuple:
     ``1/2 J w_i``).  No cotangent is used.
     """
     p = _triangle(points)
-    j, k = (i + 1) % 3, (i + 2) % 3
+    j, k = next_corner(i), prev_corner(i)
     a, w = _sub(p[i], p[j]), _sub(p[k], p[j])
     aw, ww = _dot(a, w), _dot(w, w)
     four_a2 = _dot(a, a) * ww - aw * aw
     if four_a2 <= 0:
         raise DegenerateFace(f"degenerate triangle {p}: its vertices are collinear")
     inv = 1 / (2 * sqrt(four_a2))               # 1 / (4 A)
-    return tuple(_normal((ww * x - aw * y) * inv) for x, y in zip(a, w))
+    return tuple(simplest((ww * x - aw * y) * inv) for x, y in zip(a, w))
 
 
 def area_gradient_cross(points, i: int) -> tuple:
@@ -184,7 +185,7 @@ def area_gradient_cross(points, i: int) -> tuple:
     p = _triangle(points)
     if len(p[0]) != 3:
         raise BadShape("the cross-product formula needs points of R^3")
-    j, k = (i + 1) % 3, (i + 2) % 3
+    j, k = next_corner(i), prev_corner(i)
     u, v = _sub(p[j], p[i]), _sub(p[k], p[i])
     n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
     nn = _dot(n, n)
@@ -193,7 +194,7 @@ def area_gradient_cross(points, i: int) -> tuple:
     w = _sub(p[k], p[j])
     c = (n[1] * w[2] - n[2] * w[1], n[2] * w[0] - n[0] * w[2], n[0] * w[1] - n[1] * w[0])
     inv = 1 / (2 * sqrt(nn))
-    return tuple(_normal(x * inv) for x in c)
+    return tuple(simplest(x * inv) for x in c)
 
 
 # --- T3.9: area as Dirichlet energy -------------------------------------------------------------
@@ -223,7 +224,7 @@ def area_as_dirichlet_energy(surface: PolyhedralSurface):
     p = s.positions
     terms = [w * _dot(_sub(p[i], p[j]), _sub(p[i], p[j]))
              for i, j, w in cotan_weighted_edges(s) if i != j]
-    return _normal(exact_sum(terms) / 2)
+    return simplest(exact_sum(terms) / 2)
 
 
 def area_gradient(surface: PolyhedralSurface) -> list[tuple]:
@@ -240,7 +241,7 @@ def area_gradient(surface: PolyhedralSurface) -> list[tuple]:
         pts = [p[v] for v in face]
         for c in range(3):
             g = area_gradient_direct(pts, c)
-            out[face[c]] = tuple(_normal(x + y) for x, y in zip(out[face[c]], g))
+            out[face[c]] = tuple(simplest(x + y) for x, y in zip(out[face[c]], g))
     return out
 
 
@@ -274,7 +275,7 @@ def area_gradient_floats(surface: PolyhedralSurface) -> list[tuple]:
             raise DegenerateFace(f"degenerate triangle {[P[v] for v in face]}: its vertices "
                                  "are collinear")
         for c in range(3):
-            j, k = (c + 1) % 3, (c + 2) % 3
+            j, k = next_corner(c), prev_corner(c)
             a = [x - y for x, y in zip(q[c], q[j])]
             w = [x - y for x, y in zip(q[k], q[j])]
             ww, aw = _idot(w, w), _idot(a, w)

@@ -34,15 +34,109 @@ import numbers
 from collections.abc import Sequence
 from dataclasses import dataclass
 from operator import itemgetter
+from typing import Protocol, runtime_checkable
 
 from .errors import (BadShape, EmptyMesh, IndexOutOfRange, InputError, NegativeIndex,
                      NonIntegerIndex, NonManifoldEdge, NonManifoldVertex, NotConnected,
                      NotFlippable, RepeatedVertexInFace, UnreferencedVertex)
 
-__all__ = ["Triangulation", "Classification", "connected_sum"]
+# the halfedge helpers (face_of, corner_of, ...) are public but stay out of the flat
+# namespace of ddg_oracle.reference: they are infrastructure, not the notes' terms
+__all__ = ["Triangulation", "Classification", "connected_sum", "HalfedgeMesh"]
 
 
 # --- halfedge arithmetic -------------------------------------------------------
+#
+# The one place where halfedge and corner numbers are computed: halfedge h = 3 f + c of
+# face f runs from corner c to corner c + 1 (mod 3) and is opposite corner c + 2; corner c
+# of f is the corner at the tail of halfedge 3 f + c.  Every other module calls these.
+
+
+def face_of(h: int) -> int:
+    """The face of halfedge (or corner) ``h``."""
+    return h // 3
+
+
+def corner_of(h: int) -> int:
+    """The corner index (0, 1, 2) within its face of the tail of halfedge ``h``."""
+    return h % 3
+
+
+def halfedge(f: int, c: int) -> int:
+    """Halfedge ``c`` of face ``f`` (from corner c to corner c + 1)."""
+    return 3 * f + c
+
+
+def next_corner(c: int) -> int:
+    """c + 1 mod 3: the corner after ``c`` in its face."""
+    return c - 2 if c == 2 else c + 1
+
+
+def prev_corner(c: int) -> int:
+    """c - 1 mod 3: the corner before ``c`` in its face."""
+    return c + 2 if c == 0 else c - 1
+
+
+def opposite_corner(h: int) -> int:
+    """The corner index (within its face) opposite halfedge ``h``: c + 2 mod 3."""
+    return prev_corner(h % 3)
+
+
+def opposite_halfedge(f: int, c: int) -> int:
+    """The halfedge of face ``f`` opposite its corner ``c``: halfedge c + 1 mod 3."""
+    return 3 * f + next_corner(c)
+
+
+def cyclic(triple, c: int) -> tuple:
+    """``(triple[c], triple[c + 1], triple[c + 2])`` with indices mod 3: a face's corners
+    (or anything per corner) starting at corner ``c``.
+
+    >>> cyclic((10, 11, 12), 2)
+    (12, 10, 11)
+    """
+    return (triple[c], triple[next_corner(c)], triple[prev_corner(c)])
+
+
+@runtime_checkable
+class HalfedgeMesh(Protocol):
+    """The halfedge interface that :class:`Triangulation` (immutable) and its in-place
+    builder (the combinatorics of :class:`~ddg_oracle.reference.intrinsic.IntrinsicTriangulation`,
+    flipped in place) share: code that walks a triangulation relies on these and nothing
+    else, so it runs on both.  Halfedge numbering: see the helpers above."""
+
+    @property
+    def n_vertices(self) -> int: ...
+
+    @property
+    def n_faces(self) -> int: ...
+
+    @property
+    def n_edges(self) -> int: ...
+
+    @property
+    def faces(self) -> Sequence: ...
+
+    def tail(self, h: int) -> int: ...
+
+    def head(self, h: int) -> int: ...
+
+    def twin(self, h: int) -> int: ...
+
+    def next(self, h: int) -> int: ...
+
+    def prev(self, h: int) -> int: ...
+
+    def face_of(self, h: int) -> int: ...
+
+    def reversed_gluing(self, h: int) -> bool: ...
+
+    def edge_of(self, h: int) -> int: ...
+
+    def edge_halfedges(self, e: int) -> tuple[int, int]: ...
+
+    def edge_vertices(self, e: int) -> tuple[int, int]: ...
+
+    def is_boundary_edge(self, e: int) -> bool: ...
 
 
 def _next(h: int) -> int:
@@ -972,8 +1066,8 @@ class _Builder:
         # Plain list copies (C speed); faces stay tuples and only the few faces an
         # operation touches are replaced, so a flip costs no Python loop over F.
         self.faces = list(tri._faces)
-        self.twin = list(tri._twin)
-        self.rev = list(tri._rev)
+        self.twins = list(tri._twin)
+        self.revs = list(tri._rev)
         self.eid = list(tri._edge_of)
         self.first = list(map(itemgetter(0), tri._edges))
         self.edges = list(tri._edges)
@@ -991,8 +1085,8 @@ class _Builder:
     def add_face(self, corners) -> int:
         self.touched.add(len(self.faces))
         self.faces.append(tuple(corners))
-        self.twin += [-1, -1, -1]
-        self.rev += [False, False, False]
+        self.twins += [-1, -1, -1]
+        self.revs += [False, False, False]
         self.eid += [-1, -1, -1]
         return len(self.faces) - 1
 
@@ -1001,7 +1095,7 @@ class _Builder:
 
         Vacated slots are left unglued for the caller to fill.
         """
-        twin, rev, eid, first = self.twin, self.rev, self.eid, self.first
+        twin, rev, eid, first = self.twins, self.revs, self.eid, self.first
         snap = [(s, twin[s], rev[s], eid[s]) for s in mapping]
         firsts = [(e, mapping[s]) for s, _, _, e in snap if e >= 0 and first[e] == s]
         dests = set(mapping.values())
@@ -1027,15 +1121,15 @@ class _Builder:
             self.first[e] = a
         self.dirty.add(e)
         r = bool(r) and b >= 0
-        self.twin[a], self.rev[a], self.eid[a] = b, r, e
+        self.twins[a], self.revs[a], self.eid[a] = b, r, e
         if b >= 0:
-            self.twin[b], self.rev[b], self.eid[b] = a, r, e
+            self.twins[b], self.revs[b], self.eid[b] = a, r, e
         return e
 
     def reverse_faces(self, fs) -> None:
         """``(x0, x1, x2) -> (x0, x2, x1)`` for faces in ``fs``; halfedge slots
         ``3g`` and ``3g+2`` swap, and gluings to faces outside ``fs`` toggle."""
-        twin, rev = self.twin, self.rev
+        twin, rev = self.twins, self.revs
         for g in fs:
             for s in (3 * g, 3 * g + 1, 3 * g + 2):
                 t = twin[s]
@@ -1071,11 +1165,11 @@ class _Builder:
         """:meth:`Triangulation.flip` in place (``e`` a valid interior edge with two
         distinct faces; the caller checks).  O(1)."""
         h = self.first[e]
-        t = self.twin[h]
+        t = self.twins[h]
         f, g = h // 3, t // 3
-        if self.rev[h]:
+        if self.revs[h]:
             self.reverse_faces({g})
-            t = self.twin[h]
+            t = self.twins[h]
         i, j, k = self.faces[f][h % 3], self.faces[f][(h + 1) % 3], self.faces[f][(h + 2) % 3]
         l_ = self.faces[g][(t + 2) % 3]
         self.move({_prev(t): 3 * f + 1, _next(h): 3 * f + 2,
@@ -1126,23 +1220,27 @@ class _Builder:
 
     next = staticmethod(_next)
     prev = staticmethod(_prev)
+    face_of = staticmethod(face_of)
+
+    def twin(self, h: int) -> int:
+        return self.twins[h]
 
     def reversed_gluing(self, h: int) -> bool:
-        return self.rev[h]
+        return self.revs[h]
 
     def edge_of(self, h: int) -> int:
         return self.eid[h]
 
     def edge_halfedges(self, e: int) -> tuple[int, int]:
         h = self.first[e]
-        return h, self.twin[h]
+        return h, self.twins[h]
 
     def edge_vertices(self, e: int) -> tuple[int, int]:
         h = self.first[e]
         return self.tail(h), self.head(h)
 
     def is_boundary_edge(self, e: int) -> bool:
-        return self.twin[self.first[e]] < 0
+        return self.twins[self.first[e]] < 0
 
     def build(self) -> Triangulation:
         self.settle_vertices()
@@ -1150,14 +1248,14 @@ class _Builder:
         out = object.__new__(Triangulation)
         out._faces = tuple(faces)
         out._n = self.n
-        out._twin = tuple(self.twin)
-        out._rev = tuple(self.rev)
+        out._twin = tuple(self.twins)
+        out._rev = tuple(self.revs)
         out._edge_of = tuple(self.eid)
         edges = self.edges
         edges += [None] * (len(self.first) - len(edges))
         for e in self.dirty:
             if e >= 0:
-                edges[e] = (self.first[e], self.twin[self.first[e]])
+                edges[e] = (self.first[e], self.twins[self.first[e]])
         out._edges = tuple(edges)
         out._vcorner = tuple(vcorner)
         out._fans = {}

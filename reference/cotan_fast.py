@@ -83,7 +83,9 @@ from operator import mul
 from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress
 from .metric import PiecewiseFlatSurface, degenerate_face, heron16
 from .polyhedral import PolyhedralSurface
-from .sparse import SparseMatrix, _normal
+from .exact.surds import simplest
+from .sparse import SparseMatrix
+from .combinatorics import face_of, next_corner
 
 __all__ = ["applies", "FaceData", "CotanSum", "face_data", "face_cotangents",
            "cotan_weights_fast", "cotan_laplacian_fast"]
@@ -157,7 +159,7 @@ class FaceData:
 
     ``G[f]``: ``4 area^2`` (from positions) or ``16 area^2`` (from lengths) times a
     square ``S[f]^2``; ``N[h]``: the numerator of the cotangent of the corner
-    opposite halfedge ``h``, ``cot = N[h] / sqrt(G[h // 3])``; ``residue[f]``,
+    opposite halfedge ``h``, ``cot = N[h] / sqrt(G[face_of(h)])``; ``residue[f]``,
     ``twos[f]``: the odd part of ``G[f]`` modulo :data:`_RESIDUE_MODULUS` and the
     parity of its power of 2 (:func:`_odd_residue`).  Square roots (step 3) are
     computed per face when first needed and kept.
@@ -406,13 +408,13 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
     (``t = -1``: boundary): a :class:`CotanSum` when it is certainly irrational, else
     the canonical value (a Fraction when rational)."""
     N = fd.N
-    f, n1 = h // 3, N[h] * sign
+    f, n1 = face_of(h), N[h] * sign
     if t < 0:
         if not n1:
             return _ZERO
         raw = (f, n1)
         return fd.value(raw) if fd.is_square(f) else fd.lazy(raw)
-    g, n2 = t // 3, N[t] * sign
+    g, n2 = face_of(t), N[t] * sign
     if n1 and n2:
         raw = (f, n1, g, n2)
         r = fd.residue[f] * fd.residue[g]
@@ -563,7 +565,7 @@ def _refined(terms: dict, parts):
         if M != 1:
             factors.add(M)
     base = _refine(list(factors))
-    return _normal(_make(base, _reexpress(terms, base)))
+    return simplest(_make(base, _reexpress(terms, base)))
 
 
 @contextmanager
@@ -598,7 +600,7 @@ def face_cotangents(surface) -> list[tuple]:
     """
     fd = face_data(surface)
     N = fd.N
-    return [tuple(fd.value((f, 2 * N[3 * f + (c + 1) % 3])) for c in range(3))
+    return [tuple(fd.value((f, 2 * N[3 * f + next_corner(c)])) for c in range(3))
             for f in range(len(fd.G))]
 
 
@@ -675,7 +677,7 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     n = t.n_vertices
     for f in sorted(left_out):
         c0, c1, c2 = m.face_cots(f)
-        # halfedge 3f + k is opposite corner (k + 2) % 3; its edge gets half that cotangent
+        # halfedge 3f + k is opposite corner k + 2 (mod 3); its edge gets half that cotangent
         for h, half in ((3 * f, c2 / 2), (3 * f + 1, c0 / 2), (3 * f + 2, c1 / 2)):
             i, j = t.tail(h), t.head(h)
             if i == j or not half:
@@ -709,7 +711,7 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
         else:                   # a loop halfedge (tail == head) adds nothing
             at = []
             for k, x in ((0, n2), (1, n0), (2, n1)):
-                i, j = (a, b, c)[k], (a, b, c)[(k + 1) % 3]
+                i, j = (a, b, c)[k], (a, b, c)[next_corner(k)]
                 if i != j and x:
                     diag[i] += (f, x)
                     diag[j] += (f, x)
@@ -731,7 +733,7 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
             continue
         ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
         if j in ri:                                  # another edge between i and j
-            w = _normal(ri[j] + w)
+            w = simplest(ri[j] + w)
             if not w:
                 del ri[j], rj[i]
                 continue

@@ -42,9 +42,11 @@ from fractions import Fraction
 from . import curvature_fast
 from .errors import InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
-from .exact.measures import AngleLength, surd_sum
+from .exact.measures import AngleLength
+from .exact.surds import exact_sum
 from .metric import PiecewiseFlatSurface, as_metric
 from .polyhedral import PolyhedralSurface
+from .combinatorics import corner_of, cyclic, face_of, opposite_corner
 
 __all__ = [
     "corner_angles", "angle_sums", "angle_sums_from_corners", "angle_defects",
@@ -435,14 +437,14 @@ def dihedral_angles(surface) -> dict[int, Angle]:
         h, h2 = t.edge_halfedges(e)
         if h2 < 0:
             continue
-        f, g = h // 3, h2 // 3
+        f, g = face_of(h), face_of(h2)
         if t.reversed_gluing(h):
             raise InputError(
                 f"edge {e} {t.edge_vertices(e)}: faces {f} {t.faces[f]} and {g} {t.faces[g]} are "
                 "oriented inconsistently; the sign of a dihedral angle needs a consistent "
                 "orientation")
-        i, j, k = t.faces[f][h % 3], t.faces[f][(h + 1) % 3], t.faces[f][(h + 2) % 3]
-        l_ = t.faces[g][(h2 + 2) % 3]
+        i, j, k = cyclic(t.faces[f], corner_of(h))
+        l_ = t.faces[g][opposite_corner(h2)]
         edge = _sub(x[j], x[i])
         nf = _cross(edge, _sub(x[k], x[i]))
         ng = _cross(_sub(x[i], x[j]), _sub(x[l_], x[j]))
@@ -500,7 +502,7 @@ def steiner_coefficients(surface) -> tuple[Surd, AngleLength, Angle]:
     if any(t.is_boundary_edge(e) for e in range(t.n_edges)):
         raise InputError("steiner_coefficients needs a closed surface (T2.7, R2.5); this one has "
                          "boundary edges")
-    return surd_sum(s.metric().areas), 2 * total_mean_curvature(s), total_curvature(s)
+    return Surd(exact_sum(s.metric().areas)), 2 * total_mean_curvature(s), total_curvature(s)
 
 
 # --- isometries (T2.5, X2.3) ----------------------------------------------------------------------

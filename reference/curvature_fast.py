@@ -46,6 +46,7 @@ from fractions import Fraction
 
 from .cotan_fast import _collector_paused, _maybe_square, applies, face_data
 from .exact import Angle, corner_angle
+from .combinatorics import next_corner
 
 __all__ = ["applies", "angle_sums_fast", "gauss_bonnet_holds_fast"]
 
@@ -77,7 +78,7 @@ def _angle_sums(surface) -> list[Angle]:
         r = residue[f]              # k G is a square for k = 1, 2, 3 or 6: odd part 1 or 3
         special = _maybe_square(r) or _maybe_square(3 * r)
         for c, v in enumerate(face):
-            n = 2 * N[3 * f + (c + 1) % 3]          # cot = n / (2 sqrt(G)), halfedge opposite c
+            n = 2 * N[3 * f + next_corner(c)]          # cot = n / (2 sqrt(G)), halfedge opposite c
             if special or not n:                    # maybe a multiple of pi / 24: as defined
                 a = corner_angle(fd.value((f, n)))
                 acc = parts[v]

@@ -32,11 +32,12 @@ from __future__ import annotations
 from collections import deque
 
 from .errors import DDGError, InputError
-from .intrinsic import IntrinsicTriangulation, _metric, _number, _obstruction, _sign, unfold
+from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, _sign, unfold
 from .laplacian import cotan_laplacian, cotan_weights
 from .exact import Surd
 from .metric import PiecewiseFlatSurface
-from .sparse import exact_sum
+from .exact.surds import exact_sum, simplest
+from .combinatorics import corner_of, face_of
 
 __all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_delaunay",
            "non_delaunay_edges",
@@ -66,17 +67,17 @@ def is_delaunay_edge(surface, e: int) -> bool:
         return True
     # cot = N / (4 A) at each side: with A > 0 the sign of the sum is that of
     # N_h A_t + N_t A_h (N_h + N_t in one face), which needs no division
-    f, g = h // 3, t // 3
+    f, g = face_of(h), face_of(t)
     n_h, n_t = _cot_numerator(m, h), _cot_numerator(m, t)
     if f == g:
-        return _sign(_number(n_h + n_t)) >= 0
-    return _sign(_number(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
+        return _sign(simplest(n_h + n_t)) >= 0
+    return _sign(simplest(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
 
 
 def _cot_numerator(m: PiecewiseFlatSurface, h: int):
     """4 A cot of the corner opposite halfedge ``h``: ``a + b - o`` (squared lengths)."""
-    a, b, c = m.face_squared_lengths(h // 3)
-    return a + b + c - 2 * (a, b, c)[h % 3]
+    a, b, c = m.face_squared_lengths(face_of(h))
+    return a + b + c - 2 * (a, b, c)[corner_of(h)]
 
 
 def incircle_determinant(a, b, c, d):
@@ -132,13 +133,13 @@ def is_delaunay(surface) -> bool:
 def _face_data(m, f: int):
     """(a^2 + b^2 + c^2, A) of face ``f``: its harmonic index is the quotient (D4.7)."""
     a, b, c = m.face_squared_lengths(f)
-    return _number(a + b + c), _number(m.areas[f])
+    return simplest(a + b + c), simplest(m.areas[f])
 
 
 def face_harmonic_index(surface, f: int):
     """D4.7: ``(a^2 + b^2 + c^2) / A`` of face ``f`` (squared side lengths over area)."""
     s, A = _face_data(_metric(surface), f)
-    return _number(s / A)
+    return simplest(s / A)
 
 
 def harmonic_index(surface):
@@ -154,7 +155,7 @@ def harmonic_index(surface):
     """
     m = _metric(surface)
     # a balanced sum: one term per face, each with its own square root on surfaces from R^3
-    return _number(exact_sum(face_harmonic_index(m, f) for f in range(m.triangulation.n_faces)))
+    return simplest(exact_sum(face_harmonic_index(m, f) for f in range(m.triangulation.n_faces)))
 
 
 class _History:
@@ -177,14 +178,14 @@ class _History:
         while len(self.values) <= k:
             n = len(self.values)
             self.values.append(harmonic_index(self.surface) if n == 0 else
-                               _number(self.values[-1] + self.change(n - 1)))
+                               simplest(self.values[-1] + self.change(n - 1)))
         return self.values[k]
 
 
 def _exact_change(out, into):
     """D4.7: h of the faces ``into`` minus h of the faces ``out``, exactly (pairs (s, A),
     s = a^2 + b^2 + c^2, A the area: each face's h is s / A)."""
-    return _number(exact_sum(s / A for s, A in into) - exact_sum(s / A for s, A in out))
+    return simplest(exact_sum(s / A for s, A in into) - exact_sum(s / A for s, A in out))
 
 
 def _decrease_sign(out, into) -> int:

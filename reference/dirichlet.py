@@ -45,7 +45,8 @@ from typing import Callable, Mapping, Sequence
 from .errors import BadShape, InputError
 from .exact import limits
 from .laplacian import cotan_laplacian, dirichlet_energy
-from .sparse import SparseMatrix, _normal, exact_number, rank
+from .exact.surds import simplest
+from .sparse import SparseMatrix, exact_number, rank
 
 __all__ = ["SingularDirichletProblem", "solve_dirichlet", "matrix_components",
            "kernel_dimension", "is_harmonic_at", "energy_gradient", "directional_derivative",
@@ -253,7 +254,7 @@ def solve_dirichlet(operator, boundary_values: Mapping, *, term_limit: int | Non
             for j, v in rows[p].items():
                 if j != c:
                     b = [a - v * x for a, x in zip(b, sol[j])]
-            sol[c] = [_normal(a * inv) for a in b]
+            sol[c] = [simplest(a * inv) for a in b]
     out = []
     for i in range(n):
         x = values[i] if i in values else sol[i]
@@ -296,7 +297,7 @@ def directional_derivative(energy: Callable, f: Sequence, phi: Sequence):
         raise BadShape(f"f and phi have lengths {len(f)} and {len(phi)}")
     plus = [a + b for a, b in zip(f, phi)]
     minus = [a - b for a, b in zip(f, phi)]
-    return _normal((energy(plus) - energy(minus)) / 2)
+    return simplest((energy(plus) - energy(minus)) / 2)
 
 
 def energy_increase(operator, f: Sequence, phi: Sequence):
@@ -304,7 +305,7 @@ def energy_increase(operator, f: Sequence, phi: Sequence):
     Dirichlet problem and phi vanishes on V0)."""
     L = _laplacian(operator)
     g = [a + b for a, b in zip(f, phi)]
-    return _normal(dirichlet_energy(L, g) - dirichlet_energy(L, f))
+    return simplest(dirichlet_energy(L, g) - dirichlet_energy(L, f))
 
 
 # --- T3.2, C3.3: maximum principle and Liouville -------------------------------------------------
@@ -386,7 +387,7 @@ def neighbour_convex_combination(operator, i: int) -> dict[int, object]:
     C = row.get(i, _ZERO)
     if not C:
         raise InputError(f"vertex {i}: the weights at it sum to 0, no convex combination")
-    return {j: _normal(-v / C) for j, v in row.items() if j != i}
+    return {j: simplest(-v / C) for j, v in row.items() if j != i}
 
 
 def separates(direction: Sequence, point: Sequence, points: Sequence[Sequence]) -> bool:

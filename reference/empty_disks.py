@@ -38,7 +38,9 @@ from collections import deque
 from dataclasses import dataclass
 
 from .errors import InputError, TermLimitExceeded
-from .intrinsic import _metric, _number
+from .exact.surds import simplest
+from .intrinsic import _metric
+from .combinatorics import corner_of, face_of, next_corner, prev_corner
 
 __all__ = ["ImmersedDisk", "circumdisk", "empty_disk_cells", "DevelopmentLimitExceeded"]
 
@@ -91,8 +93,9 @@ def _sign(x) -> int:
 def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
     """D4.2 / D4.3: the circumdisk of ``face`` developed as an immersed disk, exact.
 
-    ``surface``: a closed :class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface` (or
-    anything with its metric).  Raises :class:`InputError` on a surface with boundary
+    ``surface``: a closed :class:`~ddg_oracle.reference.metric.Metric` (a
+    :class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface`, an
+    :class:`~ddg_oracle.reference.intrinsic.IntrinsicTriangulation`) or a polyhedral surface.  Raises :class:`InputError` on a surface with boundary
     (Definition 4.3 is for surfaces without boundary) and
     :class:`DevelopmentLimitExceeded` past ``limit`` faces laid out.
 
@@ -103,26 +106,27 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
     """
     m = _metric(surface)
     t = m.triangulation
-    if t.boundary_vertices():
+    boundary = [e for e in range(t.n_edges) if t.is_boundary_edge(e)]
+    if boundary:
         raise InputError("Definition 4.3 is for surfaces without boundary: this one has "
-                         f"{len(t.boundary_vertices())} boundary vertices")
+                         f"{len(boundary)} boundary edges")
     if not 0 <= face < t.n_faces:
         raise InputError(f"face {face} out of range: {t.n_faces} faces")
-    e, a, b = (_number(x) for x in m.face_squared_lengths(face))
-    two_area = _number(2 * m.area(face))
-    start = ((0, 0), (e, 0), (_number((e + b - a) / 2), two_area))
+    e, a, b = (simplest(x) for x in m.face_squared_lengths(face))
+    two_area = simplest(2 * m.area(face))
+    start = ((0, 0), (e, 0), (simplest((e + b - a) / 2), two_area))
     x2, y2 = start[2]
-    n_centre = _number(x2 * x2 + y2 * y2 - e * x2)   # c = (e / 2, n_centre / (2 y2))
+    n_centre = simplest(x2 * x2 + y2 * y2 - e * x2)   # c = (e / 2, n_centre / (2 y2))
 
     def power(p):
         """sign(|p - c|^2 - R^2) times y2 > 0: y2 |p|^2 - y2 e p_x - n_centre p_y."""
-        return _number(y2 * _dot(p, p) - y2 * e * p[0] - n_centre * p[1])
+        return simplest(y2 * _dot(p, p) - y2 * e * p[0] - n_centre * p[1])
 
     def meets_disk(p, q) -> bool:
         """The open segment pq meets the open disk (p, q not strictly inside)."""
         d = _sub(q, p)
         alpha = y2 * _dot(d, d)
-        beta = _number(2 * y2 * _dot(p, d) - y2 * e * d[0] - n_centre * d[1])
+        beta = simplest(2 * y2 * _dot(p, d) - y2 * e * d[0] - n_centre * d[1])
         gamma = power(p)
         # the minimum of alpha t^2 + beta t + gamma lies in (0, 1) and is negative
         return 0 < -beta < 2 * alpha and beta * beta > 4 * alpha * gamma
@@ -146,31 +150,31 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
             h = 3 * g + c
             if h == came_from:
                 continue
-            p, q, w = pos[c], pos[(c + 1) % 3], pos[(c + 2) % 3]
+            p, q, w = pos[c], pos[next_corner(c)], pos[prev_corner(c)]
             if not meets_disk(p, q):
                 continue
             th = t.twin(h)
-            g2, c2 = th // 3, th % 3
+            g2, c2 = face_of(th), corner_of(th)
             # corner c2 of g2 is the tail of th: the head of h, or its tail if reversed
             tail, head = (p, q) if t.reversed_gluing(h) else (q, p)
-            sq_pq = _number(m.squared_length(th))
-            sq_px = _number(m.squared_length(3 * g2 + (c2 + 2) % 3))   # X -> tail
-            sq_qx = _number(m.squared_length(3 * g2 + (c2 + 1) % 3))   # head -> X
+            sq_pq = simplest(m.squared_length(th))
+            sq_px = simplest(m.squared_length(3 * g2 + prev_corner(c2)))   # X -> tail
+            sq_qx = simplest(m.squared_length(3 * g2 + next_corner(c2)))   # head -> X
             d = _sub(head, tail)
-            along = _number((sq_pq + sq_px - sq_qx) / (2 * sq_pq))
-            height = _number(2 * m.area(g2) / sq_pq)
+            along = simplest((sq_pq + sq_px - sq_qx) / (2 * sq_pq))
+            height = simplest(2 * m.area(g2) / sq_pq)
             if _sign(_cross(d, _sub(w, tail))) > 0:      # X on the other side of the edge
                 height = -height
-            x = (_number(tail[0] + along * d[0] - height * d[1]),
-                 _number(tail[1] + along * d[1] + height * d[0]))
+            x = (simplest(tail[0] + along * d[0] - height * d[1]),
+                 simplest(tail[1] + along * d[1] + height * d[0]))
             new = [None, None, None]
-            new[c2], new[(c2 + 1) % 3], new[(c2 + 2) % 3] = tail, head, x
+            new[c2], new[next_corner(c2)], new[prev_corner(c2)] = tail, head, x
             key = (g2, tuple(new))
             if key in seen:
                 continue
             seen.add(key)
             s = _sign(power(x))
-            vertex = t.faces[g2][(c2 + 2) % 3]
+            vertex = t.faces[g2][prev_corner(c2)]
             if s < 0:
                 return ImmersedDisk(face, (vertex, x), tuple(on_circle.items()), tuple(cell),
                                     copies)

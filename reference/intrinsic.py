@@ -66,20 +66,14 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 
-from .combinatorics import Triangulation, _Builder, _index
+from .combinatorics import Triangulation, _Builder, _index, face_of, opposite_corner
 from .errors import InputError, NotFlippable, TermLimitExceeded
 from .exact import Surd
+from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 
 __all__ = ["Unfolding", "unfold", "is_flippable", "flip", "IntrinsicTriangulation",
            "cot_sum", "regular_tetrahedron_flip"]
-
-
-def _number(x):
-    """A rational Surd as a Fraction (fast arithmetic, canonical type), else unchanged."""
-    if isinstance(x, Surd) and x.is_rational():
-        return x.as_fraction()
-    return x
 
 
 def _metric(surface) -> PiecewiseFlatSurface:
@@ -151,19 +145,19 @@ class Unfolding:
     def new_squared_length(self):
         """``|kl|^2 = b + c - (e + b - a)(e + c - d)/(2e) + 8 A1 A2 / e`` (exact)."""
         e, a, b, c, d = self.sq_ij, self.sq_jk, self.sq_ki, self.sq_il, self.sq_lj
-        return _number(b + c + ((-(e + b - a)) * (e + c - d)
+        return simplest(b + c + ((-(e + b - a)) * (e + c - d)
                                 + 16 * self.area_ijk * self.area_jil) * self._inv_2e)
 
     @cached_property
     def new_area_at_i(self):
         """Signed area of the new triangle ``(l, k, i)``: ``N_i / (2e)``."""
-        return _number(self._n_i * self._inv_2e)
+        return simplest(self._n_i * self._inv_2e)
 
     @cached_property
     def new_area_at_j(self):
         """Signed area of the new triangle ``(k, l, j)``: ``N_j / (2e)``
         ``= A1 + A2 - area(l, k, i)`` (computed so)."""
-        return _number(self.area_ijk + self.area_jil - self.new_area_at_i)
+        return simplest(self.area_ijk + self.area_jil - self.new_area_at_i)
 
     def convexity(self):
         """``(sign at i, sign at j)``: the signs of ``N_i`` and ``N_j``, i.e. of
@@ -200,9 +194,9 @@ def unfold(surface, e: int) -> Unfolding:
     if t < 0:
         raise NotFlippable(f"edge {e} ({i}-{j}) is a boundary edge: it has one triangle only, "
                            "nothing to unfold or flip")
-    f, g = h // 3, t // 3
-    k = tri.faces[f][(h % 3 + 2) % 3]
-    l_ = tri.faces[g][(t % 3 + 2) % 3]
+    f, g = face_of(h), face_of(t)
+    k = tri.faces[f][opposite_corner(h)]
+    l_ = tri.faces[g][opposite_corner(t)]
     sq = m.squared_length
     nt, pt = tri.next(t), tri.prev(t)
     if tri.reversed_gluing(h):       # t: i -> j too, so next(t): j -> l, prev(t): l -> i
@@ -211,7 +205,7 @@ def unfold(surface, e: int) -> Unfolding:
         c, d = sq(nt), sq(pt)
     return Unfolding(e, (h, t), (f, g), (i, j, k, l_),
                      sq(h), sq(tri.next(h)), sq(tri.prev(h)), c, d,
-                     _number(m.areas[f]), _number(m.areas[g]))
+                     simplest(m.areas[f]), simplest(m.areas[g]))
 
 
 def _obstruction(m: PiecewiseFlatSurface, e: int):
@@ -223,8 +217,8 @@ def _obstruction(m: PiecewiseFlatSurface, e: int):
     if t < 0:
         return None, (f"edge {e} ({i}-{j}) cannot be flipped: it is a boundary edge "
                       "(one triangle only)")
-    if h // 3 == t // 3:
-        return None, (f"edge {e} ({i}-{j}) cannot be flipped: face {h // 3} lies on both "
+    if face_of(h) == face_of(t):
+        return None, (f"edge {e} ({i}-{j}) cannot be flipped: face {face_of(h)} lies on both "
                       "sides, the two triangles are not distinct (L2.8, Remark 2.9)")
     u = unfold(m, e)
     try:
@@ -414,10 +408,10 @@ def cot_sum(surface, e: int):
     tri = m.triangulation
     e = _index(e, tri.n_edges, "edge")
     h, t = tri.edge_halfedges(e)
-    total = m.corner_cot(h // 3, (h % 3 + 2) % 3)
+    total = m.corner_cot(face_of(h), opposite_corner(h))
     if t >= 0:
-        total = total + m.corner_cot(t // 3, (t % 3 + 2) % 3)
-    return _number(total)
+        total = total + m.corner_cot(face_of(t), opposite_corner(t))
+    return simplest(total)
 
 
 def regular_tetrahedron_flip() -> PiecewiseFlatSurface:

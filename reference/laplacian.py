@@ -41,7 +41,9 @@ from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .exact.rationals import on_common_denominator, rounded_root_sum
 from .metric import PiecewiseFlatSurface, as_metric, heron16
 from .polyhedral import PolyhedralSurface
-from .sparse import SparseMatrix, _normal, exact_number, exact_sum
+from .exact.surds import exact_sum, simplest
+from .sparse import SparseMatrix, exact_number
+from .combinatorics import face_of, opposite_corner
 
 __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weights_from_corners", "cotan_weighted_edges",
            "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
@@ -96,13 +98,13 @@ def dirichlet_energy(weights, f: Sequence):
     Fraction(3, 1)
     """
     if isinstance(weights, SparseMatrix):
-        return _normal(weights.quadratic_form(list(f)) / 2)
+        return simplest(weights.quadratic_form(list(f)) / 2)
     terms = []
     for i, j, w in weights:
         d = f[i] - f[j]
         if d:
             terms.append(exact_number(w) * d * d)
-    return _normal(exact_sum(terms) / 2)
+    return simplest(exact_sum(terms) / 2)
 
 
 # --- (3.3): cotan weights and the cotan Laplacian ---------------------------------------
@@ -152,11 +154,11 @@ def cotan_weights_from_corners(surface) -> dict[int, Surd]:
     out = {}
     for e in range(t.n_edges):
         h, g = t.edge_halfedges(e)
-        # halfedge 3f + k is opposite corner (k + 2) % 3 of face f
-        w = cot(h // 3, (h + 2) % 3)
+        # halfedge 3f + k is opposite corner k + 2 (mod 3) of face f
+        w = cot(face_of(h), opposite_corner(h))
         if g >= 0:
-            w = w + cot(g // 3, (g + 2) % 3)
-        out[e] = _normal(w / 2)
+            w = w + cot(face_of(g), opposite_corner(g))
+        out[e] = simplest(w / 2)
     return out
 
 
@@ -424,7 +426,7 @@ def vertex_areas_floats(surface, kind: str = "voronoi") -> list[float]:
 
 
 def _opposite_corners(t, e: int) -> list[tuple[int, int]]:
-    return [(h // 3, (h % 3 + 2) % 3) for h in t.edge_halfedges(e) if h >= 0]
+    return [(face_of(h), opposite_corner(h)) for h in t.edge_halfedges(e) if h >= 0]
 
 
 def opposite_angle_sum(surface, e: int) -> Angle:

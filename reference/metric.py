@@ -7,20 +7,48 @@ alongside the lengths and never recomputed once known, so that intrinsic edge
 flips (chapter 4) stay exact.
 
 Conventions: halfedge h = 3 f + c runs in face f from corner c to corner c+1;
-the corner c of face f is opposite to halfedge 3 f + (c+1) % 3.
+the corner c of face f is opposite to halfedge 3 f + c + 1 (mod 3)
+(:func:`~ddg_oracle.reference.combinatorics.opposite_halfedge`).
+
+:class:`Metric` is the interface that :class:`PiecewiseFlatSurface` (immutable) and
+:class:`~ddg_oracle.reference.intrinsic.IntrinsicTriangulation` (flipped in place) share:
+edge-local code (unfolding, flips, Delaunay tests, the harmonic index of a face) asks for
+nothing else.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
-from typing import Sequence
+from typing import Protocol, Sequence, runtime_checkable
 
-from .combinatorics import Triangulation
+from .combinatorics import HalfedgeMesh, Triangulation
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
-from .exact import Angle, Surd, corner_angle, rational, sqrt
+from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
 from .exact.rationals import on_common_denominator
 
-__all__ = ["PiecewiseFlatSurface", "area", "as_metric", "metric_of", "heron16"]
+__all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of", "heron16"]
+
+
+@runtime_checkable
+class Metric(Protocol):
+    """Exact lengths on a triangulation, as edge-local code reads them: the combinatorics
+    (a :class:`~ddg_oracle.reference.combinatorics.HalfedgeMesh`), squared lengths per edge
+    (Fractions, or Surds after flips), areas per face (Surds), and per halfedge / face."""
+
+    @property
+    def triangulation(self) -> HalfedgeMesh: ...
+
+    @property
+    def squared_lengths(self) -> Sequence: ...
+
+    @property
+    def areas(self) -> Sequence: ...
+
+    def squared_length(self, h: int): ...
+
+    def face_squared_lengths(self, f: int) -> tuple: ...
+
+    def area(self, f: int): ...
 
 
 def heron16(a: Fraction, b: Fraction, c: Fraction) -> Fraction:
@@ -137,8 +165,7 @@ class PiecewiseFlatSurface:
 
     def total_area(self) -> Surd:
         """Sum of the face areas (exact; summed over one common base, fast on float meshes)."""
-        from .exact.measures import surd_sum
-        return surd_sum(self.areas)
+        return Surd(exact_sum(self.areas))
 
     def corner_cot(self, f: int, c: int) -> Surd:
         """cot of the angle at corner c of face f: (a + b - o) / (4 A), exact.

@@ -70,6 +70,7 @@ from .intrinsic import flip, is_flippable
 from .laplacian import cotan_laplacian
 from .polyhedral import PolyhedralSurface, orientation3d
 from .sparse import SparseMatrix
+from .combinatorics import face_of, next_corner, opposite_corner
 
 __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
            "circumcircle", "planar_triangulation", "straight_line_flip", "planar_flip_to_delaunay", "delaunay_triangulation",
@@ -309,7 +310,7 @@ def straight_line_flip(points, triangulation, e: int):
         return None
     u = triangulation.flip(e)
     h, t = u.edge_halfedges(e)                  # the two faces the flip rebuilt
-    if all(orientation(*(pts[v] for v in u.faces[x // 3])) > 0 for x in (h, t)):
+    if all(orientation(*(pts[v] for v in u.faces[face_of(x)])) > 0 for x in (h, t)):
         return u
     return None
 
@@ -387,7 +388,7 @@ def delaunay_tessellation(points) -> frozenset:
     for e in range(tri.n_edges):
         h, t = tri.edge_halfedges(e)
         if t >= 0 and e not in keep:
-            merge.append((h // 3, t // 3))
+            merge.append((face_of(h), face_of(t)))
     cells = []
     for group in _components(tri.n_faces, merge):
         cells.append(frozenset(v for f in group for v in tri.faces[f]))
@@ -411,7 +412,7 @@ def cocircular_cells(points, triangles) -> frozenset:
     by_edge: dict = {}
     for k, t in enumerate(tris):
         for c in range(3):
-            by_edge.setdefault(frozenset((t[c], t[(c + 1) % 3])), []).append(k)
+            by_edge.setdefault(frozenset((t[c], t[next_corner(c)])), []).append(k)
     merge = []
     for ks in by_edge.values():
         if len(ks) == 2:
@@ -519,9 +520,9 @@ def is_empty_disk_edge(surface: PolyhedralSurface, e: int) -> bool:
     if t < 0:
         return True
     p = surface.positions
-    f, g = tri.faces[h // 3], tri.faces[t // 3]
-    k = tri.faces[h // 3][(h % 3 + 2) % 3]
-    l_ = tri.faces[t // 3][(t % 3 + 2) % 3]
+    f, g = tri.faces[face_of(h)], tri.faces[face_of(t)]
+    k = f[opposite_corner(h)]
+    l_ = g[opposite_corner(t)]
     return (circle_position(*(p[v] for v in f), p[l_]) <= 0
             and circle_position(*(p[v] for v in g), p[k]) <= 0)
 
@@ -575,8 +576,8 @@ def is_delaunay_by_angles(surface: PolyhedralSurface) -> bool:
         if t < 0:
             continue
         i, j = tri.tail(h), tri.head(h)
-        k = tri.faces[h // 3][(h % 3 + 2) % 3]
-        l_ = tri.faces[t // 3][(t % 3 + 2) % 3]
+        k = tri.faces[face_of(h)][opposite_corner(h)]
+        l_ = tri.faces[face_of(t)][opposite_corner(t)]
         if angle_criterion(p[i], p[k], p[j], p[l_]) > 0:
             return False
     return True

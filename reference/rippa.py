@@ -47,7 +47,7 @@ from .exact.rationals import rational
 from .laplacian import dirichlet_energy_pl
 from .planar import as_point, orientation
 from .polyhedral import PolyhedralSurface
-from .sparse import _normal
+from .exact.surds import simplest
 
 __all__ = ["Quadrilateral", "quadrilateral", "energy_difference", "rippa_right_side",
            "circularity", "is_affine_on", "TRIANGLES_13", "TRIANGLES_24"]
@@ -138,7 +138,7 @@ def energy_difference(points, u: Sequence):
     u = _values(u)
     e13 = dirichlet_energy_pl(PolyhedralSurface.from_arrays(q.points, TRIANGLES_13), u)
     e24 = dirichlet_energy_pl(PolyhedralSurface.from_arrays(q.points, TRIANGLES_24), u)
-    return _normal(e13 - e24)
+    return simplest(e13 - e24)
 
 
 def rippa_right_side(points, u: Sequence):
@@ -165,7 +165,7 @@ def rippa_right_side(points, u: Sequence):
     u0s = (r4 * u2 + r2 * u4) / (r2 + r4)
     value = (Fraction(1, 4) * (u0 - u0s) ** 2 / q.sin_theta
              * (r1 + r3) * (r2 + r4) / (r1 * r2 * r3 * r4) * (r1 * r3 - r2 * r4))
-    return _normal(Surd(value))
+    return simplest(Surd(value))
 
 
 def circularity(points) -> int:

@@ -25,38 +25,12 @@ from typing import Iterable, Sequence
 
 from .errors import BadShape, DDGError, IndexOutOfRange, InputError
 from .exact.rationals import rational
-from .exact.surds import Surd
+from .exact.surds import Surd, exact_sum, simplest
 
-__all__ = ["SparseMatrix", "exact_number", "exact_sum", "negative_direction", "rank",
+__all__ = ["SparseMatrix", "exact_number", "negative_direction", "rank",
            "is_positive_semidefinite"]
 
 _ZERO = Fraction(0)
-
-
-def _normal(v):
-    """A rational Surd as a Fraction (so rational matrices stay Fraction matrices)."""
-    if isinstance(v, Surd) and v.is_rational():
-        return v.as_fraction()
-    return v
-
-
-def exact_sum(values) -> object:
-    """The exact sum of Fractions and Surds, added as a balanced tree.
-
-    Adding Surds with different radicands merges their bases; adding n of them
-    one by one re-merges an ever larger base (cubic in n), pairwise it stays
-    near quadratic.  Returns a Fraction when the sum is rational.
-
-    >>> from ddg_oracle.reference.exact import sqrt
-    >>> exact_sum([sqrt(2), sqrt(3), -sqrt(2), Fraction(1, 2)])
-    Surd('1/2 + sqrt(3)')
-    >>> exact_sum([])
-    Fraction(0, 1)
-    """
-    xs = [x for x in values if x]
-    while len(xs) > 1:
-        xs = [xs[i] + xs[i + 1] if i + 1 < len(xs) else xs[i] for i in range(0, len(xs), 2)]
-    return _normal(xs[0]) if xs else _ZERO
 
 
 def exact_number(x, where: str = ""):
@@ -68,7 +42,7 @@ def exact_number(x, where: str = ""):
     (Fraction(1, 2), Fraction(3, 1))
     """
     if isinstance(x, Surd):
-        return x.as_fraction() if x.is_rational() else x
+        return simplest(x)
     return rational(x, where)
 
 
@@ -90,7 +64,7 @@ class SparseMatrix:
         self._shape = (int(n), int(m))
         self._rows: dict[int, dict[int, object]] = {}
         for i, row in (rows or {}).items():
-            clean = {j: _normal(v) for j, v in row.items() if v}
+            clean = {j: simplest(v) for j, v in row.items() if v}
             if clean:
                 self._rows[i] = clean
 
@@ -281,7 +255,7 @@ def negative_direction(A: SparseMatrix) -> list | None:
         x = dict(y)
         for p, prow, app in reversed(pivots):
             s = exact_sum(v * x[j] for j, v in prow.items() if x.get(j))
-            x[p] = _normal(-s / app)
+            x[p] = simplest(-s / app)
         out = [x.get(i, _ZERO) for i in range(n)]
         if not A.quadratic_form(out) < 0:          # a bug here, never an input problem
             raise DDGError("negative_direction: the lifted witness is not negative")
@@ -298,7 +272,7 @@ def negative_direction(A: SparseMatrix) -> list | None:
                 for j in sorted(r):
                     if j != i:
                         t = -(rows[j].get(j, _ZERO) + 1) / (2 * r[j])
-                        return lift({i: _normal(t), j: Fraction(1)})
+                        return lift({i: simplest(t), j: Fraction(1)})
                 continue
             key = (len(r), getattr(d, "n_terms", 1))
             if best is None or key < best[0]:
@@ -317,7 +291,7 @@ def negative_direction(A: SparseMatrix) -> list | None:
             for j, v in prow.items():
                 x = r.get(j, _ZERO) - f * v
                 if x:
-                    r[j] = _normal(x)
+                    r[j] = simplest(x)
                 else:
                     r.pop(j, None)
     return None

@@ -180,7 +180,7 @@ def _polycube(cells) -> PolyhedralSurface:
 
     for cell in sorted(cells):
         for a in range(3):
-            b, c = (a + 1) % 3, (a + 2) % 3
+            b, c = (a + 1) % 3, (a + 2) % 3      # the other two axes (not corners)
             for s in (1, -1):
                 nb = list(cell)
                 nb[a] += s

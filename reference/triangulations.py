@@ -37,6 +37,7 @@ from collections.abc import Iterator
 from .intrinsic import IntrinsicTriangulation
 from .metric import PiecewiseFlatSurface
 from .surfaces import cube
+from .combinatorics import face_of
 
 __all__ = ["cube_belt_twist", "belt_rungs", "longest_squared_length"]
 
@@ -68,7 +69,7 @@ def _twist_rung(w: IntrinsicTriangulation, z) -> int:
             continue
         if z[t.tail(h)] == 1:              # orient the rung from the bottom to the top
             h, g = g, h
-        if bottom_corners(h // 3) == 2 and bottom_corners(g // 3) == 1:
+        if bottom_corners(face_of(h)) == 2 and bottom_corners(face_of(g)) == 1:
             return e
     raise AssertionError("no twisting rung: the belt is not a triangulated cylinder")
 

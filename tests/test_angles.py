@@ -186,16 +186,16 @@ def test_an_angle_with_a_pi_part_off_the_24ths_is_never_zero_and_its_sign_is_fou
 
 def test_an_undecided_sign_says_why_and_its_message_survives_a_huge_cotangent(monkeypatch):
     from ddg_oracle.reference.errors import Undecidable
-    from ddg_oracle.reference.exact import angles
+    from ddg_oracle.reference.exact import arccots
     big = Surd(10 ** 400)                           # beyond the float range
     theta = corner_angle(big) - corner_angle(big + 1)      # about 1e-800, not 0
     assert "arccot" in repr(theta)                  # no OverflowError
-    monkeypatch.setattr(angles, "PRECISION_LIMIT", 512)
+    monkeypatch.setattr(arccots, "PRECISION_LIMIT", 512)
     with pytest.raises(Undecidable, match=r"it is not 0 \(exact zero test\).*PRECISION_LIMIT"):
         theta.sign()
     off = corner_angle(Fraction(13, 10)) - pi * Fraction(1, 5)
     assert off.sign() != 0                          # decided well inside the limit
-    monkeypatch.setattr(angles, "PRECISION_LIMIT", 4096)
+    monkeypatch.setattr(arccots, "PRECISION_LIMIT", 4096)
     assert theta.sign() == 1                        # arccot decreases: arccot(b) > arccot(b + 1)
 
 

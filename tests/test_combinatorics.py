@@ -626,3 +626,63 @@ def test_large_torus_classifies():
     t = Triangulation.from_faces(faces)
     assert str(t.classify()) == "torus"
     assert t.flip(12345).euler_characteristic() == 0
+
+
+# --- the halfedge interface (HalfedgeMesh, Metric) and its helpers -----------------------------
+
+
+def test_halfedge_helpers_are_the_numbering():
+    from ddg_oracle.reference.combinatorics import (corner_of, cyclic, face_of, halfedge,
+                                                    next_corner, opposite_corner,
+                                                    opposite_halfedge, prev_corner)
+    for f in range(4):
+        for c in range(3):
+            h = halfedge(f, c)
+            assert (face_of(h), corner_of(h)) == (f, c) == divmod(h, 3)
+            assert next_corner(c) == (c + 1) % 3 and prev_corner(c) == (c + 2) % 3
+            assert opposite_corner(h) == (c + 2) % 3
+            assert opposite_halfedge(f, c) == 3 * f + (c + 1) % 3
+            assert opposite_corner(opposite_halfedge(f, c)) == c
+    assert cyclic("abc", 1) == ("b", "c", "a")
+
+
+@pytest.mark.parametrize("name", ["torus", "mobius_strip", "klein_bottle", "disk"])
+def test_triangulation_and_its_builder_read_alike(name):
+    """The builder an IntrinsicTriangulation flips in place answers every HalfedgeMesh
+    question as the frozen Triangulation does, before and after flips."""
+    from ddg_oracle.reference.combinatorics import HalfedgeMesh, _Builder, face_of
+    t = getattr(surfaces, name)()
+    t = getattr(t, "triangulation", t)          # some constructors give the combinatorics only
+    b = _Builder(t)
+    e = next(e for e in range(t.n_edges) if not t.is_boundary_edge(e)
+             and len({face_of(x) for x in t.edge_halfedges(e)}) == 2)
+    b.flip(e)
+    frozen = b.build()
+    for x in (t, b, frozen):
+        assert isinstance(x, HalfedgeMesh)
+    for h in range(3 * frozen.n_faces):
+        assert (b.tail(h), b.head(h), b.twin(h), b.next(h), b.prev(h), b.face_of(h),
+                b.reversed_gluing(h), b.edge_of(h)) == \
+            (frozen.tail(h), frozen.head(h), frozen.twin(h), frozen.next(h), frozen.prev(h),
+             frozen.face_of(h), frozen.reversed_gluing(h), frozen.edge_of(h))
+    for e in range(frozen.n_edges):
+        assert (b.edge_halfedges(e), b.edge_vertices(e), b.is_boundary_edge(e)) == \
+            (frozen.edge_halfedges(e), frozen.edge_vertices(e), frozen.is_boundary_edge(e))
+    assert (b.n_vertices, b.n_faces, b.n_edges, list(b.faces)) == \
+        (frozen.n_vertices, frozen.n_faces, frozen.n_edges, list(frozen.faces))
+
+
+def test_metric_interface_is_shared_by_the_flipped_in_place_surface():
+    from ddg_oracle.reference.empty_disks import circumdisk
+    from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
+    from ddg_oracle.reference.metric import Metric
+    m = surfaces.octahedron().metric()
+    w = IntrinsicTriangulation(m)
+    w.flip(0)
+    frozen = w.surface()
+    assert isinstance(m, Metric) and isinstance(w, Metric)
+    assert [w.squared_length(h) for h in range(24)] == [frozen.squared_length(h)
+                                                        for h in range(24)]
+    # edge-local code runs on either: the same developed circumdisks
+    assert [circumdisk(w, f).on_circle for f in range(8)] == \
+        [circumdisk(frozen, f).on_circle for f in range(8)]

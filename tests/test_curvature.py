@@ -29,7 +29,8 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.errors import DegenerateFace, InputError, TriangleInequalityViolated
 from ddg_oracle.reference.exact import Angle, Surd, corner_angle, pi, sqrt
-from ddg_oracle.reference.exact.measures import AngleLength, surd_sum
+from ddg_oracle.reference.exact import exact_sum
+from ddg_oracle.reference.exact.measures import AngleLength
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
@@ -460,7 +461,7 @@ def test_T2_7_support_function_integral_on_random_convex_hulls(case):
     assert all(a >= 0 for a in C.dihedral_angles(case.surface).values())
 
 
-# --- AngleLength and surd_sum ---------------------------------------------------------------------
+# --- AngleLength and exact_sum ---------------------------------------------------------------------
 
 
 def _mp_angle_length(x: AngleLength):
@@ -509,9 +510,9 @@ def test_angle_length_sign_float_and_enclosure_agree_with_mpmath(parts, r):
     assert x - x == 0 and 2 * x == x + x and (x * sqrt(2)) / sqrt(2) == x
 
 
-def test_surd_sum_matches_repeated_addition():
+def test_exact_sum_matches_repeated_addition():
     vals = [sqrt(n) / (n + 1) for n in range(1, 40)] + [Fraction(1, 3), 0, sqrt(12)]
-    assert surd_sum(vals) == sum(vals, Surd(0))
+    assert exact_sum(vals) == sum(vals, Surd(0))
 
 
 # --- errors ---------------------------------------------------------------------------------------

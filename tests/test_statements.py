@@ -405,7 +405,7 @@ def test_D4_3_a_vertex_inside_is_found_and_named(monkeypatch):
 
 def test_D4_3_refuses_boundary_and_a_runaway_development():
     from ddg_oracle.reference.empty_disks import DevelopmentLimitExceeded, circumdisk
-    with pytest.raises(InputError, match="without boundary"):
+    with pytest.raises(InputError, match="without boundary: this one has 8 boundary edges"):
         circumdisk(surfaces.grid(2, 2).metric(), 0)
     with pytest.raises(DevelopmentLimitExceeded, match="more than 2 faces"):
         circumdisk(_one_vertex_square_torus(), 0, limit=2)

@@ -26,7 +26,7 @@ How comparisons are decided, exactly:
 * A pi part with 24 r not an integer makes theta != 0 at once (the arccot part
   is a multiple of pi/24 or irrational over pi).
 * Otherwise theta != 0 and the enclosure is refined until it excludes 0; a
-  nonzero theta within 2**-``PRECISION_LIMIT`` of 0 raises
+  nonzero theta within 2**-``arccots.PRECISION_LIMIT`` of 0 raises
   :class:`~ddg_oracle.reference.errors.Undecidable`, saying so.
 
 No float is used anywhere in a decision.  ``float(angle)`` is correctly rounded.
@@ -47,16 +47,16 @@ from fractions import Fraction
 from functools import lru_cache
 
 from ..errors import InputError, Undecidable
+from . import arccots
+from .arccots import ArccotSum
 from .rationals import rational
 from .surds import Surd, _refine, _reexpress, _t_add, _t_mul, _t_scale, _t_sign
 
-#: Refinement stops here (bits of absolute precision) and raises Undecidable.
-PRECISION_LIMIT = 4096
-
 _Number = (int, Fraction, float)
+_ZERO = Fraction(0)
 
 
-class Angle:
+class Angle(ArccotSum):
     """An exact real angle (radians): sum of m_i arccot(c_i) plus r pi.
 
     Immutable and hashable; ``==``, ``<``, ``sign()`` are exact.  Build angles
@@ -95,15 +95,14 @@ class Angle:
 
     # -- structure ------------------------------------------------------------
 
-    @property
-    def pi_coefficient(self) -> Fraction:
-        """r in theta = sum m_i arccot(c_i) + r pi (not unique; see as_multiple_of_pi)."""
-        return self._pi
-
-    @property
-    def parts(self) -> dict:
-        """Copy of {cotangent: multiplicity} of the primitive corner angles."""
-        return dict(self._parts)
+    @staticmethod
+    def _coerce(other):
+        """What mixes with an Angle: Angles, and the number 0."""
+        if isinstance(other, Angle):
+            return other
+        if isinstance(other, _Number) and not isinstance(other, bool) and other == 0:
+            return _ZERO_ANGLE
+        return None
 
     def as_multiple_of_pi(self) -> Fraction | None:
         """theta / pi when theta is a rational multiple of pi (exactly decided), else None.
@@ -122,41 +121,7 @@ class Angle:
         k = _pi24_multiple(self._parts)
         return None if k is None else self._pi + Fraction(k, 24)
 
-    # -- arithmetic -------------------------------------------------------------
-
-    def __add__(self, other):
-        if not isinstance(other, Angle):
-            if other == 0 and isinstance(other, _Number):
-                return self
-            return NotImplemented
-        parts = dict(self._parts)
-        for c, m in other._parts.items():
-            n = parts.get(c, 0) + m
-            if n:
-                parts[c] = n
-            else:
-                parts.pop(c, None)
-        return Angle._raw(parts, self._pi + other._pi)
-
-    __radd__ = __add__
-
-    def __neg__(self):
-        return Angle._raw({c: -m for c, m in self._parts.items()}, -self._pi)
-
-    def __pos__(self):
-        return self
-
-    def __sub__(self, other):
-        if not isinstance(other, Angle):
-            if other == 0 and isinstance(other, _Number):
-                return self
-            return NotImplemented
-        return self + (-other)
-
-    def __rsub__(self, other):
-        if other == 0 and isinstance(other, _Number):
-            return -self
-        return NotImplemented
+    # -- arithmetic (addition and subtraction: ArccotSum) ---------------------------------
 
     def __mul__(self, k):
         if isinstance(k, Angle) or not isinstance(k, (int, Fraction)) or isinstance(k, bool):
@@ -187,8 +152,8 @@ class Angle:
         """-1, 0 or 1, decided exactly (see the module docstring)."""
         if not self._parts:
             return (self._pi > 0) - (self._pi < 0)
-        bits = min(128 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(),
-                   PRECISION_LIMIT)
+        limit = arccots.PRECISION_LIMIT
+        bits = min(128 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(), limit)
         # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)
         nonzero = (self._pi * 24).denominator != 1
         while True:
@@ -205,61 +170,15 @@ class Angle:
                     q = self._pi + Fraction(k, 24)
                     return (q > 0) - (q < 0)
                 nonzero = True                  # theta != 0: refining will separate it
-            if bits >= PRECISION_LIMIT:
+            if bits >= limit:
                 break
-            bits = min(2 * bits, PRECISION_LIMIT)   # the last try at the limit itself
+            bits = min(2 * bits, limit)             # the last try at the limit itself
         why = ("its pi part is off the multiples of pi/24" if (self._pi * 24).denominator != 1
                else "exact zero test")
         raise Undecidable(
             f"the sign of {self!r}: it is not 0 ({why}), but its enclosure at "
-            f"{PRECISION_LIMIT} bits per term still contains 0; raise "
-            "ddg_oracle.reference.exact.angles.PRECISION_LIMIT to decide it")
-
-    def __eq__(self, other):
-        if isinstance(other, Angle):
-            return (self - other).sign() == 0
-        if isinstance(other, _Number) and other == 0:
-            return self.sign() == 0
-        return NotImplemented
-
-    def __ne__(self, other):
-        r = self.__eq__(other)
-        return r if r is NotImplemented else not r
-
-    def _cmp(self, other):
-        if isinstance(other, Angle):
-            return (self - other).sign()
-        if isinstance(other, _Number) and other == 0:
-            return self.sign()
-        return None
-
-    def __lt__(self, other):
-        s = self._cmp(other)
-        return NotImplemented if s is None else s < 0
-
-    def __le__(self, other):
-        s = self._cmp(other)
-        return NotImplemented if s is None else s <= 0
-
-    def __gt__(self, other):
-        s = self._cmp(other)
-        return NotImplemented if s is None else s > 0
-
-    def __ge__(self, other):
-        s = self._cmp(other)
-        return NotImplemented if s is None else s >= 0
-
-    def __bool__(self):
-        return self.sign() != 0
-
-    def __hash__(self):
-        # float() is correctly rounded, hence a function of the value alone:
-        # equal angles hash equal whatever their representation.
-        if self._hash is None:
-            self._hash = hash(float(self))
-        return self._hash
-
-    # -- numerics -----------------------------------------------------------------
+            f"{limit} bits per term still contains 0; raise "
+            "ddg_oracle.reference.exact.arccots.PRECISION_LIMIT to decide it")
 
     def interval_at(self, bits: int) -> tuple[Fraction, Fraction]:
         """A rigorous enclosure (lo, hi) computed with ``bits`` bits per term."""
@@ -284,34 +203,9 @@ class Angle:
         scale = Fraction(1, 1 << bits)
         return Fraction(lo) * scale, Fraction(hi) * scale
 
-    def interval(self, bits: int) -> tuple[Fraction, Fraction]:
-        """A rigorous enclosure (lo, hi) of width at most 2**-bits."""
+    def _interval_bits(self, bits: int) -> int:
         n = 1 + sum(abs(m) for m in self._parts.values()) + abs(self._pi.numerator)
-        b = bits + n.bit_length() + 3
-        while True:
-            lo, hi = self.interval_at(b)
-            if hi - lo <= Fraction(1, 1 << bits):
-                return lo, hi
-            b += 16
-
-    def enclosure(self, digits: int = 30) -> tuple[Fraction, Fraction]:
-        """Certified (lo, hi) with lo <= theta <= hi and hi - lo <= 10**-digits."""
-        bits = math.ceil(digits * 3.3219280948873626) + 1
-        return self.interval(bits)
-
-    def decimal(self, digits: int = 30) -> str:
-        """theta as a decimal string with ``digits`` decimals, certified:
-
-        the string is the midpoint of an enclosure of width 10**-(digits+2),
-        rounded, so |s - theta| <= 0.51 * 10**-digits.
-        """
-        lo, hi = self.enclosure(digits + 2)
-        mid = (lo + hi) / 2
-        q = round(mid * 10 ** digits)
-        sign = "-" if q < 0 else ""
-        q = abs(q)
-        s = str(q).rjust(digits + 1, "0")
-        return f"{sign}{s[:-digits]}.{s[-digits:]}" if digits else f"{sign}{s}"
+        return bits + n.bit_length() + 3
 
     def _interval(self, bits: int) -> tuple[Fraction, Fraction]:
         """:meth:`interval_at`, or a narrower enclosure computed before."""
@@ -333,7 +227,7 @@ class Angle:
             if float(lo) == float(hi):
                 return float(lo)
             bits *= 2
-            if bits > PRECISION_LIMIT * 4:           # cannot happen for theta != 0
+            if bits > arccots.PRECISION_LIMIT * 4:   # cannot happen for theta != 0
                 raise Undecidable(f"float({self!r}) did not converge")
 
     def __repr__(self):
@@ -395,7 +289,7 @@ def _known_multiple(c: Surd) -> Fraction | None:
     for r, _ in c.terms():
         while r % 2 == 0:
             r //= 2
-        while r % 3 == 0:
+        while r % 3 == 0:                 # divisibility by 3 (not halfedge arithmetic)
             r //= 3
         if r != 1:
             return None
@@ -631,3 +525,4 @@ def _arccot_bounds(c: Surd, bits: int) -> tuple[int, int]:
 
 #: The exact angle pi.
 pi = Angle._raw({}, Fraction(1))
+_ZERO_ANGLE = Angle._raw({}, _ZERO)

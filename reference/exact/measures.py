@@ -25,7 +25,7 @@ How ``==`` and the sign are decided, exactly:
   A denominator-cleared A_j is an :class:`Angle` with integer multiplicities,
   and ``Angle.sign`` decides it exactly.
 * Otherwise x != 0, and the enclosure is refined until it excludes 0; past
-  ``PRECISION_LIMIT`` bits :class:`~ddg_oracle.reference.errors.Undecidable` is raised
+  ``arccots.PRECISION_LIMIT`` bits :class:`~ddg_oracle.reference.errors.Undecidable` is raised
   (this only happens for nonzero values closer to 0 than 2**-4096).
 
 No float is used in a decision.  ``float(x)`` is correctly rounded: a nonzero
@@ -52,14 +52,13 @@ import numbers
 from fractions import Fraction
 
 from ..errors import InputError, Undecidable
+from . import arccots
 from .angles import Angle, pi as _PI
+from .arccots import ArccotSum
 from .rationals import rational
-from .surds import Surd, _make, _refine, _reexpress
+from .surds import Surd, _refine, _reexpress
 
-__all__ = ["AngleLength", "surd_sum"]
-
-#: Refinement stops here (bits of absolute precision) and raises Undecidable.
-PRECISION_LIMIT = 4096
+__all__ = ["AngleLength"]
 
 _SCALARS = (int, Fraction, Surd, numbers.Rational)
 
@@ -72,34 +71,11 @@ def _surd(k) -> Surd:
     return Surd(rational(k))
 
 
-def surd_sum(values) -> Surd:
-    """The exact sum of many Surds, brought to one common base once.
-
-    Equal to ``sum(values, Surd(0))``, but adding Surds one by one refines the
-    growing base at every step (cubic in the number of distinct radicands: a
-    400-face mesh with float coordinates takes ~25 s); here the coprime
-    refinement of all bases is computed once.  Used for total areas.
-
-    >>> from ddg_oracle.reference.exact import sqrt
-    >>> surd_sum([sqrt(2), sqrt(8), sqrt(3), 1]) == 1 + 3 * sqrt(2) + sqrt(3)
-    True
-    """
-    vals = [v for v in (_surd(x) for x in values) if v]
-    if not vals:
-        return Surd(0)
-    base = _refine([b for v in vals for b in v.base])
-    terms: dict[int, Fraction] = {}
-    for v in vals:
-        for r, q in _reexpress(v._terms, base).items():
-            terms[r] = terms.get(r, Fraction(0)) + q
-    return _make(base, {r: q for r, q in terms.items() if q})
-
-
 def _pi_interval(bits: int) -> tuple[Fraction, Fraction]:
     return _PI.interval_at(bits)
 
 
-class AngleLength:
+class AngleLength(ArccotSum):
     """An exact real sum_k s_k arccot(c_k) + s_pi pi with Surd coefficients.
 
     Immutable and hashable.  Build with :meth:`of` (an Angle times a Surd) and
@@ -149,64 +125,19 @@ class AngleLength:
             return cls._raw({}, Surd(0))
         return cls._raw({c: s * m for c, m in angle.parts.items()}, s * angle.pi_coefficient)
 
-    # -- structure --------------------------------------------------------------
-
-    @property
-    def parts(self) -> dict:
-        """Copy of {cotangent c: Surd coefficient} of the primitive angles arccot(c)."""
-        return dict(self._parts)
-
-    @property
-    def pi_coefficient(self) -> Surd:
-        """s_pi in x = sum s_k arccot(c_k) + s_pi pi (a Surd)."""
-        return self._pi
-
-    # -- arithmetic ---------------------------------------------------------------
+    # -- arithmetic (addition and subtraction: ArccotSum) ---------------------------------
 
     @staticmethod
     def _coerce(other):
+        """What mixes with an AngleLength: AngleLengths, Angles, and the number 0."""
         if isinstance(other, AngleLength):
             return other
         if isinstance(other, Angle):
             return AngleLength.of(other)
         if isinstance(other, (int, Fraction, float, Surd)) and not isinstance(other, bool) \
                 and other == 0:
-            return AngleLength._raw({}, Surd(0))
+            return _ZERO_LENGTH
         return None
-
-    def __add__(self, other):
-        o = self._coerce(other)
-        if o is None:
-            return NotImplemented
-        parts = dict(self._parts)
-        for c, s in o._parts.items():
-            t = parts.get(c)
-            t = s if t is None else t + s
-            if t:
-                parts[c] = t
-            else:
-                parts.pop(c, None)
-        return AngleLength._raw(parts, self._pi + o._pi)
-
-    __radd__ = __add__
-
-    def __neg__(self):
-        return AngleLength._raw({c: -s for c, s in self._parts.items()}, -self._pi)
-
-    def __pos__(self):
-        return self
-
-    def __sub__(self, other):
-        o = self._coerce(other)
-        if o is None:
-            return NotImplemented
-        return self + (-o)
-
-    def __rsub__(self, other):
-        o = self._coerce(other)
-        if o is None:
-            return NotImplemented
-        return o + (-self)
 
     def __mul__(self, k):
         if isinstance(k, bool) or not isinstance(k, _SCALARS):
@@ -263,7 +194,7 @@ class AngleLength:
             return -1
         if self.is_zero():
             return 0
-        while bits <= PRECISION_LIMIT:
+        while bits <= arccots.PRECISION_LIMIT:
             bits *= 2
             lo, hi = self.interval_at(bits)
             if lo > 0:
@@ -271,45 +202,8 @@ class AngleLength:
             if hi < 0:
                 return -1
         raise Undecidable(f"could not separate the nonzero value {self!r} from 0 with "
-                          f"{PRECISION_LIMIT} bits")
-
-    def __eq__(self, other):
-        o = self._coerce(other)
-        if o is None:
-            return NotImplemented
-        return (self - o).sign() == 0
-
-    def __ne__(self, other):
-        r = self.__eq__(other)
-        return r if r is NotImplemented else not r
-
-    def _cmp(self, other, op):
-        o = self._coerce(other)
-        if o is None:
-            return NotImplemented
-        return op((self - o).sign(), 0)
-
-    def __lt__(self, other):
-        return self._cmp(other, lambda s, z: s < z)
-
-    def __le__(self, other):
-        return self._cmp(other, lambda s, z: s <= z)
-
-    def __gt__(self, other):
-        return self._cmp(other, lambda s, z: s > z)
-
-    def __ge__(self, other):
-        return self._cmp(other, lambda s, z: s >= z)
-
-    def __bool__(self):
-        return self.sign() != 0
-
-    def __hash__(self):
-        # float() is correctly rounded, hence a function of the value: equal
-        # numbers (also an equal Angle, or 0) hash equal.
-        if self._hash is None:
-            self._hash = hash(float(self))
-        return self._hash
+                          f"{arccots.PRECISION_LIMIT} bits; raise "
+                          "ddg_oracle.reference.exact.arccots.PRECISION_LIMIT to decide it")
 
     # -- numerics ---------------------------------------------------------------------
 
@@ -325,22 +219,12 @@ class AngleLength:
             hi += shi * ahi if shi >= 0 else shi * alo
         return lo, hi
 
-    def interval(self, bits: int) -> tuple[Fraction, Fraction]:
-        """A rigorous enclosure (lo, hi) of width at most 2**-bits."""
+    def _interval_bits(self, bits: int) -> int:
         size = 1                       # an integer bound on sum |s_k| + |s_pi|
         for s in list(self._parts.values()) + [self._pi]:
             lo, hi = s.interval(1)
             size += math.ceil(max(abs(lo), abs(hi)))
-        b = bits + 4 + size.bit_length() + len(self._parts).bit_length()
-        while True:
-            lo, hi = self.interval_at(b)
-            if hi - lo <= Fraction(1, 1 << bits):
-                return lo, hi
-            b += 16
-
-    def enclosure(self, digits: int = 30) -> tuple[Fraction, Fraction]:
-        """Certified (lo, hi) with lo <= x <= hi and hi - lo <= 10**-digits."""
-        return self.interval(math.ceil(digits * 3.3219280948873626) + 1)
+        return bits + 4 + size.bit_length() + len(self._parts).bit_length()
 
     def __float__(self):
         """The correctly rounded float (see the module docstring)."""
@@ -352,7 +236,7 @@ class AngleLength:
             if float(lo) == float(hi):
                 return float(lo)
             bits *= 2
-            if bits > 4 * PRECISION_LIMIT:
+            if bits > 4 * arccots.PRECISION_LIMIT:
                 raise Undecidable(f"float({self!r}) did not converge")
 
     def __repr__(self):
@@ -362,3 +246,6 @@ class AngleLength:
             p = str(self._pi)
             terms.insert(0, f"{p}*pi" if self._pi.n_terms <= 1 else f"({p})*pi")
         return "AngleLength(" + " + ".join(terms) + ")"
+
+
+_ZERO_LENGTH = AngleLength._raw({}, Surd(0))
