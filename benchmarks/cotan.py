@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import importlib.util
 
-from ddg_oracle.reference.cotan_fast import CotanSum, cotan_laplacian_fast, cotan_weights_fast
+from ddg_oracle.reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
+from ddg_oracle.reference.cotangents import CotanSum
 from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces)
 from ddg_oracle.reference.exact import pi

@@ -3,7 +3,7 @@
 Exact cotan weights, each from float positions ``V`` (taken exactly) and faces
 ``F``; the exact weight of an edge is ``sum over its faces of q_f sqrt(G_f)``
 (``q = N / (2 G)``, ``N`` the dot product at the opposite corner,
-``G = |u x v|^2``, see ddg_oracle.reference.cotan_fast):
+``G = |u x v|^2``, see ddg_oracle.reference.cotangents):
 
 * :func:`weights_fractions`: straightforward ``fractions.Fraction`` code, the
   weight kept as its list of ``(q, G)`` pairs (exact, no canonical form, so no

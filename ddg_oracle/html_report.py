@@ -186,7 +186,7 @@ function makeView(r) {
   // boundary edges: those of one face
   const count = new Map();
   for (const f of F) for (let c = 0; c < 3; c++) {
-    const a = f[c], b = f[(c + 1) % 3], key = Math.min(a, b) + "," + Math.max(a, b);
+    const a = f[c], b = f[(c + 1) % 3], key = Math.min(a, b) + "," + Math.max(a, b);  // b: the corner after c
     count.set(key, (count.get(key) || 0) + 1);
   }
   const boundary = [...count].filter(([k, n]) => n === 1).map(([k]) => k.split(",").map(Number));

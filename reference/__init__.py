@@ -3,7 +3,7 @@
 Standard library only; no float and no tolerance decides anything.  Data flows
 one way: combinatorics -> metric -> operators -> algorithms.  Every public
 function of the chapter modules is here under the name the notes use, each on
-the fastest exact route for its quantity (the integer kernels of
+the fastest exact route for its quantity (the integer kernels of :mod:`.cotangents`,
 :mod:`.cotan_fast` and :mod:`.curvature_fast` are internal routes of
 ``cotan_weights``, ``cotan_laplacian``, ``angle_sums``, ``angle_defects``,
 ``turning_angles``, ``total_curvature`` and ``gauss_bonnet_holds``; the

@@ -3,404 +3,36 @@
 :mod:`ddg_oracle.reference.laplacian` is the definition of the cotan weights (3.3) and of
 the cotan Laplacian (D3.2): exact squared lengths and Surd face areas
 (:class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface`), one cotangent per corner,
-weights added edge by edge.  This module computes the *same* exact values
-(``==`` on every entry, tested with Hypothesis and on a 1,280-face float
-icosphere) about 60 times faster on float meshes, standard library only
-(about 12 times faster when every canonical form is computed as well, which
-the definition always does).
-:func:`ddg_oracle.reference.laplacian.cotan_laplacian` dispatches here whenever it
-applies (:func:`applies`); :mod:`ddg_oracle.reference.curvature_fast` reuses the face
-data.
+weights added edge by edge.  This module computes the *same* exact values (``==`` on
+every entry, tested with Hypothesis and on a 1,280-face float icosphere) about 60 times
+faster on float meshes, standard library only, from the integer cotangents of
+:mod:`~ddg_oracle.reference.cotangents` (per face ``G = 16 area^2``, per corner a numerator
+``N``; values kept as :class:`~ddg_oracle.reference.cotangents.CotanSum`, canonical forms
+on demand).  :func:`ddg_oracle.reference.laplacian.cotan_laplacian` dispatches here
+whenever it applies (:func:`~ddg_oracle.reference.cotangents.applies`).
 
-How, exactly at every step:
-
-1. *Integers per face.*  The three points of a face are rationals (floats are
-   dyadic rationals), so times ``D``, the lcm of their denominators, they are
-   integer vectors; ``u = B - A``, ``v = C - A``.  A cotangent is scale
-   invariant, ``cot = <x, y> / |x ^ y|``, hence
-
-       cot(corner c) = N_c / sqrt(G),   N_0 = <u, v>,  N_1 = |u|^2 - <u, v>,
-                                         N_2 = |v|^2 - <u, v>,
-       G = |u|^2 |v|^2 - <u, v>^2        (= 4 area^2, Lagrange, any dimension).
-
-   From squared side lengths (a piecewise flat surface with rational lengths)
-   the same with ``N = a + b - o`` and ``G = 16 area^2`` (Heron, :func:`heron16`).
-   :class:`FaceData` holds ``G`` per face and ``N`` per halfedge (the corner
-   opposite it).
-2. *The value kept as it comes.*  An edge weight is
-   ``1/2 (n_1 / sqrt(G_1) + n_2 / sqrt(G_2))``, a diagonal entry of the
-   Laplacian ``1/2 sum_f n_f / sqrt(G_f)`` over the faces at the vertex.  Such a
-   number is returned as a :class:`CotanSum`: a :class:`~ddg_oracle.reference.exact.Surd`
-   that keeps these integers and computes its canonical form (base, terms)
-   only when something needs it -- equality with another Surd, arithmetic,
-   ``str``.  What is cheap is done on the integers, exactly:
-
-   * *rational or not* (a Fraction must be returned where the value is
-     rational, as the definition does): with nonzero ``n_1, n_2`` the weight is
-     irrational unless ``G_1 G_2`` is a perfect square (the square roots of 1
-     and of integers with different square-free parts are linearly
-     independent over Q); a
-     diagonal entry is a sum of *positive* terms (two cotangents of one
-     triangle add up to ``sin(alpha + beta) / (sin alpha sin beta) > 0``), so
-     it is irrational unless every ``G_f`` is a square.  Squares are excluded
-     by the power of 2 and the residues of the odd part modulo
-     ``2^6 * 3 * 5 * ... * 37`` (:func:`_odd_residue`, :func:`_maybe_square`:
-     about 1 odd non-square in 3,000 passes), then by :func:`math.isqrt`.  Values
-     that may be rational take the canonical route at once (step 3);
-   * the *sign*: the signs of the ``n``, or for two terms of opposite signs
-     ``n_1^2 G_2`` against ``n_2^2 G_1`` (never equal: the value is irrational);
-   * ``float()``, ``hash()`` and enclosures, correctly rounded / rigorous
-     as for every Surd: ``|n| 2^k / (2 sqrt(G))`` lies in ``[s, s + 1]`` for
-     ``s = isqrt(n^2 4^k // 4G)`` (:meth:`CotanSum._bounds`).
-3. *Canonical form on demand.*  ``G = c^2 m`` with ``m`` free of squares of the
-   primes below 100 -- the radicand :func:`ddg_oracle.reference.exact.sqrt` gives for the
-   face -- and ``m = s M``: ``s`` the product of the primes below 100 dividing
-   ``m``, ``M`` free of them (:func:`_split_root`; computed once per face, when
-   first needed).  Half a cotangent is ``N_c / (2 c m) * sqrt(m)``.  An entry's
-   terms ``{m: q}`` become a canonical Surd (:func:`_value`): when the large
-   parts ``M`` are pairwise coprime (checked exactly with gcds), the base is
-   read off the factors -- group the primes below 100 and the large parts by
-   the set of radicands they divide, one base element per group, the coarsest
-   coprime base, the one Surd addition computes; when two large parts share a
-   prime the factors are refined by gcd splitting as Surd addition does
-   (:func:`_refined`).
-
-Hence building the weights costs integer products and one residue test per
-edge; the gcds of 200-bit integers that canonical forms need (about ten per
-face) are paid by the values that are compared, added or printed.  No float
-is used anywhere.
+An edge weight is ``1/2 (n_1 / sqrt(G_1) + n_2 / sqrt(G_2))`` over the corners opposite
+the edge; a diagonal entry of the Laplacian ``1/2 sum_f n_f / sqrt(G_f)`` over the faces
+at the vertex (one positive term per face).  Whether such a value is rational, and its
+sign, are decided on the integers (:mod:`~ddg_oracle.reference.cotangents`, step 2).
 """
 
 from __future__ import annotations
 
-import gc
-from contextlib import contextmanager
-from functools import lru_cache
 from fractions import Fraction
-from math import gcd, isqrt, lcm, prod
-from operator import mul
+from math import isqrt
 
-from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress
-from .metric import PiecewiseFlatSurface, degenerate_face, heron16
-from .polyhedral import PolyhedralSurface
-from .exact.surds import simplest
-from .sparse import SparseMatrix
 from .combinatorics import face_of, next_corner
+from .cotangents import (_SQ15015, _SQ33263, _SQ64, _SQ7429, FaceData, _lengths_data,
+                         applies, face_data)
+from .exact.surds import simplest
+from .metric import PiecewiseFlatSurface
+from .sparse import SparseMatrix
 
-__all__ = ["applies", "FaceData", "CotanSum", "face_data", "face_cotangents",
-           "cotan_weights_fast", "cotan_laplacian_fast"]
+__all__ = ["cotan_weights_fast", "cotan_laplacian_fast", "partly_applies",
+           "cotan_laplacian_mixed"]
 
 _ZERO = Fraction(0)
-_PRIMES = tuple(p for p, _ in _SMALL_SQUARES)                   # the primes below 100
-_ODD_PRIMES = _PRIMES[1:]
-_ODD_PRIMORIAL = prod(_ODD_PRIMES)
-
-
-def applies(surface) -> bool:
-    """Whether the fast path handles ``surface``: a :class:`PolyhedralSurface`, or a
-    :class:`PiecewiseFlatSurface` whose squared lengths are all rational."""
-    if isinstance(surface, PolyhedralSurface):
-        return True
-    return (isinstance(surface, PiecewiseFlatSurface)
-            and all(isinstance(x, Fraction) for x in surface.squared_lengths))
-
-
-# --- perfect squares, excluded cheaply ---------------------------------------------------------
-
-
-def _square_residues(m: int) -> bytes:
-    """``t[r] == 1`` iff ``r`` is a square modulo ``m``."""
-    t = bytearray(m)
-    for y in range(m):
-        t[y * y % m] = 1
-    return bytes(t)
-
-
-_SQ64 = _square_residues(64)
-_SQ15015 = _square_residues(3 * 5 * 7 * 11 * 13)
-_SQ7429 = _square_residues(17 * 19 * 23)
-_SQ33263 = _square_residues(29 * 31 * 37)
-#: A square is a square modulo every m; faces keep their G's odd part modulo this.
-_RESIDUE_MODULUS = 64 * 15015 * 7429 * 33263
-
-
-def _maybe_square(r: int) -> bool:
-    """False if ``r`` (an integer, or its residue modulo :data:`_RESIDUE_MODULUS`, or a
-    product of such residues) is certainly no perfect square; True if it may be one.
-    Meant for odd numbers (a multiple of 64 passes the first test)."""
-    return bool(_SQ64[r & 63] and _SQ15015[r % 15015] and _SQ7429[r % 7429]
-                and _SQ33263[r % 33263])
-
-
-def _odd_residue(n: int) -> tuple[int, int]:
-    """``(r, p)``: the odd part of ``n > 0`` modulo :data:`_RESIDUE_MODULUS` and the
-    parity of the power of 2 in ``n``.  ``n`` can be a square only if ``p == 0`` and
-    ``_maybe_square(r)``; about 1 odd non-square in 3,000 passes."""
-    v = (n & -n).bit_length() - 1
-    return (n >> v) % _RESIDUE_MODULUS, v & 1
-
-
-def _is_square(n: int) -> bool:
-    """Whether the integer ``n > 0`` is a perfect square (residues first)."""
-    r, p = _odd_residue(n)
-    return not p and _maybe_square(r) and isqrt(n) ** 2 == n
-
-
-# --- step 1: integer Gram data per face ------------------------------------------------
-
-# One denominator for the whole mesh if it stays this small (float meshes: all
-# coordinates of magnitude above 2**-70 or zero); else one per face, so that a
-# single tiny coordinate does not blow up every face's integers.
-_COMMON_DENOMINATOR_BITS = 128
-
-
-class FaceData:
-    """The integers of step 1 for every face of a surface (see the module docstring).
-
-    ``G[f]``: ``4 area^2`` (from positions) or ``16 area^2`` (from lengths) times a
-    square ``S[f]^2``; ``N[h]``: the numerator of the cotangent of the corner
-    opposite halfedge ``h``, ``cot = N[h] / sqrt(G[face_of(h)])``; ``residue[f]``,
-    ``twos[f]``: the odd part of ``G[f]`` modulo :data:`_RESIDUE_MODULUS` and the
-    parity of its power of 2 (:func:`_odd_residue`).  Square roots (step 3) are
-    computed per face when first needed and kept.
-    """
-
-    __slots__ = ("G", "S", "N", "residue", "twos", "parts", "_roots", "_by_G")
-
-    def __init__(self, G: list, S: list, N: list):
-        self.G, self.S, self.N = G, S, N
-        self.residue, self.twos = [], []
-        for g in G:
-            r, p = _odd_residue(g)
-            self.residue.append(r)
-            self.twos.append(p)
-        self.parts = {1: (1, 1)}          # radicand m -> (s, M), see _split_root
-        self._roots = [None] * len(G)
-        self._by_G = {}                   # equal G on many faces (regular meshes)
-
-    def is_square(self, f: int) -> bool:
-        """Whether ``G[f]`` is a perfect square (the face's cotangents are rational)."""
-        return (not self.twos[f] and _maybe_square(self.residue[f])
-                and isqrt(self.G[f]) ** 2 == self.G[f])
-
-    def root(self, f: int) -> tuple:
-        """``(m, den, k)``: half the cotangent ``n / sqrt(G[f])`` of a corner of face f
-        is ``(n k / den) sqrt(m)``, m the radicand :func:`ddg_oracle.reference.exact.sqrt` gives."""
-        r = self._roots[f]
-        if r is None:
-            G, S = self.G[f], self.S[f]
-            key = (G, S) if S & (S - 1) else G      # S matters only if not a power of 2
-            r = self._by_G.get(key)
-            if r is None:
-                r = self._by_G[key] = self._root(G, S)
-            self._roots[f] = r
-        return r
-
-    def _root(self, G: int, S: int):
-        k = scale = 1
-        if S & (S - 1):
-            # S is not a power of two: its odd primes would stay in G as squares of
-            # primes above 100 that sqrt() never sees; take G / S^2 = n / d in lowest
-            # terms as sqrt() does: sqrt(G) = S sqrt(n d) / d
-            g = gcd(G, S * S)
-            n, k = G // g, S * S // g
-            G, scale = n * k, S
-        c, s, M = _split_root(G)
-        m = s * M
-        self.parts.setdefault(m, (s, M))
-        return m, 2 * c * m * scale, k
-
-    def terms(self, raw) -> dict:
-        """``{m: q}`` with ``sum q sqrt(m) = 1/2 sum n / sqrt(G[f])`` over the pairs
-        ``raw = (f1, n1, f2, n2, ...)``: equal radicands added, zeros dropped."""
-        acc: dict[int, list] = {}
-        for i in range(0, len(raw), 2):
-            m, d, k = self.root(raw[i])
-            n = raw[i + 1] * k
-            a = acc.get(m)
-            if a is None:
-                acc[m] = [n, d]
-            elif a[1] == d:
-                a[0] += n
-            else:
-                a[0], a[1] = a[0] * d + n * a[1], a[1] * d
-        return {m: _fraction(n, d) for m, (n, d) in acc.items() if n}
-
-    def value(self, raw):
-        """``1/2 sum n / sqrt(G[f])`` over ``raw`` as a canonical Surd, or a Fraction."""
-        if len(raw) == 4:
-            # an edge weight, the common case: two coprime radicands are their own base
-            f1, n1, f2, n2 = raw
-            m1, d1, k1 = self._roots[f1] or self.root(f1)
-            m2, d2, k2 = self._roots[f2] or self.root(f2)
-            if m1 != 1 and m2 != 1 and gcd(m1, m2) == 1:
-                return _make((m1, m2) if m1 < m2 else (m2, m1),
-                             {m1: _fraction(n1 * k1, d1), m2: _fraction(n2 * k2, d2)},
-                             prune=False)
-        return _value(self.terms(raw), self.parts)
-
-    def lazy(self, raw) -> "CotanSum":
-        """The same value as a :class:`CotanSum`; only for values known to be irrational
-        (and raw numerators that are not 0)."""
-        x = _new(CotanSum)
-        x._src, x._raw, x._hash = self, raw, None
-        return x
-
-
-_new = object.__new__
-
-
-def _positions_data(surface: PolyhedralSurface) -> FaceData:
-    t = surface.triangulation
-    P, faces = surface.positions, t.faces
-    G, S, N = [], [], []
-    gram, add = G.append, N.extend
-    D = lcm(*{x.denominator for p in P for x in p})
-    if D.bit_length() <= _COMMON_DENOMINATOR_BITS and surface.dimension == 3:
-        # the common case, written out (2x faster)
-        pts = [(x.numerator * (D // x.denominator), y.numerator * (D // y.denominator),
-                z.numerator * (D // z.denominator)) for x, y, z in P]
-        for f, (a, b, c) in enumerate(faces):
-            ax, ay, az = pts[a]
-            bx, by, bz = pts[b]
-            cx, cy, cz = pts[c]
-            ux, uy, uz = bx - ax, by - ay, bz - az
-            vx, vy, vz = cx - ax, cy - ay, cz - az
-            uu = ux * ux + uy * uy + uz * uz
-            vv = vx * vx + vy * vy + vz * vz
-            uv = ux * vx + uy * vy + uz * vz
-            g = uu * vv - uv * uv
-            if not g:
-                _degenerate(surface, f)
-            gram(g)
-            add((vv - uv, uv, uu - uv))             # N_2, N_0, N_1: halfedges 3f, 3f+1, 3f+2
-        S = [D * D] * len(faces)
-        return FaceData(G, S, N)
-    common = D.bit_length() <= _COMMON_DENOMINATOR_BITS
-    for f, face in enumerate(faces):
-        if not common:
-            D = lcm(*{x.denominator for v in face for x in P[v]})
-        A, B, C = ([x.numerator * (D // x.denominator) for x in P[v]] for v in face)
-        u = [y - x for x, y in zip(A, B)]
-        v = [y - x for x, y in zip(A, C)]
-        uu = sum(map(mul, u, u))
-        vv = sum(map(mul, v, v))
-        uv = sum(map(mul, u, v))
-        g = uu * vv - uv * uv
-        if not g:
-            _degenerate(surface, f)
-        gram(g)
-        S.append(D * D)
-        add((vv - uv, uv, uu - uv))
-    return FaceData(G, S, N)
-
-
-def _degenerate(surface: PolyhedralSurface, f: int):
-    """Raise the error the definition raises for a surface with the zero-area face f
-    (its metric checks coincident vertices everywhere first)."""
-    surface.metric()
-    raise degenerate_face(surface.triangulation, f, surface.positions)   # pragma: no cover
-
-
-def _lengths_data(m: PiecewiseFlatSurface, left_out=()) -> FaceData:
-    """Step 1 from squared lengths; the faces in ``left_out`` (irrational squared lengths:
-    :func:`cotan_laplacian_mixed`) get numerators 0, so they contribute nothing."""
-    sq, eo = m.squared_lengths, m.triangulation.edge_of
-    G, S, N = [], [], []
-    for f in range(m.triangulation.n_faces):
-        if f in left_out:
-            G.append(1)
-            S.append(1)
-            N.extend((0, 0, 0))
-            continue
-        l0, l1, l2 = sq[eo(3 * f)], sq[eo(3 * f + 1)], sq[eo(3 * f + 2)]
-        D = lcm(l0.denominator, l1.denominator, l2.denominator)
-        a, b, c = (x.numerator * (D // x.denominator) for x in (l0, l1, l2))
-        # cot at corner 0 = (|01|^2 + |20|^2 - |12|^2) / (4 area), 4 area = sqrt(16 area^2)
-        G.append(heron16(a, b, c))
-        S.append(D)
-        N.extend((b + c - a, a + c - b, a + b - c))    # N_2, N_0, N_1
-    return FaceData(G, S, N)
-
-
-def face_data(surface) -> FaceData:
-    """The integers of step 1 for a surface that :func:`applies`; raises
-    :class:`~ddg_oracle.reference.errors.DegenerateFace` at a face of zero area."""
-    if isinstance(surface, PolyhedralSurface):
-        return _positions_data(surface)
-    return _lengths_data(surface)
-
-
-# --- step 2: the value kept as it comes -----------------------------------------------------
-
-
-class CotanSum(Surd):
-    """An irrational :class:`~ddg_oracle.reference.exact.Surd` known as ``1/2 sum n_k / sqrt(G_k)``.
-
-    The terms are integers of a :class:`FaceData` (``raw = (f1, n1, f2, n2, ...)``,
-    ``G_k = G[f_k]``, nonzero ``n_k``); the value is known to be irrational when
-    it is made.  It *is* a Surd: everything a Surd does works, equal Surds
-    compare and hash equal.  The canonical form (``_base``, ``_terms``) is
-    computed on first use (``__getattr__``: those slots stay unset until then);
-    the sign, ``float()``, ``hash()``, enclosures, negation and comparisons with
-    0 are decided from the integers without it.
-    """
-
-    __slots__ = ("_src", "_raw")
-
-    def __getattr__(self, name):
-        if name != "_base" and name != "_terms":
-            raise AttributeError(f"'CotanSum' object has no attribute {name!r}")
-        v = self._src.value(self._raw)
-        if type(v) is not Surd or not v._base:       # pragma: no cover - a bug
-            raise AssertionError(f"a CotanSum made for the rational value {v}")
-        self._base, self._terms = v._base, v._terms
-        return v._base if name == "_base" else v._terms
-
-    def is_rational(self):
-        return False
-
-    def __bool__(self):
-        return True
-
-    def sign(self):
-        raw = self._raw
-        positive = raw[1] > 0
-        if all((n > 0) == positive for n in raw[3::2]):
-            return 1 if positive else -1
-        if len(raw) == 4:
-            # n1 / sqrt(G1) + n2 / sqrt(G2) with opposite signs: the larger modulus wins
-            G = self._src.G
-            f1, n1, f2, n2 = raw
-            big = n1 if n1 * n1 * G[f2] > n2 * n2 * G[f1] else n2
-            return 1 if big > 0 else -1
-        return Surd.sign(self)
-
-    def __neg__(self):
-        raw = self._raw
-        return self._src.lazy(tuple(-x if i & 1 else x for i, x in enumerate(raw)))
-
-    def _bound_count(self):
-        return len(self._raw) // 2
-
-    def _bounds(self, k):
-        if k > 8192:
-            # float() refines until the enclosure is narrow, which ends for irrational
-            # values only: make sure (the canonical form raises if it is rational)
-            self._terms
-        # |n| 2^k / (2 sqrt(G)) = sqrt(n^2 4^k / 4G) lies in [s, s + 1], s = isqrt(floor)
-        G, raw = self._src.G, self._raw
-        lo = hi = 0
-        for i in range(0, len(raw), 2):
-            n = raw[i + 1]
-            s = isqrt((n * n << 2 * k) // (G[raw[i]] << 2))
-            if n > 0:
-                lo += s
-                hi += s + 1
-            else:
-                lo -= s + 1
-                hi -= s
-        return lo, hi
 
 
 def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
@@ -417,10 +49,8 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
     g, n2 = face_of(t), N[t] * sign
     if n1 and n2:
         raw = (f, n1, g, n2)
-        r = fd.residue[f] * fd.residue[g]
-        if fd.twos[f] != fd.twos[g] or not (_SQ64[r & 63] and _SQ15015[r % 15015]
-                                            and _SQ7429[r % 7429] and _SQ33263[r % 33263]):
-            return fd.lazy(raw)                    # G1 G2 is no square: irrational
+        if _certainly_irrational(fd, f, g):
+            return fd.lazy(raw)
         P = fd.G[f] * fd.G[g]
         return fd.value(raw) if isqrt(P) ** 2 == P else fd.lazy(raw)
     if n1 or n2:
@@ -429,179 +59,15 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
     return _ZERO
 
 
-# --- step 3: canonical Surds --------------------------------------------------------------
-
-
-def _split_root(G: int):
-    """``(c, s, M)`` with ``G = c^2 * s * M``: ``s`` the product of the primes below
-    100 dividing G an odd number of times, ``M`` free of primes below 100 and not a
-    square (``M = 1`` when G / s is a square)."""
-    v = (G & -G).bit_length() - 1             # the power of 2, at once
-    G >>= v
-    c = 1 << (v >> 1)
-    s = 2 if v & 1 else 1
-    g = gcd(G, _ODD_PRIMORIAL)                # the odd primes below 100 dividing G
-    if g != 1:
-        if gcd(G // g, g) == 1:               # each divides G once (4 faces in 5)
-            G //= g
-            s *= g
-        else:
-            for p in _ODD_PRIMES:
-                if g % p == 0:
-                    G //= p
-                    v = 1
-                    while G % p == 0:
-                        G //= p
-                        v += 1
-                    if v > 1:
-                        c *= p ** (v >> 1)
-                    if v & 1:
-                        s *= p
-                    g //= p
-                    if g == 1:
-                        break
-    if G & 7 == 1:                            # an odd square is 1 mod 8: else no square
-        r = isqrt(G)
-        if r * r == G:                        # includes G == 1
-            return c * r, s, 1
-    return c, s, G
-
-
-@lru_cache(maxsize=4096)
-def _small_primes(s: int) -> tuple:
-    """The primes below 100 of a product of distinct ones."""
-    return tuple(p for p in _PRIMES if s % p == 0)
-
-
-def _from_slots(n: int, d: int) -> Fraction:
-    # what Fraction(n, d) stores once reduced, without re-checking the types
-    x = object.__new__(Fraction)
-    x._numerator, x._denominator = n, d
-    return x
-
-
-def _coprime_fraction_maker():
-    """A constructor of Fractions from coprime ints (d > 0) that skips the checks:
-    ``Fraction._from_coprime_ints`` (Python >= 3.12) or slot assignment (3.11),
-    used only if it passes a probe; else plain ``Fraction``."""
-    make = getattr(Fraction, "_from_coprime_ints", _from_slots)
-    try:
-        probe = make(-3, 4)
-        if probe == Fraction(-3, 4) and hash(probe) == hash(Fraction(-3, 4)) \
-                and str(probe) == "-3/4" and probe + 1 == Fraction(1, 4):
-            return make
-    except Exception:   # pragma: no cover - another Fraction implementation
-        pass
-    return Fraction     # pragma: no cover
-
-
-_coprime_fraction = _coprime_fraction_maker()
-
-
-def _fraction(n: int, d: int) -> Fraction:
-    """``Fraction(n, d)`` for ints, ``d > 0``, in half the time (the types are known)."""
-    g = gcd(n, d)
-    if g != 1:
-        n //= g
-        d //= g
-    return _coprime_fraction(n, d)
-
-
-def _coprime_large_parts(rads, parts) -> bool:
-    """Whether the distinct large parts of the radicands are pairwise coprime (exact):
-    each against the product of the previous ones, one gcd per radicand."""
-    seen = set()
-    P = 1
-    for m in rads:
-        M = parts[m][1]
-        if M != 1 and M not in seen:
-            if P != 1 and gcd(P, M) != 1:
-                return False
-            seen.add(M)
-            P *= M
-    return True
-
-
-def _value(terms: dict, parts):
-    """``sum q * sqrt(m)`` over ``terms = {m: q}`` (q nonzero Fractions) as a canonical
-    Surd, or a Fraction when rational."""
-    if len(terms) < 2:
-        if not terms:
-            return _ZERO
-        (m, q), = terms.items()
-        return q if m == 1 else _make((m,), terms, prune=False)
-    if len(terms) == 2:                 # an edge: two faces, the common case
-        m1, m2 = terms
-        if gcd(m1, m2) == 1:
-            # coprime radicands are their own base (1, the rational part, is none)
-            base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
-            return _make(base, terms, prune=False)
-    if not _coprime_large_parts(terms, parts):
-        return _refined(terms, parts)
-    # The coarsest coprime base: one element per set of radicands a factor divides.
-    pattern: dict[int, int] = {}
-    bit = 1
-    for m in terms:
-        s, M = parts[m]
-        for x in _small_primes(s):
-            pattern[x] = pattern.get(x, 0) | bit
-        if M != 1:
-            pattern[M] = pattern.get(M, 0) | bit
-        bit <<= 1
-    group: dict[int, int] = {}
-    for x, key in pattern.items():
-        group[key] = group.get(key, 1) * x
-    return _make(tuple(sorted(group.values())), terms, prune=False)
-
-
-def _refined(terms: dict, parts):
-    """:func:`_value` when a prime above 100 divides two radicands (a few vertices of a
-    float mesh): refine the factors by gcd splitting, as Surd addition does, and
-    rewrite the terms over that base (a square factor may move into a coefficient)."""
-    factors = set()
-    for m in terms:
-        s, M = parts[m]
-        factors.update(_small_primes(s))
-        if M != 1:
-            factors.add(M)
-    base = _refine(list(factors))
-    return simplest(_make(base, _reexpress(terms, base)))
-
-
-@contextmanager
-def _collector_paused():
-    """Pause the cyclic garbage collector while building the result.
-
-    The fast path allocates a few acyclic objects per face (tuples, CotanSums,
-    dicts) that all survive; the collector would traverse them again and again
-    (about a fifth of the time on a 10,000-face mesh).  Restored on exit.
-    """
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.enable()
+def _certainly_irrational(fd: FaceData, f: int, g: int) -> bool:
+    """``G_f G_g`` is certainly no square (from residues): the weight ``1/2 (n_1 /
+    sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is irrational."""
+    r = fd.residue[f] * fd.residue[g]
+    return fd.twos[f] != fd.twos[g] or not (_SQ64[r & 63] and _SQ15015[r % 15015]
+                                            and _SQ7429[r % 7429] and _SQ33263[r % 33263])
 
 
 # --- the public functions -----------------------------------------------------------------
-
-
-def face_cotangents(surface) -> list[tuple]:
-    """The exact cotangents of the three corners of every face, fast, canonical.
-
-    ``[(cot0, cot1, cot2), ...]`` equal to
-    ``PiecewiseFlatSurface.corner_cot(f, c)`` (Fractions where rational).
-
-    >>> from ddg_oracle.reference import surfaces
-    >>> face_cotangents(surfaces.grid(1, 1))[0]
-    (Fraction(1, 1), Fraction(0, 1), Fraction(1, 1))
-    """
-    fd = face_data(surface)
-    N = fd.N
-    return [tuple(fd.value((f, 2 * N[3 * f + next_corner(c)])) for c in range(3))
-            for f in range(len(fd.G))]
 
 
 def cotan_weights_fast(surface) -> dict:
@@ -621,10 +87,21 @@ def cotan_weights_fast(surface) -> dict:
     True
     """
     t = surface.triangulation
-    with _collector_paused():
-        fd = face_data(surface)
-        return {e: _weight(fd, h, tw) for e, (h, tw) in
-                enumerate(map(t.edge_halfedges, range(t.n_edges)))}
+    fd = face_data(surface)
+    N, lazy = fd.N, fd.lazy
+    out = {}
+    for e, (h, tw) in enumerate(map(t.edge_halfedges, range(t.n_edges))):
+        # the common case inline (an interior edge, both corners not right, G_f G_g not a
+        # square: a CotanSum), the rest through _weight; h // 3 is face_of(h), inline in
+        # this loop over every edge
+        if tw >= 0:
+            n1, n2 = N[h], N[tw]
+            f, g = h // 3, tw // 3
+            if n1 and n2 and _certainly_irrational(fd, f, g):
+                out[e] = lazy((f, n1, g, n2))
+                continue
+        out[e] = _weight(fd, h, tw)
+    return out
 
 
 def cotan_laplacian_fast(surface) -> SparseMatrix:
@@ -643,8 +120,7 @@ def cotan_laplacian_fast(surface) -> SparseMatrix:
     >>> cotan_laplacian_fast(s) == cotan_laplacian_from_weights(s)
     True
     """
-    with _collector_paused():
-        return _laplacian(surface)
+    return _laplacian(surface)
 
 
 def partly_applies(surface) -> bool:
@@ -671,8 +147,7 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     sq, eo = m.squared_lengths, t.edge_of
     left_out = {f for f in range(t.n_faces)
                 if not all(isinstance(sq[eo(3 * f + k)], Fraction) for k in range(3))}
-    with _collector_paused():
-        part = _laplacian(m, _lengths_data(m, left_out), left_out)
+    part = _laplacian(m, _lengths_data(m, left_out), left_out)
     rows = {i: dict(r) for i, r in part._rows.items()}
     n = t.n_vertices
     for f in sorted(left_out):

@@ -5,7 +5,7 @@ Gauss-Bonnet decision (T2.6, R2.4) from the metric: Fraction squared lengths,
 Surd areas and cotangents, one exact :class:`~ddg_oracle.reference.exact.Angle` per
 corner.  This module gives the *same* results (``==`` on every Angle, the same
 bool; tested with Hypothesis and on the 1,280-face float icosphere) from the
-integers of :func:`ddg_oracle.reference.cotan_fast.face_data`: per face ``G`` and per
+integers of :func:`ddg_oracle.reference.cotangents.face_data`: per face ``G`` and per
 corner ``N`` with ``cot = N / sqrt(G)``.  :func:`ddg_oracle.reference.curvature.angle_sums`
 (hence ``angle_defects`` and ``turning_angles``) and
 :func:`ddg_oracle.reference.curvature.gauss_bonnet_holds` dispatch here whenever
@@ -17,9 +17,9 @@ stores it as ``pi / 24`` multiples when it is one (right angles, 60 degrees,
 (:func:`ddg_oracle.reference.exact.corner_angle`).  Such a multiple has a cotangent whose
 radicand is 1, 2, 3 or 6, i.e. ``k G`` is a square for one of ``k = 1, 2, 3,
 6``, i.e. the odd part of ``G`` is a square or 3 times one; residues exclude
-that for almost every face of a float mesh (:func:`ddg_oracle.reference.cotan_fast._maybe_square`),
+that for almost every face of a float mesh (:func:`ddg_oracle.reference.cotangents._maybe_square`),
 and those corners get a
-:class:`~ddg_oracle.reference.cotan_fast.CotanSum` cotangent (canonical form on demand;
+:class:`~ddg_oracle.reference.cotangents.CotanSum` cotangent (canonical form on demand;
 its hash, enclosures and sign come from the integers).  The other faces take
 the definition's route: canonical cotangent, then ``corner_angle``.
 
@@ -44,9 +44,8 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .cotan_fast import _collector_paused, _maybe_square, applies, face_data
+from .cotangents import _maybe_square, applies, face_data
 from .exact import Angle, corner_angle
-from .combinatorics import next_corner
 
 __all__ = ["applies", "angle_sums_fast", "gauss_bonnet_holds_fast"]
 
@@ -64,8 +63,7 @@ def angle_sums_fast(surface) -> list[Angle]:
     >>> angle_sums_fast(surfaces.torus(5, 3)) == angle_sums_from_corners(surfaces.torus(5, 3))
     True
     """
-    with _collector_paused():
-        return _angle_sums(surface)
+    return _angle_sums(surface)
 
 
 def _angle_sums(surface) -> list[Angle]:
@@ -77,8 +75,11 @@ def _angle_sums(surface) -> list[Angle]:
     for f, face in enumerate(t.faces):
         r = residue[f]              # k G is a square for k = 1, 2, 3 or 6: odd part 1 or 3
         special = _maybe_square(r) or _maybe_square(3 * r)
-        for c, v in enumerate(face):
-            n = 2 * N[3 * f + next_corner(c)]          # cot = n / (2 sqrt(G)), halfedge opposite c
+        k = 3 * f
+        # corners 0, 1, 2 with the halfedges opposite them, 3f + 1, 3f + 2, 3f
+        # (opposite_halfedge(f, c), written out: this loop runs over every corner)
+        for v, h in zip(face, (k + 1, k + 2, k)):
+            n = 2 * N[h]                            # cot = n / (2 sqrt(G))
             if special or not n:                    # maybe a multiple of pi / 24: as defined
                 a = corner_angle(fd.value((f, n)))
                 acc = parts[v]

@@ -36,6 +36,7 @@ from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, _sign, unf
 from .laplacian import cotan_laplacian, cotan_weights
 from .exact import Surd
 from .metric import PiecewiseFlatSurface
+from .exact.intervals import Interval
 from .exact.surds import exact_sum, simplest
 from .combinatorics import corner_of, face_of
 
@@ -189,32 +190,25 @@ def _exact_change(out, into):
 
 
 def _decrease_sign(out, into) -> int:
-    """C4.19: the exact sign of :func:`_exact_change` (pairs (s, A), A > 0):
-    rigorous enclosures at 64 and 256 bits first (no division of square-root numbers),
-    the exact quotients only when both contain 0."""
+    """C4.19: the exact sign of :func:`_exact_change` (pairs (s, A), A > 0): interval
+    enclosures (:class:`~ddg_oracle.reference.exact.intervals.Interval`) at 64 and 256 bits
+    first, no division of square-root numbers; the exact quotients only when both contain 0."""
     for bits in (64, 256):
-        lo = hi = 0
+        total = Interval(0)
         for sign, pairs in ((1, into), (-1, out)):
             for s, A in pairs:
-                slo, shi = _enclose(s, bits)
-                alo, ahi = _enclose(A, bits)
-                if alo <= 0:
+                area = Interval.enclosing(A, bits)
+                if area.lo <= 0:
                     break
-                qs = (slo / alo, slo / ahi, shi / alo, shi / ahi)
-                lo, hi = (lo + min(qs), hi + max(qs)) if sign > 0 else (lo - max(qs), hi - min(qs))
+                q = Interval.enclosing(s, bits) / area
+                total = total + q if sign > 0 else total - q
             else:
                 continue
             break
         else:
-            if lo > 0:
-                return 1
-            if hi < 0:
-                return -1
+            if total.sign() is not None:
+                return total.sign()
     return _sign(_exact_change(out, into))
-
-
-def _enclose(x, bits: int):
-    return x.interval(bits) if isinstance(x, Surd) else (x, x)
 
 
 class FlipRecord:

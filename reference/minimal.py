@@ -50,6 +50,7 @@ from typing import Sequence
 
 from .errors import InputError
 from .exact import Surd
+from .exact.intervals import Interval, dot
 from .delaunay import flip_to_delaunay, is_delaunay, laplace_beltrami
 from .dirichlet import neighbour_convex_combination, separates, solve_dirichlet
 from .laplacian import cotan_laplacian, metric_of_surface
@@ -84,43 +85,10 @@ def minimal_surface_step(surface: PolyhedralSurface, fixed: Sequence[int] | None
     return solve_dirichlet(L, values, term_limit=term_limit)
 
 
-# --- certified interval arithmetic on exact values (Fractions and Surds) ------------------------
+# --- the area certificate: interval filters (exact.intervals), exact fallback ------------------
 
 #: precision (bits) after which a comparison falls back to exact Surd arithmetic
 PRECISION_CAP = 2048
-
-
-def _iv(x, bits: int) -> tuple[Fraction, Fraction]:
-    """A rational enclosure of an exact value (a Fraction encloses itself)."""
-    if isinstance(x, Surd):
-        return x.interval(bits)
-    x = Fraction(x)
-    return x, x
-
-
-def _imul(a, b):
-    ps = (a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1])
-    return min(ps), max(ps)
-
-
-def _iadd(a, b):
-    return a[0] + b[0], a[1] + b[1]
-
-
-def _isq(a):
-    lo, hi = a
-    if lo >= 0:
-        return lo * lo, hi * hi
-    if hi <= 0:
-        return hi * hi, lo * lo
-    return _ZERO, max(lo * lo, hi * hi)
-
-
-def _idot(u, v):
-    acc = (_ZERO, _ZERO)
-    for a, b in zip(u, v):
-        acc = _iadd(acc, _isq(a) if a is b else _imul(a, b))
-    return acc
 
 
 def _diff(p, q):
@@ -128,20 +96,18 @@ def _diff(p, q):
 
 
 def _face_quantities(cots, p, bits):
-    """Enclosures of E_T(f) = 1/4 sum_c cot_c |f(opposite edge of c)|^2 (T3.6 on one face)
-    and of A(f(T))^2 = (|u|^2 |v|^2 - <u, v>^2) / 4, from exact differences."""
+    """Enclosures (:class:`~ddg_oracle.reference.exact.intervals.Interval`) of
+    E_T(f) = 1/4 sum_c cot_c |f(opposite edge of c)|^2 (T3.6 on one face) and of
+    A(f(T))^2 = (|u|^2 |v|^2 - <u, v>^2) / 4, from exact differences."""
     edges = (_diff(p[1], p[2]), _diff(p[2], p[0]), _diff(p[0], p[1]))   # opposite corners 0, 1, 2
-    iv_edges = [tuple(_iv(x, bits) for x in e) for e in edges]
-    energy = (_ZERO, _ZERO)
+    iv_edges = [tuple(Interval.enclosing(x, bits) for x in e) for e in edges]
+    energy = Interval(0)
     for c in range(3):
         w = iv_edges[c]
-        energy = _iadd(energy, _imul(_iv(cots[c], bits), _idot(w, w)))
-    energy = (energy[0] / 4, energy[1] / 4)
-    u, v = iv_edges[2], tuple((-lo, -hi)[::-1] for lo, hi in iv_edges[1])  # p1 - p0, p2 - p0
-    uu, vv, uv = _idot(u, u), _idot(v, v), _idot(u, v)
-    prod, sq = _imul(uu, vv), _isq(uv)
-    a2 = (max(prod[0] - sq[1], _ZERO) / 4, max(prod[1] - sq[0], _ZERO) / 4)
-    return energy, a2
+        energy = energy + Interval.enclosing(cots[c], bits) * dot(w, w)
+    u, v = iv_edges[2], tuple(-x for x in iv_edges[1])          # p1 - p0, p2 - p0
+    a2 = (dot(u, u) * dot(v, v) - dot(u, v).square()).clamped_below(_ZERO)
+    return energy / 4, a2 / 4
 
 
 def _face_exact(cots, p):
@@ -223,21 +189,21 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions, *,
             if bits > PRECISION_CAP:
                 e, a2 = _face_exact(cots[f], p)
                 faces_ok = faces_ok and e >= 0 and a2 <= e * e
-                energies[f] = _iv(e, PRECISION_CAP)
+                energies[f] = Interval.enclosing(e, PRECISION_CAP)
                 continue
             e, a2 = _face_quantities(cots[f], p, bits)
             energies[f] = e
-            if e[0] >= 0 and a2[1] <= e[0] * e[0]:
+            if e.lo >= 0 and a2.hi <= e.lo * e.lo:
                 continue                                   # A(f(T)) <= E_T(f)
-            if e[1] < 0 or a2[0] > e[1] * e[1]:
+            if e.hi < 0 or a2.lo > e.hi * e.hi:
                 faces_ok = False                           # certainly violated
                 continue
             left.append(f)
         pending, bits = left, 2 * bits
     for f in range(t.n_faces):
         if f not in energies:                             # unmoved: E_T = A(T) exactly
-            energies[f] = _iv(m.areas[f], 64)
-    energy = (sum(e[0] for e in energies.values()), sum(e[1] for e in energies.values()))
+            energies[f] = Interval.enclosing(m.areas[f], 64)
+    energy = sum(energies.values(), Interval(0))
     strict = any(tuple(p) != tuple(q) for p, q in zip(old, new))
     if own and not strict:
         energy_ok = True                                   # E_S(id) = A(S), T3.9
@@ -245,10 +211,10 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions, *,
         energy_ok = None
         bits = 64
         while energy_ok is None:
-            lo, hi = before.interval(bits) if isinstance(before, Surd) else (before, before)
-            if energy[1] < lo:
+            lo, hi = Interval.enclosing(before, bits)
+            if energy.hi < lo:
                 energy_ok = True
-            elif energy[0] > hi:
+            elif energy.lo > hi:
                 energy_ok = False
             elif bits > PRECISION_CAP:
                 exact = _ZERO
@@ -258,18 +224,17 @@ def area_decrease_certificate(surface: PolyhedralSurface, new_positions, *,
             else:
                 bits *= 2
                 energy = _recompute_energy(cots, t, new, moved, m, bits)
-    return AreaDecrease(before, energy, faces_ok, energy_ok, strict)
+    return AreaDecrease(before, tuple(energy), faces_ok, energy_ok, strict)
 
 
-def _recompute_energy(cots, t, new, moved, m, bits):
-    lo = hi = _ZERO
+def _recompute_energy(cots, t, new, moved, m, bits) -> Interval:
+    total = Interval(0)
     for f, face in enumerate(t.faces):
         if any(moved[v] for v in face):
-            e, _ = _face_quantities(cots[f], [new[v] for v in face], bits)
+            total = total + _face_quantities(cots[f], [new[v] for v in face], bits)[0]
         else:
-            e = _iv(m.areas[f], bits)
-        lo, hi = lo + e[0], hi + e[1]
-    return lo, hi
+            total = total + Interval.enclosing(m.areas[f], bits)
+    return total
 
 
 def _sqrt_bounds(x: Fraction, bits: int) -> tuple[Fraction, Fraction]:
@@ -291,8 +256,8 @@ def area_enclosure(triangulation, positions, bits: int = 64) -> tuple[Fraction, 
     for a, b, c in triangulation.faces:
         p = [positions[a], positions[b], positions[c]]
         _, a2 = _face_quantities(zero, p, 2 * bits + 8)
-        lo += _sqrt_bounds(a2[0], bits)[0]
-        hi += _sqrt_bounds(a2[1], bits)[1]
+        lo += _sqrt_bounds(a2.lo, bits)[0]
+        hi += _sqrt_bounds(a2.hi, bits)[1]
     return lo, hi
 
 

@@ -22,10 +22,10 @@ from hypothesis import assume, given, settings, strategies as st
 from benchmarks.peers import flip_to_delaunay_immutable
 from ddg_oracle.properties.strategies import any_meshes, closed_meshes
 from ddg_oracle.properties.strategies import triangulated_surfaces
-from ddg_oracle.reference import cotan_fast, curvature_fast, surfaces
+from ddg_oracle.reference import cotan_fast, cotangents, curvature_fast, surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
-from ddg_oracle.reference.cotan_fast import (CotanSum, applies, cotan_laplacian_fast, cotan_weights_fast,
-                                  face_cotangents)
+from ddg_oracle.reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
+from ddg_oracle.reference.cotangents import CotanSum, applies, face_cotangents
 from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces, turning_angles)
 from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
@@ -182,8 +182,8 @@ def test_fast_cotan_on_the_benchmark_icosphere(monkeypatch):
     """1,280 faces with float coordinates: equal matrices, and the mesh exercises the
     fallback for radicands sharing a prime above 100 (else that path is untested)."""
     calls = []
-    real = cotan_fast._refined
-    monkeypatch.setattr(cotan_fast, "_refined", lambda *a: calls.append(1) or real(*a))
+    real = cotangents._refined
+    monkeypatch.setattr(cotangents, "_refined", lambda *a: calls.append(1) or real(*a))
     s = float_icosphere()
     L = assert_same_cotan(s)
     assert calls
@@ -205,7 +205,7 @@ def test_canonical_values_with_large_shared_primes_and_hidden_squares():
     rational face: each face's sqrt(G) = c sqrt(m), and the canonical Surds built from
     the factors equal sums of ddg_oracle.reference.exact.sqrt."""
     G = [101 * 103, 101 * 107 * 4, 101 ** 2 * 2 * 9, 103, 49, 6 * 101 * 113, 6 * 5]
-    fd = cotan_fast.FaceData(G, [1] * len(G), [1] * (3 * len(G)))
+    fd = cotangents.FaceData(G, [1] * len(G), [1] * (3 * len(G)))
     for f, g in enumerate(G):
         m, d, k = fd.root(f)
         c = d // (2 * m)
@@ -219,9 +219,9 @@ def test_canonical_values_with_large_shared_primes_and_hidden_squares():
             terms[m] = terms.get(m, 0) + q
             expected = expected + q * sqrt(m)
         terms = {m: q for m, q in terms.items() if q}
-        assert cotan_fast._value(terms, fd.parts) == expected
+        assert cotangents._value(terms, fd.parts) == expected
         if len(terms) > 1:
-            assert cotan_fast._refined(terms, fd.parts) == expected
+            assert cotangents._refined(terms, fd.parts) == expected
 
 
 # --- the lazy values: CotanSum ------------------------------------------------------------
@@ -322,13 +322,13 @@ def test_lazy_values_on_the_benchmark_icosphere():
 
 @given(st.integers(1, 2 ** 300), st.integers(1, 2 ** 300))
 def test_residue_test_never_rejects_a_square(x, y):
-    M = cotan_fast._RESIDUE_MODULUS
-    (rx, px), (ry, py) = cotan_fast._odd_residue(x * x), cotan_fast._odd_residue(y * y)
-    assert px == py == 0 and cotan_fast._maybe_square(rx)
-    assert cotan_fast._maybe_square(rx * ry)                    # G1 G2 from residues
-    assert cotan_fast._maybe_square(x * x) and cotan_fast._maybe_square(x * x % M)
-    assert cotan_fast._is_square(x * x) and not cotan_fast._is_square(x * x + 2 * x + 2)
-    fd = cotan_fast.FaceData([x * x + 1, y * y], [1, 1], [1] * 6)
+    M = cotangents._RESIDUE_MODULUS
+    (rx, px), (ry, py) = cotangents._odd_residue(x * x), cotangents._odd_residue(y * y)
+    assert px == py == 0 and cotangents._maybe_square(rx)
+    assert cotangents._maybe_square(rx * ry)                    # G1 G2 from residues
+    assert cotangents._maybe_square(x * x) and cotangents._maybe_square(x * x % M)
+    assert cotangents._is_square(x * x) and not cotangents._is_square(x * x + 2 * x + 2)
+    fd = cotangents.FaceData([x * x + 1, y * y], [1, 1], [1] * 6)
     assert fd.is_square(1) and not fd.is_square(0)
 
 
@@ -336,7 +336,7 @@ def test_residue_test_rejects_almost_every_non_square():
     """The claim of the module docstring: about 1 odd non-square in 3,000 gets through."""
     rng = random.Random(7)
     xs = [rng.getrandbits(200) | 1 for _ in range(30000)]
-    assert sum(cotan_fast._maybe_square(x) for x in xs) < 30
+    assert sum(cotangents._maybe_square(x) for x in xs) < 30
 
 
 # --- exact angle sums, defects and the Gauss-Bonnet decision ---------------------------------

@@ -744,7 +744,7 @@ class Surd:
         """Integers ``lo <= self * 2**k <= hi``, ``hi - lo <= 2 * self._bound_count() + 1``.
 
         What :meth:`interval`, ``float()`` and ``hash()`` use: a subclass that knows
-        its value in another form (``ddg_oracle.reference.cotan_fast.CotanSum``) overrides this
+        its value in another form (``ddg_oracle.reference.cotangents.CotanSum``) overrides this
         and :meth:`_bound_count` to skip the canonical form.
         """
         return _t_bounds(self._terms, k)

@@ -1,0 +1,138 @@
+"""Closed rational intervals: the certified filter in front of exact decisions.
+
+An :class:`Interval` ``[lo, hi]`` with Fraction ends encloses an exact value; sums,
+differences, products, squares and quotients of intervals enclose the results (interval
+arithmetic, no rounding: the ends are rationals).  A decision first asks the cheap
+enclosure (:meth:`Interval.sign` is 1 or -1 when the interval excludes 0) and falls
+back to exact arithmetic only when it contains 0: the filters of the A3.6 area
+certificate (:mod:`~ddg_oracle.reference.minimal`) and of the harmonic-index decrease
+(:mod:`~ddg_oracle.reference.delaunay`) are written with it.
+
+>>> from ddg_oracle.reference.exact import sqrt
+>>> x = Interval.enclosing(sqrt(2), 20)
+>>> (x * x).sign(), (x * x - 2).sign()          # 2 > 0 decided; x^2 - 2 contains 0
+(1, None)
+>>> Interval(1, 2) / Interval(4, 8)
+Interval(Fraction(1, 8), Fraction(1, 2))
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+__all__ = ["Interval"]
+
+
+class Interval:
+    """The closed interval [lo, hi] of rationals (lo <= hi), immutable.
+
+    Arithmetic with Intervals and with exact rationals (ints, Fractions) encloses the
+    exact results; unpacking gives ``(lo, hi)``."""
+
+    __slots__ = ("lo", "hi")
+
+    def __init__(self, lo, hi=None):
+        lo = Fraction(lo)
+        hi = lo if hi is None else Fraction(hi)
+        if hi < lo:
+            raise ValueError(f"an interval needs lo <= hi, got [{lo}, {hi}]")
+        self.lo, self.hi = lo, hi
+
+    @classmethod
+    def _raw(cls, lo, hi):
+        x = object.__new__(cls)
+        x.lo, x.hi = lo, hi
+        return x
+
+    @classmethod
+    def enclosing(cls, x, bits: int) -> "Interval":
+        """An enclosure of the exact value ``x``: a rational encloses itself, anything with
+        ``interval(bits)`` (Surd, Angle, AngleLength) to width 2**-bits."""
+        if hasattr(x, "interval"):
+            return cls._raw(*x.interval(bits))
+        x = Fraction(x)
+        return cls._raw(x, x)
+
+    @staticmethod
+    def _of(x):
+        return x if isinstance(x, Interval) else Interval(x)
+
+    def __iter__(self):
+        yield self.lo
+        yield self.hi
+
+    def __repr__(self):
+        return f"Interval({self.lo!r}, {self.hi!r})"
+
+    def __eq__(self, other):
+        return isinstance(other, Interval) and (self.lo, self.hi) == (other.lo, other.hi)
+
+    def __hash__(self):
+        return hash((self.lo, self.hi))
+
+    # -- arithmetic ------------------------------------------------------------------------
+
+    def __add__(self, other):
+        o = self._of(other)
+        return Interval._raw(self.lo + o.lo, self.hi + o.hi)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Interval._raw(-self.hi, -self.lo)
+
+    def __sub__(self, other):
+        o = self._of(other)
+        return Interval._raw(self.lo - o.hi, self.hi - o.lo)
+
+    def __rsub__(self, other):
+        return self._of(other) - self
+
+    def __mul__(self, other):
+        o = self._of(other)
+        ps = (self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi)
+        return Interval._raw(min(ps), max(ps))
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other):
+        o = self._of(other)
+        if o.lo <= 0 <= o.hi:
+            raise ZeroDivisionError(f"division by an interval containing 0: {o!r}")
+        return self * Interval._raw(1 / o.hi, 1 / o.lo)
+
+    def square(self) -> "Interval":
+        """The enclosure of x^2 for x in the interval (tighter than ``self * self``)."""
+        lo, hi = self.lo, self.hi
+        if lo >= 0:
+            return Interval._raw(lo * lo, hi * hi)
+        if hi <= 0:
+            return Interval._raw(hi * hi, lo * lo)
+        return Interval._raw(Fraction(0), max(lo * lo, hi * hi))
+
+    def clamped_below(self, floor) -> "Interval":
+        """The interval intersected with [floor, inf): for a value known to be >= floor."""
+        return Interval._raw(max(self.lo, floor), max(self.hi, floor))
+
+    # -- decisions -------------------------------------------------------------------------
+
+    def sign(self) -> int | None:
+        """1 or -1 when the interval excludes 0, None when it does not decide."""
+        if self.lo > 0:
+            return 1
+        if self.hi < 0:
+            return -1
+        return None
+
+    @property
+    def width(self) -> Fraction:
+        return self.hi - self.lo
+
+
+def dot(u, v) -> Interval:
+    """The enclosure of the inner product of two vectors of intervals (squares where the
+    same interval meets itself)."""
+    acc = Interval._raw(Fraction(0), Fraction(0))
+    for a, b in zip(u, v):
+        acc = acc + (a.square() if a is b else a * b)
+    return acc
