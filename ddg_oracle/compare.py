@@ -190,23 +190,23 @@ class MeshExamples:
 
     def surface_case(self):
         from ddg_oracle.reference.combinatorics import Classification
-        from ddg_oracle.properties.strategies import SurfaceCase
+        from ddg_oracle.properties.strategies import Example
 
         def build():
             t, f = self.surface.triangulation, self.facts
             cls = t.classify() if f["components"] == 1 else \
                 Classification(f["orientable"], -1, f["boundary"], f["chi"])
-            return SurfaceCase(t, self.surface.positions, cls, self.mesh.name)
+            return Example.of_triangulation(t, self.surface.positions, cls, self.mesh.name)
         return self._get("surface_case", build)
 
     def curvature_case(self):
-        from ddg_oracle.properties.strategies import CurvatureCase
-        return self._get("curvature_case", lambda: CurvatureCase(
+        from ddg_oracle.properties.strategies import Example
+        return self._get("curvature_case", lambda: Example.of_surface(
             self.surface, self.facts["chi"], self.mesh.name))
 
     def mesh_case(self):
-        from ddg_oracle.properties.strategies import MeshCase
-        return self._get("mesh_case", lambda: MeshCase(
+        from ddg_oracle.properties.strategies import Example
+        return self._get("mesh_case", lambda: Example.of_mesh(
             self.surface.positions, tuple(tuple(f) for f in self.mesh.F), self.mesh.name))
 
     def example(self, kind: str):

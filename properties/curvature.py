@@ -38,7 +38,7 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from . import memo
 from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement, prop
-from .strategies import CurvatureCase, floated, jittered_surfaces
+from .strategies import Example, floated, jittered_surfaces
 from .variants import circle_point
 
 C_ANGLE = 16.0                               # see the module docstring
@@ -91,7 +91,7 @@ def _star_surface(directions, kind, params, symmetry, shift):
     pts = [tuple(sum(P[i][k] * p[k] for k in range(3)) + shift[i] for i in range(3))
            for p in pts]
     s = floated(PolyhedralSurface(Triangulation.from_faces(faces), pts))
-    return CurvatureCase(s, 1, f"{kind} star {params}, symmetry {symmetry}, shift {shift}",
+    return Example.of_surface(s, 1, f"{kind} star {params}, symmetry {symmetry}, shift {shift}",
                          vertex=0, kind=kind, params=params)
 
 
@@ -166,7 +166,7 @@ def vertex_stars(draw, kind: str | None = None):
 # --- reference values and tolerances --------------------------------------------------------------
 
 
-def _reference(case: CurvatureCase, what: str) -> dict:
+def _reference(case: Example, what: str) -> dict:
     """Float views (correctly rounded) of the exact angle defects (``what="defects"``, D2.2)
     or turning angles (``"turning"``, R2.4), computed once per case content."""
     def compute(case):
@@ -176,7 +176,7 @@ def _reference(case: CurvatureCase, what: str) -> dict:
     return case.derived(what, compute)
 
 
-def _reference_mean_curvature(case: CurvatureCase):
+def _reference_mean_curvature(case: Example):
     """{(i, j): float(H(e))} of the exact D2.3 values over the interior edges."""
     def compute(case):
         t = case.triangulation
@@ -185,14 +185,14 @@ def _reference_mean_curvature(case: CurvatureCase):
     return case.derived("H", compute)
 
 
-def _geometry(case: CurvatureCase):
+def _geometry(case: Example):
     """Float geometry for the *tolerances* only (conditioning need not be exact): per corner
     the angle and 1/sin of it, per face the area, per interior edge (i, j) its length, its
     dihedral angle theta and its two faces.  Expected values never come from here."""
     return case.derived("geometry", _float_geometry)
 
 
-def _float_geometry(case: CurvatureCase) -> dict:
+def _float_geometry(case: Example) -> dict:
     V, F = case.surface_arrays()
     X = V[F]
     cross = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
@@ -221,7 +221,7 @@ def _float_geometry(case: CurvatureCase) -> dict:
     return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges)
 
 
-def _input_scale(case: CurvatureCase) -> np.ndarray:
+def _input_scale(case: Example) -> np.ndarray:
     """Per corner: max |x| over the face's vertices / the shorter adjacent edge (input rounding)."""
     V, F = case.surface_arrays()
     X = V[F]                                               # (m, 3, 3)
@@ -234,7 +234,7 @@ def _input_scale(case: CurvatureCase) -> np.ndarray:
     return out
 
 
-def corner_tolerances(case: CurvatureCase, input_rounding: bool = False) -> np.ndarray:
+def corner_tolerances(case: Example, input_rounding: bool = False) -> np.ndarray:
     """(m, 3) bounds on |computed angle - exact angle| (see the module docstring).
 
     C_ANGLE eps (1 + 1/sin alpha); with ``input_rounding`` also
@@ -247,7 +247,7 @@ def corner_tolerances(case: CurvatureCase, input_rounding: bool = False) -> np.n
     return tol
 
 
-def vertex_tolerances(case: CurvatureCase, corner_tol: np.ndarray) -> np.ndarray:
+def vertex_tolerances(case: Example, corner_tol: np.ndarray) -> np.ndarray:
     """(n,) bounds on |computed K(v) - exact K(v)|: the corner bounds at v plus the rounding
     of 2 pi - (sum of k angles), gamma_(k+1) (2 pi + sum of the angles)."""
     t = case.triangulation
@@ -264,7 +264,7 @@ def vertex_tolerances(case: CurvatureCase, corner_tol: np.ndarray) -> np.ndarray
     return tol + np.array([gamma(int(k)) for k in count]) * mass
 
 
-def _call(impl, method: str, case: CurvatureCase):
+def _call(impl, method: str, case: Example):
     V, F = case.arrays()              # new arrays: an implementation may work in place
     return getattr(impl, method)(V, F)
 
@@ -272,7 +272,7 @@ def _call(impl, method: str, case: CurvatureCase):
 ISOLATED_ANGLE_DEFECT = ISOLATED_VERTEX["angle_defects"]     # README, Conventions
 
 
-def _defects(impl, case: CurvatureCase, pid: str) -> np.ndarray:
+def _defects(impl, case: Example, pid: str) -> np.ndarray:
     """The implementation's angle defects, checked for shape and, at isolated vertices, for
     the convention 2 pi; returned in the surface's indexing (the reference's)."""
     K = np.asarray(_call(impl, "angle_defects", case), dtype=np.float64).reshape(-1)
@@ -301,7 +301,7 @@ def _units(err: float, bound: float) -> str:
 @prop("D2.2", "angle_defects = 2 pi - angle sum at every interior vertex, as the exact reference, "
       "within the derived float bound",
       needs={"angle_defects"}, strategy=lambda: jittered_surfaces(intrinsic=True))
-def angle_defects_match_reference(impl, case: CurvatureCase):
+def angle_defects_match_reference(impl, case: Example):
     K = _defects(impl, case, "D2.2")
     tol = vertex_tolerances(case, corner_tolerances(case))
     for v, k in _reference(case, "defects").items():
@@ -315,7 +315,7 @@ def angle_defects_match_reference(impl, case: CurvatureCase):
 @prop("R2.4", "boundary vertices get the turning angle pi - angle sum; interior K plus turning "
       "angles sum to 2 pi chi", needs={"angle_defects"},
       strategy=lambda: jittered_surfaces(closed=False, intrinsic=True))
-def turning_angles_and_gauss_bonnet_with_boundary(impl, case: CurvatureCase):
+def turning_angles_and_gauss_bonnet_with_boundary(impl, case: Example):
     K = _defects(impl, case, "R2.4")
     tol = vertex_tolerances(case, corner_tolerances(case))
     _check_total("R2.4", impl, case, K, tol)           # cheap: needs no exact values
@@ -341,7 +341,7 @@ def _check_total(pid, impl, case, K, tol):
 @prop("T2.6", "Gauss-Bonnet: the angle defects of a closed surface sum to 2 pi chi, within the "
       "derived bound", needs={"angle_defects"},
       strategy=lambda: jittered_surfaces(closed=True, intrinsic=True))
-def gauss_bonnet(impl, case: CurvatureCase):
+def gauss_bonnet(impl, case: Example):
     K = _defects(impl, case, "T2.6")
     tol = vertex_tolerances(case, corner_tolerances(case))
     _check_total("T2.6", impl, case, K, tol)
@@ -353,7 +353,7 @@ def gauss_bonnet(impl, case: CurvatureCase):
 def cube_angle_defects(impl, example):
     (R, tr), key = example
     moved, _ = _relabel(ref.rigid_motion(surfaces.cube(), R, tr), key)
-    case = CurvatureCase(floated(moved), 2, f"unit cube moved by {R}, {tr}, relabelled {key}")
+    case = Example.of_surface(floated(moved), 2, f"unit cube moved by {R}, {tr}, relabelled {key}")
     K = _defects(impl, case, "X2.1")
     tol = vertex_tolerances(case, corner_tolerances(case, input_rounding=True))
     for v in range(8):
@@ -378,7 +378,7 @@ def angle_defects_are_invariant(impl, example):
     motion = (tuple(map(tuple, R)), tuple(tr), key)
     moved, perm = case.derived(("moved", motion),
                                lambda c: _relabel(floated(ref.rigid_motion(c.surface, R, tr)), key))
-    other = CurvatureCase(moved, case.chi, case.recipe + f", moved, relabelled {key}")
+    other = Example.of_surface(moved, case.chi, case.recipe + f", moved, relabelled {key}")
     K1, K2 = _defects(impl, case, "T2.5"), _defects(impl, other, "T2.5")
     tol1 = vertex_tolerances(case, corner_tolerances(case))
     tol2 = vertex_tolerances(other, corner_tolerances(other, input_rounding=True))
@@ -406,7 +406,7 @@ def pushable_surfaces(draw):
         faces += [(1, 2 + (k + 1) % n, 2 + k) for k in range(n)]
         s = PolyhedralSurface(Triangulation.from_faces(faces),
                               [(0, 0, top), (0, 0, -bottom)] + ring)
-        case = CurvatureCase(floated(s), 2, f"bipyramid n={n}, apexes {top}, -{bottom}")
+        case = Example.of_surface(floated(s), 2, f"bipyramid n={n}, apexes {top}, -{bottom}")
         return case, draw(st.sampled_from([0, 1]))
     m, n = draw(st.integers(2, 4)), draw(st.integers(2, 4))
     g = surfaces.grid(m, n)
@@ -414,7 +414,7 @@ def pushable_surfaces(draw):
     v = i * (n + 1) + j
     h = Fraction(draw(st.integers(1, 12)), 4)
     pos = [(x, y, h if w == v else z) for w, (x, y, z) in enumerate(g.positions)]
-    return CurvatureCase(floated(g.with_positions(pos)), 1, f"grid {m}x{n}, vertex {v} at {h}"), v
+    return Example.of_surface(floated(g.with_positions(pos)), 1, f"grid {m}x{n}, vertex {v} at {h}"), v
 
 
 @prop("X2.3", "pushing a vertex in (reflecting it in the plane of its coplanar neighbours) "
@@ -422,7 +422,7 @@ def pushable_surfaces(draw):
       strategy=pushable_surfaces)
 def pushing_a_vertex_in_keeps_the_metric(impl, example):
     case, v = example
-    pushed = CurvatureCase(floated(ref.push_vertex_in(case.surface, v)), case.chi,
+    pushed = Example.of_surface(floated(ref.push_vertex_in(case.surface, v)), case.chi,
                            case.recipe + f", vertex {v} pushed in")
     ct1, ct2 = corner_tolerances(case), corner_tolerances(pushed)
     A1 = np.asarray(_call(impl, "corner_angles", case), dtype=np.float64)
@@ -481,7 +481,7 @@ _SIGN = {"convex": 1, "planar": 0, "saddle": -1}
 @prop("L2.4", "convex star => K > 0, planar star => K = 0, saddle star => K < 0 (stars built "
       "to be of each kind; K decided beyond the float bound)", needs={"angle_defects"},
       strategy=lambda: st.sampled_from(["convex", "planar", "saddle"]).flatmap(vertex_stars))
-def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
+def star_kind_decides_curvature_sign(impl, star: Example):
     # the kind survived rounding to floats
     assume(star.derived("kind", lambda c: _PREDICATES[c.kind](c.surface, 0)))
     K = float(_defects(impl, star, "L2.4")[0])
@@ -505,7 +505,7 @@ def star_kind_decides_curvature_sign(impl, star: CurvatureCase):
                               expected=0.0, observed=K, bound=tol)
 
 
-def _corner_angles_from_lengths(case: CurvatureCase) -> np.ndarray:
+def _corner_angles_from_lengths(case: Example) -> np.ndarray:
     """Float views of the exact corner angles of the metric built from the squared lengths
     alone (no positions used), D2.6."""
     from ddg_oracle.reference.metric import PiecewiseFlatSurface
@@ -517,7 +517,7 @@ def _corner_angles_from_lengths(case: CurvatureCase) -> np.ndarray:
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "
       "(the piecewise flat metric built from squared lengths alone)", needs={"corner_angles"},
       strategy=lambda: jittered_surfaces(intrinsic=True))
-def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
+def corner_angles_from_edge_lengths(impl, case: Example):
     expected = case.derived("corner angles", _corner_angles_from_lengths)
     A = np.asarray(_call(impl, "corner_angles", case), dtype=np.float64)
     if A.shape != expected.shape:
@@ -536,12 +536,12 @@ def corner_angles_from_edge_lengths(impl, case: CurvatureCase):
 # --- mean curvature (D2.3, T2.7, R2.5) ------------------------------------------------------------
 
 
-def face_condition(case: CurvatureCase) -> np.ndarray:
+def face_condition(case: Example) -> np.ndarray:
     """(m,) max over the corners of 1/sin(alpha): the conditioning of a face normal."""
     return _geometry(case)["inv_sin"].max(axis=1)
 
 
-def edge_mean_curvature_tolerances(case: CurvatureCase) -> dict:
+def edge_mean_curvature_tolerances(case: Example) -> dict:
     """{(i, j): bound on |computed H(e) - exact H(e)|}.
 
     A face normal from float points has direction error <= C_ANGLE eps kappa_f
@@ -561,7 +561,7 @@ def edge_mean_curvature_tolerances(case: CurvatureCase) -> dict:
     return out
 
 
-def area_tolerance(case: CurvatureCase) -> float:
+def area_tolerance(case: Example) -> float:
     """Bound on |computed total area - exact area|: each face area from float points is off by
     at most C_ANGLE eps A_f (1 + kappa_f), the sum adds gamma_m sum A_f."""
     cond = 1 + face_condition(case)
@@ -582,7 +582,7 @@ def _edge_dict(impl, case, pid):
 @prop("D2.3", "edge_mean_curvature: H(e) = 1/2 theta(e) l(e) on every interior edge, theta > 0 "
       "where convex, as the exact reference within the derived bound",
       needs={"edge_mean_curvature"}, strategy=jittered_surfaces)
-def edge_mean_curvature_matches_reference(impl, case: CurvatureCase):
+def edge_mean_curvature_matches_reference(impl, case: Example):
     H = _edge_dict(impl, case, "D2.3")
     expected = _reference_mean_curvature(case)
     if set(H) != set(expected):
@@ -712,13 +712,13 @@ def convex_polyhedra(draw):
     # the hull depends on the points alone: built once per point set in this process
     s = memo.DRAWN.shared(("convex hull", pts), lambda: convex_hull_surface(pts))
     assume(s is not None)
-    return CurvatureCase(s, 2, f"convex hull of {list(pts)}")
+    return Example.of_surface(s, 2, f"convex hull of {list(pts)}")
 
 
 @prop("T2.7", "total mean curvature of a convex polyhedron = integral of its support function over "
       "the unit sphere (2 pi x mean width), within quadrature plus float bounds",
       needs={"edge_mean_curvature"}, strategy=convex_polyhedra)
-def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
+def total_mean_curvature_is_support_integral(impl, case: Example):
     H = _edge_dict(impl, case, "T2.7")
     total = math.fsum(H.values())
     value, quad_bound = case.derived("support integral",
@@ -735,7 +735,7 @@ def total_mean_curvature_is_support_integral(impl, case: CurvatureCase):
 @prop("R2.5", "Steiner coefficients of a closed surface: area, 2 H(S) and K(S) = 2 pi chi agree "
       "with the exact (A, 2 H(S), 2 pi chi)", needs={"area", "edge_mean_curvature", "angle_defects"},
       strategy=lambda: jittered_surfaces(closed=True))
-def steiner_coefficients_match(impl, case: CurvatureCase):
+def steiner_coefficients_match(impl, case: Example):
     A_ref, twoH_ref, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
     A = float(_call(impl, "area", case))
     bound_A = area_tolerance(case)

@@ -46,7 +46,7 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .laplacian import (K_COT, Exact, _at, _dense, _fail, _record, _solve, _sparse, _worst,
                         _worst_sparse, entry_bounds, gamma)
-from .strategies import (MeshCase, acute_meshes, closed_meshes, grid_faces,
+from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
                          single_triangles)
 from .metrics import polycube_surfaces
@@ -97,7 +97,7 @@ class DelaunayExact:
 
     of = classmethod(Exact.of.__func__)      # once per case content, read-only (.memo)
 
-    def __init__(self, case: MeshCase):
+    def __init__(self, case: Example):
         import scipy.sparse as sp
         self.X = X = Exact.of(case)
         self.delaunay, self.log = flip_to_delaunay(X.metric)
@@ -237,7 +237,7 @@ def flipped_meshes(draw):
     from ddg_oracle.reference.errors import InputError
     case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
         lambda s: mesh_case(s.positions, s.triangulation.faces, "polycube"))))
-    t = case.surface().triangulation
+    t = case.surface.triangulation
     picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=12))
     for k in picks:
         e = k % t.n_edges
@@ -251,7 +251,7 @@ def flipped_meshes(draw):
         except InputError:                          # a degenerate (collinear) new face
             continue
         t = u
-    return MeshCase(case.positions, tuple(t.faces), f"{case.recipe}, {len(picks)} flips drawn")
+    return Example.of_mesh(case.positions, tuple(t.faces), f"{case.recipe}, {len(picks)} flips drawn")
 
 
 def delaunay_meshes():
@@ -310,7 +310,7 @@ def two_triangulations(draw):
     m = round(float(max(p[0] for p in rows)))
     n = round(float(max(p[1] for p in rows)))
     flips = draw(st.lists(st.booleans(), min_size=m * n, max_size=m * n))
-    other = MeshCase(c.positions, tuple(tuple(f) for f in grid_faces(m, n, flips)),
+    other = Example.of_mesh(c.positions, tuple(tuple(f) for f in grid_faces(m, n, flips)),
                      c.recipe + " retriangulated")
     return c, other
 
@@ -346,7 +346,7 @@ def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
       "cot a + cot b >= 0 on every edge (boundary edges are Delaunay); exact ties accept both",
       needs={"is_locally_delaunay"}, strategy=delaunay_meshes)
-def locally_delaunay_edges(impl, case: MeshCase):
+def locally_delaunay_edges(impl, case: Example):
     pid = "D4.4 / T4.7 / P4.9"
     X = Exact.of(case)
     t = X.triangulation
@@ -380,7 +380,7 @@ def locally_delaunay_edges(impl, case: MeshCase):
       ">= 0 iff the triangulation is Delaunay: each weight's sign agrees with the exact one "
       "(weights within the bound of 0 are ties)",
       needs={"cotan_laplacian"}, strategy=delaunay_meshes)
-def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
+def nonnegative_weights_iff_delaunay(impl, case: Example):
     A = _dense(impl, case, "P4.10")
     X = Exact.of(case)
     n = X.n
@@ -402,7 +402,7 @@ def nonnegative_weights_iff_delaunay(impl, case: MeshCase):
 @prop("D4.8 / R4.9", "intrinsic_delaunay_laplacian is the exact Laplace-Beltrami operator "
       "(cotan Laplacian of the intrinsic Delaunay triangulation) within the derived bound; its "
       "weights on interior edges are >= 0", needs={"intrinsic_delaunay_laplacian"}, strategy=intrinsic_meshes)
-def laplace_beltrami_operator(impl, case: MeshCase):
+def laplace_beltrami_operator(impl, case: Example):
     pid = "D4.8 / R4.9"
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
     A = _sparse(impl, case, pid, "intrinsic_delaunay_laplacian")
@@ -440,7 +440,7 @@ def unique_delaunay_operator(impl, pair):
 @prop("T4.21", "L_T - L_Delaunay is positive semidefinite: the Delaunay triangulation minimises "
       "the Dirichlet energy of every function (Weyl bound from both entry bounds)",
       needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
-def delaunay_minimises_the_energy(impl, case: MeshCase):
+def delaunay_minimises_the_energy(impl, case: Example):
     L = _dense(impl, case, "T4.21")
     D = _dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
     De = DelaunayExact.of(case)
@@ -457,7 +457,7 @@ def delaunay_minimises_the_energy(impl, case: MeshCase):
 @prop("X4.2", "on the X4.2 tetrahedron (its Delaunay triangulation has a vertex of valence 1, a "
       "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
       needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
-def valence_one_vertex(impl, case: MeshCase):
+def valence_one_vertex(impl, case: Example):
     A = _dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
@@ -467,7 +467,7 @@ def valence_one_vertex(impl, case: MeshCase):
 
 @prop("L4.18", "h(T) = 8 sum_i E(phi_i) = 4 trace(L): the diagonal of cotan_laplacian sums to a "
       "quarter of the exact harmonic index", needs={"cotan_laplacian"}, strategy=delaunay_meshes)
-def harmonic_index_is_the_trace(impl, case: MeshCase):
+def harmonic_index_is_the_trace(impl, case: Example):
     A = _dense(impl, case, "L4.18")
     X = Exact.of(case)
     exact = float(harmonic_index(X.metric))
@@ -481,7 +481,7 @@ def harmonic_index_is_the_trace(impl, case: MeshCase):
 
 @prop("D4.7 / L4.17", "h(T) = sum (a^2 + b^2 + c^2) / A = 4 sum cot: from the implementation's "
       "corner angles", needs={"corner_angles"}, strategy=delaunay_meshes)
-def harmonic_index_from_angles(impl, case: MeshCase):
+def harmonic_index_from_angles(impl, case: Example):
     X = Exact.of(case)
     ang = np.asarray(impl.corner_angles(*case.arrays()), dtype=float)
     got = float(4 * np.sum(1 / np.tan(ang)))
@@ -493,7 +493,7 @@ def harmonic_index_from_angles(impl, case: MeshCase):
               expected=exact, observed=got)
 
 
-def _triangulation_result(impl, case: MeshCase, pid: str):
+def _triangulation_result(impl, case: Example, pid: str):
     """The implementation's (F2, l2) with shape checks and the triangle inequality."""
     out = impl.intrinsic_delaunay_triangulation(*case.arrays())
     F2, l2 = (np.asarray(x) for x in out)
@@ -530,7 +530,7 @@ def total_area_bound(area, rho, amp: float) -> float:
 @prop("A4.13", "intrinsic_delaunay_triangulation returns a triangulation of the same metric "
       "(every vertex's angle sum and the total area unchanged) whose edges are all Delaunay",
       needs={"intrinsic_delaunay_triangulation"}, strategy=intrinsic_meshes)
-def flip_algorithm_result(impl, case: MeshCase):
+def flip_algorithm_result(impl, case: Example):
     pid = "A4.13"
     F2, l2 = _triangulation_result(impl, case, pid)
     D = DelaunayExact.of(case)
@@ -575,7 +575,7 @@ def flip_algorithm_result(impl, case: MeshCase):
 @prop("C4.19", "the harmonic index never increases under Delaunay flips: h of the "
       "implementation's Delaunay triangulation <= h of the input, strictly when the reference "
       "had to flip", needs={"intrinsic_delaunay_triangulation"}, strategy=intrinsic_meshes)
-def harmonic_index_decreases(impl, case: MeshCase):
+def harmonic_index_decreases(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "C4.19")
     D = DelaunayExact.of(case)
     ang, _ = _angles_from_squared_lengths(l2)
@@ -595,7 +595,7 @@ def harmonic_index_decreases(impl, case: MeshCase):
 @prop("L4.20 / C4.13", "h(T) >= l(T)^2 / A (A the total area, l(T) the longest edge) on the "
       "implementation's Delaunay triangulation", needs={"intrinsic_delaunay_triangulation"},
       strategy=intrinsic_meshes)
-def harmonic_index_bounds_the_longest_edge(impl, case: MeshCase):
+def harmonic_index_bounds_the_longest_edge(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "L4.20 / C4.13")
     ang, area = _angles_from_squared_lengths(l2)
     h = float(4 * np.sum(1 / np.tan(ang)))
@@ -617,7 +617,7 @@ def _interior(X: Exact) -> np.ndarray:
       "coordinates = 0 at interior vertices) and every interior vertex is a convex combination "
       "of its Delaunay neighbours", needs={"intrinsic_delaunay_laplacian"},
       strategy=lambda: planar_meshes(min_size=2))
-def flat_meshes_are_minimal(impl, case: MeshCase):
+def flat_meshes_are_minimal(impl, case: Example):
     pid = "D4.9 / R4.10"
     A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
@@ -643,7 +643,7 @@ def flat_meshes_are_minimal(impl, case: MeshCase):
 @prop("A4.23", "one minimal-surface step with the intrinsic Laplace-Beltrami operator (boundary "
       "fixed) does not increase the Dirichlet energy above the area: E(x~) <= E(x) <= A(S)",
       needs={"intrinsic_delaunay_laplacian"}, strategy=_interior_meshes)
-def delaunay_minimal_surface_step(impl, case: MeshCase):
+def delaunay_minimal_surface_step(impl, case: Example):
     pid = "A4.23"
     A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)

@@ -55,7 +55,7 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .protocol import ISOLATED_VERTEX, capabilities, eps
-from .strategies import (MeshCase, acute_meshes, any_meshes, closed_meshes, jittered_grids,
+from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
                          surface_meshes, with_boundary, with_functions, with_isolated)
 from .registry import PropertyFailure, TieDisagreement, prop
@@ -176,17 +176,17 @@ class Exact:
     read-only."""
 
     @classmethod
-    def of(cls, case: MeshCase) -> "Exact":
+    def of(cls, case: Example) -> "Exact":
         return memo.shared((cls.__name__, eps(), case.positions, case.faces), lambda: cls(case))
 
-    def __init__(self, case: MeshCase):
+    def __init__(self, case: Example):
         self.case = case
         # vertices used by no face are not part of the surface (the reference refuses
         # them): the surface is built on the others, ``keep[v]`` is the case's index of
         # its vertex v, and the matrices below are embedded back on all case.n vertices
         # with zero rows and columns at the isolated ones (protocol.ISOLATED_VERTEX)
         self.keep = sorted({v for f in case.faces for v in f})
-        self.surface = case.surface() if len(self.keep) == case.n else _compact(case, self.keep)
+        self.surface = case.surface if len(self.keep) == case.n else _compact(case, self.keep)
         self.metric = self.surface.metric()
         t = self.triangulation = self.surface.triangulation
         k = t.n_vertices
@@ -309,13 +309,13 @@ def total_area_view(metric) -> tuple[float, float]:
     return total, u * (math.fsum(areas) + abs(total))
 
 
-def _compact(case: MeshCase, keep) -> PolyhedralSurface:
+def _compact(case: Example, keep) -> PolyhedralSurface:
     new = {v: i for i, v in enumerate(keep)}
     return PolyhedralSurface.from_arrays([case.positions[v] for v in keep],
                                          [[new[v] for v in f] for f in case.faces])
 
 
-def _sparse(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian"):
+def _sparse(impl, case: Example, pid: str, method: str = "cotan_laplacian"):
     """The implementation's matrix (``method``) as scipy CSR of float64, duplicates summed;
     a failure if it is not n x n or has a non-finite entry."""
     import scipy.sparse as sp
@@ -347,7 +347,7 @@ def _sparse(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian"):
     return A
 
 
-def _beyond_float_resolution(case: MeshCase) -> set:
+def _beyond_float_resolution(case: Example) -> set:
     """Vertex pairs (i, j), i == j included, of the faces whose conditioning puts their
     float area out of reach: K_COT eps rho >= 1 (rho = l_max^2 / (2 A), exact A).  There a
     float cross product can be 0 although the exact face is not degenerate, and a cotangent
@@ -360,7 +360,7 @@ def _beyond_float_resolution(case: MeshCase) -> set:
     return out
 
 
-def _dense(impl, case: MeshCase, pid: str, method: str = "cotan_laplacian") -> np.ndarray:
+def _dense(impl, case: Example, pid: str, method: str = "cotan_laplacian") -> np.ndarray:
     """:func:`_sparse` as a dense array, for the checks of small examples that factor it."""
     return _sparse(impl, case, pid, method).toarray()
 
@@ -400,7 +400,7 @@ def _worst(err, bound):
 @prop("D3.1", "cotan_laplacian is a weighted graph Laplacian on the mesh edges: symmetric, zero "
       "row sums, supported on edges, entries = the exact cotan weights (3.3) within the derived bound",
       needs={"cotan_laplacian"}, strategy=lambda: scaled_meshes(any_meshes(isolated=True)))
-def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase):
+def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: Example):
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
     A = _sparse(impl, case, "D3.1")
     X = Exact.of(case)
@@ -437,7 +437,7 @@ def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: MeshCase
 @prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "
       "linear interpolant (computed exactly from per-face gradients)",
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
-def energy_of_the_interpolant(impl, case: MeshCase):
+def energy_of_the_interpolant(impl, case: Example):
     A = _dense(impl, case, "T3.6")
     X = Exact.of(case)
     f = np.array([float(x) for x in case.values])
@@ -456,7 +456,7 @@ def energy_of_the_interpolant(impl, case: MeshCase):
 @prop("T3.1 / R3.2", "grad E = L f: phi . (L f) equals the exact derivative at t = 0 of "
       "E(f + t phi), E the piecewise linear Dirichlet energy",
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
-def gradient_of_the_energy(impl, case: MeshCase):
+def gradient_of_the_energy(impl, case: Example):
     A = _dense(impl, case, "T3.1 / R3.2")
     X = Exact.of(case)
     f, phi = list(case.values), list(case.second)
@@ -479,7 +479,7 @@ def _eig_tol(X: Exact, A) -> float:
 @prop("R3.3", "with negative cotan weights, L is still positive semidefinite and L restricted to "
       "the vertices off a nonempty V0 is positive definite (the Dirichlet problem is uniquely solvable)",
       needs={"cotan_laplacian"}, strategy=lambda: with_boundary(obtuse_meshes()))
-def negative_weights_keep_the_energy_positive(impl, case: MeshCase):
+def negative_weights_keep_the_energy_positive(impl, case: Example):
     A = _dense(impl, case, "R3.3")
     X = Exact.of(case)
     tol = _eig_tol(X, A)
@@ -501,7 +501,7 @@ def negative_weights_keep_the_energy_positive(impl, case: MeshCase):
 @prop("C3.3", "Liouville: on a mesh of c components (an isolated vertex is one) with positive weights, L has exactly c "
       "eigenvalues within the bound of 0 and kills each component's indicator",
       needs={"cotan_laplacian"}, strategy=lambda: with_isolated(acute_meshes(max_components=3)))
-def harmonic_functions_are_locally_constant(impl, case: MeshCase):
+def harmonic_functions_are_locally_constant(impl, case: Example):
     A = _dense(impl, case, "C3.3")
     X = Exact.of(case)
     tol = _eig_tol(X, A)
@@ -535,7 +535,7 @@ def _solve(A, V0, c):
     return u, I
 
 
-def _dirichlet_solutions(impl, case: MeshCase, pid: str):
+def _dirichlet_solutions(impl, case: Example, pid: str):
     """The implementation's solutions of the case's Dirichlet problem (V0 = case.boundary,
     values case.values there), one per route it has: its matrix (``cotan_laplacian``,
     solved here by dense LU) and its own solver (``solve_dirichlet``).  Yields (route,
@@ -576,7 +576,7 @@ def _dirichlet_solutions(impl, case: MeshCase, pid: str):
       "(the implementation's L, and its own solver) takes its max and min on V0, within the "
       "propagated bound", needs_any={"cotan_laplacian", "solve_dirichlet"},
       strategy=lambda: with_boundary(acute_meshes()))
-def maximum_principle(impl, case: MeshCase):
+def maximum_principle(impl, case: Example):
     V0 = list(case.boundary)
     c = np.array([float(x) for x in case.values])
     for route, X, u, I, A, res in _dirichlet_solutions(impl, case, "T3.2"):
@@ -599,7 +599,7 @@ def maximum_principle(impl, case: MeshCase):
       "the minimiser of the exact piecewise linear energy: its exact gradient vanishes off V0 "
       "and E(u + phi) >= E(u)", needs_any={"cotan_laplacian", "solve_dirichlet"},
       strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
-def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
+def dirichlet_solution_minimises_the_energy(impl, case: Example):
     V0 = list(case.boundary)
     for route, X, u, I, _, res in _dirichlet_solutions(impl, case, "C3.4 / T3.5"):
         if not I:
@@ -631,7 +631,7 @@ def dirichlet_solution_minimises_the_energy(impl, case: MeshCase):
 @prop("P3.10", "positive weights, u harmonic at i => u(i) in the convex hull of its neighbours: "
       "no direction d has d.u(i) > max_j d.u(j) beyond the bound",
       needs={"cotan_laplacian"}, strategy=lambda: with_functions(acute_meshes()))
-def harmonic_value_in_convex_hull(impl, case: MeshCase):
+def harmonic_value_in_convex_hull(impl, case: Example):
     A = _dense(impl, case, "P3.10")
     X = Exact.of(case)
     vals = np.array([float(x) for x in case.values])
@@ -663,7 +663,7 @@ def harmonic_value_in_convex_hull(impl, case: MeshCase):
       "agrees with the exact angle sum (edges whose weight is within the bound of 0 are undecided "
       "and must be, when the angle sum is exactly pi)",
       needs={"cotan_laplacian"}, strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
-def weight_sign_by_opposite_angles(impl, case: MeshCase):
+def weight_sign_by_opposite_angles(impl, case: Example):
     A = _sparse(impl, case, "E3.12")
     X = Exact.of(case)
     t = X.triangulation
@@ -696,7 +696,7 @@ def weight_sign_by_opposite_angles(impl, case: MeshCase):
 
 @prop("L3.8", "on one triangle, (L V)(i) equals the area gradient 1/2 n x (v_k - v_j) computed "
       "directly (no cotangent)", needs={"cotan_laplacian"}, strategy=single_triangles)
-def area_gradient_of_a_triangle(impl, case: MeshCase):
+def area_gradient_of_a_triangle(impl, case: Example):
     _area_gradient_check("L3.8", impl, case)
 
 
@@ -736,7 +736,7 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
       "area_gradient equals grad A too", needs_any={"cotan_laplacian", "area_gradient"},
       strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes(),
                                  surface_meshes(isolated=True)))
-def area_as_dirichlet_energy(impl, case: MeshCase):
+def area_as_dirichlet_energy(impl, case: Example):
     caps = capabilities(impl)
     if "cotan_laplacian" in caps:
         A = _sparse(impl, case, "T3.9")
@@ -760,7 +760,7 @@ def area_as_dirichlet_energy(impl, case: MeshCase):
       "implementation's L) does not increase the area, within the propagated bound",
       needs={"cotan_laplacian"},
       strategy=lambda: with_boundary(st.one_of(jittered_grids(), obtuse_fans()), mesh_boundary=True))
-def minimal_surface_step_decreases_area(impl, case: MeshCase):
+def minimal_surface_step_decreases_area(impl, case: Example):
     A = _dense(impl, case, "A3.6")
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
@@ -824,7 +824,7 @@ def vertex_area_bounds(X: Exact) -> tuple[np.ndarray, np.ndarray]:
       needs={"vertex_areas_voronoi"},
       strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes(), jittered_grids(), closed_meshes(),
                                  surface_meshes(isolated=True)))
-def vertex_areas_sum_to_the_area(impl, case: MeshCase):
+def vertex_areas_sum_to_the_area(impl, case: Example):
     X = Exact.of(case)
     V, F = case.arrays()
     n = X.n

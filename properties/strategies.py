@@ -23,38 +23,7 @@ from ddg_oracle.reference.errors import NotFlippable
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo, variants
-
-
-@dataclass(frozen=True)
-class SurfaceCase:
-    """A triangulated surface whose topology is known by construction.
-
-    ``positions`` are points in R^3 for every vertex (exact where the surface
-    embeds; for abstract surfaces such as RP^2 they are arbitrary distinct
-    points, since only the combinatorics matter for topology).
-    """
-
-    triangulation: Triangulation
-    positions: tuple
-    expected: Classification
-    recipe: str
-
-    @property
-    def faces(self) -> list[list[int]]:
-        return [list(f) for f in self.triangulation.faces]
-
-    @property
-    def vertices(self) -> list[list[float]]:
-        return [[float(x) for x in p] for p in self.positions]
-
-    def arrays(self):
-        """(V float64 n x 3, F int64 m x 3) numpy arrays, as implementations take them."""
-        return (np.array(self.vertices, dtype=np.float64).reshape(-1, 3),
-                np.array(self.faces, dtype=np.int64).reshape(-1, 3))
-
-    def __repr__(self) -> str:
-        t = self.triangulation
-        return f"SurfaceCase({self.recipe}; V={t.n_vertices}, F={t.n_faces}, F={self.faces})"
+from .example import Example, surface_key
 
 
 def expected_classification(orientable: bool, genus: int, holes: int) -> Classification:
@@ -158,7 +127,7 @@ def _relabel(t: Triangulation, positions, key: int):
 def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
                           max_genus: int = 2, max_holes: int = 2, moves: bool = True,
                           relabel: bool = True):
-    """A :class:`SurfaceCase`: any topology (orientable or not, genus, holes), refined and flipped.
+    """A :class:`Example`: any topology (orientable or not, genus, holes), refined and flipped.
 
     Fixed arguments pin the topology; the rest is drawn.  The combinatorics are
     always a simplicial complex (strongly regular), as array-based libraries expect.
@@ -186,7 +155,7 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
     if relabel:
         key = draw(st.integers(0, 1 << 16))
         t, positions = _relabel(t, positions, key)
-    return SurfaceCase(t, positions, expected_classification(o, g, k), recipe)
+    return Example.of_triangulation(t, positions, expected_classification(o, g, k), recipe)
 
 
 def closed_surfaces(**kw):
@@ -219,7 +188,7 @@ def named_surfaces():
 
     def build(name):
         s = _NAMED[name]()
-        return SurfaceCase(s.triangulation, s.positions, truth[name], name)
+        return Example.of_triangulation(s.triangulation, s.positions, truth[name], name)
 
     return st.sampled_from(sorted(_NAMED)).map(build)
 
@@ -232,130 +201,12 @@ def mobius_strips(max_size: int = 6):
 
     def build(n):
         s = surfaces.mobius_strip(n)
-        return SurfaceCase(s.triangulation, s.positions, truth, f"Möbius strip, {2 * n} faces")
+        return Example.of_triangulation(s.triangulation, s.positions, truth, f"Möbius strip, {2 * n} faces")
 
     return st.integers(3, max_size).map(build)
 
 
 # --- polyhedral surfaces with float coordinates (curvature, Laplacian, mass matrices) ---------
-
-
-@dataclass(frozen=True)
-class CurvatureCase:
-    """A polyhedral surface whose every coordinate is a float (so an implementation sees it
-    exactly), with what is known about it by construction.
-
-    ``chi`` is the Euler characteristic of the surface built (X1.4, CS), ``vertex``
-    and ``kind`` name the distinguished vertex of a vertex star and how it was
-    built ("convex", "planar", "saddle", "folded"), ``params`` what else the
-    construction fixed (e.g. the fold height).  ``isolated``: pairs (index,
-    position) of vertices used by no face, inserted at those indices of the
-    arrays an implementation receives (the surface's vertices fill the other
-    indices in order); the reference never sees them (README, Conventions:
-    an isolated vertex has angle defect 2 pi, no Laplacian row, no area).
-    """
-
-    surface: PolyhedralSurface
-    chi: int
-    recipe: str
-    vertex: int | None = None
-    kind: str | None = None
-    params: tuple = ()
-    isolated: tuple = ()
-    _cache: dict = field(default_factory=dict, compare=False, repr=False)
-
-    @property
-    def triangulation(self) -> Triangulation:
-        return self.surface.triangulation
-
-    @property
-    def layout(self) -> list[int]:
-        """Array index of each surface vertex (the identity without isolated vertices)."""
-        if "layout" not in self._cache:
-            taken = {i for i, _ in self.isolated}
-            n = self.surface.n_vertices + len(taken)
-            self._cache["layout"] = [i for i in range(n) if i not in taken]
-        return self._cache["layout"]
-
-    @property
-    def mesh(self):
-        """(V, F) as lists: exactly what an implementation receives."""
-        if not self.isolated:
-            return self.surface_mesh
-        at = self.layout
-        V = [None] * (len(at) + len(self.isolated))
-        for v, p in zip(at, self.surface_mesh[0]):
-            V[v] = p
-        for i, p in self.isolated:
-            V[i] = [float(x) for x in p]
-        return V, [[at[v] for v in f] for f in self.triangulation.faces]
-
-    @property
-    def surface_mesh(self):
-        """(V, F) of the surface alone (no isolated vertices): the reference's indexing."""
-        return ([[float(x) for x in p] for p in self.surface.positions],
-                [list(f) for f in self.triangulation.faces])
-
-    def arrays(self):
-        """(V float64 n x 3, F int64 m x 3), exactly what an implementation receives: new
-        arrays each call (a drawn case is shared by the checks of every implementation in a
-        worker, see :func:`jittered_surfaces`, and a caller may work in place on them)."""
-        if "arrays" not in self._cache:
-            self._cache["arrays"] = _as_arrays(self.mesh)
-        V, F = self._cache["arrays"]
-        return V.copy(), F.copy()
-
-    def surface_arrays(self):
-        """The float arrays of the surface alone, indexed as the reference (for bounds):
-        new arrays each call, as :meth:`arrays`."""
-        if not self.isolated:
-            return self.arrays()
-        if "surface arrays" not in self._cache:
-            self._cache["surface arrays"] = _as_arrays(self.surface_mesh)
-        V, F = self._cache["surface arrays"]
-        return V.copy(), F.copy()
-
-    @property
-    def content(self) -> tuple:
-        """What the case is, as a hashable value: exact positions, faces, isolated vertices,
-        chi and the distinguished vertex and kind (the key of :meth:`derived`)."""
-        if "content" not in self._cache:
-            self._cache["content"] = _Hashed((tuple(self.surface.positions),
-                                              self.triangulation.faces, self.isolated, self.chi,
-                                              self.vertex, self.kind, self.params))
-        return self._cache["content"]
-
-    def derived(self, name: str, compute):
-        """``compute(self)``, computed once per content in this process (:mod:`.memo`):
-        for values of the example alone (exact reference values, float geometry of the
-        bounds), which every implementation's check of the same example needs."""
-        return memo.shared((name, self.content), lambda: compute(self))
-
-    def __getstate__(self):
-        # the cache (float arrays, exact values) is rebuilt on demand: not pickled, so a
-        # replayable counterexample stays short
-        return {**self.__dict__, "_cache": {}}
-
-    def __repr__(self) -> str:
-        V, F = self.mesh
-        return f"CurvatureCase({self.recipe}; V={len(V)}, F={len(F)}, F={F})"
-
-
-class _Hashed(tuple):
-    """A tuple that computes its hash once: a memo key of exact positions (hashing hundreds
-    of Fractions) is looked up several times per example."""
-
-    def __hash__(self):
-        try:
-            return self._hash
-        except AttributeError:
-            self._hash = tuple.__hash__(self)
-            return self._hash
-
-
-def _as_arrays(mesh):
-    V, F = mesh
-    return (np.array(V, dtype=np.float64).reshape(-1, 3), np.array(F, dtype=np.int64).reshape(-1, 3))
 
 
 def floated(surface: PolyhedralSurface) -> PolyhedralSurface:
@@ -509,7 +360,7 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
 def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
                       intrinsic: bool = False, far: bool = True, wide: bool = True,
                       isolated: bool = True, max_valence: int = MAX_VALENCE):
-    """A :class:`CurvatureCase` from a constructor's surface (X1.4), drawn where bugs hide.
+    """A :class:`Example` from a constructor's surface (X1.4), drawn where bugs hide.
 
     Draws small integers, each 0 for the plain case, and builds exactly:
 
@@ -644,7 +495,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
               ("isolated", len(isolated)), ("reordered", order != 0))
     # one case object per drawn example: its float arrays and content key are computed once
     # for every implementation's task (a case is a value: nothing mutates it)
-    return _built(key + ("case", isolated), lambda: CurvatureCase(s, chi, recipe, params=params,
+    return _built(key + ("case", isolated), lambda: Example.of_surface(s, chi, recipe, params=params,
                                                                   isolated=isolated))
 
 
@@ -661,53 +512,10 @@ def _dyadic(x) -> Fraction:
     return Fraction(float(x))
 
 
-@dataclass(frozen=True)
-class MeshCase:
-    """A mesh with exact dyadic positions (so its float arrays are exact) and how it was built.
-
-    ``boundary``: vertices that a Dirichlet-type property fixes (drawn); ``values``:
-    a drawn function on the vertices (dyadic), ``directions``: drawn test
-    directions in R^3.
-    """
-
-    positions: tuple
-    faces: tuple
-    recipe: str
-    boundary: tuple = ()
-    values: tuple = ()
-    second: tuple = ()
-
-    @property
-    def n(self) -> int:
-        return len(self.positions)
-
-    def arrays(self):
-        V = np.array([[float(x) for x in p] for p in self.positions], dtype=np.float64)
-        return V.reshape(-1, 3), np.array(self.faces, dtype=np.int64).reshape(-1, 3)
-
-    @property
-    def mesh(self):
-        return ([[float(x) for x in p] for p in self.positions], [list(f) for f in self.faces])
-
-    def surface(self) -> PolyhedralSurface:
-        """The exact surface, built once per content in this process (:data:`.memo.DRAWN`;
-        a mesh file's is put there by ``compare.MeshExamples``, which built it already)."""
-        return memo.DRAWN.shared(surface_key(self.positions, self.faces),
-                                 lambda: PolyhedralSurface.from_arrays(self.positions, self.faces))
-
-    def __repr__(self) -> str:
-        return f"MeshCase({self.recipe}; V={self.n}, F={len(self.faces)}, faces={list(self.faces)})"
-
-
-def surface_key(positions, faces) -> tuple:
-    """The :data:`.memo.DRAWN` key of the exact surface of these positions and faces."""
-    return ("mesh surface", tuple(positions), tuple(tuple(f) for f in faces))
-
-
-def mesh_case(positions, faces, recipe) -> MeshCase:
-    """A :class:`MeshCase` of the floats nearest to ``positions`` (2-D points get z = 0)."""
+def mesh_case(positions, faces, recipe) -> Example:
+    """A :class:`Example` of the floats nearest to ``positions`` (2-D points get z = 0)."""
     pts = tuple(tuple(_dyadic(x) for x in (tuple(p) + (0,) * (3 - len(p)))) for p in positions)
-    return MeshCase(pts, tuple(tuple(int(v) for v in f) for f in faces), recipe)
+    return Example.of_mesh(pts, tuple(tuple(int(v) for v in f) for f in faces), recipe)
 
 
 def _orientation_ok(positions, faces) -> bool:
@@ -871,15 +679,15 @@ def closed_meshes(draw):
 
 @st.composite
 def surface_meshes(draw, closed: bool | None = None, isolated: bool = False):
-    """:func:`jittered_surfaces` as a :class:`MeshCase` (not scaled, not moved: the Laplacian
+    """:func:`jittered_surfaces` as a :class:`Example` (not scaled, not moved: the Laplacian
     bounds assume coordinates of the size of the edges): any topology, orientable or not,
     faces reversed, high valence, slivers, several components, isolated and duplicated
-    vertices (``isolated=True``: then :meth:`MeshCase.surface` refuses the case, as the
+    vertices (``isolated=True``: then :meth:`Example.surface` refuses the case, as the
     reference does; properties use :class:`~.laplacian.Exact`), any order.  Shrinks
     towards the tetrahedron."""
     c = draw(jittered_surfaces(closed=closed, intrinsic=True, far=False, isolated=isolated))
     V, F = c.mesh
-    return MeshCase(tuple(tuple(Fraction(x) for x in p) for p in V), tuple(tuple(f) for f in F),
+    return Example.of_mesh(tuple(tuple(Fraction(x) for x in p) for p in V), tuple(tuple(f) for f in F),
                     c.recipe)
 
 
@@ -911,7 +719,7 @@ def scaled_meshes(meshes):
         if k == 0:
             return c
         s = Fraction(2) ** k
-        return MeshCase(tuple(tuple(x * s for x in p) for p in c.positions), c.faces,
+        return Example.of_mesh(tuple(tuple(x * s for x in p) for p in c.positions), c.faces,
                         f"{c.recipe}, scaled by 2**{k}", c.boundary, c.values, c.second)
     return build()
 
@@ -934,7 +742,7 @@ def with_isolated(meshes, max_isolated: int = 2):
             pos.insert(i, p)
             faces = [[w + (w >= i) for w in f] for f in faces]
             spots = [s + (s >= i) for s in spots] + [i]
-        return MeshCase(tuple(pos), tuple(tuple(f) for f in faces),
+        return Example.of_mesh(tuple(pos), tuple(tuple(f) for f in faces),
                         f"{c.recipe}, isolated vertices at {sorted(spots)}")
     return build()
 
@@ -950,7 +758,7 @@ def with_functions(meshes):
         c = draw(meshes)
         f = draw(_values(c.n))
         g = draw(_values(c.n))
-        return MeshCase(c.positions, c.faces, c.recipe, c.boundary, tuple(f), tuple(g))
+        return Example.of_mesh(c.positions, c.faces, c.recipe, c.boundary, tuple(f), tuple(g))
     return build()
 
 
@@ -972,7 +780,7 @@ def with_boundary(meshes, mesh_boundary: bool = False):
                 V0.append(comp[draw(st.integers(0, len(comp) - 1))])
         f = draw(_values(c.n))
         g = draw(_values(c.n))
-        return MeshCase(c.positions, c.faces, c.recipe, tuple(sorted(V0)), tuple(f), tuple(g))
+        return Example.of_mesh(c.positions, c.faces, c.recipe, tuple(sorted(V0)), tuple(f), tuple(g))
     return build()
 
 

@@ -12,22 +12,22 @@ from hypothesis import strategies as st
 from ddg_oracle.reference.combinatorics import connected_sum
 
 from .registry import PropertyFailure, prop
-from .strategies import (SurfaceCase, apply_moves, closed_surfaces, extend_positions,
+from .strategies import (Example, apply_moves, closed_surfaces, extend_positions,
                          mobius_strips, named_surfaces, surface_moves, triangulated_surfaces)
 
 
-def _call(impl, method: str, case: SurfaceCase):
+def _call(impl, method: str, case: Example):
     V, F = case.arrays()
     return getattr(impl, method)(V, F)
 
 
-def _mesh(case: SurfaceCase):
+def _mesh(case: Example):
     return (case.vertices, case.faces)
 
 
 @prop("D1.6", "euler_characteristic(V, F) equals chi = 2 - 2g - k (2 - h - k) of the surface built",
       needs={"euler_characteristic"}, strategy=triangulated_surfaces)
-def euler_characteristic_of_known_surfaces(impl, case: SurfaceCase):
+def euler_characteristic_of_known_surfaces(impl, case: Example):
     chi = int(_call(impl, "euler_characteristic", case))
     if chi != case.expected.euler_characteristic:
         raise PropertyFailure("D1.6", impl, "wrong Euler characteristic", mesh=_mesh(case),
@@ -40,7 +40,7 @@ def euler_characteristic_of_known_surfaces(impl, case: SurfaceCase):
 def euler_characteristic_is_invariant(impl, example):
     case, moves = example
     t = apply_moves(case.triangulation, moves)
-    refined = SurfaceCase(t, extend_positions(t, case.positions), case.expected, case.recipe + f" then {moves}")
+    refined = Example.of_triangulation(t, extend_positions(t, case.positions), case.expected, case.recipe + f" then {moves}")
     before = int(_call(impl, "euler_characteristic", case))
     after = int(_call(impl, "euler_characteristic", refined))
     if before != after:
@@ -50,7 +50,7 @@ def euler_characteristic_is_invariant(impl, example):
 
 @prop("X1.4", "disk 1, sphere 2, torus 0, double torus -2 (and annulus 0, Möbius strip 0)",
       needs={"euler_characteristic"}, strategy=named_surfaces)
-def euler_characteristic_of_named_surfaces(impl, case: SurfaceCase):
+def euler_characteristic_of_named_surfaces(impl, case: Example):
     chi = int(_call(impl, "euler_characteristic", case))
     if chi != case.expected.euler_characteristic:
         raise PropertyFailure("X1.4", impl, f"wrong Euler characteristic of the {case.recipe}",
@@ -66,14 +66,14 @@ def connected_sum_lowers_chi_by_two(impl, example):
     a, b, where = example
     s = a.triangulation
     ab = connected_sum(s, b.triangulation)
-    summed = SurfaceCase(ab, extend_positions(ab, a.positions), a.expected, f"({a.recipe}) # ({b.recipe})")
+    summed = Example.of_triangulation(ab, extend_positions(ab, a.positions), a.expected, f"({a.recipe}) # ({b.recipe})")
     ca, cb, cab = (int(_call(impl, "euler_characteristic", c)) for c in (a, b, summed))
     if cab != ca + cb - 2:
         raise PropertyFailure("CS", impl, "chi(M # N) != chi(M) + chi(N) - 2", mesh=_mesh(summed),
                               expected=ca + cb - 2, observed=cab)
     f = where % s.n_faces
     holed_t = s.remove_face(f)
-    holed = SurfaceCase(holed_t, a.positions, a.expected, a.recipe + f" minus face {f}")
+    holed = Example.of_triangulation(holed_t, a.positions, a.expected, a.recipe + f" minus face {f}")
     ch = int(_call(impl, "euler_characteristic", holed))
     if ch != ca - 1:
         raise PropertyFailure("CS", impl, f"chi(M minus face {f}) != chi(M) - 1",
@@ -83,7 +83,7 @@ def connected_sum_lowers_chi_by_two(impl, example):
 @prop("T1.1 / C1.2", "a closed surface's orientability and genus match how it was built: "
       "g handles (orientable) or h crosscaps (non-orientable)",
       needs={"is_orientable", "genus"}, strategy=lambda: closed_surfaces(max_genus=3))
-def classification_of_closed_surfaces(impl, case: SurfaceCase):
+def classification_of_closed_surfaces(impl, case: Example):
     orientable = bool(_call(impl, "is_orientable", case))
     if orientable != case.expected.orientable:
         raise PropertyFailure("T1.1 / C1.2", impl, "wrong orientability", mesh=_mesh(case),
@@ -99,7 +99,7 @@ def classification_of_closed_surfaces(impl, case: SurfaceCase):
       "non-orientable twin chi = 2 - h - k, h crosscaps)",
       needs={"euler_characteristic", "boundary_loops", "genus"},
       strategy=lambda: st.one_of(mobius_strips(), triangulated_surfaces(max_holes=3)))
-def boundary_loops_and_genus(impl, case: SurfaceCase):
+def boundary_loops_and_genus(impl, case: Example):
     loops = _call(impl, "boundary_loops", case)
     k = len(loops)
     if k != case.expected.boundary_components:

@@ -18,11 +18,11 @@ from fractions import Fraction
 
 import numpy as np
 
-from ddg_oracle.properties.curvature import (CurvatureCase, area_tolerance, corner_tolerances,
+from ddg_oracle.properties.curvature import (Example, area_tolerance, corner_tolerances,
                                   edge_mean_curvature_tolerances, floated, vertex_tolerances)
 from ddg_oracle.properties.delaunay import DelaunayExact
 from ddg_oracle.properties.laplacian import Exact, vertex_area_bounds
-from ddg_oracle.properties.strategies import MeshCase
+from ddg_oracle.properties.strategies import Example
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference import curvature as ref_curvature
 from ddg_oracle.reference import laplacian as ref_laplacian
@@ -60,14 +60,14 @@ def arrays(name):
     return np.array(V, dtype=np.float64), np.array(F, dtype=np.int64)
 
 
-def curvature_case(name) -> CurvatureCase:
+def curvature_case(name) -> Example:
     s = floated(MESHES[name]())
-    return CurvatureCase(s, s.triangulation.euler_characteristic(), name)
+    return Example.of_surface(s, s.triangulation.euler_characteristic(), name)
 
 
-def mesh_case(V, F, recipe="") -> MeshCase:
-    """The MeshCase of exactly these float arrays (positions as dyadic Fractions)."""
-    return MeshCase(tuple(tuple(Fraction(float(x)) for x in p) for p in V),
+def mesh_case(V, F, recipe="") -> Example:
+    """The Example of exactly these float arrays (positions as dyadic Fractions)."""
+    return Example.of_mesh(tuple(tuple(Fraction(float(x)) for x in p) for p in V),
                     tuple(tuple(int(v) for v in f) for f in F), recipe)
 
 
@@ -153,7 +153,7 @@ def check_vertex_areas(impl, name, kind):
 
 
 def check_intrinsic_delaunay_laplacian(impl, case):
-    """``case``: a mesh name or a MeshCase; the truth is the exact operator of the reference's
+    """``case``: a mesh name or a Example; the truth is the exact operator of the reference's
     flip algorithm, the bound D4.8's (flip amplification included)."""
     if isinstance(case, str):
         case = mesh_case(*arrays(case), case)

@@ -141,8 +141,8 @@ def test_CG2_cgal_intrinsic_layout_loses_accuracy_on_a_needle(cgal):
     # needle-2^-30 finds F-cgal-2 every time: test_the_test_vectors_find_cg1_cg2_and_om1)
     from fractions import Fraction
     from ddg_oracle.properties.runner import run_on_example
-    from ddg_oracle.properties.strategies import MeshCase
-    needle = MeshCase(tuple(tuple(Fraction(x) for x in p) for p in V), ((0, 1, 2),), "needle")
+    from ddg_oracle.properties.strategies import Example
+    needle = Example.of_mesh(tuple(tuple(Fraction(x) for x in p) for p in V), ((0, 1, 2),), "needle")
     r = run_on_example(PROPERTIES["A4.13"], cgal, needle, "needle")
     assert r.status == FAILED and "area" in r.failure.message, r.summary()
 

@@ -151,7 +151,7 @@ def test_vector_valued_boundary_values_and_term_limit_guard():
 
 @given(with_boundary(obtuse_meshes()))
 def test_R3_3_cotan_dirichlet_problem_is_uniquely_solvable_despite_negative_weights(case):
-    s = case.surface()
+    s = case.surface
     L = cotan_laplacian(s)
     c = {v: case.values[v] for v in case.boundary}
     f = solve_dirichlet(L, c, term_limit=1 << 14)          # no SingularDirichletProblem
@@ -223,7 +223,7 @@ def _small_surfaces():
     around the unknowns; see ddg_oracle.reference.minimal.)"""
     fan = st.builds(_fan, st.integers(4, 6), st.integers(-2, 3),
                     st.lists(st.integers(-1, 1), min_size=6, max_size=6))
-    grid = planar_meshes(heights=True, min_size=2, max_size=2).map(lambda c: c.surface())
+    grid = planar_meshes(heights=True, min_size=2, max_size=2).map(lambda c: c.surface)
     return st.one_of(fan, grid)
 
 

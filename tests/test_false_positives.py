@@ -52,13 +52,13 @@ def test_an_infinite_cotangent_is_a_tie_only_beyond_float_resolution():
     from fractions import Fraction
     import numpy as np
     from ddg_oracle.properties.runner import FAILED, run_on_example
-    from ddg_oracle.properties.strategies import MeshCase
+    from ddg_oracle.properties.strategies import Example
     e = 2.0 ** -52
     pts = [(0.0, 0.0, 0.0), (1.0, 1.0 + e, 0.0), (1.0 + e, 1.0 + 2 * e, 0.0)]
     u, v = np.subtract(pts[1], pts[0]), np.subtract(pts[2], pts[0])
     assert np.cross(u, v)[2] == 0                   # in floats: degenerate
     exact = [tuple(Fraction(x) for x in p) for p in pts]
-    cap = MeshCase(tuple(exact), ((0, 1, 2),), "cross product below float resolution")
+    cap = Example.of_mesh(tuple(exact), ((0, 1, 2),), "cross product below float resolution")
     r = run_on_example(PROPERTIES["T3.6"], NumpyMesh(), cap, "cap")
     assert r.status == TIE and "beyond float resolution" in str(r.failure)
 
@@ -67,7 +67,7 @@ def test_an_infinite_cotangent_is_a_tie_only_beyond_float_resolution():
             L = super().cotan_laplacian(V, F).tolil()
             L[0, 1] = np.nan
             return L.tocsr()
-    plain = MeshCase(((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),
+    plain = Example.of_mesh(((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),
                       (Fraction(0), Fraction(1), Fraction(0))), ((0, 1, 2),), "triangle")
     r = run_on_example(PROPERTIES["T3.6"], NaNWeights(), plain, "triangle")
     assert r.status == FAILED and "non-finite entries (first: (0, 1))" in str(r.failure)

@@ -57,7 +57,7 @@ def assert_same_cotan(s):
 
 @given(any_meshes())
 def test_fast_cotan_equals_definition_on_generated_meshes(case):
-    assert_same_cotan(case.surface())
+    assert_same_cotan(case.surface)
 
 
 @pytest.mark.parametrize("build", [surfaces.torus, surfaces.cube, surfaces.icosahedron,
@@ -132,7 +132,7 @@ def test_vertex_area_floats_are_the_exact_areas_correctly_rounded(case, data):
     # obtuse, right and acute faces; exact and jittered points; both kinds
     from ddg_oracle.reference.laplacian import (vertex_areas_barycentric, vertex_areas_floats,
                                                 vertex_areas_voronoi)
-    for s in (case.surface(), _jittered(case, data.draw, [4, 20, 60])):
+    for s in (case.surface, _jittered(case, data.draw, [4, 20, 60])):
         assert vertex_areas_floats(s) == [float(a) for a in vertex_areas_voronoi(s)]
         assert vertex_areas_floats(s, "barycentric") == \
             [float(a) for a in vertex_areas_barycentric(s)]
@@ -149,7 +149,7 @@ def test_area_gradient_floats_are_the_exact_gradient_correctly_rounded(case, dat
     # planar meshes (exact zeros at interior vertices: the exact fallback), tiny and
     # ordinary perturbations, 2-D and 4-D points
     from ddg_oracle.reference.areas import area_gradient_floats
-    s = case.surface()
+    s = case.surface
     assert area_gradient_floats(s) == _float_area_gradient(s)
     j = _jittered(case, data.draw, [8, 20, 60, 200])
     assert area_gradient_floats(j) == _float_area_gradient(j)
@@ -242,7 +242,7 @@ def hard_meshes(draw):
                      * Fraction(2) ** -draw(st.sampled_from([10, 40, 200])) * Fraction(2) ** k
                      for x in p) for p in pts]
     try:
-        s = PolyhedralSurface(case.surface().triangulation, pts)
+        s = PolyhedralSurface(case.surface.triangulation, pts)
         s.metric()
     except DegenerateFace:                  # a jitter collapsed a needle: not this test
         assume(False)

@@ -147,7 +147,7 @@ def test_sparse_matrix_is_exact_and_exports_correctly_rounded_floats():
 
 @given(any_meshes())
 def test_cotan_weights_from_vector_cotangents_boundary_halved(case):
-    s = case.surface()
+    s = case.surface
     t = s.triangulation
     w = cotan_weights(s)
     assert set(w) == set(range(t.n_edges))
@@ -211,7 +211,7 @@ def test_non_regular_triangulation_sums_multi_edges_and_ignores_loops():
 
 @given(with_functions(any_meshes()))
 def test_T3_6_energy_of_interpolant_equals_cotan_energy_exactly(case):
-    s = case.surface()
+    s = case.surface
     f, g = list(case.values), list(case.second)
     L = cotan_laplacian(s)
     e = dirichlet_energy_pl(s, f)                               # per-face gradients
@@ -279,7 +279,7 @@ def test_L3_7_proof_step_circumcentric_subtriangles(p, i):
 
 @given(with_functions(obtuse_meshes()))
 def test_R3_3_negative_weights_yet_positive_semidefinite(case):
-    s = case.surface()
+    s = case.surface
     L = cotan_laplacian(s)
     f = list(case.values)
     assert dirichlet_energy(L, f) >= 0                          # = 1/2 integral |grad f|^2
@@ -288,8 +288,8 @@ def test_R3_3_negative_weights_yet_positive_semidefinite(case):
 
 def test_R3_3_obtuse_strategy_produces_negative_weights():
     from hypothesis import find
-    case = find(obtuse_meshes(), lambda c: any(w < 0 for w in cotan_weights(c.surface()).values()))
-    L = cotan_laplacian(case.surface())
+    case = find(obtuse_meshes(), lambda c: any(w < 0 for w in cotan_weights(c.surface).values()))
+    L = cotan_laplacian(case.surface)
     assert any(v > 0 for i, j, v in L.entries() if i != j)      # a positive off-diagonal entry
     assert kernel_dimension(L) == 1
 
@@ -341,7 +341,7 @@ def test_L3_8_area_gradient_cotan_formula_equals_direct_derivative(p, i):
 
 @given(st.one_of(planar_meshes(), planar_meshes(heights=True), closed_meshes(), obtuse_meshes()))
 def test_T3_9_area_is_the_dirichlet_energy_of_the_coordinates(case):
-    s = case.surface()
+    s = case.surface
     area = s.metric().total_area()
     assert area_as_dirichlet_energy(s) == area
     printed = sum((w * sum((a - b) ** 2 for a, b in zip(s.positions[i], s.positions[j]))
@@ -368,7 +368,7 @@ def test_T3_9_misprint_evidence_on_the_right_triangle():
 
 @given(st.one_of(obtuse_meshes(), planar_meshes()))
 def test_E3_12_weight_sign_from_the_angle_sum(case):
-    s = case.surface()
+    s = case.surface
     t = s.triangulation
     for e, w in cotan_weights(s).items():
         assert (w > 0) - (w < 0) == weight_sign_by_angles(s, e)
@@ -401,7 +401,7 @@ def _shoelace(pts):
 
 @given(st.one_of(planar_meshes(), obtuse_meshes(), closed_meshes(), acute_meshes()))
 def test_mass_matrices_sum_to_the_area_and_match_the_circumcentric_split(case):
-    s = case.surface()
+    s = case.surface
     total = s.metric().total_area()
     vor, bar = vertex_areas_voronoi(s), vertex_areas_barycentric(s)
     assert sum(vor, Fraction(0)) == total == sum(bar, Fraction(0))

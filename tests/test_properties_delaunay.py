@@ -108,9 +108,9 @@ def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
     import numpy as np
     from ddg_oracle.oracles.libigl import Libigl
     from ddg_oracle.properties.delaunay import DelaunayExact, laplace_beltrami_operator
-    from ddg_oracle.properties.strategies import MeshCase
+    from ddg_oracle.properties.strategies import Example
     s = surfaces.torus(5, 4)
-    case = MeshCase(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")
+    case = Example.of_mesh(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")
     A = Libigl().intrinsic_delaunay_laplacian(*case.arrays()).toarray()
     D = DelaunayExact(case)
     other = (np.abs(A) > 0) & (D.Lf == 0) & ~np.eye(case.n, dtype=bool)
@@ -147,7 +147,7 @@ def test_the_intrinsic_properties_draw_non_orientable_surfaces():
               suppress_health_check=list(HealthCheck))
     @given(non_orientable_meshes())
     def run(case):
-        assert not case.surface().triangulation.is_orientable()
+        assert not case.surface.triangulation.is_orientable()
         seen.add(case.recipe.split(",")[0].split(" at ")[0])
         for pid in ("A4.13", "D4.8 / R4.9"):
             r = run_on_example(PROPERTIES[pid], ReferenceImplementation(), case, case.recipe)

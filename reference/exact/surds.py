@@ -936,7 +936,9 @@ def simplest(x):
     >>> simplest(sqrt(2) * sqrt(8)), simplest(sqrt(2)), simplest(3)
     (Fraction(4, 1), Surd('sqrt(2)'), 3)
     """
-    if type(x) is Surd and not x._base:
+    # is_rational, not _base: a lazily canonical Surd (cotangents.CotanSum) knows it is
+    # irrational without computing its canonical form
+    if isinstance(x, Surd) and x.is_rational():
         return x._terms.get(1, _ZERO)
     return x
 
