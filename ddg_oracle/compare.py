@@ -168,7 +168,7 @@ class MeshExamples:
     @property
     def surface(self):
         from ddg_oracle.properties import memo
-        from ddg_oracle.properties.strategies import surface_key
+        from ddg_oracle.properties.example import surface_key
         from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
         def build():
@@ -313,10 +313,10 @@ def _epsilon_of(impl):
 
 
 def _worst(err: np.ndarray, bound: np.ndarray):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
-    k = tuple(int(x) for x in np.unravel_index(int(np.argmax(r)), r.shape))
-    return k, float(r[k]), int(np.sum(r > 1))
+    """(index, largest err / bound, how many exceed their bound)."""
+    from ddg_oracle.properties.harness import ratios, worst
+    k, ratio = worst(err, bound)
+    return k, ratio, int(np.sum(ratios(err, bound) > 1))
 
 
 def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
@@ -355,7 +355,7 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
             if method == "area_gradient":       # Exact.area_gradient_bound holds it
                 expected_cache[method] = None
             elif method == "area" and facts["faces"] > EXACT_SUM_LIMIT:
-                from ddg_oracle.properties.laplacian import total_area_view
+                from ddg_oracle.properties.bounds import total_area_view
                 expected_cache[method] = total_area_view(ex.surface.metric())
             else:
                 expected_cache[method] = getattr(reference, method)(V, F)
@@ -425,8 +425,8 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
         return Comparison(quantity, name, "agrees", worst=0.0, error=0.0,
                           bound=float(bound[i, j]), where=f"entry {(i, j)}",
                           expected=float(W.data[0]), observed=float(A[i, j]), elements=elements)
-    from ddg_oracle.properties.laplacian import _at
-    b = _at(bound, err.row, err.col)
+    from ddg_oracle.properties.harness import entries_at
+    b = entries_at(bound, err.row, err.col)
     (k,), ratio, over = _worst(err.data, b)
     i, j = int(err.row[k]), int(err.col[k])
     return Comparison(quantity, name, "agrees" if over == 0 else "DIFFERS", worst=ratio,
@@ -450,8 +450,8 @@ def derived_bound(method: str, ex: MeshExamples, want=None):
     (``edge_mean_curvature``).  ``want``: the reference's ``area`` answer (a (total,
     widening) pair above :data:`EXACT_SUM_LIMIT` faces).  Used by ``compare`` and by the
     test vectors (:mod:`ddg_oracle.vectors`)."""
-    from ddg_oracle.properties import curvature as cv
-    from ddg_oracle.properties.laplacian import Exact, vertex_area_bounds
+    from ddg_oracle.properties import bounds as cv
+    from ddg_oracle.properties.harness import Exact
     if method in ("corner_angles", "angle_defects", "edge_mean_curvature", "area"):
         case = ex.curvature_case()
         if method == "corner_angles":
@@ -470,7 +470,7 @@ def derived_bound(method: str, ex: MeshExamples, want=None):
         return X.Bs
     if method == "area_gradient":           # T3.9's bound on an implementation's own gradient
         return X.area_gradient_bound(ex.mesh_case().arrays()[0])[1]
-    vb, bb = vertex_area_bounds(X)
+    vb, bb = X.vertex_area_bounds
     return vb if method == "vertex_areas_voronoi" else bb
 
 
@@ -508,11 +508,11 @@ def _compare_one(method, name, got, want, ex) -> Comparison:
         return _numeric(method, name, [float(got)], [float(total)], bound, lambda k: "total")
     if method in ("cotan_laplacian", "intrinsic_delaunay_laplacian"):
         from ddg_oracle.properties.delaunay import DelaunayExact
-        from ddg_oracle.properties.laplacian import Exact
+        from ddg_oracle.properties.harness import Exact
         exact = (Exact if method == "cotan_laplacian" else DelaunayExact).of(ex.mesh_case())
         return _matrix(method, name, got, exact.Ls, bound)
     if method == "area_gradient":
-        from ddg_oracle.properties.laplacian import Exact
+        from ddg_oracle.properties.harness import Exact
         exact = Exact.of(ex.mesh_case()).area_gradient_bound(ex.mesh_case().arrays()[0])[0]
         return _numeric(method, name, np.asarray(got, dtype=np.float64), exact, bound,
                         lambda k: f"vertex {k[0]}, coordinate {k[1]}")

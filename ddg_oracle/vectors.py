@@ -464,7 +464,7 @@ def _boundary_edges(F) -> set:
 
 def _flags_expected(answer, ex) -> dict:
     from ddg_oracle.properties.delaunay import cot_sum_with_bound
-    from ddg_oracle.properties.laplacian import Exact
+    from ddg_oracle.properties.harness import Exact
     out = {"value": np.asarray(answer, dtype=bool).tolist()}
     for k, e in EPSILONS.items():
         with at_machine_epsilon(e):
@@ -481,7 +481,7 @@ def _flags_expected(answer, ex) -> dict:
 
 
 def _dirichlet_expected(req, answer, ex, r) -> dict:
-    from ddg_oracle.properties.laplacian import Exact
+    from ddg_oracle.properties.harness import Exact
     from ddg_oracle.reference.dirichlet import solve_dirichlet
     if r.isolated:
         raise _NotApplicable

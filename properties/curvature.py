@@ -7,23 +7,15 @@ example drawn from its strategy.  Expected values come from the exact reference
 implementation receives* (every float is a rational), or from how the example
 was built (chi, the kind of a vertex star, a support-function integral).
 
-Tolerances are derived, never guessed.  Let eps = 2**-52.  An angle alpha
-computed in float64 from float64 points -- by atan2(|a x b|, a . b), by acos of a
-normalised dot product, or by the law of cosines -- is obtained from a cosine
-or a ratio with relative error at most about 7 eps, plus <= 2 sqrt(3) eps from the
-edge-vector subtractions; since d alpha = d cos(alpha) / sin(alpha) the error is
-at most ``C_ANGLE * eps * (1 + 1/sin(alpha))`` with C_ANGLE = 16 (a margin of
-about 2 over these counts).  Sums of n float terms add gamma_n * sum |terms|,
-gamma_n = n eps / (1 - n eps) (Higham, recursive summation).  When points were
-rounded to floats after an exact motion, each edge vector carries a further
-relative error of up to 2 sqrt(3) eps |x| / |edge| ("input rounding").  Every
-failure message reports the observed error in units of its bound.
+Tolerances are derived, never guessed: the error model of angles, angle defects,
+dihedral angles, mean curvature and areas computed from float points is
+:mod:`ddg_oracle.properties.bounds`'.  Every failure message reports the observed error in
+units of its bound.
 """
 
 from __future__ import annotations
 
 import math
-import random
 
 from fractions import Fraction
 
@@ -32,37 +24,26 @@ from hypothesis import assume, strategies as st
 
 from ddg_oracle.reference import curvature as ref
 from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.combinatorics import Triangulation, next_corner, prev_corner
+from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
+from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
+                     float_geometry, gamma, vertex_tolerances)
 from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement, prop
 from .strategies import Example, floated, jittered_surfaces
+from . import variants
 from .variants import circle_point
-
-C_ANGLE = 16.0                               # see the module docstring
-
-
-def gamma(n: int) -> float:
-    """Higham's gamma_n = n eps / (1 - n eps): relative error bound of a sum of n floats."""
-    return n * eps() / (1 - n * eps())
 
 
 # --- examples -------------------------------------------------------------------------------------
 
 
-def _relabel(surface: PolyhedralSurface, key: int):
-    """(relabelled surface, perm) with vertex v renamed perm[v]; key 0 is the identity."""
-    n = surface.n_vertices
-    perm = list(range(n))
-    if key:
-        random.Random(key).shuffle(perm)
-    inverse = [0] * n
-    for v, w in enumerate(perm):
-        inverse[w] = v
-    t = surface.triangulation.relabelled(perm)
-    return PolyhedralSurface(t, [surface.positions[inverse[w]] for w in range(n)]), perm
+def _relabel_surface(surface: PolyhedralSurface, key: int):
+    """(relabelled surface, perm) with vertex v renamed perm[v] (:func:`.variants.relabelled`)."""
+    t, positions, perm = variants.relabelled(surface.triangulation, surface.positions, key)
+    return PolyhedralSurface(t, positions), perm
 
 
 @st.composite
@@ -185,85 +166,6 @@ def _reference_mean_curvature(case: Example):
     return case.derived("H", compute)
 
 
-def _geometry(case: Example):
-    """Float geometry for the *tolerances* only (conditioning need not be exact): per corner
-    the angle and 1/sin of it, per face the area, per interior edge (i, j) its length, its
-    dihedral angle theta and its two faces.  Expected values never come from here."""
-    return case.derived("geometry", _float_geometry)
-
-
-def _float_geometry(case: Example) -> dict:
-    V, F = case.surface_arrays()
-    X = V[F]
-    cross = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
-    twice_area = np.linalg.norm(cross, axis=1)
-    angles = np.empty(F.shape)
-    inv_sin = np.empty(F.shape)
-    for k in range(3):
-        a, b = X[:, next_corner(k)] - X[:, k], X[:, prev_corner(k)] - X[:, k]
-        la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
-        angles[:, k] = np.arctan2(twice_area, (a * b).sum(axis=1))
-        inv_sin[:, k] = la * lb / twice_area
-    normal = cross / twice_area[:, None]
-    face_of = {}
-    for f, face in enumerate(F.tolist()):
-        for k in range(3):
-            face_of[(face[k], face[next_corner(k)])] = f
-    edges = {}
-    for (i, j), f in face_of.items():
-        g = face_of.get((j, i))
-        if g is not None and i < j:
-            e = V[j] - V[i]
-            length = float(np.linalg.norm(e))
-            theta = math.atan2(float(np.cross(normal[f], normal[g]) @ e) / length,
-                               float(normal[f] @ normal[g]))
-            edges[(i, j)] = (length, theta, f, g)
-    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges)
-
-
-def _input_scale(case: Example) -> np.ndarray:
-    """Per corner: max |x| over the face's vertices / the shorter adjacent edge (input rounding)."""
-    V, F = case.surface_arrays()
-    X = V[F]                                               # (m, 3, 3)
-    size = np.abs(X).max(axis=(1, 2))
-    out = np.empty(F.shape, dtype=np.float64)
-    for c in range(3):
-        a = np.linalg.norm(X[:, next_corner(c)] - X[:, c], axis=1)
-        b = np.linalg.norm(X[:, prev_corner(c)] - X[:, c], axis=1)
-        out[:, c] = size / np.minimum(a, b)
-    return out
-
-
-def corner_tolerances(case: Example, input_rounding: bool = False) -> np.ndarray:
-    """(m, 3) bounds on |computed angle - exact angle| (see the module docstring).
-
-    C_ANGLE eps (1 + 1/sin alpha); with ``input_rounding`` also
-    4 sqrt(3) eps (|x| / |edge|) (1 + 1/sin alpha) for points rounded to floats.
-    """
-    cond = 1 + _geometry(case)["inv_sin"]                  # 1 + 1/sin(alpha)
-    tol = C_ANGLE * eps() * cond
-    if input_rounding:
-        tol = tol + 4 * math.sqrt(3) * eps() * _input_scale(case) * cond
-    return tol
-
-
-def vertex_tolerances(case: Example, corner_tol: np.ndarray) -> np.ndarray:
-    """(n,) bounds on |computed K(v) - exact K(v)|: the corner bounds at v plus the rounding
-    of 2 pi - (sum of k angles), gamma_(k+1) (2 pi + sum of the angles)."""
-    t = case.triangulation
-    angles = _geometry(case)["angles"]
-    n = t.n_vertices
-    tol = np.zeros(n)
-    mass = np.full(n, 2 * math.pi)
-    count = np.ones(n, dtype=np.int64)
-    for f, face in enumerate(t.faces):
-        for c, v in enumerate(face):
-            tol[v] += corner_tol[f, c]
-            mass[v] += angles[f, c]
-            count[v] += 1
-    return tol + np.array([gamma(int(k)) for k in count]) * mass
-
-
 def _call(impl, method: str, case: Example):
     V, F = case.arrays()              # new arrays: an implementation may work in place
     return getattr(impl, method)(V, F)
@@ -352,7 +254,7 @@ def gauss_bonnet(impl, case: Example):
       strategy=lambda: st.tuples(rational_motions(), st.integers(0, 1 << 16)))
 def cube_angle_defects(impl, example):
     (R, tr), key = example
-    moved, _ = _relabel(ref.rigid_motion(surfaces.cube(), R, tr), key)
+    moved, _ = _relabel_surface(ref.rigid_motion(surfaces.cube(), R, tr), key)
     case = Example.of_surface(floated(moved), 2, f"unit cube moved by {R}, {tr}, relabelled {key}")
     K = _defects(impl, case, "X2.1")
     tol = vertex_tolerances(case, corner_tolerances(case, input_rounding=True))
@@ -377,7 +279,7 @@ def angle_defects_are_invariant(impl, example):
     case, (R, tr), key = example
     motion = (tuple(map(tuple, R)), tuple(tr), key)
     moved, perm = case.derived(("moved", motion),
-                               lambda c: _relabel(floated(ref.rigid_motion(c.surface, R, tr)), key))
+                               lambda c: _relabel_surface(floated(ref.rigid_motion(c.surface, R, tr)), key))
     other = Example.of_surface(moved, case.chi, case.recipe + f", moved, relabelled {key}")
     K1, K2 = _defects(impl, case, "T2.5"), _defects(impl, other, "T2.5")
     tol1 = vertex_tolerances(case, corner_tolerances(case))
@@ -536,39 +438,6 @@ def corner_angles_from_edge_lengths(impl, case: Example):
 # --- mean curvature (D2.3, T2.7, R2.5) ------------------------------------------------------------
 
 
-def face_condition(case: Example) -> np.ndarray:
-    """(m,) max over the corners of 1/sin(alpha): the conditioning of a face normal."""
-    return _geometry(case)["inv_sin"].max(axis=1)
-
-
-def edge_mean_curvature_tolerances(case: Example) -> dict:
-    """{(i, j): bound on |computed H(e) - exact H(e)|}.
-
-    A face normal from float points has direction error <= C_ANGLE eps kappa_f
-    (kappa_f = max 1/sin of the face's angles), so the cosine and the sine of
-    theta are off by delta = C_ANGLE eps (1 + kappa_f + kappa_g); theta recovered
-    from them (atan2, or acos near 0 and pi) is off by at most
-    2 delta / max(|sin theta|, sqrt(delta)).  Then H = theta l / 2 adds the
-    length's and the product's rounding: (tol_theta l + |theta| 2 eps l) / 2 + eps |H|.
-    """
-    kappa = face_condition(case)
-    out = {}
-    for key, (length, theta, f, g) in _geometry(case)["edges"].items():
-        delta = C_ANGLE * eps() * (1 + kappa[f] + kappa[g])
-        tol_theta = 2 * delta / max(abs(math.sin(theta)), math.sqrt(delta))
-        H = theta * length / 2
-        out[key] = (tol_theta * length + abs(theta) * 2 * eps() * length) / 2 + eps() * abs(H)
-    return out
-
-
-def area_tolerance(case: Example) -> float:
-    """Bound on |computed total area - exact area|: each face area from float points is off by
-    at most C_ANGLE eps A_f (1 + kappa_f), the sum adds gamma_m sum A_f."""
-    cond = 1 + face_condition(case)
-    areas = [float(a) for a in _geometry(case)["area"]]
-    return sum(C_ANGLE * eps() * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
-
-
 def _edge_dict(impl, case, pid):
     raw = _call(impl, "edge_mean_curvature", case)
     back = {w: v for v, w in enumerate(case.layout)}       # array index -> surface vertex
@@ -592,7 +461,7 @@ def edge_mean_curvature_matches_reference(impl, case: Example):
     for key, h in expected.items():
         err = abs(H[key] - h)
         if not err <= tol[key]:
-            length, theta, _, _ = _geometry(case)["edges"][key]
+            length, theta, _, _ = float_geometry(case)["edges"][key]
             raise PropertyFailure("D2.3", impl, f"H(e) off: {_units(err, tol[key])}", mesh=case.mesh,
                                   element=f"edge {key}, theta ~ {theta:.6g}, l ~ {length:.6g}",
                                   expected=h, observed=H[key], bound=tol[key])

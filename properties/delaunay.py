@@ -44,8 +44,9 @@ from ddg_oracle.reference.intrinsic import flip
 from ddg_oracle.reference.laplacian import cotan_laplacian
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from .laplacian import (K_COT, Exact, _at, _dense, _fail, _record, _solve, _sparse, _worst,
-                        _worst_sparse, entry_bounds, gamma)
+from .bounds import K_COT, entry_bounds, gamma
+from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
+                      implementation_matrix, record, worst, worst_sparse)
 from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
                          single_triangles)
@@ -183,7 +184,7 @@ class DelaunayExact:
         if not inner:
             return B
         ends = np.array([t.edge_vertices(e) for e in inner], dtype=np.int64).reshape(-1, 2)
-        b = _at(B, ends[:, 0], ends[:, 1])
+        b = entries_at(B, ends[:, 0], ends[:, 1])
         zero = [(e, float(be)) for e, be in zip(inner, b) if abs(w[e]) <= be]
         for e, _ in zero:
             h, tw = t.edge_halfedges(e)
@@ -203,7 +204,7 @@ class DelaunayExact:
             J = np.tile(vs, len(vs))
             off = I != J
             I, J = I[off], J[off]
-            have = _at(B, I, J)
+            have = entries_at(B, I, J)
             new = have == 0
             rows.extend(I[new])
             cols.extend(J[new])
@@ -218,10 +219,10 @@ def _compare(pid, impl, case, A, exact, B, what):
     import scipy.sparse as sp
     A = sp.csr_matrix(A)
     err = abs(A - exact).tocoo()
-    _record(pid, err.data, _at(B, err.row, err.col))
-    (i, j), r = _worst_sparse(err, B)
+    record(pid, err.data, entries_at(B, err.row, err.col))
+    (i, j), r = worst_sparse(err, B)
     if r > 1:
-        _fail(pid, impl, case, f"{what} entry differs from the exact value by {r:.3g} x the "
+        fail(pid, impl, case, f"{what} entry differs from the exact value by {r:.3g} x the "
               f"bound {float(B[i, j]):.3g}", element=(int(i), int(j)),
               expected=float(exact[i, j]), observed=float(A[i, j]))
 
@@ -352,7 +353,7 @@ def locally_delaunay_edges(impl, case: Example):
     t = X.triangulation
     got = np.asarray(impl.is_locally_delaunay(*case.arrays()))
     if got.shape != (t.n_faces, 3):
-        _fail(pid, impl, case, "is_locally_delaunay has the wrong shape",
+        fail(pid, impl, case, "is_locally_delaunay has the wrong shape",
               expected=(t.n_faces, 3), observed=got.shape)
     tie = None
     for f in range(t.n_faces):
@@ -366,7 +367,7 @@ def locally_delaunay_edges(impl, case: Example):
             if abs(s) <= bound:                     # an (exact or near) tie: rounding decides
                 tie = tie or (f, c, e, want, bool(got[f, c]), s, bound)
                 continue
-            _fail(pid, impl, case, f"edge {t.edge_vertices(e)} opposite corner {c} of face {f} "
+            fail(pid, impl, case, f"edge {t.edge_vertices(e)} opposite corner {c} of face {f} "
                   f"is {'' if want else 'not '}Delaunay (cot sum {s:.6g}, the bound {bound:.3g})",
                   element=t.edge_vertices(e), expected=want, observed=bool(got[f, c]))
     if tie:
@@ -381,7 +382,7 @@ def locally_delaunay_edges(impl, case: Example):
       "(weights within the bound of 0 are ties)",
       needs={"cotan_laplacian"}, strategy=delaunay_meshes)
 def nonnegative_weights_iff_delaunay(impl, case: Example):
-    A = _dense(impl, case, "P4.10")
+    A = implementation_dense(impl, case, "P4.10")
     X = Exact.of(case)
     n = X.n
     off = X.adjacent & ~np.eye(n, dtype=bool)
@@ -390,12 +391,12 @@ def nonnegative_weights_iff_delaunay(impl, case: Example):
     if np.any(clear_neg):                           # not Delaunay: some weight must be negative
         i, j = np.argwhere(clear_neg)[0]
         if W[i, j] >= 0:
-            _fail("P4.10", impl, case, "a non-Delaunay edge has a nonnegative weight",
+            fail("P4.10", impl, case, "a non-Delaunay edge has a nonnegative weight",
                   element=(int(i), int(j)), expected=float(exact[i, j]), observed=float(W[i, j]))
     low = off & (W < -X.B) & (exact >= 0)
     if np.any(low):
         i, j = np.argwhere(low)[0]
-        _fail("P4.10", impl, case, "a Delaunay edge has a negative weight beyond the bound",
+        fail("P4.10", impl, case, "a Delaunay edge has a negative weight beyond the bound",
               element=(int(i), int(j)), expected=float(exact[i, j]), observed=float(W[i, j]))
 
 
@@ -405,14 +406,14 @@ def nonnegative_weights_iff_delaunay(impl, case: Example):
 def laplace_beltrami_operator(impl, case: Example):
     pid = "D4.8 / R4.9"
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
-    A = _sparse(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     C = A.tocoo()
-    neg = (_at(D.interior_s, C.row, C.col) != 0) & (C.data > _at(D.Bs, C.row, C.col))
+    neg = (entries_at(D.interior_s, C.row, C.col) != 0) & (C.data > entries_at(D.Bs, C.row, C.col))
     if np.any(neg):                                 # a weight -A_ij clearly below 0
         k = int(np.argmax(neg))
         i, j = int(C.row[k]), int(C.col[k])
-        _fail(pid, impl, case, "negative weight in the Laplace-Beltrami operator",
+        fail(pid, impl, case, "negative weight in the Laplace-Beltrami operator",
               element=(i, j), expected=float(D.Ls[i, j]), observed=float(A[i, j]))
     _compare(pid, impl, case, A, D.Ls, D.Bs, "Laplace-Beltrami")
 
@@ -422,12 +423,12 @@ def laplace_beltrami_operator(impl, case: Example):
       needs={"intrinsic_delaunay_laplacian"}, strategy=two_triangulations)
 def unique_delaunay_operator(impl, pair):
     c1, c2 = pair
-    A1 = _dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
-    A2 = _dense(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
+    A1 = implementation_dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
+    A2 = implementation_dense(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
     B = DelaunayExact.of(c1).B + DelaunayExact.of(c2).B
     err = np.abs(A1 - A2)
-    _record("T4.5", err, B)
-    (i, j), r = _worst(err, B)
+    record("T4.5", err, B)
+    (i, j), r = worst(err, B)
     if r > 1:
         # the mesh is (V, F) of the second triangulation, the first's faces in the message
         raise PropertyFailure("T4.5", impl, f"the operators of two triangulations of one point "
@@ -441,16 +442,16 @@ def unique_delaunay_operator(impl, pair):
       "the Dirichlet energy of every function (Weyl bound from both entry bounds)",
       needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
 def delaunay_minimises_the_energy(impl, case: Example):
-    L = _dense(impl, case, "T4.21")
-    D = _dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
+    L = implementation_dense(impl, case, "T4.21")
+    D = implementation_dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
     De = DelaunayExact.of(case)
     M = (L - D + (L - D).T) / 2
     lam = float(np.linalg.eigvalsh(M)[0])
     tol = float(np.linalg.norm(De.X.B) + np.linalg.norm(De.B)
                 + gamma(4 * De.X.n) * (np.linalg.norm(L) + np.linalg.norm(D)))
-    _record("T4.21", max(-lam, 0.0), tol)
+    record("T4.21", max(-lam, 0.0), tol)
     if lam < -tol:
-        _fail("T4.21", impl, case, f"L_T - L_Delaunay has the eigenvalue {lam:.6g} < -{tol:.3g}",
+        fail("T4.21", impl, case, f"L_T - L_Delaunay has the eigenvalue {lam:.6g} < -{tol:.3g}",
               expected=">= 0", observed=lam)
 
 
@@ -458,7 +459,7 @@ def delaunay_minimises_the_energy(impl, case: Example):
       "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
       needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
 def valence_one_vertex(impl, case: Example):
-    A = _dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
         raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
@@ -468,14 +469,14 @@ def valence_one_vertex(impl, case: Example):
 @prop("L4.18", "h(T) = 8 sum_i E(phi_i) = 4 trace(L): the diagonal of cotan_laplacian sums to a "
       "quarter of the exact harmonic index", needs={"cotan_laplacian"}, strategy=delaunay_meshes)
 def harmonic_index_is_the_trace(impl, case: Example):
-    A = _dense(impl, case, "L4.18")
+    A = implementation_dense(impl, case, "L4.18")
     X = Exact.of(case)
     exact = float(harmonic_index(X.metric))
     got = 4 * float(np.trace(A))
     bound = 4 * float(np.trace(X.B)) + gamma(X.n) * abs(got)
-    r = _record("L4.18", abs(got - exact), bound)
+    r = record("L4.18", abs(got - exact), bound)
     if r > 1:
-        _fail("L4.18", impl, case, f"4 trace(L) is not h(T) ({r:.3g} x the bound)",
+        fail("L4.18", impl, case, f"4 trace(L) is not h(T) ({r:.3g} x the bound)",
               expected=exact, observed=got)
 
 
@@ -487,9 +488,9 @@ def harmonic_index_from_angles(impl, case: Example):
     got = float(4 * np.sum(1 / np.tan(ang)))
     exact = float(harmonic_index(X.metric))
     bound = 4 * float(np.sum(X.beta)) + gamma(ang.size) * 4 * float(np.sum(np.abs(X.cot)))
-    r = _record("D4.7 / L4.17", abs(got - exact), bound)
+    r = record("D4.7 / L4.17", abs(got - exact), bound)
     if r > 1:
-        _fail("D4.7 / L4.17", impl, case, f"4 sum cot(angles) is not h(T) ({r:.3g} x the bound)",
+        fail("D4.7 / L4.17", impl, case, f"4 sum cot(angles) is not h(T) ({r:.3g} x the bound)",
               expected=exact, observed=got)
 
 
@@ -499,10 +500,10 @@ def _triangulation_result(impl, case: Example, pid: str):
     F2, l2 = (np.asarray(x) for x in out)
     m = len(case.faces)
     if F2.shape != (m, 3) or l2.shape != (m, 3):
-        _fail(pid, impl, case, "intrinsic_delaunay_triangulation: wrong shapes",
+        fail(pid, impl, case, "intrinsic_delaunay_triangulation: wrong shapes",
               expected=((m, 3), (m, 3)), observed=(F2.shape, l2.shape))
     if F2.min() < 0 or F2.max() >= case.n or not np.all(np.isfinite(l2)) or np.any(l2 <= 0):
-        _fail(pid, impl, case, "intrinsic_delaunay_triangulation: bad indices or lengths")
+        fail(pid, impl, case, "intrinsic_delaunay_triangulation: bad indices or lengths")
     return F2.astype(int), l2.astype(float)
 
 
@@ -549,14 +550,14 @@ def flip_algorithm_result(impl, case: Example):
               np.array([[float(x) for x in face] for face in corner_angles(D.X.surface)]).ravel())
     tol += np.array([K_COT * eps() * sum(D.X.rho[f] for f, face in enumerate(case.faces)
                                           if v in face) for v in range(case.n)])
-    (v,), r = _worst(np.abs(sums - exact), tol)
-    _record(pid, np.abs(sums - exact), tol)
+    (v,), r = worst(np.abs(sums - exact), tol)
+    record(pid, np.abs(sums - exact), tol)
     if r > 1:
-        _fail(pid, impl, case, f"the angle sum at vertex {v} changed ({r:.3g} x the bound): the "
+        fail(pid, impl, case, f"the angle sum at vertex {v} changed ({r:.3g} x the bound): the "
               "metric is not kept", element=v, expected=float(exact[v]), observed=float(sums[v]))
     total, want = float(area.sum()), float(D.X.metric.total_area())
     if abs(total - want) > total_area_bound(area, rho, amp):
-        _fail(pid, impl, case, "the total area changed", expected=want, observed=total)
+        fail(pid, impl, case, "the total area changed", expected=want, observed=total)
     # Delaunay: pair the two corners opposite each unordered vertex pair used exactly twice
     opposite: dict[tuple[int, int], list[tuple[int, int]]] = {}
     for f, (i, j, k) in enumerate(F2):
@@ -568,7 +569,7 @@ def flip_algorithm_result(impl, case: Example):
             continue                                # boundary, or a multi-edge: ambiguous
         s = sum(cot[f, c] for f, c in corners)
         if s < -sum(beta[f, c] for f, c in corners) - 2 * eps() * abs(s):
-            _fail(pid, impl, case, f"edge {pair} of the result is not Delaunay (cot sum {s:.6g})",
+            fail(pid, impl, case, f"edge {pair} of the result is not Delaunay (cot sum {s:.6g})",
                   element=pair, expected=">= 0", observed=float(s))
 
 
@@ -583,12 +584,12 @@ def harmonic_index_decreases(impl, case: Example):
     before = float(harmonic_index(D.X.metric))
     after = float(D.log[-1].h_after) if D.log else before
     bound = 4 * float(np.sum(D.bounds.beta)) + gamma(l2.size) * abs(h)
-    r = _record("C4.19", max(h - before, 0.0), bound)
+    r = record("C4.19", max(h - before, 0.0), bound)
     if r > 1:
-        _fail("C4.19", impl, case, f"h increased from {before:.6g} to {h:.6g}",
+        fail("C4.19", impl, case, f"h increased from {before:.6g} to {h:.6g}",
               expected=f"<= {before}", observed=h)
     if after < before - 2 * bound and h >= before:
-        _fail("C4.19", impl, case, "the input is clearly not Delaunay, yet h did not decrease",
+        fail("C4.19", impl, case, "the input is clearly not Delaunay, yet h did not decrease",
               expected=after, observed=h)
 
 
@@ -603,7 +604,7 @@ def harmonic_index_bounds_the_longest_edge(impl, case: Example):
     D = DelaunayExact.of(case)
     bound = (4 * float(np.sum(D.bounds.beta)) + gamma(l2.size) * abs(h)) * A + gamma(8) * lhs
     if lhs - h * A > bound:
-        _fail("L4.20 / C4.13", impl, case, "the longest edge exceeds sqrt(h A)",
+        fail("L4.20 / C4.13", impl, case, "the longest edge exceeds sqrt(h A)",
               expected=f"l^2 <= {h * A}", observed=lhs)
 
 
@@ -619,23 +620,23 @@ def _interior(X: Exact) -> np.ndarray:
       strategy=lambda: planar_meshes(min_size=2))
 def flat_meshes_are_minimal(impl, case: Example):
     pid = "D4.9 / R4.10"
-    A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
     got = A @ V
     bound = (D.B + gamma(3 * D.X.n) * np.abs(A)) @ np.abs(V)
     err = np.where(inner[:, None], np.abs(got), 0)
-    (v, k), r = _worst(err, bound)
-    _record(pid, err, bound)
+    (v, k), r = worst(err, bound)
+    record(pid, err, bound)
     if r > 1:
-        _fail(pid, impl, case, f"(L x)({v}) is not 0 at an interior vertex ({r:.3g} x the bound)",
+        fail(pid, impl, case, f"(L x)({v}) is not 0 at an interior vertex ({r:.3g} x the bound)",
               element=f"vertex {v}, coordinate {k}", expected=0.0, observed=float(got[v, k]))
     off = ~np.eye(D.X.n, dtype=bool) & inner[:, None]
     neg = off & (A > D.B)
     if np.any(neg):
         i, j = np.argwhere(neg)[0]
-        _fail(pid, impl, case, "a negative convex weight: the vertex may leave the hull of its "
+        fail(pid, impl, case, "a negative convex weight: the vertex may leave the hull of its "
               "Delaunay neighbours", element=(int(i), int(j)), expected=float(D.Lf[i, j]),
               observed=float(A[i, j]))
 
@@ -645,13 +646,13 @@ def flat_meshes_are_minimal(impl, case: Example):
       needs={"intrinsic_delaunay_laplacian"}, strategy=_interior_meshes)
 def delaunay_minimal_surface_step(impl, case: Example):
     pid = "A4.23"
-    A = _dense(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
     if not inner.any():
         return
-    new, _ = _solve(A, list(np.flatnonzero(~inner)), V)
+    new, _ = dirichlet_solve(A, list(np.flatnonzero(~inner)), V)
     area = float(D.X.metric.total_area())
 
     def energy(P):
@@ -664,13 +665,13 @@ def delaunay_minimal_surface_step(impl, case: Example):
 
     e_old, e_new = energy(V), energy(new)
     tol_old = slack(V) + eps() * area
-    r = _record(pid, max(e_old - area, 0.0), tol_old)
+    r = record(pid, max(e_old - area, 0.0), tol_old)
     if r > 1:
-        _fail(pid, impl, case, f"E(x) = {e_old:.9g} exceeds the area {area:.9g} ({r:.3g} x the "
+        fail(pid, impl, case, f"E(x) = {e_old:.9g} exceeds the area {area:.9g} ({r:.3g} x the "
               "bound): a negative Delaunay weight or a wrong factor", expected=f"<= {area}",
               observed=e_old)
     if e_new > e_old + slack(new) + slack(V):
-        _fail(pid, impl, case, "the harmonic step increased the energy", expected=f"<= {e_old}",
+        fail(pid, impl, case, "the harmonic step increased the energy", expected=f"<= {e_old}",
               observed=e_new)
 
 
@@ -874,17 +875,17 @@ def rippa_energy_difference(impl, quad_u):
     exact = float(rippa_right_side(pts, u))
     V = [(x, y, 0) for x, y in pts]
     c13, c24 = mesh_case(V, TRIANGLES_13, "quad 13"), mesh_case(V, TRIANGLES_24, "quad 24")
-    A13, A24 = _dense(impl, c13, "L4.14"), _dense(impl, c24, "L4.14")
+    A13, A24 = implementation_dense(impl, c13, "L4.14"), implementation_dense(impl, c24, "L4.14")
     f = np.array(u, dtype=float)
     got = 0.5 * float(f @ (A13 - A24) @ f)
     af = np.abs(f)
     X13, X24 = Exact.of(c13), Exact.of(c24)
     bound = 0.5 * float(af @ (X13.B + X24.B + gamma(12) * (np.abs(A13) + np.abs(A24))) @ af)
-    r = _record("L4.14", abs(got - exact), bound)
+    r = record("L4.14", abs(got - exact), bound)
     if r > 1:
-        _fail("L4.14", impl, c13, f"E(u13) - E(u24) = {got:.9g}, Rippa's formula gives "
+        fail("L4.14", impl, c13, f"E(u13) - E(u24) = {got:.9g}, Rippa's formula gives "
               f"{exact:.9g} ({r:.3g} x the bound)", expected=exact, observed=got)
     s = circularity(pts)
     if exact != 0 and abs(got) > bound and (got > 0) != (s > 0):
-        _fail("L4.14", impl, c13, "the energy difference has the wrong sign for the "
+        fail("L4.14", impl, c13, "the energy difference has the wrong sign for the "
               "quadrilateral's circularity (L4.15)", expected=s, observed=got)

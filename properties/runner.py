@@ -318,6 +318,8 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     # derandomized example stream)
     if state["shrink"] is not None:
         shrink_from_now(state["shrink"] + time.perf_counter() - state["t0"])
+    # the seed Hypothesis generated for the first pass: no public API exposes it (it is
+    # printed only with a failure), and this pass must replay that very stream
     seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
                                                  None)
     state["ties_raise"] = True

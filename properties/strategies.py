@@ -11,10 +11,9 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 
-import numpy as np
 from hypothesis import assume, strategies as st
 
 from ddg_oracle.reference import surfaces
@@ -23,7 +22,7 @@ from ddg_oracle.reference.errors import NotFlippable
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo, variants
-from .example import Example, surface_key
+from .example import Example
 
 
 def expected_classification(orientable: bool, genus: int, holes: int) -> Classification:
@@ -112,17 +111,6 @@ def _placeholder_positions(t: Triangulation) -> tuple:
     return tuple((Fraction(i), Fraction(i * i), Fraction(i * i * i)) for i in range(t.n_vertices))
 
 
-def _relabel(t: Triangulation, positions, key: int):
-    if key == 0:
-        return t, positions
-    perm = list(range(t.n_vertices))
-    random.Random(key).shuffle(perm)
-    inverse = [0] * len(perm)
-    for v, w in enumerate(perm):
-        inverse[w] = v
-    return t.relabelled(perm), tuple(positions[inverse[w]] for w in range(len(perm)))
-
-
 @st.composite
 def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
                           max_genus: int = 2, max_holes: int = 2, moves: bool = True,
@@ -154,7 +142,7 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
     positions = _placeholder_positions(t)
     if relabel:
         key = draw(st.integers(0, 1 << 16))
-        t, positions = _relabel(t, positions, key)
+        t, positions, _ = variants.relabelled(t, positions, key)
     return Example.of_triangulation(t, positions, expected_classification(o, g, k), recipe)
 
 

@@ -27,8 +27,22 @@ from ddg_oracle.reference.combinatorics import Triangulation, cyclic, face_of, o
 from ddg_oracle.reference.exact.rationals import on_common_denominator
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-__all__ = ["permuted", "with_sliver", "disjoint_union", "fan", "bipyramid", "circle_point",
-           "is_degenerate", "has_fold"]
+__all__ = ["relabelled", "permuted", "with_sliver", "disjoint_union", "fan", "bipyramid",
+           "circle_point", "is_degenerate", "has_fold"]
+
+
+def relabelled(t: Triangulation, positions, key: int) -> tuple[Triangulation, tuple, list]:
+    """``(t', positions', perm)``: vertex v renamed ``perm[v]`` (a shuffle chosen by ``key``;
+    0 is the identity), the gluings kept (:meth:`Triangulation.relabelled`, so loops and
+    double edges survive), each position moved with its vertex."""
+    n = t.n_vertices
+    perm = list(range(n))
+    if key:
+        random.Random(key).shuffle(perm)
+    inverse = [0] * n
+    for v, w in enumerate(perm):
+        inverse[w] = v
+    return t.relabelled(perm), tuple(positions[inverse[w]] for w in range(n)), perm
 
 
 def permuted(s: PolyhedralSurface, seed: int) -> PolyhedralSurface:

@@ -7,7 +7,7 @@ takes every float as a dyadic rational), and compares with the bound the
 corresponding property uses: ``corner_tolerances`` / ``vertex_tolerances`` /
 ``edge_mean_curvature_tolerances`` / ``area_tolerance`` of
 ``ddg_oracle.properties.curvature`` (D2.6, D2.2 + R2.4, D2.3, R2.5), the entry bounds
-``Exact(...).B`` of ``ddg_oracle.properties.laplacian`` (D3.1), ``vertex_area_bounds`` (L3.7)
+``Exact(...).B`` of ``ddg_oracle.properties.harness`` (D3.1), ``Exact.vertex_area_bounds`` (L3.7)
 and ``DelaunayExact(...).B`` of ``ddg_oracle.properties.delaunay`` (D4.8).  The bounds
 are derived there from machine epsilon and the conditioning of each quantity.
 """
@@ -18,10 +18,11 @@ from fractions import Fraction
 
 import numpy as np
 
-from ddg_oracle.properties.curvature import (Example, area_tolerance, corner_tolerances,
-                                  edge_mean_curvature_tolerances, floated, vertex_tolerances)
+from ddg_oracle.properties.bounds import (area_tolerance, corner_tolerances,
+                                          edge_mean_curvature_tolerances, vertex_tolerances)
+from ddg_oracle.properties.strategies import floated
 from ddg_oracle.properties.delaunay import DelaunayExact
-from ddg_oracle.properties.laplacian import Exact, vertex_area_bounds
+from ddg_oracle.properties.harness import Exact
 from ddg_oracle.properties.strategies import Example
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference import curvature as ref_curvature
@@ -143,7 +144,7 @@ def check_vertex_areas(impl, name, kind):
     """kind "barycentric" or "voronoi" (Meyer et al.'s mixed areas)."""
     V, F = arrays(name)
     X = Exact(mesh_case(V, F, name))
-    vb, bb = vertex_area_bounds(X)
+    vb, bb = X.vertex_area_bounds
     exact = getattr(ref_laplacian, f"vertex_areas_{kind}")(X.surface)
     want = np.array([float(a) for a in exact])
     got = np.asarray(getattr(impl, f"vertex_areas_{kind}")(V, F))

@@ -1,7 +1,7 @@
 """Shared assertions of the property tests: an implementation passes a property well inside
 its bounds, or a planted bug is caught with a shrunk counterexample."""
 
-from ddg_oracle.properties import laplacian as props
+from ddg_oracle.properties.harness import ErrorLedger, recording
 from ddg_oracle.report import element_ids
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties import PROPERTIES
@@ -11,11 +11,11 @@ from ddg_oracle.properties.runner import FAILED, PASSED, run_property
 def assert_passes_well_inside(pid, impl, ratio=0.05):
     """``impl`` passes ``pid`` on the default profile and its largest observed error stays
     below ``ratio`` of the derived bound (correctly rounded float views of exact values)."""
-    props.ERROR_RATIOS.pop(pid, None)
-    r = run_property(PROPERTIES[pid], impl, profile("default"))
+    with recording(ErrorLedger()) as ledger:
+        r = run_property(PROPERTIES[pid], impl, profile("default"))
     assert r.status == PASSED, r.failure or r.error
     assert r.examples > 0
-    assert props.ERROR_RATIOS.get(pid, 0.0) < ratio
+    assert ledger.ratios.get(pid, 0.0) < ratio
     return r
 
 

@@ -276,7 +276,7 @@ rotations = st.tuples(*(st.fractions(-3, 3, max_denominator=4) for _ in range(3)
 def test_T2_5_defects_exactly_invariant_under_cayley_rotation_and_relabelling(case, w, key):
     s = case.surface
     R = C.cayley_rotation(*w)
-    moved, perm = P._relabel(_moved(s, R, (1, Fraction(-1, 3), 2)), key)
+    moved, perm = P._relabel_surface(_moved(s, R, (1, Fraction(-1, 3), 2)), key)
     K, K2 = C.angle_defects(s), C.angle_defects(moved)
     assert {perm[v]: k for v, k in K.items()} == K2           # exact Angle equality
     m1, m2 = s.metric(), moved.metric()

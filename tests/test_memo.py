@@ -8,7 +8,7 @@ import pytest
 import numpy as np
 
 from ddg_oracle.properties import memo, protocol
-from ddg_oracle.properties.laplacian import Exact
+from ddg_oracle.properties.harness import Exact
 from ddg_oracle.properties.strategies import mesh_case
 
 

@@ -19,7 +19,8 @@ from ddg_oracle.oracles.arrays import boundary_edges  # noqa: E402
 from ddg_oracle.oracles.robust_laplacian import RobustLaplacian  # noqa: E402
 from ddg_oracle.properties import PROPERTIES, check_implementation  # noqa: E402
 from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
-from ddg_oracle.properties.laplacian import Exact, entry_bounds, vertex_area_bounds  # noqa: E402
+from ddg_oracle.properties.bounds import entry_bounds  # noqa: E402
+from ddg_oracle.properties.harness import Exact  # noqa: E402
 from ddg_oracle.properties.profiles import profile  # noqa: E402
 from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
 from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, run_on_example, run_property  # noqa: E402
@@ -184,7 +185,7 @@ def test_mass_matrix_is_the_barycentric_mass_of_the_flipped_cover():
     V, F = pc.arrays("icosahedron")
     _, M = RL.mesh_laplacian(V, F)
     X = Exact(pc.mesh_case(V, F, "icosahedron"))
-    _, bb = vertex_area_bounds(X)
+    _, bb = X.vertex_area_bounds
     want = np.array([float(a) for a in vertex_areas_barycentric(X.surface)])
     assert np.all(np.abs(M.diagonal() - want) <= bb)
     V, F = pc.arrays("disk(3)")

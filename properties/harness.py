@@ -1,0 +1,333 @@
+"""The shared harness of the matrix properties: the exact reference on an example with its
+float views and derived bounds (:class:`Exact`), an implementation's matrix read and
+checked for shape and finiteness, the worst error in units of its bound, failures, and
+the error ledger.
+
+The properties of chapters 3 and 4 and ``ddg-oracle compare`` use these; the bounds
+themselves are :mod:`.bounds`'.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+from functools import cached_property
+
+import numpy as np
+
+from ddg_oracle.reference.areas import area_gradient_floats
+from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_floats
+from ddg_oracle.reference.polyhedral import PolyhedralSurface
+
+from . import memo
+from .bounds import K_COT, entry_bounds, gamma
+from .example import Example
+from .protocol import ISOLATED_VERTEX, eps
+from .registry import PropertyFailure, TieDisagreement
+
+__all__ = ["Exact", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
+           "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve"]
+
+
+# --- the error ledger --------------------------------------------------------------------------------
+
+
+class ErrorLedger:
+    """The largest observed error / derived bound per catalog ID over the checks run while it
+    records (:func:`recording`): how close an implementation came to its bounds.
+
+    >>> ledger = ErrorLedger()
+    >>> with recording(ledger):
+    ...     _ = record("D3.1", [1.0, 3.0], [4.0, 4.0])
+    >>> ledger.ratios
+    {'D3.1': 0.75}
+    """
+
+    def __init__(self):
+        self.ratios: dict[str, float] = {}
+
+    def record(self, pid: str, ratio: float) -> None:
+        self.ratios[pid] = max(self.ratios.get(pid, 0.0), ratio)
+
+
+_LEDGER: contextvars.ContextVar = contextvars.ContextVar("ddg_error_ledger", default=None)
+
+
+@contextlib.contextmanager
+def recording(ledger: ErrorLedger):
+    """Record the error ratios of the checks run inside this block into ``ledger``."""
+    token = _LEDGER.set(ledger)
+    try:
+        yield ledger
+    finally:
+        _LEDGER.reset(token)
+
+
+def ratios(err, bound) -> np.ndarray:
+    """``err / bound`` elementwise: an error in units of its derived bound (inf where the
+    bound is 0 and the error is not, 0 where both are)."""
+    err = np.asarray(err, dtype=float)
+    bound = np.asarray(bound, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
+
+
+def record(pid: str, err, bound) -> float:
+    """The largest :func:`ratios` of ``err`` and ``bound``, entered in the ledger recording
+    now, if any; returned."""
+    r = ratios(err, bound)
+    ratio = float(np.max(r)) if r.size else 0.0
+    ledger = _LEDGER.get()
+    if ledger is not None:
+        ledger.record(pid, ratio)
+    return ratio
+
+
+# --- the exact reference on an example ------------------------------------------------------------
+
+
+class Exact:
+    """The exact reference on the floats of a case, with float views and entry bounds.
+    ``Exact.of(case)``: the same, computed once per case content and machine epsilon (the
+    bounds are the checked implementation's: float64 or float32) in this process
+    (:mod:`.memo`: every implementation of a property is checked on the same examples);
+    read-only."""
+
+    @classmethod
+    def of(cls, case: Example) -> "Exact":
+        return memo.shared((cls.__name__, eps(), case.positions, case.faces), lambda: cls(case))
+
+    def __init__(self, case: Example):
+        self.case = case
+        # vertices used by no face are not part of the surface (the reference refuses
+        # them): the surface is built on the others, ``keep[v]`` is the case's index of
+        # its vertex v, and the matrices below are embedded back on all case.n vertices
+        # with zero rows and columns at the isolated ones (protocol.ISOLATED_VERTEX)
+        self.keep = sorted({v for f in case.faces for v in f})
+        self.surface = case.surface if len(self.keep) == case.n else compact(case, self.keep)
+        self.metric = self.surface.metric()
+        t = self.triangulation = self.surface.triangulation
+        k = t.n_vertices
+        self.L = cotan_laplacian(self.surface)
+        b = entry_bounds(self.metric, k)
+        self.cot, self.rho, self.beta = b.cot, b.rho, b.beta
+        # sparse (scipy CSR) on the case's n vertices: the float view of L, the entry bounds,
+        # the edge pattern; Lf, B, adjacent are their dense arrays, built only if asked
+        self.Ls = self.embed(self.L.to_scipy())
+        self.Bs = self.embed(b.B)
+        self.adjacent_s = self.embed(b.adjacent)
+
+    @property
+    def n(self) -> int:
+        return self.case.n
+
+    @cached_property
+    def Lf(self) -> np.ndarray:
+        return self.Ls.toarray()
+
+    @cached_property
+    def B(self) -> np.ndarray:
+        return self.Bs.toarray()
+
+    @cached_property
+    def adjacent(self) -> np.ndarray:
+        return self.adjacent_s.toarray()
+
+    @cached_property
+    def area_gradient(self) -> np.ndarray:
+        """(k, 3) floats of the exact area gradient (T3.9, L3.8) at the surface's vertices,
+        each correctly rounded: computed once, shared by every implementation."""
+        return np.array(area_gradient_floats(self.surface),
+                        dtype=np.float64).reshape(-1, self.surface.dimension)
+
+    def vertex_areas(self, name: str) -> np.ndarray:
+        """Floats of the exact ``vertex_areas_voronoi`` or ``vertex_areas_barycentric``
+        (L3.7) at the surface's vertices, each correctly rounded; once per name."""
+        kept = self.__dict__.setdefault("_vertex_areas", {})
+        if name not in kept:
+            kind = {"vertex_areas_voronoi": "voronoi", "vertex_areas_barycentric": "barycentric"}
+            kept[name] = np.array(vertex_areas_floats(self.surface, kind[name]), dtype=np.float64)
+        return kept[name]
+
+    @cached_property
+    def vertex_area_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """(n,) bounds on the error of each vertex's mixed Voronoi area and of its
+        barycentric area (L3.7): the corner cotangent bounds beta times the adjacent squared
+        sides / 8, their rounding, and K_COT eps rho_f A_f for the face area itself."""
+        t, m = self.triangulation, self.metric
+        vb = np.zeros(self.n)      # bound of the Voronoi area of each vertex
+        bb = np.zeros(self.n)      # of the barycentric one
+        for f, face in enumerate(t.faces):
+            a = float(m.area(f))
+            l0, l1, l2 = (float(x) for x in m.face_squared_lengths(f))
+            adj = ((l0, l2, 2, 1), (l0, l1, 2, 0), (l1, l2, 0, 1))   # sides at corner, opposite corners
+            for c in range(3):
+                la, lb, ca, cb = adj[c]
+                # either rule may be taken near a right angle; they agree there, so bound both
+                vor = (la * self.beta[f, ca] + lb * self.beta[f, cb]
+                       + 8 * eps() * (la * abs(self.cot[f, ca]) + lb * abs(self.cot[f, cb]))) / 8
+                v = self.keep[face[c]]
+                vb[v] += vor + K_COT * eps() * self.rho[f] * a
+                bb[v] += K_COT * eps() * self.rho[f] * a / 3
+        return vb, bb
+
+    def embed(self, M):
+        """A sparse (k, k) matrix on the surface's vertices -> (n, n) CSR on the case's,
+        zero at the isolated vertices."""
+        import scipy.sparse as sp
+        M = sp.csr_matrix(M)
+        if len(self.keep) == self.case.n:
+            return M
+        C = M.tocoo()
+        keep = np.asarray(self.keep, dtype=np.int64)
+        return sp.csr_matrix((C.data, (keep[C.row], keep[C.col])),
+                             shape=(self.case.n, self.case.n))
+
+    def restrict(self, values) -> list:
+        """Values on the case's vertices -> on the surface's (the isolated ones dropped)."""
+        return [values[v] for v in self.keep]
+
+    def components(self) -> list[list[int]]:
+        """Vertex sets (case indices) of the components; an isolated vertex is one."""
+        t, keep = self.triangulation, self.keep
+        comps = [sorted({keep[v] for f in comp for v in t.faces[f]}) for comp in t.components()]
+        used = set(keep)
+        return comps + [[v] for v in range(self.case.n) if v not in used]
+
+    def own_route_bound(self, u):
+        """:meth:`residual_bound` for an implementation's own solver or gradient, whose
+        matrix is unseen: any matrix within the entry bounds of the exact L (|A| <= |L's
+        float view| + B), used backward-stably."""
+        return self.residual_bound(abs(self.Ls) + self.Bs, u)
+
+    def area_gradient_bound(self, P) -> tuple[np.ndarray, np.ndarray]:
+        """(n, 3) exact area gradient (correctly rounded; the protocol's value at an
+        isolated vertex) and the bound on an implementation's own ``area_gradient`` at the
+        float positions P (T3.9): L V with a matrix within the entry bounds, plus its
+        rounding.  Its own route may differ (1/2 n x (v_k - v_j)); that one has the same
+        conditioning, 1 / sin of the face's smallest angle, as the cotangents."""
+        exact = np.full(np.shape(P), ISOLATED_VERTEX["area_gradient"])
+        exact[self.keep] = self.area_gradient
+        return exact, self.own_route_bound(P) + eps() * np.abs(exact)
+
+    def dirichlet_solution_bound(self, boundary, u) -> np.ndarray:
+        """(n,) bound on |u~ - u| for an implementation's ``solve_dirichlet`` answer u~ whose
+        exact solution (C3.4) is ``u`` (floats): eps |u| on the ``boundary`` set (the given
+        values are kept); elsewhere |L_II^-1| times :meth:`own_route_bound` at the interior
+        rows, the first-order error of a backward-stable solve with any matrix within the
+        entry bounds (u~ - u = L_II^-1 (r) for a residual r within that bound), doubled to
+        cover the second-order terms and the float inverse.  Dense: for small meshes (the
+        test vectors); L_II is invertible when every component meets the boundary set."""
+        u = np.asarray(u, dtype=np.float64)
+        fixed = np.zeros(self.n, dtype=bool)
+        fixed[np.asarray(boundary, dtype=np.int64)] = True
+        inner = np.flatnonzero(~fixed)
+        out = eps() * np.abs(u)
+        if len(inner):
+            r = self.own_route_bound(u)[inner]
+            inverse = np.linalg.inv(self.Ls[inner][:, inner].toarray())
+            out[inner] = 2 * (np.abs(inverse) @ r) + eps() * np.abs(u[inner])
+        return out
+
+    def residual_bound(self, A, u):
+        """Per row: sum_j (B_ij + gamma_{3n} |A_ij|) |u_j| (u: n or n x k): how far A u may be
+        from the exact L u through the entry errors and a backward-stable evaluation or solve."""
+        absu = np.abs(u)
+        return self.Bs @ absu + gamma(3 * self.n + 3) * (abs(A) @ absu)
+
+
+def compact(case: Example, keep) -> PolyhedralSurface:
+    new = {v: i for i, v in enumerate(keep)}
+    return PolyhedralSurface.from_arrays([case.positions[v] for v in keep],
+                                         [[new[v] for v in f] for f in case.faces])
+
+
+def implementation_matrix(impl, case: Example, pid: str, method: str = "cotan_laplacian"):
+    """The implementation's matrix (``method``) as scipy CSR of float64, duplicates summed;
+    a failure if it is not n x n or has a non-finite entry."""
+    import scipy.sparse as sp
+    M = getattr(impl, method)(*case.arrays())
+    if sp.issparse(M):
+        A = sp.csr_matrix(M, dtype=np.float64)
+    else:
+        a = np.asarray(M, dtype=np.float64)
+        if a.ndim != 2:
+            raise PropertyFailure(pid, impl, f"{method} has the wrong shape", mesh=case.mesh,
+                                  expected=(case.n, case.n), observed=a.shape)
+        A = sp.csr_matrix(a)
+    if A.shape != (case.n, case.n):
+        raise PropertyFailure(pid, impl, f"{method} has the wrong shape", mesh=case.mesh,
+                              expected=(case.n, case.n), observed=A.shape)
+    A.sum_duplicates()
+    if not np.all(np.isfinite(A.data)):
+        C = A.tocoo()
+        bad = ~np.isfinite(C.data)
+        beyond = beyond_float_resolution(case)
+        pairs = set(zip(C.row[bad].tolist(), C.col[bad].tolist()))
+        if pairs <= beyond:
+            raise TieDisagreement(pid, impl, f"{method} has non-finite entries, all at faces "
+                                  "beyond float resolution (K_COT eps rho >= 1: the float area "
+                                  "from the coordinates may be 0)", mesh=case.mesh)
+        i, j = min(pairs - beyond)
+        raise PropertyFailure(pid, impl, f"{method} has non-finite entries (first: {(i, j)})",
+                              mesh=case.mesh, element=(i, j))
+    return A
+
+
+def beyond_float_resolution(case: Example) -> set:
+    """Vertex pairs (i, j), i == j included, of the faces whose conditioning puts their
+    float area out of reach: K_COT eps rho >= 1 (rho = l_max^2 / (2 A), exact A).  There a
+    float cross product can be 0 although the exact face is not degenerate, and a cotangent
+    from it infinite: rounding decides, as at a tie."""
+    X = Exact.of(case)
+    out = set()
+    for f in np.flatnonzero(K_COT * eps() * np.asarray(X.rho) >= 1).tolist():
+        face = [X.keep[v] for v in X.triangulation.faces[f]]
+        out.update((a, b) for a in face for b in face)
+    return out
+
+
+def implementation_dense(impl, case: Example, pid: str, method: str = "cotan_laplacian") -> np.ndarray:
+    """:func:`implementation_matrix` as a dense array, for the checks of small examples that factor it."""
+    return implementation_matrix(impl, case, pid, method).toarray()
+
+
+def entries_at(M, rows, cols) -> np.ndarray:
+    """The entries of the sparse matrix ``M`` at the index arrays ``rows``, ``cols``."""
+    if len(rows) == 0:
+        return np.zeros(0)
+    return np.asarray(M[np.asarray(rows), np.asarray(cols)], dtype=np.float64).ravel()
+
+
+def worst_sparse(err, bound):
+    """((i, j), largest err / bound) over the stored entries of the sparse ``err`` (bound 0
+    where err > 0: infinite); ((0, 0), 0.0) if it has none."""
+    E = err.tocoo()
+    if E.nnz == 0:
+        return (0, 0), 0.0
+    r = ratios(E.data, entries_at(bound, E.row, E.col))
+    k = int(np.argmax(r))
+    return (int(E.row[k]), int(E.col[k])), float(r[k])
+
+
+def fail(pid, impl, case, message, **kw):
+    raise PropertyFailure(pid, impl, message, mesh=case.mesh, **kw)
+
+
+def worst(err, bound):
+    """(index, largest err / bound) over an array of errors and their bounds."""
+    r = ratios(err, bound)
+    idx = tuple(int(x) for x in np.unravel_index(int(np.argmax(r)), r.shape))
+    return idx, float(r[idx])
+
+
+def dirichlet_solve(A, V0, c):
+    """The Dirichlet solution with the implementation's matrix (dense LU): ``c`` (values,
+    or positions n x k) kept on V0, ``A u = 0`` solved at the others; returns (u, others)."""
+    n = A.shape[0]
+    I = [v for v in range(n) if v not in set(V0)]
+    u = np.array(c, dtype=float).copy()
+    if I:
+        B0 = list(V0)
+        u[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, B0)] @ u[B0])
+    return u, I
