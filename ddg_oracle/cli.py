@@ -413,13 +413,14 @@ def _check(args, argv) -> int:
         _refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
-        from ddg_oracle.compare import FILE_PROPERTIES, load_all
+        from ddg_oracle.compare import file_properties, load_all
         meshes = load_all(args.mesh, warn=_warn)
         if not meshes:
             raise InputError("no usable mesh among " + ", ".join(args.mesh))
-        if only and not only & set(FILE_PROPERTIES):
+        on_files = [p.id for p in file_properties()]
+        if only and not only & set(on_files):
             raise UsageError(f"none of {', '.join(sorted(only))} applies to a mesh file; "
-                             f"those that do: {', '.join(FILE_PROPERTIES)}")
+                             f"those that do: {', '.join(on_files)}")
     if not args.impl:
         for name, why in missing().items():
             _warn(f"not checked: {why}")

@@ -38,10 +38,6 @@ from .meshfiles import MeshFileError, read_mesh
 
 SAMPLE_PREFIX = "pymeshlab:"
 MESH_SUFFIXES = (".obj", ".off", ".ply", ".stl")
-#: largest face count for an exact total area: a float mesh's face areas are square roots
-#: of distinct rationals, and their exact sum has a term per face (R2.5 beyond it is not
-#: applicable; compare then sums the correctly rounded face areas and widens the bound)
-EXACT_SUM_LIMIT = 400
 
 
 # --- mesh arguments -------------------------------------------------------------------------------
@@ -149,13 +145,13 @@ def load_all(args: list[str], warn=None) -> list[MeshInput]:
     return meshes
 
 
-# --- property examples built from one mesh --------------------------------------------------------
+# --- the example built from one mesh -------------------------------------------------------------
 
 
 @dataclass
 class MeshExamples:
-    """The example objects the properties take, built once from one mesh (their exact
-    values are cached on them, so several properties and implementations share them)."""
+    """The mesh's :class:`~ddg_oracle.properties.example.Example` and its facts, built once
+    (its exact values are cached on it, so every property and implementation shares them)."""
 
     mesh: MeshInput
     _cache: dict = field(default_factory=dict, repr=False)
@@ -173,14 +169,15 @@ class MeshExamples:
 
         def build():
             s = PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F)
-            # the mesh case's surface is this one (the same exact positions and faces):
-            # its metric is computed once per process, not once per example kind
+            # the example's surface is this one (the same exact positions and faces): its
+            # metric is computed once per process
             memo.DRAWN.shared(surface_key(s.positions, self.mesh.F), lambda: s)
             return s
         return self._get("surface", build)
 
     @property
     def facts(self) -> dict:
+        """What the requirements of a file check (properties.registry.REQUIREMENTS) read."""
         def build():
             t = self.surface.triangulation
             return dict(n=t.n_vertices, faces=t.n_faces, chi=t.euler_characteristic(),
@@ -188,100 +185,44 @@ class MeshExamples:
                         components=len(t.components()))
         return self._get("facts", build)
 
-    def surface_case(self):
+    def example(self):
+        """The one example every property and quantity takes: the exact surface, its chi and
+        (for a connected mesh) its classification."""
+        from ddg_oracle.properties.example import Example
         from ddg_oracle.reference.combinatorics import Classification
-        from ddg_oracle.properties.strategies import Example
 
         def build():
             t, f = self.surface.triangulation, self.facts
             cls = t.classify() if f["components"] == 1 else \
                 Classification(f["orientable"], -1, f["boundary"], f["chi"])
-            return Example.of_triangulation(t, self.surface.positions, cls, self.mesh.name)
-        return self._get("surface_case", build)
-
-    def curvature_case(self):
-        from ddg_oracle.properties.strategies import Example
-        return self._get("curvature_case", lambda: Example.of_surface(
-            self.surface, self.facts["chi"], self.mesh.name))
-
-    def mesh_case(self):
-        from ddg_oracle.properties.strategies import Example
-        return self._get("mesh_case", lambda: Example.of_mesh(
-            self.surface.positions, tuple(tuple(f) for f in self.mesh.F), self.mesh.name))
-
-    def example(self, kind: str):
-        return {"surface": self.surface_case, "curvature": self.curvature_case,
-                "mesh": self.mesh_case}[kind]()
+            x = Example.of_surface(self.surface, f["chi"], self.mesh.name)
+            return x.with_data(expected=cls)
+        return self._get("example", build)
 
 
-def _closed(f):
-    return None if f["boundary"] == 0 else "the mesh has a boundary"
-
-
-def _connected(f):
-    return None if f["components"] == 1 else f"{f['components']} components"
-
-
-def _all(*conds):
-    def check(f):
-        for c in conds:
-            why = c(f)
-            if why:
-                return why
-        return None
-    return check
-
-
-def _has_boundary(f):
-    return None if f["boundary"] else "the mesh is closed"
-
-
-def _orientable(f):
-    return None if f["orientable"] else "the mesh is not orientable"
-
-
-def _exact_sum(f):
-    return None if f["faces"] <= EXACT_SUM_LIMIT else \
-        f"{f['faces']} faces > {EXACT_SUM_LIMIT} (exact total area: one square root per face)"
-
-
-#: catalog ID -> (example kind, why not applicable to a mesh with these facts or None)
-FILE_PROPERTIES: dict[str, tuple[str, object]] = {
-    "D1.6": ("surface", lambda f: None),
-    "T1.1 / C1.2": ("surface", _all(_closed, _connected)),
-    "R1.6": ("surface", _all(_orientable, _connected)),
-    "D2.2": ("curvature", lambda f: None),
-    "R2.4": ("curvature", _has_boundary),
-    "T2.6": ("curvature", _closed),
-    "D2.6": ("curvature", lambda f: None),
-    "D2.3": ("curvature", _orientable),
-    "R2.5": ("curvature", _all(_closed, _orientable, _exact_sum)),
-    "D3.1": ("mesh", lambda f: None),
-    "T3.9": ("mesh", lambda f: None),
-    "E3.12": ("mesh", lambda f: None),
-    "L3.7": ("mesh", lambda f: None),
-    "D4.8 / R4.9": ("mesh", lambda f: None),
-}
+def file_properties(only=None) -> list:
+    """The properties that run on a given mesh file (``on_mesh`` declared), in order."""
+    from ddg_oracle.properties.registry import all_properties
+    return [p for p in all_properties() if p.on_mesh is not None
+            and (only is None or p.id in only)]
 
 
 def run_mesh_properties(examples: MeshExamples, impl, only=None, counterpart=None,
                         convention=None) -> list:
-    """Every property of :data:`FILE_PROPERTIES` (or ``only`` those IDs) on one mesh."""
-    from ddg_oracle.properties.registry import all_properties
+    """Every property that runs on a mesh file (or ``only`` those IDs) on one mesh: not
+    applicable, saying why, where the mesh does not meet its requirements."""
+    from ddg_oracle.properties.registry import unmet
     from ddg_oracle.properties.runner import NOT_APPLICABLE, Result, run_on_example
     from ddg_oracle.properties.protocol import implementation_name
 
     results = []
-    for p in all_properties():
-        if p.id not in FILE_PROPERTIES or (only is not None and p.id not in only):
-            continue
-        kind, why_not = FILE_PROPERTIES[p.id]
-        why = why_not(examples.facts)
+    for p in file_properties(only):
+        why = unmet(p.on_mesh, examples.facts)
         if why:
             results.append(Result(p.id, p.name, implementation_name(impl), NOT_APPLICABLE,
                                   source=examples.mesh.name, note=why))
             continue
-        results.append(run_on_example(p, impl, examples.example(kind), examples.mesh.name,
+        results.append(run_on_example(p, impl, examples.example(), examples.mesh.name,
                                       counterpart=counterpart, convention=convention))
     return results
 
@@ -341,47 +282,36 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
 
 
 def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
-    """Every protocol method every implementation has, against the reference, on ``mesh``."""
+    """Every protocol method every implementation has, against the reference, on ``mesh``:
+    how each answer compares is its declared quantity's
+    (:data:`ddg_oracle.properties.registry.QUANTITIES`)."""
     from ddg_oracle.properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
+    from ddg_oracle.properties.registry import all_quantities, unmet
 
+    quantities = all_quantities()
     ex = MeshExamples(mesh)
     V = np.array(mesh.V, dtype=np.float64)
     F = np.array(mesh.F, dtype=np.int64)
-    facts = ex.facts
-    expected_cache: dict = {}
+    wanted: dict = {}
 
-    def expected(method):
-        if method not in expected_cache:
-            if method == "area_gradient":       # Exact.area_gradient_bound holds it
-                expected_cache[method] = None
-            elif method == "area" and facts["faces"] > EXACT_SUM_LIMIT:
-                from ddg_oracle.properties.bounds import total_area_view
-                expected_cache[method] = total_area_view(ex.surface.metric())
-            else:
-                expected_cache[method] = getattr(reference, method)(V, F)
-        return expected_cache[method]
+    def expected(q):
+        # the values to compare with, once per method (and machine epsilon: the float views
+        # do not depend on it, the bounds below do)
+        if q.method not in wanted:
+            answer = lambda: getattr(reference, q.method)(V, F)       # noqa: E731
+            wanted[q.method] = q.expected(ex.example(), answer) if q.expected else answer()
+        return wanted[q.method]
 
     rows = []
     for impl in impls:
         name = implementation_name(impl)
         caps = capabilities(impl)
         for method in METHODS:
-            if method not in caps:
-                rows.append(Comparison(method, name, "not applicable", note="not provided"))
-                continue
-            if method == "genus" and facts["components"] != 1:
-                rows.append(Comparison(method, name, "not applicable",
-                                       note=f"{facts['components']} components"))
-                continue
-            if method == "edge_mean_curvature" and not facts["orientable"]:
-                rows.append(Comparison(method, name, "not applicable", note="not orientable"))
-                continue
-            if method in ("planar_delaunay", "intrinsic_delaunay_triangulation",
-                          "planar_flip_to_delaunay", "solve_dirichlet"):
-                rows.append(Comparison(method, name, "not applicable",
-                                       note="not unique, or needs more than a mesh: checked by "
-                                            "the properties (T4.1, A4.13, L4.3 / P4.4, T3.2, "
-                                            "C3.4 / T3.5)"))
+            q = quantities[method]
+            why = ("not provided" if method not in caps else q.not_on_a_mesh
+                   or unmet(q.requires, ex.facts))
+            if why:
+                rows.append(Comparison(method, name, "not applicable", note=why))
                 continue
             try:
                 got = getattr(impl, method)(V, F)
@@ -392,7 +322,7 @@ def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
                 rows.append(Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}"))
                 continue
             with _epsilon_of(impl):
-                rows.append(_compare_one(method, name, got, expected(method), ex))
+                rows.append(_compare_one(q, name, got, expected(q), ex))
     return rows
 
 
@@ -445,57 +375,43 @@ def loop_edges(loops) -> list:
 
 def derived_bound(method: str, ex: MeshExamples, want=None):
     """The derived bound on |implementation - exact| for each element of ``method``'s
-    answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): an array
-    of the answer's shape, a scipy matrix (Laplacians), or {edge: bound}
-    (``edge_mean_curvature``).  ``want``: the reference's ``area`` answer (a (total,
-    widening) pair above :data:`EXACT_SUM_LIMIT` faces).  Used by ``compare`` and by the
-    test vectors (:mod:`ddg_oracle.vectors`)."""
-    from ddg_oracle.properties import bounds as cv
-    from ddg_oracle.properties.harness import Exact
-    if method in ("corner_angles", "angle_defects", "edge_mean_curvature", "area"):
-        case = ex.curvature_case()
-        if method == "corner_angles":
-            return cv.corner_tolerances(case)
-        if method == "angle_defects":
-            return cv.vertex_tolerances(case, cv.corner_tolerances(case))
-        if method == "edge_mean_curvature":
-            return cv.edge_mean_curvature_tolerances(case)
-        extra = want[1] if isinstance(want, tuple) else 0.0
-        return cv.area_tolerance(case) + extra
-    if method == "intrinsic_delaunay_laplacian":
-        from ddg_oracle.properties.delaunay import DelaunayExact
-        return DelaunayExact.of(ex.mesh_case()).Bs
-    X = Exact.of(ex.mesh_case())            # once per mesh (shared with the properties)
-    if method == "cotan_laplacian":
-        return X.Bs
-    if method == "area_gradient":           # T3.9's bound on an implementation's own gradient
-        return X.area_gradient_bound(ex.mesh_case().arrays()[0])[1]
-    vb, bb = X.vertex_area_bounds
-    return vb if method == "vertex_areas_voronoi" else bb
+    answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): the
+    method's quantity's ``bound`` (an array of the answer's shape, a scipy matrix, or
+    {edge: bound}); ``want``: what the answer is compared with.  Used by ``compare`` and
+    by the test vectors (:mod:`ddg_oracle.vectors`)."""
+    from ddg_oracle.properties.registry import all_quantities
+    return all_quantities()[method].bound(ex.example(), want)
 
 
-def _compare_one(method, name, got, want, ex) -> Comparison:
-    if method in ("euler_characteristic", "is_orientable", "genus"):
+#: where an element of a "numbers" answer is, by the quantity's element
+_WHERE = {"corner": lambda k: f"face {k[0]}, corner {k[1]}",
+          "vertex": lambda k: f"vertex {k[0]}",
+          "vertex coordinate": lambda k: f"vertex {k[0]}, coordinate {k[1]}",
+          "total": lambda k: "total"}
+
+
+def _compare_one(q, name, got, want, ex) -> Comparison:
+    """One answer against ``want`` by its quantity's kind."""
+    method = q.method
+    if q.kind in ("integer", "boolean"):
         same = type(want)(got) == want
         return Comparison(method, name, "agrees" if same else "DIFFERS", expected=want,
                           observed=got, elements=1, over=int(not same))
-    if method == "boundary_loops":
+    if q.kind == "loops":
         same = len(got) == len(want) and loop_edges(got) == loop_edges(want)
         return Comparison(method, name, "agrees" if same else "DIFFERS",
                           expected=f"{len(want)} loops", observed=f"{len(got)} loops",
                           elements=1, over=int(not same),
                           note=None if same else f"loops {[list(map(int, x)) for x in got]}"[:300])
-    if method == "is_locally_delaunay":
+    if q.kind == "flags":
         got, want = np.asarray(got, dtype=bool), np.asarray(want, dtype=bool)
         diff = np.argwhere(got != want)
         note = None if not len(diff) else (f"face {diff[0][0]}, corner {diff[0][1]} (exact "
                                            "ties may go either way)")
         return Comparison(method, name, "agrees" if not len(diff) else "DIFFERS",
                           elements=int(want.size), over=int(len(diff)), note=note)
-    bound = derived_bound(method, ex, want)
-    if method == "corner_angles":
-        return _numeric(method, name, got, want, bound, lambda k: f"face {k[0]}, corner {k[1]}")
-    if method == "edge_mean_curvature":
+    bound = q.bound(ex.example(), want)
+    if q.kind == "edges":
         got = {(int(min(i, j)), int(max(i, j))): float(h) for (i, j), h in dict(got).items()}
         if set(got) != set(want):
             return Comparison(method, name, "DIFFERS", note="not the same set of interior edges",
@@ -503,21 +419,13 @@ def _compare_one(method, name, got, want, ex) -> Comparison:
         keys = sorted(want)
         return _numeric(method, name, [got[k] for k in keys], [want[k] for k in keys],
                         np.array([bound[k] for k in keys]), lambda k: f"edge {keys[k[0]]}")
-    if method == "area":
-        total = want[0] if isinstance(want, tuple) else want
-        return _numeric(method, name, [float(got)], [float(total)], bound, lambda k: "total")
-    if method in ("cotan_laplacian", "intrinsic_delaunay_laplacian"):
-        from ddg_oracle.properties.delaunay import DelaunayExact
-        from ddg_oracle.properties.harness import Exact
-        exact = (Exact if method == "cotan_laplacian" else DelaunayExact).of(ex.mesh_case())
-        return _matrix(method, name, got, exact.Ls, bound)
-    if method == "area_gradient":
-        from ddg_oracle.properties.harness import Exact
-        exact = Exact.of(ex.mesh_case()).area_gradient_bound(ex.mesh_case().arrays()[0])[0]
-        return _numeric(method, name, np.asarray(got, dtype=np.float64), exact, bound,
-                        lambda k: f"vertex {k[0]}, coordinate {k[1]}")
-    return _numeric(method, name, np.asarray(got).reshape(-1), want, bound,
-                    lambda k: f"vertex {k[0]}")
+    if q.kind == "matrix":
+        return _matrix(method, name, got, want, bound)
+    if q.element == "total":
+        return _numeric(method, name, [float(got)], [float(want)], bound, _WHERE["total"])
+    shape = np.shape(want)
+    return _numeric(method, name, np.asarray(got, dtype=np.float64).reshape(shape), want, bound,
+                    _WHERE[q.element])
 
 
 def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:

@@ -15,24 +15,36 @@ import os
 import re
 import sys
 
-# name -> "module:object"; grows with the adapters (libigl, pymeshlab, ...).
-BUILTIN: dict[str, str] = {
-    "reference": "ddg_oracle.oracles.exact_reference:ReferenceImplementation",
-    "libigl": "ddg_oracle.oracles.libigl:Libigl",
-    "pymeshlab": "ddg_oracle.oracles.pymeshlab:PyMeshLab",
-    "scipy": "ddg_oracle.oracles.scipy_spatial:ScipySpatial",
-    # optional peers (`pip install -e '.[peers]'`): omitted by available() when not installed
-    "gpytoolbox": "ddg_oracle.oracles.gpytoolbox:Gpytoolbox",
-    "robust_laplacian": "ddg_oracle.oracles.robust_laplacian:RobustLaplacian",
-    "potpourri3d": "ddg_oracle.oracles.potpourri3d:Potpourri3d",
-    "trimesh": "ddg_oracle.oracles.trimesh:Trimesh",
-    "vtk": "ddg_oracle.oracles.vtk:Vtk",
-}
+def _declared_adapters() -> list[dict]:
+    """The ``ADAPTER`` declarations of the adapter modules in ``ddg_oracle/oracles/`` (a
+    dict literal naming the implementation, its object, the library it needs, the pip
+    extra that installs it and its rank in reports), read from the source without
+    importing the module (importing a library costs seconds and may fail where it is not
+    installed).  Adding an adapter is adding its module: nothing here names it."""
+    import importlib.util
+    from pathlib import Path
+    # the package's directory, found without running its __init__ (editable or installed)
+    spec = importlib.util.find_spec("ddg_oracle.oracles")
+    found = []
+    paths = sorted(p for d in spec.submodule_search_locations for p in Path(d).glob("*.py"))
+    for path in paths:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in tree.body:
+            if isinstance(node, ast.Assign) and [getattr(t, "id", None) for t in node.targets] \
+                    == ["ADAPTER"]:
+                d = ast.literal_eval(node.value)
+                d["module"] = f"ddg_oracle.oracles.{path.stem}"
+                found.append(d)
+    return sorted(found, key=lambda d: (d.get("rank", len(found)), d["name"]))
 
-#: The pip extra that installs each built-in adapter's library (reference and scipy: core).
-EXTRAS: dict[str, str] = {"libigl": "libigl", "pymeshlab": "pymeshlab", "gpytoolbox": "peers",
-                          "robust_laplacian": "peers", "potpourri3d": "peers", "trimesh": "peers",
-                          "vtk": "peers"}
+
+_ADAPTERS = _declared_adapters()
+
+# name -> "module:object": the adapters' own declarations, in their report order
+BUILTIN: dict[str, str] = {d["name"]: f"{d['module']}:{d['object']}" for d in _ADAPTERS}
+
+#: The pip extra that installs each built-in adapter's library (absent: the core's).
+EXTRAS: dict[str, str] = {d["name"]: d["extra"] for d in _ADAPTERS if d.get("extra")}
 
 _OPTIONS = re.compile(r"^\s*([^()\s]+)\s*\((.*)\)\s*$", re.S)
 
@@ -120,11 +132,7 @@ def load_implementation(spec: str):
 
 
 #: The library each built-in adapter wraps (None: the core's own dependencies).
-LIBRARIES: dict[str, str | None] = {"reference": None, "libigl": "igl", "pymeshlab": "pymeshlab",
-                                    "scipy": "scipy", "gpytoolbox": "gpytoolbox",
-                                    "robust_laplacian": "robust_laplacian",
-                                    "potpourri3d": "potpourri3d", "trimesh": "trimesh",
-                                    "vtk": "vtkmodules"}
+LIBRARIES: dict[str, str | None] = {d["name"]: d.get("library") for d in _ADAPTERS}
 
 
 def available() -> list[str]:

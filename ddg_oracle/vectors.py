@@ -42,17 +42,11 @@ FORMAT = "ddg-oracle-test-vectors"
 VERSION = 1
 FLOAT32_EPSILON = 2.0 ** -23
 EPSILONS = {"64": FLOAT64_EPSILON, "32": FLOAT32_EPSILON}
-#: how each method's answer is compared (README.md of the corpus, "Comparing answers")
-KIND = {
-    "euler_characteristic": "integer", "genus": "integer", "is_orientable": "boolean",
-    "boundary_loops": "loops", "corner_angles": "numbers", "angle_defects": "numbers",
-    "edge_mean_curvature": "edges", "area": "numbers", "cotan_laplacian": "matrix",
-    "area_gradient": "numbers", "solve_dirichlet": "numbers",
-    "vertex_areas_barycentric": "numbers", "vertex_areas_voronoi": "numbers",
-    "is_locally_delaunay": "flags", "intrinsic_delaunay_laplacian": "matrix",
-    "intrinsic_delaunay_triangulation": "intrinsic_triangulation",
-    "planar_flip_to_delaunay": "planar_triangulation", "planar_delaunay": "planar_triangulation",
-}
+def kind_of(method: str) -> str:
+    """How ``method``'s answers are compared in the corpus (README.md of the corpus,
+    "Comparing answers"): the protocol method's kind (:class:`~ddg_oracle.properties.
+    protocol.Method`), with underscores."""
+    return METHODS[method].kind.replace(" ", "_")
 
 
 class VectorsError(InputError):
@@ -376,7 +370,7 @@ def expected(method: str, case: Case, req: dict) -> dict:
         answer = _reference_answer(method, req)
     except (OutsideDomain, NotImplementedError):
         raise _NotApplicable from None
-    kind = KIND[method]
+    kind = kind_of(method)
     if kind in ("integer", "boolean"):
         return {"value": answer}
     if kind == "loops":
@@ -468,7 +462,7 @@ def _flags_expected(answer, ex) -> dict:
     out = {"value": np.asarray(answer, dtype=bool).tolist()}
     for k, e in EPSILONS.items():
         with at_machine_epsilon(e):
-            X = Exact.of(ex.mesh_case())
+            X = Exact.of(ex.example())
             t = X.triangulation
             either = []
             for f in range(t.n_faces):
@@ -491,7 +485,7 @@ def _dirichlet_expected(req, answer, ex, r) -> dict:
     b = {}
     for k, e in EPSILONS.items():
         with at_machine_epsilon(e):
-            b[k] = Exact.of(ex.mesh_case()).dirichlet_solution_bound(req["boundary"], u).tolist()
+            b[k] = Exact.of(ex.example()).dirichlet_solution_bound(req["boundary"], u).tolist()
     return _numbers([exact_text(x) for x in exact], u.tolist(), b)
 
 
@@ -502,7 +496,7 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
     from ddg_oracle.reference.exact import exact_sum
     from ddg_oracle.properties.delaunay import DelaunayExact
     F2, l2 = answer
-    amp = max(DelaunayExact.of(ex.mesh_case()).amplification)   # flips' amplification
+    amp = max(DelaunayExact.of(ex.example()).amplification)   # flips' amplification
     lap = _matrix_expected(delaunay.laplace_beltrami(ex.surface),
                            _reference_answer("intrinsic_delaunay_laplacian", req).tocsr(),
                            _embedded(_bounds("intrinsic_delaunay_laplacian", ex), r),
@@ -567,8 +561,8 @@ def build() -> dict[str, dict]:
             entries.append(entry)
         total += len(entries)
         files[f"{method}.json"] = {
-            "format": FORMAT, "version": VERSION, "method": method, "kind": KIND[method],
-            "contract": METHODS[method], "cases": entries}
+            "format": FORMAT, "version": VERSION, "method": method, "kind": kind_of(method),
+            "contract": METHODS[method].contract, "cases": entries}
     files["manifest.json"] = {
         "format": FORMAT, "version": VERSION, "protocol_version": PROTOCOL_VERSION,
         "generator": f"ddg-oracle {__version__.split('+')[0]} (ddg-oracle vectors)",
@@ -742,12 +736,10 @@ def _call(impl, method: str, req: dict):
     """``impl``'s answer to the request fields ``req`` of ``method`` (as a corpus case's
     ``input``: non-finite coordinates as strings)."""
     inp = _unportable(req)
-    if method == "planar_delaunay":
-        return impl.planar_delaunay(np.array(inp["P"], dtype=np.float64))
-    args = [np.array(inp["V"], dtype=np.float64), np.array(inp["F"], dtype=np.int64)]
-    if method == "solve_dirichlet":
-        args += [np.array(inp["boundary"], dtype=np.int64), np.array(inp["values"], dtype=np.float64)]
-    return getattr(impl, method)(*args)
+    # integer arrays for faces and vertex sets, floats for points and values
+    dtypes = {"F": np.int64, "boundary": np.int64}
+    return getattr(impl, method)(*(np.array(inp[a], dtype=dtypes.get(a, np.float64))
+                                   for a in METHODS[method].arguments))
 
 
 def answers(corpus: dict[str, dict], impl) -> list[dict]:
@@ -907,7 +899,7 @@ def _check_value(method: str, c: dict, value, bits: str) -> None:
         got = _decode(method, _unportable(value), n, m)
     except (DriverFailed, ValueError, TypeError) as e:
         raise _Wrong(f"malformed answer: {e}") from None
-    kind = KIND[method]
+    kind = kind_of(method)
     if kind in ("integer", "boolean"):
         if got != want["value"]:
             raise _Wrong(f"got {got!r}, expected {want['value']!r}")

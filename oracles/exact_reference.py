@@ -6,6 +6,7 @@ correctly rounded.  This is what every other implementation is compared with.
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -27,6 +28,13 @@ def _view(x) -> float:
         return float(x)
     except OverflowError:
         return math.inf if x > 0 else -math.inf
+
+
+#: this adapter as ``ddg-oracle check --impl reference`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "reference", "object": "ReferenceImplementation", "library": None, "extra": None,
+           "rank": 0}
 
 
 class ReferenceImplementation:

@@ -80,52 +80,58 @@ def _short(value) -> str:
     return text if len(text) <= 120 else text[:117] + "..."
 
 
+#: the dtype and shape of each argument of a request (properties.protocol.Method.arguments)
+_ARGUMENTS = {"V": (np.float64, 2), "F": (np.int64, 2), "P": (np.float64, 2),
+              "boundary": (np.int64, 1), "values": (np.float64, 1)}
+#: the shape of a "numbers" answer by its element (n vertices, m faces of the request)
+_NUMBERS_SHAPE = {"corner": lambda n, m: (m, 3), "vertex": lambda n, m: (n,),
+                  "vertex coordinate": lambda n, m: (n, 3)}
+
+
 def _decode(method: str, value, n: int, m: int):
-    """The protocol value of ``method`` from its JSON answer (docs/protocol.md)."""
-    if method in ("euler_characteristic", "genus"):
+    """The protocol value of ``method`` from its JSON answer (docs/protocol.md), read by the
+    method's kind and element (:class:`~ddg_oracle.properties.protocol.Method`)."""
+    spec = METHODS.get(method)
+    if spec is None:
+        raise DriverFailed(f"{method}: not a protocol method")
+    kind = spec.kind
+    if kind == "integer":
         if not isinstance(value, int) or isinstance(value, bool):
             raise DriverFailed(f"{method}: expected an integer, got {_short(value)}")
         return value
-    if method == "is_orientable":
+    if kind == "boolean":
         if not isinstance(value, bool):
             raise DriverFailed(f"{method}: expected true or false, got {_short(value)}")
         return value
-    if method == "area":
+    if kind == "numbers" and spec.element == "total":
         if not isinstance(value, (int, float)) or isinstance(value, bool):
             raise DriverFailed(f"{method}: expected a number, got {_short(value)}")
         return float(value)
-    if method == "boundary_loops":
+    if kind == "loops":
         if not isinstance(value, list) or not all(isinstance(loop, list) for loop in value):
             raise DriverFailed(f"{method}: expected a list of vertex lists, got {_short(value)}")
         return [[int(v) for v in loop] for loop in value]
-    if method in ("angle_defects", "vertex_areas_barycentric", "vertex_areas_voronoi",
-                  "solve_dirichlet"):
-        return _array(value, method, (n,), np.float64)
-    if method == "area_gradient":
-        return _array(value, method, (n, 3), np.float64)
-    if method == "corner_angles":
-        return _array(value, method, (m, 3), np.float64)
-    if method == "is_locally_delaunay":
+    if kind == "numbers":
+        return _array(value, method, _NUMBERS_SHAPE[spec.element](n, m), np.float64)
+    if kind == "flags":
         return _array(value, method, (m, 3), bool)
-    if method == "edge_mean_curvature":
+    if kind == "edges":
         if not isinstance(value, list) or not all(isinstance(t, list) and len(t) == 3
                                                  for t in value):
             raise DriverFailed(f"{method}: expected a list of [i, j, H] triples, got "
                                f"{_short(value)}")
         return {(min(int(i), int(j)), max(int(i), int(j))): float(h) for i, j, h in value}
-    if method in ("cotan_laplacian", "intrinsic_delaunay_laplacian"):
+    if kind == "matrix":
         L = _as_sparse(value, method)
         if L.shape != (n, n):
             raise DriverFailed(f"{method}: expected a {n} x {n} matrix, got {L.shape}")
         return L
-    if method == "intrinsic_delaunay_triangulation":
+    if kind == "intrinsic triangulation":
         if not isinstance(value, dict) or set(value) != {"F", "l2"}:
             raise DriverFailed(f'{method}: expected {{"F": ..., "l2": ...}}, got {_short(value)}')
         F2 = _array(value["F"], method, (None, 3), np.int64)
         return F2, _array(value["l2"], method, (len(F2), 3), np.float64)
-    if method in ("planar_delaunay", "planar_flip_to_delaunay"):
-        return _array(value, method, (None, 3), np.int64)
-    raise DriverFailed(f"{method}: not a protocol method")
+    return _array(value, method, (None, 3), np.int64)            # a planar triangulation
 
 
 def _manifest(path: str, spec: str) -> dict:
@@ -305,24 +311,28 @@ class Executable:
 
     # --- calls ------------------------------------------------------------------------
 
-    def call(self, method: str, V, F=None, boundary=None, values=None):
+    def call(self, method: str, *args):
+        """Send ``method`` with its arguments (the protocol's ``arguments``: V, F, and for
+        some methods more, or planar points P) and return the decoded answer."""
         if self._proc is None or self._proc.poll() is not None:
             if self._proc is not None:
                 self._stop()
             self._start()
         self._next_id += 1
         k = self._next_id
-        if method == "planar_delaunay":
-            P = np.asarray(V, dtype=np.float64)
-            request = {"id": k, "method": method, "P": P.tolist()}
-            n, m = len(P), 0
-        else:
-            V, F = checked_arrays(V, F)
-            request = {"id": k, "method": method, "V": V.tolist(), "F": F.tolist()}
-            n, m = len(V), len(F)
-            if method == "solve_dirichlet":
-                request["boundary"] = np.asarray(boundary, dtype=np.int64).reshape(-1).tolist()
-                request["values"] = np.asarray(values, dtype=np.float64).reshape(-1).tolist()
+        names = METHODS[method].arguments
+        if len(args) != len(names):
+            raise TypeError(f"{method} takes {', '.join(names)}, got {len(args)} arguments")
+        given = dict(zip(names, args))
+        if "V" in given:
+            given["V"], given["F"] = checked_arrays(given["V"], given["F"])
+        request = {"id": k, "method": method}
+        for name, x in given.items():
+            dtype, ndim = _ARGUMENTS[name]
+            a = np.asarray(x, dtype=dtype)
+            request[name] = (a if ndim == 2 else a.reshape(-1)).tolist()
+        n = len(request["V"] if "V" in request else request["P"])
+        m = len(request.get("F", ()))
         self._send(request, method)
         answer = self._receive(method, call_limit(self.timeout, max(n, m)))
         if not isinstance(answer, dict) or answer.get("id") != k:
@@ -339,11 +349,7 @@ class Executable:
 
     def __getattr__(self, method: str):
         if method in METHODS and method in self.__dict__.get("methods", ()):
-            if method == "planar_delaunay":
-                return lambda P: self.call(method, P)
-            if method == "solve_dirichlet":
-                return lambda V, F, boundary, values: self.call(method, V, F, boundary, values)
-            return lambda V, F: self.call(method, V, F)
+            return lambda *args: self.call(method, *args)
         raise AttributeError(method)
 
     def close(self) -> None:
@@ -369,9 +375,10 @@ def _encode(method: str, value):
         c = scipy.sparse.coo_matrix(value)
         return {"shape": list(c.shape), "rows": c.row.tolist(), "cols": c.col.tolist(),
                 "values": c.data.tolist()}
-    if method == "edge_mean_curvature":
+    kind = METHODS[method].kind if method in METHODS else None
+    if kind == "edges":
         return [[int(i), int(j), float(h)] for (i, j), h in value.items()]
-    if method == "intrinsic_delaunay_triangulation":
+    if kind == "intrinsic triangulation":
         F2, l2 = value
         return {"F": np.asarray(F2).tolist(), "l2": np.asarray(l2).tolist()}
     if isinstance(value, np.ndarray):
@@ -413,16 +420,9 @@ def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
         else:
             k = request.get("id")
             try:
-                if method == "planar_delaunay":
-                    value = impl.planar_delaunay(np.asarray(request["P"], dtype=np.float64))
-                elif method == "solve_dirichlet":
-                    value = impl.solve_dirichlet(np.asarray(request["V"], dtype=np.float64),
-                                                 np.asarray(request["F"], dtype=np.int64),
-                                                 np.asarray(request["boundary"], dtype=np.int64),
-                                                 np.asarray(request["values"], dtype=np.float64))
-                else:
-                    value = getattr(impl, method)(np.asarray(request["V"], dtype=np.float64),
-                                                  np.asarray(request["F"], dtype=np.int64))
+                args = [np.asarray(request[a], dtype=_ARGUMENTS[a][0])
+                        for a in METHODS[method].arguments]
+                value = getattr(impl, method)(*args)
                 answer = {"id": k, "value": _encode(method, value)}
             except OutsideDomain as e:
                 answer = {"id": k, "error": {"kind": "outside_domain", "message": str(e)}}

@@ -44,6 +44,7 @@ coordinates first and raises the reference's typed ``ValueError``s.
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -63,6 +64,13 @@ LIBRARY_CONVENTIONS = {
     "boundary": ("F-gpytoolbox-1", "angle_defect: 0 at boundary vertices"),
     "dihedral": ("F-gpytoolbox-2", "dihedral_angles: unsigned, reflex edges count as convex"),
 }
+
+
+#: this adapter as ``ddg-oracle check --impl gpytoolbox`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "gpytoolbox", "object": "Gpytoolbox", "library": "gpytoolbox", "extra": "peers",
+           "rank": 4}
 
 
 class Gpytoolbox:

@@ -34,6 +34,7 @@ and index ranges in Python before anything reaches libigl and raises
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -43,7 +44,6 @@ import igl
 
 from .arrays import checked_arrays
 from .conventions import declare
-
 
 
 _arrays = checked_arrays
@@ -62,6 +62,13 @@ def _pad(x: np.ndarray, n: int) -> np.ndarray:
 LIBRARY_CONVENTIONS = {
     "boundary": ("F-libigl-2", "gaussian_curvature: 2 pi - angle sum at boundary vertices"),
 }
+
+
+#: this adapter as ``ddg-oracle check --impl libigl`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "libigl", "object": "Libigl", "library": "igl", "extra": "libigl",
+           "rank": 1}
 
 
 class Libigl:

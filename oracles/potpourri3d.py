@@ -34,6 +34,7 @@ typed ``ValueError``s.
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -44,6 +45,13 @@ import potpourri3d
 from .arrays import checked_arrays
 
 _arrays = checked_arrays
+
+
+#: this adapter as ``ddg-oracle check --impl potpourri3d`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "potpourri3d", "object": "Potpourri3d", "library": "potpourri3d", "extra": "peers",
+           "rank": 6}
 
 
 class Potpourri3d:

@@ -32,41 +32,39 @@ def _array(items: dict, length: int | None = None) -> dict:
     return out
 
 
-#: the ``value`` of each method's answer (n vertices, m faces: the request's)
-VALUES: dict[str, dict] = {
-    "euler_characteristic": {"type": "integer"},
-    "genus": {"type": "integer"},
-    "is_orientable": {"type": "boolean"},
-    "boundary_loops": _array(_array(_INDEX)),
-    "corner_angles": _array(_array(_NUMBER, 3)),
-    "angle_defects": _array(_NUMBER),
-    "edge_mean_curvature": _array({"type": "array", "prefixItems": [_INDEX, _INDEX, _NUMBER],
-                                   "minItems": 3, "maxItems": 3}),
-    "area": _NUMBER,
-    "cotan_laplacian": {"$ref": "#/$defs/sparse"},
-    "area_gradient": _array(_array(_NUMBER, 3)),
-    "solve_dirichlet": _array(_NUMBER),
-    "vertex_areas_barycentric": _array(_NUMBER),
-    "vertex_areas_voronoi": _array(_NUMBER),
-    "is_locally_delaunay": _array(_array({"type": "boolean"}, 3)),
-    "intrinsic_delaunay_laplacian": {"$ref": "#/$defs/sparse"},
-    "intrinsic_delaunay_triangulation": {
+_EDGE_VALUE = {"type": "array", "prefixItems": [_INDEX, _INDEX, _NUMBER], "minItems": 3,
+               "maxItems": 3}
+
+#: the ``value`` of an answer, by the method's kind (and element: properties.protocol.Method)
+_VALUE_OF_KIND = {
+    "integer": {"type": "integer"},
+    "boolean": {"type": "boolean"},
+    "loops": _array(_array(_INDEX)),
+    "edges": _array(_EDGE_VALUE),
+    "matrix": {"$ref": "#/$defs/sparse"},
+    "flags": _array(_array({"type": "boolean"}, 3)),
+    "intrinsic triangulation": {
         "type": "object", "required": ["F", "l2"], "additionalProperties": False,
         "properties": {"F": _array(_array(_INDEX, 3)), "l2": _array(_array(_NUMBER, 3))}},
-    "planar_flip_to_delaunay": _array(_array(_INDEX, 3)),
-    "planar_delaunay": _array(_array(_INDEX, 3)),
+    "planar triangulation": _array(_array(_INDEX, 3)),
 }
+_VALUE_OF_ELEMENT = {"corner": _array(_array(_NUMBER, 3)), "vertex": _array(_NUMBER),
+                     "vertex coordinate": _array(_array(_NUMBER, 3)), "total": _NUMBER}
 
-_PLANAR_INPUT = {"planar_delaunay"}       # "P" instead of "V" and "F"
-#: inputs beyond V and F: the boundary set and its values of the Dirichlet problem
-_EXTRA_INPUT = {"solve_dirichlet": {"boundary": _array(_INDEX), "values": _array(_NUMBER)}}
+#: each argument of a request (the method's ``arguments``)
+_ARGUMENT = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3)),
+             "P": _array(_array(_NUMBER, 2)), "boundary": _array(_INDEX),
+             "values": _array(_NUMBER)}
+
+
+def value_schema(method: str) -> dict:
+    """The schema of ``method``'s answer value, from its kind and element."""
+    m = METHODS[method]
+    return _VALUE_OF_ELEMENT[m.element] if m.kind == "numbers" else _VALUE_OF_KIND[m.kind]
 
 
 def schema() -> dict:
     """The protocol's schemas, one JSON document."""
-    missing = set(METHODS) ^ set(VALUES)
-    if missing:                           # the table must follow the protocol's methods
-        raise AssertionError(f"protocol methods without a value schema: {sorted(missing)}")
     defs: dict[str, dict] = {
         "sparse": {"type": "object", "required": ["shape", "rows", "cols", "values"],
                    "additionalProperties": False,
@@ -108,12 +106,9 @@ def schema() -> dict:
                                      "properties": {"kind": {"enum": ["outside_domain", "failed"]},
                                                     "message": {"type": "string"}}}}},
     }
-    for method, value in VALUES.items():
-        if method in _PLANAR_INPUT:
-            inputs = {"P": _array(_array(_NUMBER, 2))}
-        else:
-            inputs = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3)),
-                      **_EXTRA_INPUT.get(method, {})}
+    for method, spec in METHODS.items():
+        value = value_schema(method)
+        inputs = {a: _ARGUMENT[a] for a in spec.arguments}
         defs[f"request.{method}"] = {
             "type": "object", "required": ["id", "method", *inputs], "additionalProperties": False,
             "properties": {"id": {"type": "integer"}, "method": {"const": method}, **inputs}}

@@ -49,6 +49,7 @@ with ``ValueError`` before calling PyMeshLab.
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -60,7 +61,6 @@ from .conventions import declare
 
 import pymeshlab
 from ddg_oracle.reference.combinatorics import next_corner, prev_corner
-
 
 
 class VertexOrderChanged(ValueError):
@@ -165,6 +165,13 @@ LIBRARY_CONVENTIONS = {
     "boundary": ("F-pymeshlab-2", "boundary term 2 pi - angle sum - phi"),
     "genus": ("F-pymeshlab-1", "genus of a non-orientable mesh is floor(h / 2)"),
 }
+
+
+#: this adapter as ``ddg-oracle check --impl pymeshlab`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "pymeshlab", "object": "PyMeshLab", "library": "pymeshlab", "extra": "pymeshlab",
+           "rank": 2}
 
 
 class PyMeshLab:

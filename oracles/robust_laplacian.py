@@ -53,6 +53,7 @@ and finite coordinates first and raises the reference's typed ``ValueError``s.
 
 from __future__ import annotations
 
+
 import scipy.sparse
 
 import robust_laplacian
@@ -73,6 +74,13 @@ LIBRARY_CONVENTIONS = {
     "boundary": ("F-robust-laplacian-1", "tufted cover: boundary edges are flipped in the double of the surface"),
     "mollify": ("F-robust-laplacian-3", "mollify_factor 1e-5 lengthens every edge of a nearly degenerate mesh"),
 }
+
+
+#: this adapter as ``ddg-oracle check --impl robust_laplacian`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "robust_laplacian", "object": "RobustLaplacian", "library": "robust_laplacian", "extra": "peers",
+           "rank": 5}
 
 
 class RobustLaplacian:

@@ -9,8 +9,16 @@ tessellation: how a cocircular cell is split into triangles is not compared.
 
 from __future__ import annotations
 
+
 import numpy as np
 import scipy.spatial
+
+
+#: this adapter as ``ddg-oracle check --impl scipy`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "scipy", "object": "ScipySpatial", "library": "scipy", "extra": None,
+           "rank": 3}
 
 
 class ScipySpatial:

@@ -32,6 +32,7 @@ Bad input is checked first by :func:`~ddg_oracle.oracles.arrays.checked_arrays`
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -52,6 +53,13 @@ LIBRARY_CONVENTIONS = {
     "boundary": ("F-trimesh-1", "vertex_defects: 2 pi - angle sum at boundary vertices"),
     "dihedral": ("F-trimesh-5", "face_adjacency_angles: unsigned, reflex edges count as convex"),
 }
+
+
+#: this adapter as ``ddg-oracle check --impl trimesh`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "trimesh", "object": "Trimesh", "library": "trimesh", "extra": "peers",
+           "rank": 7}
 
 
 class Trimesh:

@@ -31,6 +31,7 @@ which is what the protocol's ``edge_mean_curvature`` asks), so it is not adapted
 
 from __future__ import annotations
 
+
 import math
 
 import numpy as np
@@ -69,6 +70,13 @@ def polydata(V, F) -> vtkPolyData:
     mesh.SetPoints(points)
     mesh.SetPolys(cells)
     return mesh
+
+
+#: this adapter as ``ddg-oracle check --impl vtk`` finds it (read without importing the
+#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: core's own dependencies), the pip extra that installs it, its place in reports
+ADAPTER = {"name": "vtk", "object": "Vtk", "library": "vtkmodules", "extra": "peers",
+           "rank": 8}
 
 
 class Vtk:

@@ -29,9 +29,9 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
-                     float_geometry, gamma, vertex_tolerances)
+                     float_geometry, gamma, total_area_view, vertex_tolerances)
 from .protocol import ISOLATED_VERTEX, eps
-from .registry import PropertyFailure, TieDisagreement, prop
+from .registry import EXACT_SUM_LIMIT, PropertyFailure, TieDisagreement, prop, quantity
 from .strategies import Example, floated, jittered_surfaces
 from . import variants
 from .variants import circle_point
@@ -202,7 +202,7 @@ def _units(err: float, bound: float) -> str:
 
 @prop("D2.2", "angle_defects = 2 pi - angle sum at every interior vertex, as the exact reference, "
       "within the derived float bound",
-      needs={"angle_defects"}, strategy=lambda: jittered_surfaces(intrinsic=True))
+      needs={"angle_defects"}, on_mesh=(), strategy=lambda: jittered_surfaces(intrinsic=True))
 def angle_defects_match_reference(impl, case: Example):
     K = _defects(impl, case, "D2.2")
     tol = vertex_tolerances(case, corner_tolerances(case))
@@ -216,6 +216,7 @@ def angle_defects_match_reference(impl, case: Example):
 
 @prop("R2.4", "boundary vertices get the turning angle pi - angle sum; interior K plus turning "
       "angles sum to 2 pi chi", needs={"angle_defects"},
+      on_mesh=("bordered",),
       strategy=lambda: jittered_surfaces(closed=False, intrinsic=True))
 def turning_angles_and_gauss_bonnet_with_boundary(impl, case: Example):
     K = _defects(impl, case, "R2.4")
@@ -242,6 +243,7 @@ def _check_total(pid, impl, case, K, tol):
 
 @prop("T2.6", "Gauss-Bonnet: the angle defects of a closed surface sum to 2 pi chi, within the "
       "derived bound", needs={"angle_defects"},
+      on_mesh=("closed",),
       strategy=lambda: jittered_surfaces(closed=True, intrinsic=True))
 def gauss_bonnet(impl, case: Example):
     K = _defects(impl, case, "T2.6")
@@ -251,6 +253,7 @@ def gauss_bonnet(impl, case: Example):
 
 @prop("X2.1", "unit cube (any rational rotation, any labelling): K = pi/2 at every vertex, total 4 pi",
       needs={"angle_defects"},
+      on_mesh=None,
       strategy=lambda: st.tuples(rational_motions(), st.integers(0, 1 << 16)))
 def cube_angle_defects(impl, example):
     (R, tr), key = example
@@ -269,6 +272,7 @@ def cube_angle_defects(impl, example):
 
 @prop("T2.5", "Theorema Egregium: angle defects are unchanged by a rational rigid motion and a "
       "relabelling (within both bounds plus input rounding)", needs={"angle_defects"},
+      on_mesh=None,
       strategy=lambda: st.tuples(jittered_surfaces(far=False),
                                  rational_motions(),
                                  st.integers(0, 1 << 16)))
@@ -321,6 +325,7 @@ def pushable_surfaces(draw):
 
 @prop("X2.3", "pushing a vertex in (reflecting it in the plane of its coplanar neighbours) "
       "changes no corner angle and no angle defect", needs={"angle_defects", "corner_angles"},
+      on_mesh=None,
       strategy=pushable_surfaces)
 def pushing_a_vertex_in_keeps_the_metric(impl, example):
     case, v = example
@@ -349,6 +354,7 @@ def pushing_a_vertex_in_keeps_the_metric(impl, example):
 
 @prop("R2.2", "K < 2 pi everywhere; a folded star of n neighbours at heights +-h has "
       "K <= 2 pi - 2 n atan(h) (unbounded below)", needs={"angle_defects"},
+      on_mesh=None,
       strategy=lambda: st.tuples(jittered_surfaces(), vertex_stars("folded")))
 def curvature_bounded_above_not_below(impl, example):
     case, star = example
@@ -382,6 +388,7 @@ _SIGN = {"convex": 1, "planar": 0, "saddle": -1}
 
 @prop("L2.4", "convex star => K > 0, planar star => K = 0, saddle star => K < 0 (stars built "
       "to be of each kind; K decided beyond the float bound)", needs={"angle_defects"},
+      on_mesh=None,
       strategy=lambda: st.sampled_from(["convex", "planar", "saddle"]).flatmap(vertex_stars))
 def star_kind_decides_curvature_sign(impl, star: Example):
     # the kind survived rounding to floats
@@ -418,6 +425,7 @@ def _corner_angles_from_lengths(case: Example) -> np.ndarray:
 
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "
       "(the piecewise flat metric built from squared lengths alone)", needs={"corner_angles"},
+      on_mesh=(),
       strategy=lambda: jittered_surfaces(intrinsic=True))
 def corner_angles_from_edge_lengths(impl, case: Example):
     expected = case.derived("corner angles", _corner_angles_from_lengths)
@@ -450,7 +458,7 @@ def _edge_dict(impl, case, pid):
 
 @prop("D2.3", "edge_mean_curvature: H(e) = 1/2 theta(e) l(e) on every interior edge, theta > 0 "
       "where convex, as the exact reference within the derived bound",
-      needs={"edge_mean_curvature"}, strategy=jittered_surfaces)
+      needs={"edge_mean_curvature"}, on_mesh=("orientable",), strategy=jittered_surfaces)
 def edge_mean_curvature_matches_reference(impl, case: Example):
     H = _edge_dict(impl, case, "D2.3")
     expected = _reference_mean_curvature(case)
@@ -586,7 +594,7 @@ def convex_polyhedra(draw):
 
 @prop("T2.7", "total mean curvature of a convex polyhedron = integral of its support function over "
       "the unit sphere (2 pi x mean width), within quadrature plus float bounds",
-      needs={"edge_mean_curvature"}, strategy=convex_polyhedra)
+      needs={"edge_mean_curvature"}, on_mesh=None, strategy=convex_polyhedra)
 def total_mean_curvature_is_support_integral(impl, case: Example):
     H = _edge_dict(impl, case, "T2.7")
     total = math.fsum(H.values())
@@ -603,6 +611,7 @@ def total_mean_curvature_is_support_integral(impl, case: Example):
 
 @prop("R2.5", "Steiner coefficients of a closed surface: area, 2 H(S) and K(S) = 2 pi chi agree "
       "with the exact (A, 2 H(S), 2 pi chi)", needs={"area", "edge_mean_curvature", "angle_defects"},
+      on_mesh=("closed", "orientable", "exact total area"),
       strategy=lambda: jittered_surfaces(closed=True))
 def steiner_coefficients_match(impl, case: Example):
     A_ref, twoH_ref, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
@@ -621,3 +630,29 @@ def steiner_coefficients_match(impl, case: Example):
                               mesh=case.mesh, expected=float(twoH_ref), observed=twoH, bound=bound_H)
     K = _defects(impl, case, "R2.5")
     _check_total("R2.5", impl, case, K, vertex_tolerances(case, corner_tolerances(case)))
+
+
+# --- how the curvature methods' answers compare on a given mesh (compare, vectors) ------------
+
+
+def _area_expected(example: Example, reference):
+    """The exact total area correctly rounded (the reference's answer); beyond
+    EXACT_SUM_LIMIT faces the sum of the correctly rounded face areas (total_area_view),
+    the exact sum having a square root per face."""
+    if len(example.faces) > EXACT_SUM_LIMIT:
+        return total_area_view(example.surface.metric())[0]
+    return reference()
+
+
+def _area_bound(example: Example, want) -> float:
+    widening = total_area_view(example.surface.metric())[1] \
+        if len(example.faces) > EXACT_SUM_LIMIT else 0.0
+    return area_tolerance(example) + widening
+
+
+quantity("corner_angles", bound=lambda example, want: corner_tolerances(example))
+quantity("angle_defects",
+         bound=lambda example, want: vertex_tolerances(example, corner_tolerances(example)))
+quantity("edge_mean_curvature", requires=("orientable",),
+         bound=lambda example, want: edge_mean_curvature_tolerances(example))
+quantity("area", bound=_area_bound, expected=_area_expected)

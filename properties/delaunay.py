@@ -52,7 +52,7 @@ from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          single_triangles)
 from .metrics import polycube_surfaces
 from .protocol import eps
-from .registry import PropertyFailure, TieDisagreement, faces_text, prop
+from .registry import PropertyFailure, TieDisagreement, faces_text, prop, quantity
 from ddg_oracle.reference.combinatorics import (corner_of, cyclic, face_of, next_corner,
                                                 opposite_corner, prev_corner)
 
@@ -346,7 +346,7 @@ def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
 
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
       "cot a + cot b >= 0 on every edge (boundary edges are Delaunay); exact ties accept both",
-      needs={"is_locally_delaunay"}, strategy=delaunay_meshes)
+      needs={"is_locally_delaunay"}, on_mesh=None, strategy=delaunay_meshes)
 def locally_delaunay_edges(impl, case: Example):
     pid = "D4.4 / T4.7 / P4.9"
     X = Exact.of(case)
@@ -380,7 +380,7 @@ def locally_delaunay_edges(impl, case: Example):
 @prop("P4.10", "the interior-edge cotan weights of the implementation's cotan_laplacian are all "
       ">= 0 iff the triangulation is Delaunay: each weight's sign agrees with the exact one "
       "(weights within the bound of 0 are ties)",
-      needs={"cotan_laplacian"}, strategy=delaunay_meshes)
+      needs={"cotan_laplacian"}, on_mesh=None, strategy=delaunay_meshes)
 def nonnegative_weights_iff_delaunay(impl, case: Example):
     A = implementation_dense(impl, case, "P4.10")
     X = Exact.of(case)
@@ -402,7 +402,8 @@ def nonnegative_weights_iff_delaunay(impl, case: Example):
 
 @prop("D4.8 / R4.9", "intrinsic_delaunay_laplacian is the exact Laplace-Beltrami operator "
       "(cotan Laplacian of the intrinsic Delaunay triangulation) within the derived bound; its "
-      "weights on interior edges are >= 0", needs={"intrinsic_delaunay_laplacian"}, strategy=intrinsic_meshes)
+      "weights on interior edges are >= 0", needs={"intrinsic_delaunay_laplacian"},
+      on_mesh=(), strategy=intrinsic_meshes)
 def laplace_beltrami_operator(impl, case: Example):
     pid = "D4.8 / R4.9"
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
@@ -420,7 +421,7 @@ def laplace_beltrami_operator(impl, case: Example):
 
 @prop("T4.5", "two triangulations of one planar point set (one flat metric) give the same "
       "intrinsic Delaunay Laplacian: the Delaunay tessellation is unique",
-      needs={"intrinsic_delaunay_laplacian"}, strategy=two_triangulations)
+      needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=two_triangulations)
 def unique_delaunay_operator(impl, pair):
     c1, c2 = pair
     A1 = implementation_dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
@@ -440,7 +441,8 @@ def unique_delaunay_operator(impl, pair):
 
 @prop("T4.21", "L_T - L_Delaunay is positive semidefinite: the Delaunay triangulation minimises "
       "the Dirichlet energy of every function (Weyl bound from both entry bounds)",
-      needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"}, strategy=delaunay_meshes)
+      needs={"cotan_laplacian", "intrinsic_delaunay_laplacian"},
+      on_mesh=None, strategy=delaunay_meshes)
 def delaunay_minimises_the_energy(impl, case: Example):
     L = implementation_dense(impl, case, "T4.21")
     D = implementation_dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
@@ -457,7 +459,7 @@ def delaunay_minimises_the_energy(impl, case: Example):
 
 @prop("X4.2", "on the X4.2 tetrahedron (its Delaunay triangulation has a vertex of valence 1, a "
       "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
-      needs={"intrinsic_delaunay_laplacian"}, strategy=x42_tetrahedron)
+      needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=x42_tetrahedron)
 def valence_one_vertex(impl, case: Example):
     A = implementation_dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
     D = DelaunayExact.of(case)
@@ -467,7 +469,8 @@ def valence_one_vertex(impl, case: Example):
 
 
 @prop("L4.18", "h(T) = 8 sum_i E(phi_i) = 4 trace(L): the diagonal of cotan_laplacian sums to a "
-      "quarter of the exact harmonic index", needs={"cotan_laplacian"}, strategy=delaunay_meshes)
+      "quarter of the exact harmonic index", needs={"cotan_laplacian"},
+      on_mesh=None, strategy=delaunay_meshes)
 def harmonic_index_is_the_trace(impl, case: Example):
     A = implementation_dense(impl, case, "L4.18")
     X = Exact.of(case)
@@ -481,7 +484,7 @@ def harmonic_index_is_the_trace(impl, case: Example):
 
 
 @prop("D4.7 / L4.17", "h(T) = sum (a^2 + b^2 + c^2) / A = 4 sum cot: from the implementation's "
-      "corner angles", needs={"corner_angles"}, strategy=delaunay_meshes)
+      "corner angles", needs={"corner_angles"}, on_mesh=None, strategy=delaunay_meshes)
 def harmonic_index_from_angles(impl, case: Example):
     X = Exact.of(case)
     ang = np.asarray(impl.corner_angles(*case.arrays()), dtype=float)
@@ -530,7 +533,7 @@ def total_area_bound(area, rho, amp: float) -> float:
 
 @prop("A4.13", "intrinsic_delaunay_triangulation returns a triangulation of the same metric "
       "(every vertex's angle sum and the total area unchanged) whose edges are all Delaunay",
-      needs={"intrinsic_delaunay_triangulation"}, strategy=intrinsic_meshes)
+      needs={"intrinsic_delaunay_triangulation"}, on_mesh=None, strategy=intrinsic_meshes)
 def flip_algorithm_result(impl, case: Example):
     pid = "A4.13"
     F2, l2 = _triangulation_result(impl, case, pid)
@@ -575,7 +578,8 @@ def flip_algorithm_result(impl, case: Example):
 
 @prop("C4.19", "the harmonic index never increases under Delaunay flips: h of the "
       "implementation's Delaunay triangulation <= h of the input, strictly when the reference "
-      "had to flip", needs={"intrinsic_delaunay_triangulation"}, strategy=intrinsic_meshes)
+      "had to flip", needs={"intrinsic_delaunay_triangulation"},
+      on_mesh=None, strategy=intrinsic_meshes)
 def harmonic_index_decreases(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "C4.19")
     D = DelaunayExact.of(case)
@@ -595,6 +599,7 @@ def harmonic_index_decreases(impl, case: Example):
 
 @prop("L4.20 / C4.13", "h(T) >= l(T)^2 / A (A the total area, l(T) the longest edge) on the "
       "implementation's Delaunay triangulation", needs={"intrinsic_delaunay_triangulation"},
+      on_mesh=None,
       strategy=intrinsic_meshes)
 def harmonic_index_bounds_the_longest_edge(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "L4.20 / C4.13")
@@ -617,6 +622,7 @@ def _interior(X: Exact) -> np.ndarray:
 @prop("D4.9 / R4.10", "a flat mesh is minimal in the wide sense (Laplace-Beltrami of the "
       "coordinates = 0 at interior vertices) and every interior vertex is a convex combination "
       "of its Delaunay neighbours", needs={"intrinsic_delaunay_laplacian"},
+      on_mesh=None,
       strategy=lambda: planar_meshes(min_size=2))
 def flat_meshes_are_minimal(impl, case: Example):
     pid = "D4.9 / R4.10"
@@ -643,7 +649,7 @@ def flat_meshes_are_minimal(impl, case: Example):
 
 @prop("A4.23", "one minimal-surface step with the intrinsic Laplace-Beltrami operator (boundary "
       "fixed) does not increase the Dirichlet energy above the area: E(x~) <= E(x) <= A(S)",
-      needs={"intrinsic_delaunay_laplacian"}, strategy=_interior_meshes)
+      needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=_interior_meshes)
 def delaunay_minimal_surface_step(impl, case: Example):
     pid = "A4.23"
     A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian")
@@ -734,7 +740,7 @@ def _real_violations(pts, tris):
 
 @prop("D4.1", "every triangle of planar_delaunay is non-degenerate and its circumdisk holds no "
       "other point in its interior (exact in-circle test on the float points)",
-      needs={"planar_delaunay"}, strategy=_planar_points)
+      needs={"planar_delaunay"}, on_mesh=None, strategy=_planar_points)
 def empty_disk_property(impl, pts):
     from ddg_oracle.reference.planar import orientation
     tris, mesh = _planar_result(impl, pts, "D4.1")
@@ -755,7 +761,7 @@ def empty_disk_property(impl, pts):
 
 @prop("T4.1", "planar_delaunay is the unique Delaunay tessellation of the points once "
       "cocircular triangles are merged (compared with the exact flip algorithm's)",
-      needs={"planar_delaunay"}, strategy=_planar_points)
+      needs={"planar_delaunay"}, on_mesh=None, strategy=_planar_points)
 def unique_planar_tessellation(impl, pts):
     from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
     tris, mesh = _planar_result(impl, pts, "T4.1")
@@ -827,7 +833,7 @@ def planar_delaunay_problems(pts, tris, boundary) -> int:
       "vertices and boundary edges, faces counterclockwise) whose interior edges all have "
       "opposite angles summing to at most pi (L4.3: exact in-circle test on the float points); "
       "started on the convex hull, the Delaunay tessellation (T4.1)",
-      needs={"planar_flip_to_delaunay"}, strategy=_planar_triangulations)
+      needs={"planar_flip_to_delaunay"}, on_mesh=None, strategy=_planar_triangulations)
 def planar_flips_reach_delaunay(impl, example):
     from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
     pid = "L4.3 / P4.4"
@@ -868,7 +874,7 @@ def _quads():
 @prop("L4.14", "Rippa: 1/2 u^T (L13 - L24) u from the implementation's cotan Laplacians of the "
       "two triangulations of a convex quadrilateral equals the exact right side of (4.2); its "
       "sign is that of r1 r3 - r2 r4 (L4.15, C4.16) unless within the bound",
-      needs={"cotan_laplacian"}, strategy=_quads)
+      needs={"cotan_laplacian"}, on_mesh=None, strategy=_quads)
 def rippa_energy_difference(impl, quad_u):
     from ddg_oracle.reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
     pts, u = quad_u
@@ -889,3 +895,17 @@ def rippa_energy_difference(impl, quad_u):
     if exact != 0 and abs(got) > bound and (got > 0) != (s > 0):
         fail("L4.14", impl, c13, "the energy difference has the wrong sign for the "
               "quadrilateral's circularity (L4.15)", expected=s, observed=got)
+
+
+# --- how the chapter-4 methods' answers compare on a given mesh (compare, vectors) ------------
+
+quantity("is_locally_delaunay")
+quantity("intrinsic_delaunay_laplacian",
+         bound=lambda example, want: DelaunayExact.of(example).Bs,
+         expected=lambda example, reference: DelaunayExact.of(example).Ls)
+quantity("intrinsic_delaunay_triangulation",
+         not_on_a_mesh="not unique: checked by A4.13 and D4.8 / R4.9")
+quantity("planar_flip_to_delaunay",
+         not_on_a_mesh="not unique, and needs a planar triangulation: checked by L4.3 / P4.4")
+quantity("planar_delaunay",
+         not_on_a_mesh="takes planar points, not a mesh: checked by T4.1 and D4.1")

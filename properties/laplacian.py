@@ -36,7 +36,7 @@ from .bounds import gamma, total_area_view
 from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
                       implementation_matrix, record, worst, worst_sparse)
 from .protocol import ISOLATED_VERTEX, capabilities, eps
-from .registry import TieDisagreement, prop
+from .registry import TieDisagreement, prop, quantity
 from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
                          surface_meshes, with_boundary, with_functions, with_isolated)
@@ -47,7 +47,8 @@ from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jitte
 
 @prop("D3.1", "cotan_laplacian is a weighted graph Laplacian on the mesh edges: symmetric, zero "
       "row sums, supported on edges, entries = the exact cotan weights (3.3) within the derived bound",
-      needs={"cotan_laplacian"}, strategy=lambda: scaled_meshes(any_meshes(isolated=True)))
+      needs={"cotan_laplacian"},
+      on_mesh=(), strategy=lambda: scaled_meshes(any_meshes(isolated=True)))
 def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: Example):
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
     A = implementation_matrix(impl, case, "D3.1")
@@ -84,7 +85,8 @@ def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: Example)
 
 @prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "
       "linear interpolant (computed exactly from per-face gradients)",
-      needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
+      needs={"cotan_laplacian"},
+      on_mesh=None, strategy=lambda: with_functions(any_meshes(isolated=True)))
 def energy_of_the_interpolant(impl, case: Example):
     A = implementation_dense(impl, case, "T3.6")
     X = Exact.of(case)
@@ -103,7 +105,8 @@ def energy_of_the_interpolant(impl, case: Example):
 
 @prop("T3.1 / R3.2", "grad E = L f: phi . (L f) equals the exact derivative at t = 0 of "
       "E(f + t phi), E the piecewise linear Dirichlet energy",
-      needs={"cotan_laplacian"}, strategy=lambda: with_functions(any_meshes(isolated=True)))
+      needs={"cotan_laplacian"},
+      on_mesh=None, strategy=lambda: with_functions(any_meshes(isolated=True)))
 def gradient_of_the_energy(impl, case: Example):
     A = implementation_dense(impl, case, "T3.1 / R3.2")
     X = Exact.of(case)
@@ -126,7 +129,7 @@ def _eig_tol(X: Exact, A) -> float:
 
 @prop("R3.3", "with negative cotan weights, L is still positive semidefinite and L restricted to "
       "the vertices off a nonempty V0 is positive definite (the Dirichlet problem is uniquely solvable)",
-      needs={"cotan_laplacian"}, strategy=lambda: with_boundary(obtuse_meshes()))
+      needs={"cotan_laplacian"}, on_mesh=None, strategy=lambda: with_boundary(obtuse_meshes()))
 def negative_weights_keep_the_energy_positive(impl, case: Example):
     A = implementation_dense(impl, case, "R3.3")
     X = Exact.of(case)
@@ -148,7 +151,8 @@ def negative_weights_keep_the_energy_positive(impl, case: Example):
 
 @prop("C3.3", "Liouville: on a mesh of c components (an isolated vertex is one) with positive weights, L has exactly c "
       "eigenvalues within the bound of 0 and kills each component's indicator",
-      needs={"cotan_laplacian"}, strategy=lambda: with_isolated(acute_meshes(max_components=3)))
+      needs={"cotan_laplacian"},
+      on_mesh=None, strategy=lambda: with_isolated(acute_meshes(max_components=3)))
 def harmonic_functions_are_locally_constant(impl, case: Example):
     A = implementation_dense(impl, case, "C3.3")
     X = Exact.of(case)
@@ -211,6 +215,7 @@ def _dirichlet_solutions(impl, case: Example, pid: str):
 @prop("T3.2", "maximum principle: with positive weights, the solution of the Dirichlet problem "
       "(the implementation's L, and its own solver) takes its max and min on V0, within the "
       "propagated bound", needs_any={"cotan_laplacian", "solve_dirichlet"},
+      on_mesh=None,
       strategy=lambda: with_boundary(acute_meshes()))
 def maximum_principle(impl, case: Example):
     V0 = list(case.boundary)
@@ -234,6 +239,7 @@ def maximum_principle(impl, case: Example):
 @prop("C3.4 / T3.5", "the Dirichlet solution (the implementation's L, and its own solver) is "
       "the minimiser of the exact piecewise linear energy: its exact gradient vanishes off V0 "
       "and E(u + phi) >= E(u)", needs_any={"cotan_laplacian", "solve_dirichlet"},
+      on_mesh=None,
       strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
 def dirichlet_solution_minimises_the_energy(impl, case: Example):
     V0 = list(case.boundary)
@@ -266,7 +272,7 @@ def dirichlet_solution_minimises_the_energy(impl, case: Example):
 
 @prop("P3.10", "positive weights, u harmonic at i => u(i) in the convex hull of its neighbours: "
       "no direction d has d.u(i) > max_j d.u(j) beyond the bound",
-      needs={"cotan_laplacian"}, strategy=lambda: with_functions(acute_meshes()))
+      needs={"cotan_laplacian"}, on_mesh=None, strategy=lambda: with_functions(acute_meshes()))
 def harmonic_value_in_convex_hull(impl, case: Example):
     A = implementation_dense(impl, case, "P3.10")
     X = Exact.of(case)
@@ -298,7 +304,8 @@ def harmonic_value_in_convex_hull(impl, case: Example):
 @prop("E3.12", "nu(ij) >= 0 iff alpha_ij + alpha_ji <= pi: the sign of each off-diagonal entry "
       "agrees with the exact angle sum (edges whose weight is within the bound of 0 are undecided "
       "and must be, when the angle sum is exactly pi)",
-      needs={"cotan_laplacian"}, strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
+      needs={"cotan_laplacian"},
+      on_mesh=(), strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes()))
 def weight_sign_by_opposite_angles(impl, case: Example):
     A = implementation_matrix(impl, case, "E3.12")
     X = Exact.of(case)
@@ -331,7 +338,8 @@ def weight_sign_by_opposite_angles(impl, case: Example):
 
 
 @prop("L3.8", "on one triangle, (L V)(i) equals the area gradient 1/2 n x (v_k - v_j) computed "
-      "directly (no cotangent)", needs={"cotan_laplacian"}, strategy=single_triangles)
+      "directly (no cotangent)", needs={"cotan_laplacian"},
+      on_mesh=None, strategy=single_triangles)
 def area_gradient_of_a_triangle(impl, case: Example):
     _area_gradient_check("L3.8", impl, case)
 
@@ -370,6 +378,7 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
 @prop("T3.9", "area as Dirichlet energy: sum_k x_k^T L x_k / 2 = A(S) and L V = grad A (so L V = 0 "
       "at interior vertices of a planar mesh: linear precision); the implementation's own "
       "area_gradient equals grad A too", needs_any={"cotan_laplacian", "area_gradient"},
+      on_mesh=(),
       strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes(),
                                  surface_meshes(isolated=True)))
 def area_as_dirichlet_energy(impl, case: Example):
@@ -395,6 +404,7 @@ def area_as_dirichlet_energy(impl, case: Example):
 @prop("A3.6", "one minimal surface step (solve L_S x = 0 off the boundary with the "
       "implementation's L) does not increase the area, within the propagated bound",
       needs={"cotan_laplacian"},
+      on_mesh=None,
       strategy=lambda: with_boundary(st.one_of(jittered_grids(), obtuse_fans()), mesh_boundary=True))
 def minimal_surface_step_decreases_area(impl, case: Example):
     A = implementation_dense(impl, case, "A3.6")
@@ -433,6 +443,7 @@ def _face_areas(surface):
 @prop("L3.7", "mass matrices: mixed Voronoi areas (the circumcentric split of L3.7 on non-obtuse "
       "faces) and barycentric areas agree with the exact ones and sum to the total area",
       needs={"vertex_areas_voronoi"},
+      on_mesh=(),
       strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes(), jittered_grids(), closed_meshes(),
                                  surface_meshes(isolated=True)))
 def vertex_areas_sum_to_the_area(impl, case: Example):
@@ -461,3 +472,22 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
         if abs(float(got.sum()) - area) > total_bound:
             fail("L3.7", impl, case, f"{name} does not sum to the total area",
                   expected=area, observed=float(got.sum()))
+
+
+# --- how the chapter-3 methods' answers compare on a given mesh (compare, vectors) ------------
+# (Exact.of: the exact values, float views and bounds, once per mesh and machine epsilon)
+
+quantity("cotan_laplacian", bound=lambda example, want: Exact.of(example).Bs,
+         expected=lambda example, reference: Exact.of(example).Ls)
+quantity("area_gradient",
+         bound=lambda example, want: Exact.of(example).area_gradient_bound(example.arrays()[0])[1],
+         expected=lambda example, reference: Exact.of(example).area_gradient_bound(
+             example.arrays()[0])[0])
+quantity("solve_dirichlet",
+         not_on_a_mesh="needs a boundary set and its values: checked by T3.2 and C3.4 / T3.5",
+         bound=lambda example, want: Exact.of(example).dirichlet_solution_bound(
+             example.boundary, want))
+quantity("vertex_areas_barycentric",
+         bound=lambda example, want: Exact.of(example).vertex_area_bounds[1])
+quantity("vertex_areas_voronoi",
+         bound=lambda example, want: Exact.of(example).vertex_area_bounds[0])

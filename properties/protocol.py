@@ -18,52 +18,107 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import math
+from dataclasses import dataclass
 
-# name -> one-line contract; the single source of the protocol's method names.
-METHODS: dict[str, str] = {
+
+@dataclass(frozen=True)
+class Method:
+    """A protocol method: its one-line contract (what it answers, in the reference's
+    conventions), its arguments, and the shape of its answer -- ``kind``: ``"integer"``,
+    ``"boolean"``, ``"loops"`` (boundary cycles), ``"numbers"`` (a float array with one
+    value per ``element``: ``"corner"`` (m, 3), ``"vertex"`` (n,), ``"vertex coordinate"``
+    (n, 3), or the ``"total"``), ``"edges"`` ({(i, j): value}), ``"matrix"`` (n x n
+    sparse), ``"flags"`` ((m, 3) bool, column c the edge opposite corner c),
+    ``"intrinsic triangulation"`` ((F2, l2)) or ``"planar triangulation"`` ((m, 3)
+    faces).  The executable protocol (encoding, schema) and the comparisons of
+    ``compare`` and the test vectors read the shape from here; how closely an answer
+    must match is declared beside the properties (``properties.registry.quantity``)."""
+
+    contract: str
+    kind: str
+    element: str = ""
+    arguments: tuple = ("V", "F")
+
+    def __str__(self) -> str:
+        return self.contract
+
+
+KINDS = ("integer", "boolean", "loops", "numbers", "edges", "matrix", "flags",
+         "intrinsic triangulation", "planar triangulation")
+ELEMENTS = ("corner", "vertex", "vertex coordinate", "total")
+
+# name -> Method; the single source of the protocol's method names, contracts and shapes.
+METHODS: dict[str, Method] = {
     # chapter 1: topology
-    "euler_characteristic": "int: V - E + F of the surface (D1.6)",
-    "boundary_loops": "list of boundary cycles, each a list of vertex indices in order",
-    "is_orientable": "bool: whether the surface is orientable",
-    "genus": "int: g of an orientable surface (chi = 2 - 2g - k); of a non-orientable one "
-             "its number of crosscaps h (chi = 2 - h - k)",
+    "euler_characteristic": Method("int: V - E + F of the surface (D1.6)", "integer"),
+    "boundary_loops": Method(
+        "list of boundary cycles, each a list of vertex indices in order",
+        "loops"),
+    "is_orientable": Method("bool: whether the surface is orientable", "boolean"),
+    "genus": Method(
+        "int: g of an orientable surface (chi = 2 - 2g - k); of a non-orientable one its "
+        "number of crosscaps h (chi = 2 - h - k)",
+        "integer"),
     # chapter 2: curvature (integrated values, never divided by an area)
-    "corner_angles": "(m, 3) float array: angle at corner c of face f, in (0, pi)",
-    "angle_defects": "(n,) float array: 2 pi - angle sum at interior vertices, "
-                     "pi - angle sum (turning angle) at boundary vertices (D2.2, R2.4)",
-    "edge_mean_curvature": "dict {(i, j) with i < j: H(e) = 1/2 theta(e) l(e)} over interior "
-                           "edges, theta > 0 where convex (D2.3); a regular mesh has one edge per pair",
-    "area": "float: total area",
+    "corner_angles": Method(
+        "(m, 3) float array: angle at corner c of face f, in (0, pi)",
+        "numbers", element="corner"),
+    "angle_defects": Method(
+        "(n,) float array: 2 pi - angle sum at interior vertices, pi - angle sum (turning "
+        "angle) at boundary vertices (D2.2, R2.4)",
+        "numbers", element="vertex"),
+    "edge_mean_curvature": Method(
+        "dict {(i, j) with i < j: H(e) = 1/2 theta(e) l(e)} over interior edges, theta > "
+        "0 where convex (D2.3); a regular mesh has one edge per pair",
+        "edges"),
+    "area": Method("float: total area", "numbers", element="total"),
     # chapter 3: Laplacians and mass matrices
-    "cotan_laplacian": "(n, n) scipy.sparse: (L f)(i) = sum_j nu(ij) (f(i) - f(j)), "
-                       "nu = 1/2 (cot a + cot b), boundary 1/2 cot a; positive semidefinite",
-    "area_gradient": "(n, 3) float array: the gradient of the total area with respect to each "
-                     "vertex position, grad_v A = (L V)(v) with L as cotan_laplacian (T3.9, L3.8): "
-                     "the integrated mean curvature normal, pointing where the area grows (outward "
-                     "at a convex vertex); zero at a vertex used by no face",
-    "solve_dirichlet": "solve_dirichlet(V, F, boundary, values): (n,) float array u with "
-                       "u[boundary] = values ((k,) int and (k,) float arrays) and (L u)(i) = 0 at "
-                       "every other vertex, L as cotan_laplacian: the discrete Dirichlet problem "
-                       "(C3.4 / T3.5); every component of the mesh meets the boundary set",
-    "vertex_areas_barycentric": "(n,) float array: one third of the area of each incident face",
-    "vertex_areas_voronoi": "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, "
-                            "obtuse-triangle rule)",
+    "cotan_laplacian": Method(
+        "(n, n) scipy.sparse: (L f)(i) = sum_j nu(ij) (f(i) - f(j)), nu = 1/2 (cot a + "
+        "cot b), boundary 1/2 cot a; positive semidefinite",
+        "matrix"),
+    "area_gradient": Method(
+        "(n, 3) float array: the gradient of the total area with respect to each vertex "
+        "position, grad_v A = (L V)(v) with L as cotan_laplacian (T3.9, L3.8): the "
+        "integrated mean curvature normal, pointing where the area grows (outward at a "
+        "convex vertex); zero at a vertex used by no face",
+        "numbers", element="vertex coordinate"),
+    "solve_dirichlet": Method(
+        "solve_dirichlet(V, F, boundary, values): (n,) float array u with u[boundary] = "
+        "values ((k,) int and (k,) float arrays) and (L u)(i) = 0 at every other vertex, "
+        "L as cotan_laplacian: the discrete Dirichlet problem (C3.4 / T3.5); every "
+        "component of the mesh meets the boundary set",
+        "numbers", element="vertex", arguments=("V", "F", "boundary", "values")),
+    "vertex_areas_barycentric": Method(
+        "(n,) float array: one third of the area of each incident face",
+        "numbers", element="vertex"),
+    "vertex_areas_voronoi": Method(
+        "(n,) float array: mixed Voronoi areas (Meyer et al. 2003, obtuse-triangle rule)",
+        "numbers", element="vertex"),
     # chapter 4: intrinsic Delaunay (per-face layouts: column c is the edge opposite corner c)
-    "is_locally_delaunay": "(m, 3) bool array: the edge opposite corner c of face f is Delaunay "
-                           "in the mesh's own metric, cot a + cot b >= 0; boundary edges True (D4.4)",
-    "intrinsic_delaunay_laplacian": "(n, n) scipy.sparse: the cotan Laplacian (sign as "
-                                    "cotan_laplacian) of an intrinsic Delaunay triangulation of "
-                                    "the mesh's metric, same vertices: Laplace-Beltrami (D4.8)",
-    "intrinsic_delaunay_triangulation": "(F2, l2): (m, 3) int faces on the same vertices and "
-                                        "(m, 3) float squared lengths, l2[f, c] the edge opposite "
-                                        "corner c, of an intrinsic Delaunay triangulation of the "
-                                        "same metric (A4.13); F2 may have loops and multi-edges",
-    "planar_flip_to_delaunay": "(m, 3) int faces: the straight-line triangulation F of the "
-                               "planar points V (every z = 0, faces counterclockwise) after "
-                               "flipping interior edges until all are Delaunay (A4.13, P4.4); "
-                               "same vertices, same boundary edges",
-    "planar_delaunay": "planar_delaunay(P): (m, 3) int array, a Delaunay triangulation of the "
-                       "planar points P ((n, 2) float64), every point a vertex (T4.1, D4.1)",
+    "is_locally_delaunay": Method(
+        "(m, 3) bool array: the edge opposite corner c of face f is Delaunay in the "
+        "mesh's own metric, cot a + cot b >= 0; boundary edges True (D4.4)",
+        "flags"),
+    "intrinsic_delaunay_laplacian": Method(
+        "(n, n) scipy.sparse: the cotan Laplacian (sign as cotan_laplacian) of an "
+        "intrinsic Delaunay triangulation of the mesh's metric, same vertices: "
+        "Laplace-Beltrami (D4.8)",
+        "matrix"),
+    "intrinsic_delaunay_triangulation": Method(
+        "(F2, l2): (m, 3) int faces on the same vertices and (m, 3) float squared "
+        "lengths, l2[f, c] the edge opposite corner c, of an intrinsic Delaunay "
+        "triangulation of the same metric (A4.13); F2 may have loops and multi-edges",
+        "intrinsic triangulation"),
+    "planar_flip_to_delaunay": Method(
+        "(m, 3) int faces: the straight-line triangulation F of the planar points V "
+        "(every z = 0, faces counterclockwise) after flipping interior edges until all "
+        "are Delaunay (A4.13, P4.4); same vertices, same boundary edges",
+        "planar triangulation"),
+    "planar_delaunay": Method(
+        "planar_delaunay(P): (m, 3) int array, a Delaunay triangulation of the planar "
+        "points P ((n, 2) float64), every point a vertex (T4.1, D4.1)",
+        "planar triangulation", arguments=("P",)),
 }
 
 

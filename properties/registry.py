@@ -124,6 +124,9 @@ class Property:
     # at least one of these too, when given: the property checks each one the
     # implementation has (T3.2 on its matrix and on its own Dirichlet solver)
     needs_any: frozenset[str] = frozenset()
+    # how it runs on a given mesh file (``check --mesh``): None, on drawn examples only;
+    # else the requirements (REQUIREMENTS) a mesh must meet, () for any mesh
+    on_mesh: tuple | None = None
 
     @property
     def methods(self) -> frozenset[str]:
@@ -144,9 +147,20 @@ class Property:
 PROPERTIES: dict[str, Property] = {}
 
 
-def prop(catalog_id: str, statement: str, *, needs=(), strategy, needs_any=()):
+def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_any=()):
     """Register ``check(impl, example)`` as the property of ``catalog_id``: it applies to an
-    implementation with every method of ``needs`` and at least one of ``needs_any``."""
+    implementation with every method of ``needs`` and at least one of ``needs_any``.
+
+    ``on_mesh`` (required: every property declares it) says how it runs on a mesh file
+    given to ``check --mesh``: ``None`` if it needs drawn examples (what it checks is not
+    a quantity of one given mesh: a motion, a flip, a drawn function), else the names of
+    the :data:`REQUIREMENTS` the mesh must meet (``()``: any mesh).  There the example is
+    the mesh's :class:`~.example.Example` (its classification and chi known when it is
+    connected)."""
+    unknown = set(on_mesh or ()) - set(REQUIREMENTS)
+    if unknown:
+        raise ValueError(f"{catalog_id}: unknown mesh requirements {sorted(unknown)}; "
+                         f"known: {sorted(REQUIREMENTS)}")
     def register(check):
         if catalog_id in PROPERTIES:
             raise ValueError(f"property {catalog_id} registered twice")
@@ -160,10 +174,103 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, needs_any=()):
 
         PROPERTIES[catalog_id] = Property(
             catalog_id, check.__name__, statement, frozenset(needs), strategy, checked,
-            frozenset(needs_any))
+            frozenset(needs_any), None if on_mesh is None else tuple(on_mesh))
         check.property_id = catalog_id
         return check
     return register
+
+
+# --- what a mesh file must be for a check (check --mesh, compare) ------------------------------
+
+#: A file check's requirements: name -> (the facts of the mesh -> why it is not met, or None).
+#: Facts: n, faces, chi, boundary (loops), orientable, components (MeshExamples.facts).
+REQUIREMENTS: dict[str, Callable[[dict], str | None]] = {
+    "closed": lambda f: None if f["boundary"] == 0 else "the mesh has a boundary",
+    "bordered": lambda f: None if f["boundary"] else "the mesh is closed",
+    "connected": lambda f: None if f["components"] == 1 else f"{f['components']} components",
+    "orientable": lambda f: None if f["orientable"] else "the mesh is not orientable",
+    # an exact total area has one square root per face of a float mesh: beyond this many
+    # faces a property needing it is not applicable (compare then sums the correctly
+    # rounded face areas and widens the bound)
+    "exact total area": lambda f: None if f["faces"] <= EXACT_SUM_LIMIT else (
+        f"{f['faces']} faces > {EXACT_SUM_LIMIT} (exact total area: one square root per face)"),
+}
+
+#: largest face count for an exact total area (see REQUIREMENTS)
+EXACT_SUM_LIMIT = 400
+
+
+def unmet(requires, facts: dict) -> str | None:
+    """Why a mesh with ``facts`` does not meet ``requires`` (the first unmet requirement),
+    or None."""
+    for name in requires:
+        why = REQUIREMENTS[name](facts)
+        if why:
+            return why
+    return None
+
+
+# --- the protocol's quantities: how each method's answer is compared on one mesh -------------
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """How closely the answers of one protocol method must match the exact reference's on a
+    given mesh (``compare``, ``check --mesh`` through the properties, the test vectors).
+    The answer's shape is the method's own (:class:`~.protocol.Method`: ``kind``,
+    ``element``).
+
+    ``requires``: :data:`REQUIREMENTS` of the mesh.  ``not_on_a_mesh``: why one mesh is not
+    enough to compare it (the answer is not unique, or the method takes more than a
+    mesh), else None.  ``bound(example, want)``: the derived bound on each element of the
+    answer (:mod:`.bounds`), ``want`` what it is compared with; ``expected(example,
+    reference)``: the values to compare with when not the reference's answer itself
+    (``reference()`` gives that), e.g. a float view kept with the bounds.
+    """
+
+    method: str
+    requires: tuple = ()
+    not_on_a_mesh: str | None = None
+    bound: Callable | None = field(default=None, repr=False)
+    expected: Callable | None = field(default=None, repr=False)
+
+    @property
+    def kind(self) -> str:
+        from .protocol import METHODS
+        return METHODS[self.method].kind
+
+    @property
+    def element(self) -> str:
+        from .protocol import METHODS
+        return METHODS[self.method].element
+
+
+QUANTITIES: dict[str, Quantity] = {}
+
+
+def quantity(method: str, **how) -> Quantity:
+    """Declare how closely ``method``'s answers must match (:class:`Quantity`); once per
+    protocol method, beside the properties that check it."""
+    from .protocol import METHODS
+    if method not in METHODS:
+        raise ValueError(f"{method!r} is not a protocol method (properties.protocol.METHODS)")
+    if method in QUANTITIES:
+        raise ValueError(f"quantity {method!r} declared twice")
+    unknown = set(how.get("requires", ())) - set(REQUIREMENTS)
+    if unknown:
+        raise ValueError(f"{method}: unknown mesh requirements {sorted(unknown)}")
+    if how.get("bound") is None and how.get("not_on_a_mesh") is None and \
+            METHODS[method].kind in ("numbers", "edges", "matrix"):
+        raise ValueError(f"{method}: a numeric answer needs its derived bound")
+    QUANTITIES[method] = q = Quantity(method, **how)
+    return q
+
+
+def all_quantities() -> dict[str, Quantity]:
+    """Every declared quantity, in the protocol's order (the chapter modules imported)."""
+    from .protocol import METHODS
+    all_properties()
+    return {m: QUANTITIES[m] for m in METHODS if m in QUANTITIES}
 
 
 #: Modules whose import registers properties, one per chapter topic.

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from ddg_oracle.reference.combinatorics import connected_sum
 
-from .registry import PropertyFailure, prop
+from .registry import PropertyFailure, prop, quantity
 from .strategies import (Example, apply_moves, closed_surfaces, extend_positions,
                          mobius_strips, named_surfaces, surface_moves, triangulated_surfaces)
 
@@ -26,7 +26,7 @@ def _mesh(case: Example):
 
 
 @prop("D1.6", "euler_characteristic(V, F) equals chi = 2 - 2g - k (2 - h - k) of the surface built",
-      needs={"euler_characteristic"}, strategy=triangulated_surfaces)
+      needs={"euler_characteristic"}, on_mesh=(), strategy=triangulated_surfaces)
 def euler_characteristic_of_known_surfaces(impl, case: Example):
     chi = int(_call(impl, "euler_characteristic", case))
     if chi != case.expected.euler_characteristic:
@@ -36,6 +36,7 @@ def euler_characteristic_of_known_surfaces(impl, case: Example):
 
 @prop("R1.5", "chi is unchanged by edge flips, edge splits and 1-to-4 subdivision",
       needs={"euler_characteristic"},
+      on_mesh=None,
       strategy=lambda: st.tuples(triangulated_surfaces(moves=False), surface_moves()))
 def euler_characteristic_is_invariant(impl, example):
     case, moves = example
@@ -49,7 +50,7 @@ def euler_characteristic_is_invariant(impl, example):
 
 
 @prop("X1.4", "disk 1, sphere 2, torus 0, double torus -2 (and annulus 0, Möbius strip 0)",
-      needs={"euler_characteristic"}, strategy=named_surfaces)
+      needs={"euler_characteristic"}, on_mesh=None, strategy=named_surfaces)
 def euler_characteristic_of_named_surfaces(impl, case: Example):
     chi = int(_call(impl, "euler_characteristic", case))
     if chi != case.expected.euler_characteristic:
@@ -60,6 +61,7 @@ def euler_characteristic_of_named_surfaces(impl, case: Example):
 
 @prop("CS", "chi(M # N) = chi(M) + chi(N) - 2 and chi(M minus a disk) = chi(M) - 1",
       needs={"euler_characteristic"},
+      on_mesh=None,
       strategy=lambda: st.tuples(closed_surfaces(max_genus=2), closed_surfaces(max_genus=2),
                                  st.integers(0, 1 << 16)))
 def connected_sum_lowers_chi_by_two(impl, example):
@@ -82,7 +84,8 @@ def connected_sum_lowers_chi_by_two(impl, example):
 
 @prop("T1.1 / C1.2", "a closed surface's orientability and genus match how it was built: "
       "g handles (orientable) or h crosscaps (non-orientable)",
-      needs={"is_orientable", "genus"}, strategy=lambda: closed_surfaces(max_genus=3))
+      needs={"is_orientable", "genus"},
+      on_mesh=("closed", "connected"), strategy=lambda: closed_surfaces(max_genus=3))
 def classification_of_closed_surfaces(impl, case: Example):
     orientable = bool(_call(impl, "is_orientable", case))
     if orientable != case.expected.orientable:
@@ -98,6 +101,7 @@ def classification_of_closed_surfaces(impl, case: Example):
 @prop("R1.6", "with k boundary loops, orientable: chi = 2 - 2g - k, k and g as built (and its "
       "non-orientable twin chi = 2 - h - k, h crosscaps)",
       needs={"euler_characteristic", "boundary_loops", "genus"},
+      on_mesh=("orientable", "connected"),
       strategy=lambda: st.one_of(mobius_strips(), triangulated_surfaces(max_holes=3)))
 def boundary_loops_and_genus(impl, case: Example):
     loops = _call(impl, "boundary_loops", case)
@@ -119,3 +123,11 @@ def boundary_loops_and_genus(impl, case: Example):
         raise PropertyFailure("R1.6", impl, f"chi != {formula}", mesh=_mesh(case),
                               expected=(case.expected.euler_characteristic, case.expected.genus),
                               observed=(chi, g))
+
+
+# --- how the topology methods' answers compare on a given mesh (compare, vectors) -------------
+
+quantity("euler_characteristic")
+quantity("boundary_loops")
+quantity("is_orientable")
+quantity("genus", requires=("connected",))

@@ -328,7 +328,7 @@ def test_run_on_example_uses_the_property_check_once():
     from ddg_oracle.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
-    r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.curvature_case(), "cube")
+    r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.example(), "cube")
     assert r.status == PASSED and r.examples == 1 and r.source == "cube"
 
 
@@ -365,7 +365,7 @@ def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
     from ddg_oracle.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
-    r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.surface_case(), "cube")
+    r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.example(), "cube")
     assert r.status == UNDECIDED and r.ok and "too many terms" in r.error
 
 
