@@ -132,10 +132,7 @@ def _run(run, task):
     meshes, sent once per worker) installed in this process when the run changes."""
     from ddg_oracle import jobs
     token, options, meshes = run
-    if jobs._STATE.get("run") != token:
-        jobs.close_all()
-        jobs._init(options, meshes)
-        jobs._STATE["run"] = token
+    jobs.install(options, meshes, run=token)
     return jobs.run_task(task)
 
 
@@ -169,7 +166,7 @@ def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
                 try:
                     results = f.result()
                 except Exception as e:  # noqa: BLE001  (KilledWorker: a result, the run goes on)
-                    results = jobs._crashed(
+                    results = jobs.crashed(
                         tasks[k], f"the cluster could not finish this task ({type(e).__name__}: "
                                   f"{e}); a task is run again when its worker dies, "
                                   f"{ALLOWED_FAILURES} times at most")

@@ -39,17 +39,39 @@ class Task:
     mesh: int | None = None     # ... or the index of a mesh file: every applicable property
 
 
-_STATE: dict = {"options": Options(), "meshes": [], "impls": {}, "examples": {}}
+class _Process:
+    """What this process keeps between the tasks of one run: the run's options and mesh
+    files, the implementations started here (an isolated worker per library, reused), the
+    exact values of the mesh file being checked, and which run they belong to.  One per
+    process (a pool worker, a dask worker, or the checking process itself when serial),
+    read only in this module; other modules go through :func:`install`."""
+
+    def __init__(self):
+        self.options = Options()
+        self.meshes: list = []
+        self.impls: dict = {}
+        self.examples: dict = {}
+        self.run = None
 
 
-def _init(options: Options, meshes: list) -> None:
-    _STATE.update(options=options, meshes=meshes, impls={}, examples={})
+_HERE = _Process()
+
+
+def install(options: Options, meshes: list, run=None) -> None:
+    """Prepare this process for the tasks of a run (``run``: a token naming it; the same
+    token again keeps what is installed, a new one closes the previous run's
+    implementations first)."""
+    if run is not None and run == _HERE.run:
+        return
+    if run is not None:
+        close_all()
+    _HERE.options, _HERE.meshes, _HERE.examples, _HERE.run = options, meshes, {}, run
 
 
 def implementation(spec: str, timeout: float):
     """The implementation of ``spec`` in this process: in-process for the reference,
     else an isolated worker (cached per process)."""
-    impls = _STATE["impls"]
+    impls = _HERE.impls
     if spec not in impls:
         if spec in IN_PROCESS:
             from ddg_oracle.implementations import load_implementation
@@ -62,22 +84,22 @@ def implementation(spec: str, timeout: float):
 
 def adopt(spec: str, impl) -> None:
     """Use an already started implementation for ``spec`` in this process."""
-    _STATE["impls"][spec] = impl
+    _HERE.impls[spec] = impl
 
 
 def close_all() -> None:
-    for impl in _STATE["impls"].values():
+    for impl in _HERE.impls.values():
         close = getattr(impl, "close", None)
         if close is not None:
             close()
-    _STATE["impls"] = {}
+    _HERE.impls = {}
 
 
 def _counterpart(impl):
     """(the counterpart, what differs) that ``impl`` declares (its ``conventions``:
     properties.protocol.declared_conventions), with --expect-conventions; else (None, None)."""
     from ddg_oracle.properties.protocol import declared_conventions
-    opts = _STATE["options"]
+    opts = _HERE.options
     found = declared_conventions(impl) if opts.expect_conventions else None
     if found is None:
         return None, None
@@ -91,26 +113,26 @@ def run_task(task: Task) -> list:
     from ddg_oracle.properties.registry import PROPERTIES, all_properties
     from ddg_oracle.properties.runner import run_property
 
-    opts = _STATE["options"]
+    opts = _HERE.options
     all_properties()
     try:
         impl = implementation(task.spec, opts.timeout)
         counterpart, convention = _counterpart(impl)
     except Exception as e:  # noqa: BLE001  (installed but broken: a result, not a dead worker)
-        return _crashed(task, f"{task.spec} cannot be loaded: {e}")
+        return crashed(task, f"{task.spec} cannot be loaded: {e}")
     if task.mesh is None:
         budget = opts.budget if opts.budget is not None else profile_budget(opts.profile)
         return [run_property(PROPERTIES[task.property_id], impl, profile(opts.profile), opts.seed,
                              counterpart=counterpart, convention=convention, budget=budget)]
     from ddg_oracle.compare import MeshExamples, run_mesh_properties
-    examples = _STATE["examples"]
+    examples = _HERE.examples
     if task.mesh not in examples:
         examples.clear()                 # one mesh's exact values at a time
-        examples[task.mesh] = MeshExamples(_STATE["meshes"][task.mesh])
+        examples[task.mesh] = MeshExamples(_HERE.meshes[task.mesh])
     return run_mesh_properties(examples[task.mesh], impl, opts.only, counterpart, convention)
 
 
-def _crashed(task: Task, why: str) -> list:
+def crashed(task: Task, why: str) -> list:
     from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import CRASHED, Result
     p = PROPERTIES.get(task.property_id)
@@ -199,7 +221,7 @@ def _worker_main(options: Options, meshes: list, conn) -> None:
 
     signal.signal(signal.SIGTERM, stop)
     signal.signal(signal.SIGINT, signal.SIG_IGN)      # the parent decides what an interrupt does
-    _init(options, meshes)
+    install(options, meshes)
     try:
         while True:
             try:
@@ -253,7 +275,7 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     previous = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         if serial:
-            _STATE.update(options=options, meshes=meshes, examples={})
+            install(options, meshes)
             for k in todo:
                 check()
                 finish(k, run_task(tasks[k]))
@@ -368,7 +390,7 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                         if attempts[k] <= RETRIES:
                             queue.insert(0, k)
                         else:
-                            finish(k, _crashed(tasks[k], f"the worker process running it died "
+                            finish(k, crashed(tasks[k], f"the worker process running it died "
                                                          f"{attempts[k]} times ({how})"))
                     if queue:
                         start()
