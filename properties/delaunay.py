@@ -8,11 +8,11 @@ reference sign: positive semidefinite) and ``intrinsic_delaunay_triangulation``
 (faces and squared lengths, ``l2[f, c]`` the edge opposite corner c).
 
 The truth is the exact reference on the very floats the implementation received
-(:class:`ddg_oracle.properties.laplacian.Exact`) and its exact flip algorithm
+(:class:`ddg_oracle.properties.harness.Exact`) and its exact flip algorithm
 (:func:`ddg_oracle.reference.delaunay.flip_to_delaunay`).
 
 Error model, derived and stated.  For the input triangulation: the corner bound
-``beta = K_COT eps (1 + cot^2) rho`` of :mod:`ddg_oracle.properties.laplacian`.  A float
+``beta = K_COT eps (1 + cot^2) rho`` of :mod:`ddg_oracle.properties.bounds`.  A float
 implementation that flips edges computes each new squared diagonal from the
 five squared lengths and two areas of its quadrilateral, in the reference's
 notation ``b + c - (e+b-a)(e+c-d)/(2e) + 8 A1 A2 / e``; to first order its

@@ -23,8 +23,7 @@ from fractions import Fraction
 from math import isqrt
 
 from .combinatorics import face_of, next_corner
-from .cotangents import (_SQ15015, _SQ33263, _SQ64, _SQ7429, FaceData, _lengths_data,
-                         applies, face_data)
+from .cotangents import FaceData, _lengths_data, _maybe_square, face_data
 from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 from .sparse import SparseMatrix
@@ -62,9 +61,7 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
 def _certainly_irrational(fd: FaceData, f: int, g: int) -> bool:
     """``G_f G_g`` is certainly no square (from residues): the weight ``1/2 (n_1 /
     sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is irrational."""
-    r = fd.residue[f] * fd.residue[g]
-    return fd.twos[f] != fd.twos[g] or not (_SQ64[r & 63] and _SQ15015[r % 15015]
-                                            and _SQ7429[r % 7429] and _SQ33263[r % 33263])
+    return fd.twos[f] != fd.twos[g] or not _maybe_square(fd.residue[f] * fd.residue[g])
 
 
 # --- the public functions -----------------------------------------------------------------

@@ -67,7 +67,7 @@ from functools import lru_cache
 from fractions import Fraction
 from math import gcd, isqrt, lcm, prod
 
-from .combinatorics import corner_of, face_of, next_corner
+from .combinatorics import next_corner
 from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress, simplest
 from .metric import PiecewiseFlatSurface, degenerate_face
 from .polyhedral import PolyhedralSurface
@@ -101,19 +101,18 @@ def _square_residues(m: int) -> bytes:
 
 
 _SQ64 = _square_residues(64)
-_SQ15015 = _square_residues(3 * 5 * 7 * 11 * 13)
-_SQ7429 = _square_residues(17 * 19 * 23)
-_SQ33263 = _square_residues(29 * 31 * 37)
+#: three moduli, products of the odd primes up to 37, and their tables of squares
+_M1, _M2, _M3 = 3 * 5 * 7 * 11 * 13, 17 * 19 * 23, 29 * 31 * 37
+_SQ1, _SQ2, _SQ3 = _square_residues(_M1), _square_residues(_M2), _square_residues(_M3)
 #: A square is a square modulo every m; faces keep their G's odd part modulo this.
-_RESIDUE_MODULUS = 64 * 15015 * 7429 * 33263
+_RESIDUE_MODULUS = 64 * _M1 * _M2 * _M3
 
 
 def _maybe_square(r: int) -> bool:
     """False if ``r`` (an integer, or its residue modulo :data:`_RESIDUE_MODULUS`, or a
     product of such residues) is certainly no perfect square; True if it may be one.
     Meant for odd numbers (a multiple of 64 passes the first test)."""
-    return bool(_SQ64[r & 63] and _SQ15015[r % 15015] and _SQ7429[r % 7429]
-                and _SQ33263[r % 33263])
+    return bool(_SQ64[r & 63] and _SQ1[r % _M1] and _SQ2[r % _M2] and _SQ3[r % _M3])
 
 
 def _odd_residue(n: int) -> tuple[int, int]:

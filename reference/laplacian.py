@@ -35,7 +35,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Iterable, Sequence
 
-from . import cotan_fast
+from . import cotan_fast, cotangents
 from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .exact.rationals import on_common_denominator, rounded_root_sum
@@ -128,7 +128,7 @@ def cotan_weights(surface) -> dict[int, Surd]:
     >>> sorted(str(x) for x in w.values())
     ['0', '1/2', '1/2', '1/2', '1/2']
     """
-    if cotan_fast.applies(surface):
+    if cotangents.applies(surface):
         return cotan_fast.cotan_weights_fast(surface)
     return cotan_weights_from_corners(surface)
 
@@ -190,7 +190,7 @@ def cotan_laplacian(surface) -> SparseMatrix:
     >>> L.is_symmetric(), sum(L.matvec([1, 1, 1, 1])) == 0
     (True, True)
     """
-    if cotan_fast.applies(surface):
+    if cotangents.applies(surface):
         return cotan_fast.cotan_laplacian_fast(surface)
     if cotan_fast.partly_applies(surface):
         return cotan_fast.cotan_laplacian_mixed(surface)
