@@ -1,17 +1,18 @@
-"""``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write]``.
+"""``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write] [--gc-paused]``.
 
 Groups: cotan, flips, r3, hypothesis (the default set), real (the exact reference on
 PyMeshLab's sample meshes and generated fans), suite (the test suite and one
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
 (``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
-to catch each planted bug under the default profile)."""
+to catch each planted bug under the default profile), sidebyside (this checkout's numbers
+against another version's, ``--base-python``)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from . import catch, cotan, flips, real, report, suite
+from . import catch, cotan, flips, real, report, sidebyside, suite
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -24,7 +25,9 @@ GROUPS = {
     "main": suite.run_main,
     "meshcheck": suite.run_mesh_checks,
     "catch": catch.run,
+    "sidebyside": sidebyside.run,
 }
+ONLY_NAMED = ("sidebyside",)            # not part of --all
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 
@@ -37,14 +40,23 @@ def main(argv=None) -> int:
     p.add_argument("--runs", type=int, default=None, help="at most this many runs per timing")
     p.add_argument("--no-write", action="store_true",
                    help="print only; leave docs/performance.md and docs/perf/ alone")
+    p.add_argument("--gc-paused", action="store_true",
+                   help="pause the garbage collector around each timed run (as timeit does; "
+                   "implies --no-write)")
+    p.add_argument("--base-python", default=None,
+                   help="sidebyside: an interpreter whose environment has the other version")
+    p.add_argument("--rounds", type=int, default=2, help="sidebyside: alternating rounds")
     args = p.parse_args(argv)
-    groups = list(GROUPS) if args.all else (args.groups or DEFAULT)
-    mode = Mode.of(args.quick, args.runs)
+    if args.gc_paused:
+        args.no_write = True          # numbers of another method: never into the docs
+    groups = [g for g in GROUPS if g not in ONLY_NAMED] if args.all else (args.groups or DEFAULT)
+    mode = Mode.of(args.quick, args.runs, args.gc_paused)
     results = load_results()
     for g in groups:
         say(f"{g} ({'quick' if mode.quick else 'default'})")
         meta = {**machine(), "quick": mode.quick}          # the load average at the start
-        res = GROUPS[g](mode)
+        res = (GROUPS[g](mode, args.base_python, args.rounds) if g == "sidebyside"
+               else GROUPS[g](mode))
         res["meta"] = meta
         results[g] = res
     if not args.no_write:

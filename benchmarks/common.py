@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import json
 import math
 import os
@@ -24,12 +25,22 @@ class Mode:
     quick: bool
     runs: int            # at most this many runs per measurement (median reported)
     budget: float        # stop repeating once a measurement used this many CPU seconds
+    gc_paused: bool = False   # the collector paused around each timed run (as timeit does)
 
     @classmethod
-    def of(cls, quick: bool, runs: int | None = None) -> "Mode":
+    def of(cls, quick: bool, runs: int | None = None, gc_paused: bool = False) -> "Mode":
         if quick:
-            return cls(True, runs or 3, 0.5)
-        return cls(False, runs or 5, 3.0)
+            return cls(True, runs or 3, 0.5, gc_paused)
+        return cls(False, runs or 5, 3.0, gc_paused)
+
+
+def start_clock() -> float:
+    """``time.process_time()`` after a full garbage collection, so that a timed call pays
+    for collecting its own objects, not for those its untimed setup left (CPython starts
+    a full collection once enough objects have survived, whoever made them; the
+    interpreter's settings are left as they are)."""
+    gc.collect()
+    return time.process_time()
 
 
 def median_time(run, mode: Mode, setup=None) -> tuple[float, int, object]:
@@ -38,8 +49,13 @@ def median_time(run, mode: Mode, setup=None) -> tuple[float, int, object]:
     times, out = [], None
     while len(times) < mode.runs and (not times or sum(times) < mode.budget):
         arg = setup() if setup is not None else None
-        t0 = time.process_time()
-        out = run(arg) if setup is not None else run()
+        t0 = start_clock()
+        if mode.gc_paused:
+            gc.disable()          # the benchmark's process only, restored below
+        try:
+            out = run(arg) if setup is not None else run()
+        finally:
+            gc.enable()
         times.append(time.process_time() - t0)
     return statistics.median(times), len(times), out
 

@@ -6,10 +6,9 @@ from __future__ import annotations
 import importlib.util
 
 from ddg_oracle.reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
-from ddg_oracle.reference.cotangents import CotanSum
 from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
                                  gauss_bonnet_holds_by_faces)
-from ddg_oracle.reference.exact import pi
+from ddg_oracle.reference.exact import Surd, pi
 from ddg_oracle.reference.laplacian import (cotan_laplacian_from_weights, cotan_weights,
                                             cotan_weights_from_corners)
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
@@ -18,10 +17,10 @@ from . import meshes, peers
 from .common import Mode, fit_exponent, median_time, say
 
 def _canonical(values):
-    """Compute the canonical form of every CotanSum (what equality, arithmetic with
-    other Surds and str need; the fast path leaves it to them)."""
+    """Compute the canonical form of every irrational value (what equality, arithmetic
+    with other Surds and str need; the fast path's CotanSum leaves it to them)."""
     for v in values:
-        if isinstance(v, CotanSum):
+        if isinstance(v, Surd):
             v.terms()
     return values
 
@@ -94,7 +93,7 @@ def run(mode: Mode) -> dict:
                 t, runs, _ = median_time(lambda: fn(*args), mode)
             rows.append({"mesh": label, "faces": nf, "peer": name, "quantity": what,
                          "seconds": t, "runs": runs, "faces_per_s": nf / t if t else None})
-            say(f"  cotan {label:10} {nf:6} {name:28} {what:9} {t:9.4f} s")
+            say(f"  cotan {label:10} {nf:6} {name:32} {what:9} {t:9.4f} s")
     fits = {}
     for name, what, *_ in PEERS:
         pts = [(r["faces"], r["seconds"]) for r in rows

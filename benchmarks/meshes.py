@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import random
 from fractions import Fraction
 from pathlib import Path
@@ -10,7 +11,19 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from ddg_oracle.properties.metrics import flat_torus
-from tests.test_laplacian import float_icosphere
+
+
+def float_icosphere(levels=3, seed=7) -> PolyhedralSurface:
+    """The icosahedron subdivided 1-to-4 ``levels`` times (new vertices at edge midpoints)
+    and every coordinate jittered by a random float: 20 * 4**levels faces (the benchmarks'
+    and the tests' float mesh)."""
+    s = surfaces.icosahedron()
+    t, P = s.triangulation, [tuple(float(x) for x in p) for p in s.positions]
+    for _ in range(levels):
+        t, mids = t.subdivide_1to4()
+        P = P + [tuple((a + b) / 2 for a, b in zip(P[i], P[j])) for i, j in mids]
+    rng = random.Random(seed)
+    return PolyhedralSurface(t, [tuple(x + rng.uniform(-1e-2, 1e-2) for x in p) for p in P])
 
 
 def icosphere(levels: int) -> PolyhedralSurface:
@@ -67,3 +80,38 @@ def rational_icosphere(levels: int):
     pts = [tuple(Fraction(round(x * 256), 256) for x in p) for p in s.positions]
     m = PolyhedralSurface(s.triangulation, pts).metric()
     return random_flips(m, 6 * m.triangulation.n_faces // 5, seed=1)
+
+
+def fan(n, *, lift=0.0, tilt=None, seed=0):
+    """A star of valence n around vertex 0, float coordinates: ring radii and angles jittered."""
+    rng = random.Random(seed)
+    V = [[0.0, 0.0, lift]]
+    for k in range(n):
+        t = 2 * math.pi * k / n + rng.uniform(-0.2, 0.2) / n
+        r = 1 + rng.uniform(-0.3, 0.3)
+        V.append([r * math.cos(t), r * math.sin(t), 0.0])
+    if tilt:
+        a, b = tilt
+        def turn(p):
+            x, y, z = p
+            x, z = x * math.cos(a) - z * math.sin(a), x * math.sin(a) + z * math.cos(a)
+            y, z = y * math.cos(b) - z * math.sin(b), y * math.sin(b) + z * math.cos(b)
+            return [x, y, z]
+        V = [turn(p) for p in V]
+    return PolyhedralSurface.from_arrays(V, [[0, 1 + k, 1 + (k + 1) % n] for k in range(n)])
+
+
+def spiky_fan(n, seed=0):
+    """Valence-n apex with two jittered float rings: many non-Delaunay edges at the apex."""
+    rng = random.Random(seed)
+    V = [[0.0, 0.0, 0.3]]
+    for ring, rad in ((1, 1.0), (2, 2.0)):
+        for k in range(n):
+            t = 2 * math.pi * (k + 0.5 * (ring - 1)) / n
+            r = rad * (1 + rng.uniform(-0.4, 0.4))
+            V.append([r * math.cos(t), r * math.sin(t), rng.uniform(-0.2, 0.2)])
+    F = []
+    for k in range(n):
+        a, b, A, B = 1 + k, 1 + (k + 1) % n, 1 + n + k, 1 + n + (k + 1) % n
+        F += [[0, a, b], [a, A, b], [b, A, B]]
+    return PolyhedralSurface.from_arrays(V, F)

@@ -30,7 +30,9 @@ python -m benchmarks --all        # everything
 Method.  Every in-process timing is the **median of up to 5 runs** (3 with
 `--quick`; fewer when a run takes seconds) of the process's **CPU time**
 (`time.process_time`): the machine is shared, and CPU time of single-threaded
-code is far less noisy than wall time.  Peers are measured **side by side in
+code is far less noisy than wall time.  Each timed run starts after a full garbage
+collection (`gc.collect()`, untimed), so that it pays for collecting the objects it
+makes, not for those its untimed setup left behind; the garbage collector stays on.  Peers are measured **side by side in
 the same run** on the same meshes, so ratios are meaningful even when absolute
 numbers drift.  Exponents are least-squares slopes of log(time) against
 log(faces).  The test suite and `ddg-oracle check` are subprocesses: one run
@@ -177,7 +179,7 @@ REAL = """\
 
 `python -m benchmarks real`: PyMeshLab's sample meshes (unreferenced vertices removed, as
 `ddg-oracle compare` does; `bone.ply` and `airplane.obj` have some) and generated fans
-(`tests/test_zero_test.py`: valence n, float coordinates; *exactly planar*: rational points of
+(`fan` of `benchmarks/meshes.py`: valence n, float coordinates; *exactly planar*: rational points of
 the plane z = 3x - 2y; *float-tilted*: the planar fan rotated in floats, so not planar;
 *lifted*: the apex raised by 2^-100).  *exact*: `angle_defects` (D2.2), exact `Angle` values;
 *signs*: the exact sign of every defect (elliptic / flat / hyperbolic); *floats*: `float()` of
@@ -190,7 +192,7 @@ exact / Gauss-Bonnet / libigl, one run for signs and floats.
 
 REAL_FLIPS = """\
 Intrinsic Delaunay: `flip_to_delaunay` (A4.13) on the same meshes and on fans with a
-high-valence apex (`spiky_fan` of `tests/test_zero_test.py`: two jittered float rings), every
+high-valence apex (`spiky_fan` of `benchmarks/meshes.py`: two jittered float rings), every
 flip decision (D4.4, L4.11) and every harmonic-index decrease (C4.19) decided exactly; *exact
 decreases*: decreases the 64- and 256-bit enclosures did not settle (exact quotients); then
 every angle sum compared exactly with the input's (they must be equal: flips keep the metric),
@@ -387,7 +389,48 @@ def write(results: dict) -> None:
                    f"{'yes' if r['kept'] else 'NO'} | {r['check_s']:.2f} | {r['zero_tests']} |")
                 for r in res["flips"]]
         out.append("")
+    if "sidebyside" in results:
+        out += _sidebyside(results["sidebyside"])
     DOC.write_text("\n".join(out).rstrip() + "\n")
+
+
+SIDEBYSIDE = """\
+## 10. Before and after a change, side by side
+
+`python -m benchmarks sidebyside --base-python V/bin/python` (`benchmarks/sidebyside.py`):
+the cotan, flips, r3 and real groups of this checkout's benchmark code, run alternately
+with the version installed in `V` and with this one (each importing its own package), the
+fastest of the rounds per line; then the cotan group again on both with the collector
+paused around each timed run (`--gc-paused`).  *within 10%*: lines whose time moved by at
+most 10% either way; the peers' lines (libigl, numpy, gmpy2, sympy, Fraction pairs: the
+same code on both sides) show how far two runs of the same code drift.  The table lists
+every other line of at least 10 ms.
+"""
+
+#: lines whose code is the same on both sides of a side-by-side run
+_SAME_CODE = ("libigl", "numpy", "gmpy2", "sympy", "Fraction pairs")
+
+
+def _sidebyside(res: dict) -> list[str]:
+    rows = [r for r in res["rows"] if r["before"] >= 0.01]
+    moved = [r for r in rows if abs(r["after"] / r["before"] - 1) > 0.10]
+    within = len(rows) - len(moved)
+    same = [r["after"] / r["before"] for r in rows
+            if any(p in str(r["key"][3]) for p in _SAME_CODE)]
+    drift = (f"  The same code on both sides (the peers, {len(same)} lines) moved by "
+             f"{min(same):.2f} to {max(same):.2f}." if same else "")
+    rounds = f"{res['rounds']} round{'s' if res['rounds'] != 1 else ''}"
+    out = [SIDEBYSIDE, _meta(res),
+           f"Before: {res['base']}; after: {res['this']}; {rounds}.{drift}  "
+           f"{within} of {len(rows)} lines within 10%; the others:", "",
+           "| line | before s | after s | after / before | collector paused: before s | "
+           "after s | after / before |", "|---|---|---|---|---|---|---|"]
+    for r in sorted(moved, key=lambda r: -r["after"] / r["before"]):
+        pb, pa = r.get("paused_before"), r.get("paused_after")
+        paused = (f"{pb:.4f} | {pa:.4f} | {pa / pb:.2f}" if pb and pa else "- | - | -")
+        out.append(f"| {' / '.join(str(k) for k in r['key'] if k != '')} | {r['before']:.4f} | "
+                   f"{r['after']:.4f} | {r['after'] / r['before']:.2f} | {paused} |")
+    return out + [""]
 
 
 _TABLES = [

@@ -195,12 +195,25 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
     for i, raw in enumerate(diag):
         if raw:
             rows[i] = {i: fd.value(tuple(raw)) if rational[i] else fd.lazy(tuple(raw))}
-    for e in range(t.n_edges):
-        h, tw = t.edge_halfedges(e)
-        i, j = t.tail(h), t.head(h)
+    faces, lazy = t.faces, fd.lazy
+    for h, tw in map(t.edge_halfedges, range(t.n_edges)):
+        # face_of(h), corner_of(h), tail and head inline in this loop over every edge;
+        # face[c - 2] is face[next_corner(c)]
+        f, c = divmod(h, 3)
+        face = faces[f]
+        i, j = face[c], face[c - 2]
         if i == j:
             continue
-        w = _weight(fd, h, tw, -1)
+        if tw >= 0:
+            # the common case inline, as in cotan_weights_fast: minus an irrational weight
+            n1, n2 = N[h], N[tw]
+            g = tw // 3
+            if n1 and n2 and _certainly_irrational(fd, f, g):
+                w = lazy((f, -n1, g, -n2))
+            else:
+                w = _weight(fd, h, tw, -1)
+        else:
+            w = _weight(fd, h, tw, -1)
         if not w:               # zero, or equal radicands in two spellings cancelled
             continue
         ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})

@@ -37,7 +37,7 @@ from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_laplacian_fro
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from tests.test_delaunay import flat_torus, random_flips
-from tests.test_laplacian import float_icosphere
+from benchmarks.meshes import float_icosphere
 
 # --- exact cotan weights and Laplacian --------------------------------------------------------
 

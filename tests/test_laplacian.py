@@ -38,6 +38,7 @@ from ddg_oracle.reference.dirichlet import kernel_dimension
 from ddg_oracle.reference.metric import PiecewiseFlatSurface
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from ddg_oracle.reference.sparse import SparseMatrix
+from benchmarks.meshes import float_icosphere
 
 CHAPTER3 = ["D3.1", "T3.1 / R3.2", "T3.2", "C3.3", "C3.4 / T3.5", "T3.6", "R3.3", "L3.7",
             "L3.8", "T3.9", "A3.6", "P3.10", "E3.12"]
@@ -445,18 +446,6 @@ def test_surfaces_are_checked():
 
 
 # --- performance: exact cotan Laplacian of a 1,280-face float mesh --------------------------------
-
-
-def float_icosphere(levels=3, seed=7):
-    """The icosahedron subdivided 1-to-4 ``levels`` times (new vertices at edge midpoints)
-    and every coordinate jittered by a random float: 20 * 4**levels faces."""
-    s = surfaces.icosahedron()
-    t, P = s.triangulation, [tuple(float(x) for x in p) for p in s.positions]
-    for _ in range(levels):
-        t, mids = t.subdivide_1to4()
-        P = P + [tuple((a + b) / 2 for a, b in zip(P[i], P[j])) for i, j in mids]
-    rng = random.Random(seed)
-    return PolyhedralSurface(t, [tuple(x + rng.uniform(-1e-2, 1e-2) for x in p) for p in P])
 
 
 def test_exact_cotan_laplacian_of_1280_float_faces():

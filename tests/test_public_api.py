@@ -9,7 +9,7 @@ import pytest
 import ddg_oracle.reference as R
 from ddg_oracle.reference import cotan_fast, curvature_fast, surfaces
 from ddg_oracle.reference.laplacian import cotan_weights_from_corners
-from tests.test_laplacian import float_icosphere
+from benchmarks.meshes import float_icosphere
 
 # the names issues #3, #4 and #13 promised users
 PROMISED = ("angle_defects turning_angles total_curvature mean_curvature total_mean_curvature "

@@ -19,24 +19,7 @@ from ddg_oracle.reference.delaunay import flip_to_delaunay
 from ddg_oracle.reference.exact import Angle, Surd, corner_angle, limits, pi, sqrt
 from ddg_oracle.reference.metric import as_metric
 
-
-def fan(n, *, lift=0.0, tilt=None, seed=0):
-    """A star of valence n around vertex 0, float coordinates: ring radii and angles jittered."""
-    rng = random.Random(seed)
-    V = [[0.0, 0.0, lift]]
-    for k in range(n):
-        t = 2 * math.pi * k / n + rng.uniform(-0.2, 0.2) / n
-        r = 1 + rng.uniform(-0.3, 0.3)
-        V.append([r * math.cos(t), r * math.sin(t), 0.0])
-    if tilt:
-        a, b = tilt
-        def turn(p):
-            x, y, z = p
-            x, z = x * math.cos(a) - z * math.sin(a), x * math.sin(a) + z * math.cos(a)
-            y, z = y * math.cos(b) - z * math.sin(b), y * math.sin(b) + z * math.cos(b)
-            return [x, y, z]
-        V = [turn(p) for p in V]
-    return PolyhedralSurface.from_arrays(V, [[0, 1 + k, 1 + (k + 1) % n] for k in range(n)])
+from benchmarks.meshes import fan, spiky_fan
 
 
 def mp_defect(s, n):
@@ -75,22 +58,6 @@ def test_exactly_planar_fans_are_flat(n):
     V = [(x, y, 3 * x - 2 * y) for x, y, _ in s.positions]
     planar = PolyhedralSurface(s.triangulation, V)
     assert angle_defects(planar)[0] == 0
-
-
-def spiky_fan(n, seed=0):
-    """Valence-n apex with two jittered float rings: many non-Delaunay edges at the apex."""
-    rng = random.Random(seed)
-    V = [[0.0, 0.0, 0.3]]
-    for ring, rad in ((1, 1.0), (2, 2.0)):
-        for k in range(n):
-            t = 2 * math.pi * (k + 0.5 * (ring - 1)) / n
-            r = rad * (1 + rng.uniform(-0.4, 0.4))
-            V.append([r * math.cos(t), r * math.sin(t), rng.uniform(-0.2, 0.2)])
-    F = []
-    for k in range(n):
-        a, b, A, B = 1 + k, 1 + (k + 1) % n, 1 + n + k, 1 + n + (k + 1) % n
-        F += [[0, a, b], [a, A, b], [b, A, B]]
-    return PolyhedralSurface.from_arrays(V, F)
 
 
 def test_angle_sums_are_intrinsic_after_flips_at_a_valence_16_vertex():

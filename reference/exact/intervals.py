@@ -48,10 +48,11 @@ class Interval:
     def enclosing(cls, x, bits: int) -> "Interval":
         """An enclosure of the exact value ``x``: a rational encloses itself, anything with
         ``interval(bits)`` (Surd, Angle, AngleLength) to width 2**-bits."""
-        if hasattr(x, "interval"):
-            return cls._raw(*x.interval(bits))
-        x = Fraction(x)
-        return cls._raw(x, x)
+        if type(x) is not Fraction:
+            if hasattr(x, "interval"):
+                return cls._raw(*x.interval(bits))
+            x = Fraction(x)
+        return cls._raw(x, x)           # one object at both ends: a point (see __mul__)
 
     @staticmethod
     def _of(x):
@@ -90,16 +91,30 @@ class Interval:
 
     def __mul__(self, other):
         o = self._of(other)
-        ps = (self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi)
+        a, b, c, d = self.lo, self.hi, o.lo, o.hi
+        # the cases filters meet most, with fewer products than the general four
+        if a is b and c is d:                           # two points (rationals)
+            p = a * c
+            return Interval._raw(p, p)
+        if a >= 0 and c >= 0:
+            return Interval._raw(a * c, b * d)
+        ps = (a * c, a * d, b * c, b * d)
         return Interval._raw(min(ps), max(ps))
 
     __rmul__ = __mul__
 
     def __truediv__(self, other):
         o = self._of(other)
-        if o.lo <= 0 <= o.hi:
+        c, d = o.lo, o.hi
+        if c <= 0 <= d:
             raise ZeroDivisionError(f"division by an interval containing 0: {o!r}")
-        return self * Interval._raw(1 / o.hi, 1 / o.lo)
+        a, b = self.lo, self.hi
+        if a is b and c is d:                           # two points (rationals)
+            q = a / c
+            return Interval._raw(q, q)
+        if a >= 0 and c > 0:
+            return Interval._raw(a / d, b / c)
+        return self * Interval._raw(1 / d, 1 / c)
 
     def square(self) -> "Interval":
         """The enclosure of x^2 for x in the interval (tighter than ``self * self``)."""
