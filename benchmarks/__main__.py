@@ -1,7 +1,8 @@
 """``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write] [--gc-paused]``.
 
 Groups: cotan, flips, r3, hypothesis (the default set), real (the exact reference on
-PyMeshLab's sample meshes and generated fans), suite (the test suite and one
+PyMeshLab's sample meshes and generated fans), dirichlet (the certified Dirichlet
+enclosure on float meshes up to 30,000 vertices, and exact elimination's limit), suite (the test suite and one
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
 (``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
 to catch each planted bug under the default profile), sidebyside (this checkout's numbers
@@ -12,7 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from . import catch, cotan, flips, real, report, sidebyside, suite
+from . import catch, cotan, dirichlet, flips, real, report, sidebyside, suite
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -20,6 +21,7 @@ GROUPS = {
     "flips": flips.run,
     "r3": flips.run_r3,
     "real": real.run,
+    "dirichlet": dirichlet.run,
     "hypothesis": suite.run_hypothesis,
     "suite": suite.run_suite,
     "main": suite.run_main,

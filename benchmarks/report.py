@@ -131,7 +131,7 @@ Wall time on 2 workers (`pytest -n 2`), one run each.
 """
 
 MESHCHECK = """\
-## 9. Checks on mesh files: `ddg-oracle check --mesh`
+## 6. Checks on mesh files: `ddg-oracle check --mesh`
 
 `python -m benchmarks meshcheck`: `ddg-oracle check --mesh MESH --report DIR` on
 PyMeshLab's bunnies, every installed implementation (2 workers) and libigl alone,
@@ -142,7 +142,7 @@ process and shared by the implementations it checks.
 """
 
 MAIN = """\
-## 6. The main job: `ddg-oracle check`
+## 5. The main job: `ddg-oracle check`
 
 README command 1's `ddg-oracle check` (every installed implementation, 2
 workers), `python -m benchmarks main`: exactly as README runs it, default
@@ -175,7 +175,7 @@ boundary loops, which `triangulated_surfaces` punches far apart after refining
 """
 
 REAL = """\
-## 8. The exact reference on real meshes
+## 9. The exact reference on real meshes
 
 `python -m benchmarks real`: PyMeshLab's sample meshes (unreferenced vertices removed, as
 `ddg-oracle compare` does; `bone.ply` and `airplane.obj` have some) and generated fans
@@ -203,7 +203,7 @@ form of every new squared length and area: on cow.obj the last flips of a cascad
 """
 
 HYPOTHESIS = """\
-## 5. Hypothesis throughput
+## 8. Hypothesis throughput
 
 Property D3.1 (the implementation's cotan Laplacian equals the exact cotan
 weights within the derived float bound), `ci` profile settings with a fixed
@@ -389,13 +389,40 @@ def write(results: dict) -> None:
                    f"{'yes' if r['kept'] else 'NO'} | {r['check_s']:.2f} | {r['zero_tests']} |")
                 for r in res["flips"]]
         out.append("")
+    if "dirichlet" in results:
+        res = results["dirichlet"]
+        out += [DIRICHLET, _meta(res), "| vertices | faces | unknowns | cotan Laplacian s | "
+                "float solves s | certify s | bits | largest radius |", "|---|---|---|---|---|---|---|---|"]
+        out += [f"| {r['vertices']:,} | {r['faces']:,} | {r['unknowns']:,} | {r['laplacian_s']:.2f} | "
+                f"{r['float_s']:.2f} | {r['certify_s']:.2f} | {r['bits']} | {r['max_radius']:.2g} |"
+                for r in res["rows"]]
+        out += ["", "Exact elimination (`solve_dirichlet`) on the 7 x 7 lifted lattice, adjacent "
+                "unknowns: " + "; ".join(
+                    f"{r['unknowns']}: " + (f"{r['seconds']:.2f} s" if r["seconds"] is not None
+                                           else f"not done in {r['limit']:.0f} s")
+                    for r in res["exact"]) + ".", ""]
     if "sidebyside" in results:
         out += _sidebyside(results["sidebyside"])
     DOC.write_text("\n".join(out).rstrip() + "\n")
 
 
+DIRICHLET = """\
+## 10. Dirichlet problems on float meshes: certified at any size
+
+`python -m benchmarks dirichlet` (`benchmarks/dirichlet.py`): lifted float lattices (the
+k x k grid sheared into nearly equilateral triangles, `z = 0.1 sin(3x) cos(2y)`: irrational
+cotan weights, all positive), V0 the boundary with values `x^2 - y^2`.  *float solves*:
+scipy's sparse LU for the candidate and for `L_II v = 1`; *certify*:
+`ddg_oracle.reference.dirichlet_certificate.certify_dirichlet` (exact integers: every entry
+enclosed, the residual and `L_II v` bounded, the M-matrix certificate), median of runs;
+*largest radius*: the proven bound on |exact solution - candidate|.  Exact elimination with
+irrational weights needs a number with up to 2^k terms for k independent square roots: its
+limit is the last line.
+"""
+
+
 SIDEBYSIDE = """\
-## 10. Before and after a change, side by side
+## 11. Before and after a change, side by side
 
 `python -m benchmarks sidebyside --base-python V/bin/python` (`benchmarks/sidebyside.py`):
 the cotan, flips, r3 and real groups of this checkout's benchmark code, run alternately

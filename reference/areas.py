@@ -29,7 +29,7 @@ from typing import Sequence
 from .errors import BadShape, DegenerateFace, InputError
 from .exact import Surd, sqrt
 from .exact.rationals import on_common_denominator, rounded_root_sum
-from .laplacian import cotan_laplacian, cotan_weighted_edges, metric_of_surface
+from .laplacian import cotan_laplacian, cotan_weighted_edges
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
 from .exact.surds import exact_sum, simplest

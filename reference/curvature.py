@@ -41,10 +41,10 @@ from fractions import Fraction
 
 from . import curvature_fast
 from .errors import InputError
-from .exact import Angle, Surd, corner_angle, pi, sqrt
+from .exact import Angle, Surd, corner_angle, pi, sign, sqrt
 from .exact.measures import AngleLength
 from .exact.surds import exact_sum
-from .metric import PiecewiseFlatSurface, as_metric
+from .metric import as_metric
 from .polyhedral import PolyhedralSurface
 from .combinatorics import corner_of, cyclic, face_of, opposite_corner
 
@@ -88,10 +88,6 @@ def _cross(a, b):
 
 def _det(a, b, c):
     return _dot(a, _cross(b, c))
-
-
-def _sign(x) -> int:
-    return (x > 0) - (x < 0)
 
 
 def _sum_angles(angles) -> Angle:
@@ -357,13 +353,13 @@ def is_convex_star(surface, v: int) -> bool:
     """
     d = _star(surface, v, "is_convex_star")
     normals = [_cross(a, b) for a, b in zip(d, d[1:] + d[:1])]
-    signs = {_sign(_dot(nv, x)) for nv in normals for x in d} - {0}
+    signs = {sign(_dot(nv, x)) for nv in normals for x in d} - {0}
     if len(signs) != 1:
         return False                          # both sides (not convex) or planar
     if _rank(normals) < 3:
         return False
     axis = tuple(sum(x[k] for x in d) for k in range(3))
-    turn = {_sign(_det(axis, a, b)) for a, b in zip(d, d[1:] + d[:1])}
+    turn = {sign(_det(axis, a, b)) for a, b in zip(d, d[1:] + d[:1])}
     if len(turn) != 1 or 0 in turn:
         return False
     if turn == {-1}:
@@ -394,7 +390,7 @@ def is_saddle_star(surface, v: int) -> bool:
             if not any(c):
                 continue
             found_plane = True
-            signs = {_sign(_dot(c, x)) for x in d}
+            signs = {sign(_dot(c, x)) for x in d}
             if 1 not in signs or -1 not in signs:
                 return False
     return found_plane

@@ -32,9 +32,9 @@ from __future__ import annotations
 from collections import deque
 
 from .errors import DDGError, InputError
-from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, _sign, unfold
+from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, unfold
 from .laplacian import cotan_laplacian, cotan_weights
-from .exact import Surd
+from .exact import sign
 from .metric import PiecewiseFlatSurface
 from .exact.intervals import Interval
 from .exact.surds import exact_sum, simplest
@@ -71,8 +71,8 @@ def is_delaunay_edge(surface, e: int) -> bool:
     f, g = face_of(h), face_of(t)
     n_h, n_t = _cot_numerator(m, h), _cot_numerator(m, t)
     if f == g:
-        return _sign(simplest(n_h + n_t)) >= 0
-    return _sign(simplest(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
+        return sign(simplest(n_h + n_t)) >= 0
+    return sign(simplest(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
 
 
 def _cot_numerator(m: PiecewiseFlatSurface, h: int):
@@ -117,7 +117,7 @@ def in_circumcircle(surface, e: int) -> int:
     if t < 0:
         return -1
     i, j, k, l_ = unfold(m, e).scaled_points()
-    return _sign(incircle_determinant(i, j, k, l_))
+    return sign(incircle_determinant(i, j, k, l_))
 
 
 def non_delaunay_edges(surface) -> list[int]:
@@ -195,20 +195,20 @@ def _decrease_sign(out, into) -> int:
     first, no division of square-root numbers; the exact quotients only when both contain 0."""
     for bits in (64, 256):
         total = Interval(0)
-        for sign, pairs in ((1, into), (-1, out)):
+        for direction, pairs in ((1, into), (-1, out)):
             for s, A in pairs:
                 area = Interval.enclosing(A, bits)
                 if area.lo <= 0:
                     break
                 q = Interval.enclosing(s, bits) / area
-                total = total + q if sign > 0 else total - q
+                total = total + q if direction > 0 else total - q
             else:
                 continue
             break
         else:
             if total.sign() is not None:
                 return total.sign()
-    return _sign(_exact_change(out, into))
+    return sign(_exact_change(out, into))
 
 
 class FlipRecord:
@@ -334,7 +334,7 @@ def delaunay_tessellation_edges(surface) -> set[int]:
                          "criterion (use flip_to_delaunay first)")
     tri = m.triangulation
     return {e for e, w in cotan_weights(m).items()
-            if tri.is_boundary_edge(e) or _sign(w) != 0}
+            if tri.is_boundary_edge(e) or sign(w) != 0}
 
 
 def laplace_beltrami(surface):

@@ -48,7 +48,7 @@ from .laplacian import cotan_laplacian, dirichlet_energy
 from .exact.surds import simplest
 from .sparse import SparseMatrix, exact_number, rank
 
-__all__ = ["SingularDirichletProblem", "solve_dirichlet", "matrix_components",
+__all__ = ["SingularDirichletProblem", "as_laplacian", "solve_dirichlet", "matrix_components",
            "kernel_dimension", "is_harmonic_at", "energy_gradient", "directional_derivative",
            "energy_increase", "satisfies_maximum_principle", "strict_interior_extrema",
            "is_constant_on_components", "has_positive_weights", "neighbour_convex_combination",
@@ -69,7 +69,9 @@ class SingularDirichletProblem(InputError):
         self.component = tuple(component)
 
 
-def _laplacian(operator) -> SparseMatrix:
+def as_laplacian(operator) -> SparseMatrix:
+    """The Laplacian an operator argument names: a square :class:`SparseMatrix` as it is,
+    a surface's cotan Laplacian (D3.2) otherwise."""
     if isinstance(operator, SparseMatrix):
         n, m = operator.shape
         if n != m:
@@ -207,7 +209,7 @@ def solve_dirichlet(operator, boundary_values: Mapping, *, term_limit: int | Non
     or, for weights of mixed sign, a singular system.  ``term_limit`` raises the
     Surd term guard for this call (see the module docstring).
     """
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     n = L.shape[0]
     if not boundary_values:
         raise SingularDirichletProblem("V0 is empty: the Dirichlet problem needs at least one "
@@ -267,7 +269,7 @@ def solve_dirichlet(operator, boundary_values: Mapping, *, term_limit: int | Non
 
 def is_harmonic_at(operator, f: Sequence, i: int) -> bool:
     """``(Lap f)(i) == 0`` with ``(Lap f)(i) = sum_j nu(ij) (f(i) - f(j))``, exactly."""
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     acc = _ZERO
     for j, v in L.row(i).items():
         acc = acc + v * f[j]
@@ -280,7 +282,7 @@ def energy_gradient(operator, f: Sequence) -> list:
     With ``(Lap f)(i) = sum_j nu(ij) (f(i) - f(j))`` and
     ``E = 1/2 sum_edges nu (f(i) - f(j))^2`` there is no factor 2 (T3.1).
     """
-    return _laplacian(operator).matvec(list(f))
+    return as_laplacian(operator).matvec(list(f))
 
 
 def directional_derivative(energy: Callable, f: Sequence, phi: Sequence):
@@ -303,7 +305,7 @@ def directional_derivative(energy: Callable, f: Sequence, phi: Sequence):
 def energy_increase(operator, f: Sequence, phi: Sequence):
     """``E(f + phi) - E(f)``, exact (T3.5: equals E(phi) >= 0 when f solves the
     Dirichlet problem and phi vanishes on V0)."""
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     g = [a + b for a, b in zip(f, phi)]
     return simplest(dirichlet_energy(L, g) - dirichlet_energy(L, f))
 
@@ -317,7 +319,7 @@ def has_positive_weights(operator) -> bool:
     An edge of weight exactly 0 is no edge for the matrix; the theorems then
     apply to the graph of the remaining edges (:func:`matrix_components`).
     """
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     return all(v < 0 for i, j, v in L.entries() if i != j)
 
 
@@ -328,7 +330,7 @@ def strict_interior_extrema(operator, f: Sequence, boundary) -> list[int]:
     inequality for one (or the reverse).  T3.2's proof: with positive weights
     ``(Lap f)(i) > 0`` there (``< 0`` at a minimum), so f is not harmonic at i.
     """
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     V0 = set(boundary)
     out = []
     for i in range(L.shape[0]):
@@ -351,7 +353,7 @@ def satisfies_maximum_principle(operator, f: Sequence, boundary) -> bool:
     premise of the theorem (positive weights, f harmonic off V0) is *not*
     checked here: this is the conclusion, to test against.
     """
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     V0 = set(boundary)
     for comp in matrix_components(L):
         vals = [f[i] for i in comp]
@@ -367,7 +369,7 @@ def satisfies_maximum_principle(operator, f: Sequence, boundary) -> bool:
 
 def is_constant_on_components(operator, f: Sequence) -> bool:
     """C3.3: f is constant on every component of the graph (exact)."""
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     return all(all(f[i] == f[comp[0]] for i in comp) for comp in matrix_components(L))
 
 
@@ -382,7 +384,7 @@ def neighbour_convex_combination(operator, i: int) -> dict[int, object]:
     the convex hull of its neighbours.  The lambdas are exact; whether they are
     positive is for the caller to check (they are not for negative cotan weights).
     """
-    L = _laplacian(operator)
+    L = as_laplacian(operator)
     row = L.row(i)
     C = row.get(i, _ZERO)
     if not C:

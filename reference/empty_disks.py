@@ -38,7 +38,7 @@ from collections import deque
 from dataclasses import dataclass
 
 from .errors import InputError, TermLimitExceeded
-from .exact.surds import simplest
+from .exact.surds import sign, simplest
 from .intrinsic import _metric
 from .combinatorics import corner_of, face_of, next_corner, prev_corner
 
@@ -84,10 +84,6 @@ def _dot(p, q):
 
 def _cross(p, q):
     return p[0] * q[1] - p[1] * q[0]
-
-
-def _sign(x) -> int:
-    return (x > 0) - (x < 0)
 
 
 def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
@@ -163,7 +159,7 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
             d = _sub(head, tail)
             along = simplest((sq_pq + sq_px - sq_qx) / (2 * sq_pq))
             height = simplest(2 * m.area(g2) / sq_pq)
-            if _sign(_cross(d, _sub(w, tail))) > 0:      # X on the other side of the edge
+            if sign(_cross(d, _sub(w, tail))) > 0:      # X on the other side of the edge
                 height = -height
             x = (simplest(tail[0] + along * d[0] - height * d[1]),
                  simplest(tail[1] + along * d[1] + height * d[0]))
@@ -173,7 +169,7 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
             if key in seen:
                 continue
             seen.add(key)
-            s = _sign(power(x))
+            s = sign(power(x))
             vertex = t.faces[g2][prev_corner(c2)]
             if s < 0:
                 return ImmersedDisk(face, (vertex, x), tuple(on_circle.items()), tuple(cell),

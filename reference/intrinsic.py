@@ -68,7 +68,7 @@ from functools import cached_property
 
 from .combinatorics import Triangulation, _Builder, _index, face_of, opposite_corner
 from .errors import InputError, NotFlippable, TermLimitExceeded
-from .exact import Surd
+from .exact import Surd, sign
 from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 
@@ -162,13 +162,7 @@ class Unfolding:
     def convexity(self):
         """``(sign at i, sign at j)``: the signs of ``N_i`` and ``N_j``, i.e. of
         ``pi - (angle sum of the two triangles)`` at ``i`` and at ``j``."""
-        return _sign(self._n_i), _sign(self._n_j)
-
-
-def _sign(x) -> int:
-    if isinstance(x, Surd):
-        return x.sign()
-    return (x > 0) - (x < 0)
+        return sign(self._n_i), sign(self._n_j)
 
 
 def unfold(surface, e: int) -> Unfolding:

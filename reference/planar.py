@@ -64,7 +64,7 @@ from typing import Iterable
 from .delaunay import delaunay_tessellation_edges, flip_to_delaunay, incircle_determinant
 from .errors import (BadInversion, BadQuadrilateral, BadShape, ClockwiseFace, CollinearPoints,
                      DegenerateFace, InputError, RepeatedPoint, TooFewPoints)
-from .exact import corner_angle, pi
+from .exact import corner_angle, pi, sign
 from .exact.rationals import rational
 from .intrinsic import flip, is_flippable
 from .laplacian import cotan_laplacian
@@ -138,10 +138,6 @@ def _fmt(x: Fraction) -> str:
 # --- D4.1: exact predicates ---------------------------------------------------------------
 
 
-def _sign(x) -> int:
-    return (x > 0) - (x < 0)
-
-
 def _cross(a, b, c):
     """``(b - a) x (c - a)``: twice the signed area of the triangle ``a b c``."""
     return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
@@ -156,7 +152,7 @@ def orientation(a, b, c) -> int:
     >>> orientation((0, 0), (1, 0), (0, 1)), orientation((0, 0), (1, 1), (2, 2))
     (1, 0)
     """
-    return _sign(_cross(as_point(a), as_point(b), as_point(c)))
+    return sign(_cross(as_point(a), as_point(b), as_point(c)))
 
 
 def in_circle(a, b, c, d) -> int:
@@ -178,7 +174,7 @@ def in_circle(a, b, c, d) -> int:
     >>> in_circle((0, 0), (0, 1), (1, 0), (Fraction(1, 2), Fraction(1, 2)))   # clockwise
     -1
     """
-    return _sign(incircle_determinant(as_point(a), as_point(b), as_point(c), as_point(d)))
+    return sign(incircle_determinant(as_point(a), as_point(b), as_point(c), as_point(d)))
 
 
 def circle_position(a, b, c, d) -> int:
@@ -838,7 +834,7 @@ def tangent_chord_cot(b, s, c) -> Fraction:
     t = (-r[1], r[0])
     chord = _sub(c, b)
     # the tangent ray on the other side of the line BC than S
-    if _sign(_det2(chord, t)) == _sign(_det2(chord, _sub(s, b))):
+    if sign(_det2(chord, t)) == sign(_det2(chord, _sub(s, b))):
         t = (-t[0], -t[1])
     return _dot2(t, chord) / abs(_det2(t, chord))
 
@@ -878,9 +874,9 @@ def quad_tessellation_faces(points) -> list[dict]:
             k = next(v for v in cell_ring if v not in e)
             return _dot2(_sub(pi_, pts[k]), _sub(pj, pts[k]))   # the sign of cot at k
 
-        crossing = (_sign(_det2(qr, _sub(pi_, q))) * _sign(_det2(qr, _sub(pj, q))) <= 0
-                    and _sign(_det2(_sub(pj, pi_), _sub(q, pi_)))
-                    * _sign(_det2(_sub(pj, pi_), _sub(r, pi_))) <= 0)
+        crossing = (sign(_det2(qr, _sub(pi_, q))) * sign(_det2(qr, _sub(pj, q))) <= 0
+                    and sign(_det2(_sub(pj, pi_), _sub(q, pi_)))
+                    * sign(_det2(_sub(pj, pi_), _sub(r, pi_))) <= 0)
         out.append({
             "edge": (i, j), "voronoi": (q, r),
             "orthogonal": _dot2(qr, _sub(pj, pi_)) == 0,

@@ -7,7 +7,7 @@ True
 
 from .angles import Angle, corner_angle, direction_angle, pi
 from .rationals import rational
-from .surds import Surd, exact_sum, limits, settings, simplest, sqrt
+from .surds import Surd, exact_sum, limits, settings, sign, simplest, sqrt
 
 __all__ = ["Angle", "Surd", "corner_angle", "direction_angle", "exact_sum", "limits", "pi",
-           "rational", "settings", "simplest", "sqrt"]
+           "rational", "settings", "sign", "simplest", "sqrt"]

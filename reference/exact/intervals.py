@@ -18,9 +18,10 @@ Interval(Fraction(1, 8), Fraction(1, 2))
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
-__all__ = ["Interval"]
+__all__ = ["Interval", "dot", "scaled_bounds"]
 
 
 class Interval:
@@ -151,3 +152,21 @@ def dot(u, v) -> Interval:
     for a, b in zip(u, v):
         acc = acc + (a.square() if a is b else a * b)
     return acc
+
+
+def scaled_bounds(x, k: int) -> tuple[int, int]:
+    """Integers ``lo <= x * 2**k <= hi``, ``hi - lo <= 2`` (equal when ``x * 2**k`` is an
+    integer), for an exact number ``x``: an int, a Fraction, a float (taken exactly) or
+    anything with ``scaled_bounds`` (:meth:`~ddg_oracle.reference.exact.Surd.scaled_bounds`).
+    Interval arithmetic on integers at one absolute scale 2**-k starts here: sums of such
+    bounds are bounds, products of two are bounds at the scale 2**-2k.
+
+    >>> scaled_bounds(Fraction(1, 3), 4), scaled_bounds(0.75, 2), scaled_bounds(-1, 3)
+    ((5, 6), (3, 3), (-8, -8))
+    """
+    if isinstance(x, int):
+        return x << k, x << k
+    if hasattr(x, "scaled_bounds"):
+        return x.scaled_bounds(k)
+    q = Fraction(x) * (1 << k)
+    return math.floor(q), math.ceil(q)

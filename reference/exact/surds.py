@@ -736,6 +736,21 @@ class Surd:
         lo, hi = self._bounds(k)
         return Fraction(lo, 1 << k), Fraction(hi, 1 << k)
 
+    def scaled_bounds(self, k: int) -> tuple[int, int]:
+        """Integers ``lo <= self * 2**k <= hi`` with ``hi - lo <= 2`` (``k >= 0``): the
+        enclosure at the absolute scale 2**-k that interval arithmetic on integers starts
+        from (:func:`ddg_oracle.reference.exact.intervals.scaled_bounds`).
+
+        >>> sqrt(2).scaled_bounds(10)                   # 1448 / 1024 < sqrt 2 < 1449 / 1024
+        (1448, 1449)
+        """
+        if self.is_rational():
+            q = self._terms.get(1, _ZERO) * (1 << k)
+            return math.floor(q), math.ceil(q)
+        extra = (2 * self._bound_count() + 1).bit_length()
+        lo, hi = self._bounds(k + extra)
+        return lo >> extra, -(-hi >> extra)
+
     def _bound_count(self):
         """How many terms :meth:`_bounds` adds up (its enclosures are that many units wide)."""
         return len(self._terms)
@@ -941,6 +956,19 @@ def simplest(x):
     if isinstance(x, Surd) and x.is_rational():
         return x._terms.get(1, _ZERO)
     return x
+
+
+def sign(x) -> int:
+    """-1, 0 or 1: the exact sign of an int, Fraction or anything with ``sign()`` (Surd,
+    Angle, ...), each decided the cheapest way its type knows.
+
+    >>> sign(Fraction(-1, 3)), sign(0), sign(sqrt(2) - 1)
+    (-1, 0, 1)
+    """
+    s = getattr(x, "sign", None)
+    if s is not None:
+        return s()
+    return (x > 0) - (x < 0)
 
 
 def exact_sum(values):
