@@ -22,7 +22,7 @@ from hypothesis import assume, given, settings, strategies as st
 from benchmarks.peers import flip_to_delaunay_immutable
 from ddg_oracle.properties.strategies import any_meshes, closed_meshes
 from ddg_oracle.properties.strategies import triangulated_surfaces
-from ddg_oracle.reference import cotan_fast, cotangents, curvature_fast, surfaces
+from ddg_oracle.reference import cotangents, curvature_fast, surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
 from ddg_oracle.reference.cotangents import CotanSum, applies, face_cotangents

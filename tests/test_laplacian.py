@@ -11,7 +11,6 @@ import scipy.sparse as sp
 from hypothesis import given, strategies as st
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.properties import laplacian as props
 from ddg_oracle.properties.bounds import _conditioning
 from ddg_oracle.properties.harness import ErrorLedger, Exact, recording
 from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, closed_meshes, jittered_surfaces,
