@@ -433,7 +433,10 @@ def _check(args, argv) -> int:
     t0 = time.perf_counter()
     options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget)
     if meshes:
-        tasks = [jobs.Task(s, None, k) for k in range(len(meshes)) for s in specs]
+        # one task per (mesh, implementation, property): a worker keeps to one property's
+        # tasks (jobs.next_task), so each exact value is computed by one worker, not all
+        tasks = [jobs.Task(s, p, k) for k in range(len(meshes)) for s in specs
+                 for p in on_files if only is None or p in only]
     else:
         tasks = [jobs.Task(s, p.id) for p in props for s in specs]
     workers = min(workers, len(tasks))

@@ -35,8 +35,8 @@ class Options:
 @dataclass(frozen=True)
 class Task:
     spec: str                   # implementation spec as given to --impl
-    property_id: str | None     # a generated-example task ...
-    mesh: int | None = None     # ... or the index of a mesh file: every applicable property
+    property_id: str | None     # the property (None on a mesh: every applicable one)
+    mesh: int | None = None     # the index of a mesh file; None: generated examples
 
 
 class _Process:
@@ -129,7 +129,8 @@ def run_task(task: Task) -> list:
     if task.mesh not in examples:
         examples.clear()                 # one mesh's exact values at a time
         examples[task.mesh] = MeshExamples(_HERE.meshes[task.mesh])
-    return run_mesh_properties(examples[task.mesh], impl, opts.only, counterpart, convention)
+    only = opts.only if task.property_id is None else frozenset([task.property_id])
+    return run_mesh_properties(examples[task.mesh], impl, only, counterpart, convention)
 
 
 def crashed(task: Task, why: str) -> list:
@@ -297,8 +298,8 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
 
 def task_group(task: Task):
     """The tasks that share memoized exact values: one property's (every implementation
-    sees its examples), or one mesh file's."""
-    return task.property_id if task.mesh is None else ("mesh", task.mesh)
+    sees its examples), on generated examples or on one mesh file."""
+    return task.property_id if task.mesh is None else ("mesh", task.mesh, task.property_id)
 
 
 def next_task(queue: list[int], tasks: list[Task], mine, others: set) -> int:

@@ -11,11 +11,15 @@ import math
 
 import numpy as np
 
-from ddg_oracle.reference import curvature, delaunay, laplacian
+from ddg_oracle.reference import delaunay, laplacian
 from ddg_oracle.reference.combinatorics import Triangulation, next_corner
 from ddg_oracle.reference.exact import exact_sum
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from ddg_oracle.properties import curvature as views, memo
+from ddg_oracle.properties.delaunay import delaunay_of
+from ddg_oracle.properties.example import surface_key
+from ddg_oracle.properties.harness import laplacian_view
 from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
 
 from .arrays import Referenced
@@ -50,10 +54,23 @@ class ReferenceImplementation:
         r = Referenced(V, F)
         return Triangulation.from_faces(r.F, n_vertices=len(r.V))
 
-    @staticmethod
-    def _s(V, F) -> PolyhedralSurface:
+    def _s(self, V, F) -> PolyhedralSurface:
+        """The exact surface of these arrays, built once per content for the last couple of
+        meshes: every method asked about the same mesh shares one surface, so one exact
+        metric (cached on it) and one set of exact values (:func:`.memo.of`); the example
+        the arrays were made from, if this process has it (:data:`.memo.DRAWN`, looked up
+        by exact content, never added to), is that surface."""
         r = Referenced(V, F)
-        return PolyhedralSurface.from_arrays(r.V, r.F)
+        key = (r.V.shape, r.V.tobytes(), r.F.shape, r.F.tobytes())
+
+        def build():
+            s = PolyhedralSurface.from_arrays(r.V, r.F)
+            return memo.DRAWN.get(surface_key(s.positions, s.faces), s)
+        try:
+            table = self._surfaces
+        except AttributeError:          # made here, not in __init__: a subclass need not call it
+            table = self._surfaces = memo.Table(2)      # the last couple of meshes
+        return table.shared(key, build)
 
     # chapter 1
     def euler_characteristic(self, V, F) -> int:
@@ -70,28 +87,31 @@ class ReferenceImplementation:
         return self._t(V, F).classify().genus
 
     # chapter 2
+    # the float views below are the properties' (views.*: once per surface object, so a
+    # check of this adapter on a mesh file does not compute the exact values twice)
     def corner_angles(self, V, F):
-        return np.array([[float(a) for a in f] for f in curvature.corner_angles(self._s(V, F))])
+        return views.corner_angle_views(self._s(V, F)).copy()
 
     def angle_defects(self, V, F):
         s, r = self._s(V, F), Referenced(V, F)
         K = np.zeros(s.n_vertices)
-        for v, k in {**curvature.angle_defects(s), **curvature.turning_angles(s)}.items():
-            K[v] = float(k)
+        for v, k in {**views.defect_views(s), **views.turning_views(s)}.items():
+            K[v] = k
         return r.scatter(K, ISOLATED_VERTEX["angle_defects"])
 
     def edge_mean_curvature(self, V, F):
         s, r = self._s(V, F), Referenced(V, F)
-        t = s.triangulation
-        return {tuple(sorted(r.index(v) for v in t.edge_vertices(e))): float(h)
-                for e, h in curvature.mean_curvature(s).items()}
+        if not r.isolated:
+            return dict(views.mean_curvature_views(s))
+        return {tuple(sorted(r.index(v) for v in e)): h
+                for e, h in views.mean_curvature_views(s).items()}
 
     def area(self, V, F) -> float:
         return _view(exact_sum(self._s(V, F).metric().areas))
 
     # chapter 3
     def cotan_laplacian(self, V, F):
-        return Referenced(V, F).embed(laplacian.cotan_laplacian(self._s(V, F)).to_scipy())
+        return Referenced(V, F).embed(laplacian_view(self._s(V, F)).copy())
 
     def area_gradient(self, V, F):
         from ddg_oracle.reference.areas import area_gradient_floats
@@ -152,10 +172,12 @@ class ReferenceImplementation:
                           for c in range(3)] for f in range(t.n_faces)], dtype=bool)
 
     def intrinsic_delaunay_laplacian(self, V, F):
-        return Referenced(V, F).embed(delaunay.laplace_beltrami(self._s(V, F)).to_scipy())
+        # delaunay.laplace_beltrami, with the flips and the matrix the properties' (once)
+        d, _ = delaunay_of(self._s(V, F).metric())
+        return Referenced(V, F).embed(laplacian_view(d).copy())
 
     def intrinsic_delaunay_triangulation(self, V, F):
-        d, _ = delaunay.flip_to_delaunay(self._s(V, F).metric())
+        d, _ = delaunay_of(self._s(V, F).metric())
         t = d.triangulation
         l2 = [[_view(d.face_squared_lengths(f)[next_corner(c)]) for c in range(3)]
               for f in range(t.n_faces)]

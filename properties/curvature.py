@@ -147,23 +147,48 @@ def vertex_stars(draw, kind: str | None = None):
 # --- reference values and tolerances --------------------------------------------------------------
 
 
+def defect_views(surface) -> dict:
+    """{v: float(K(v))}: the correctly rounded exact angle defects (D2.2) of the interior
+    vertices of ``surface``, once per surface object (:func:`.memo.of`: the reference
+    adapter answers with these)."""
+    return memo.of(_defect_views, surface)
+
+
+def _defect_views(surface) -> dict:
+    return {v: float(k) for v, k in ref.angle_defects(surface.metric()).items()}
+
+
+def turning_views(surface) -> dict:
+    """{v: float(kappa(v))}: the correctly rounded exact turning angles (R2.4) of the
+    boundary vertices, once per surface object."""
+    return memo.of(_turning_views, surface)
+
+
+def _turning_views(surface) -> dict:
+    return {v: float(k) for v, k in ref.turning_angles(surface.metric()).items()}
+
+
+def mean_curvature_views(surface) -> dict:
+    """{(i, j): float(H(e))} (i < j) of the exact D2.3 values over the interior edges,
+    correctly rounded, once per surface object."""
+    return memo.of(_mean_curvature_views, surface)
+
+
+def _mean_curvature_views(surface) -> dict:
+    t = surface.triangulation
+    return {tuple(sorted(t.edge_vertices(e))): float(h)
+            for e, h in ref.mean_curvature(surface).items()}
+
+
 def _reference(case: Example, what: str) -> dict:
     """Float views (correctly rounded) of the exact angle defects (``what="defects"``, D2.2)
-    or turning angles (``"turning"``, R2.4), computed once per case content."""
-    def compute(case):
-        m = case.surface.metric()
-        exact = ref.angle_defects(m) if what == "defects" else ref.turning_angles(m)
-        return {v: float(k) for v, k in exact.items()}
-    return case.derived(what, compute)
+    or turning angles (``"turning"``, R2.4) of a case."""
+    return (defect_views if what == "defects" else turning_views)(case.surface)
 
 
 def _reference_mean_curvature(case: Example):
     """{(i, j): float(H(e))} of the exact D2.3 values over the interior edges."""
-    def compute(case):
-        t = case.triangulation
-        return {tuple(sorted(t.edge_vertices(e))): float(h)
-                for e, h in ref.mean_curvature(case.surface).items()}
-    return case.derived("H", compute)
+    return mean_curvature_views(case.surface)
 
 
 def _call(impl, method: str, case: Example):
@@ -414,12 +439,16 @@ def star_kind_decides_curvature_sign(impl, star: Example):
                               expected=0.0, observed=K, bound=tol)
 
 
-def _corner_angles_from_lengths(case: Example) -> np.ndarray:
-    """Float views of the exact corner angles of the metric built from the squared lengths
-    alone (no positions used), D2.6."""
+def corner_angle_views(surface) -> np.ndarray:
+    """(m, 3) float views of the exact corner angles of the metric built from the squared
+    lengths of ``surface`` alone (no positions used), D2.6, once per surface object."""
+    return memo.of(_corner_angle_views, surface)
+
+
+def _corner_angle_views(surface) -> np.ndarray:
     from ddg_oracle.reference.metric import PiecewiseFlatSurface
-    m = case.surface.metric()
-    flat = PiecewiseFlatSurface(case.triangulation, m.squared_lengths)
+    m = surface.metric()
+    flat = PiecewiseFlatSurface(surface.triangulation, m.squared_lengths)
     return np.array([[float(a) for a in face] for face in ref.corner_angles(flat)])
 
 
@@ -428,7 +457,7 @@ def _corner_angles_from_lengths(case: Example) -> np.ndarray:
       on_mesh=(),
       strategy=lambda: jittered_surfaces(intrinsic=True))
 def corner_angles_from_edge_lengths(impl, case: Example):
-    expected = case.derived("corner angles", _corner_angles_from_lengths)
+    expected = corner_angle_views(case.surface)
     A = np.asarray(_call(impl, "corner_angles", case), dtype=np.float64)
     if A.shape != expected.shape:
         raise PropertyFailure("D2.6", impl, "corner_angles must be an (m, 3) array", mesh=case.mesh,

@@ -41,11 +41,11 @@ from hypothesis import strategies as st
 from ddg_oracle.reference.curvature import corner_angles
 from ddg_oracle.reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
 from ddg_oracle.reference.intrinsic import flip
-from ddg_oracle.reference.laplacian import cotan_laplacian
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
+from . import memo
 from .bounds import K_COT, entry_bounds, gamma
-from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
+from .harness import (Exact, exact_laplacian, laplacian_view, dirichlet_solve, entries_at, fail, implementation_dense,
                       implementation_matrix, record, worst, worst_sparse)
 from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
@@ -90,6 +90,13 @@ def flip_amplification(metric, log):
     return m, amp
 
 
+def delaunay_of(metric):
+    """``flip_to_delaunay(metric)`` (A4.13: the Delaunay metric and the flip log), once per
+    metric object (:func:`.memo.of`: the property's reference values and the reference
+    adapter's answer on a mesh file are one run); read-only."""
+    return memo.of(flip_to_delaunay, metric)
+
+
 class DelaunayExact:
     """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds:
     sparse (``Ls``, ``Bs``, ``interior_s``: scipy CSR on the case's vertices, any mesh size),
@@ -101,14 +108,14 @@ class DelaunayExact:
     def __init__(self, case: Example):
         import scipy.sparse as sp
         self.X = X = Exact.of(case)
-        self.delaunay, self.log = flip_to_delaunay(X.metric)
+        self.delaunay, self.log = delaunay_of(X.metric)
         d, self.amplification = flip_amplification(X.metric, self.log)
         assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
         t = self.delaunay.triangulation
         k = t.n_vertices
-        self.L = cotan_laplacian(self.delaunay)
+        self.L = exact_laplacian(self.delaunay)
         self.bounds = entry_bounds(self.delaunay, k, self.amplification)
-        self.Ls = X.embed(self.L.to_scipy())
+        self.Ls = X.embed(laplacian_view(self.delaunay).copy())
         self.Bs = X.embed(self._widen_on_cocircular_cells(self.bounds.B))
         # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
         # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, SC-1)

@@ -25,7 +25,7 @@ from .example import Example
 from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
 
-__all__ = ["Exact", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
+__all__ = ["Exact", "exact_laplacian", "laplacian_view", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve"]
 
 
@@ -86,6 +86,23 @@ def record(pid: str, err, bound) -> float:
 # --- the exact reference on an example ------------------------------------------------------------
 
 
+def exact_laplacian(surface):
+    """The exact cotan Laplacian (D3.1) of ``surface`` (a surface or a metric), once per
+    object (:func:`.memo.of`: the properties' reference values and the reference adapter's
+    answer on a mesh file are one computation); read-only."""
+    return memo.of(cotan_laplacian, surface)
+
+
+def laplacian_view(surface):
+    """The float view (scipy CSR, each entry correctly rounded) of :func:`exact_laplacian`,
+    once per object; read-only (copy before changing it)."""
+    return memo.of(_laplacian_view, surface)
+
+
+def _laplacian_view(surface):
+    return exact_laplacian(surface).to_scipy()
+
+
 class Exact:
     """The exact reference on the floats of a case, with float views and entry bounds.
     ``Exact.of(case)``: the same, computed once per case content and machine epsilon (the
@@ -108,12 +125,12 @@ class Exact:
         self.metric = self.surface.metric()
         t = self.triangulation = self.surface.triangulation
         k = t.n_vertices
-        self.L = cotan_laplacian(self.surface)
+        self.L = exact_laplacian(self.surface)
         b = entry_bounds(self.metric, k)
         self.cot, self.rho, self.beta = b.cot, b.rho, b.beta
         # sparse (scipy CSR) on the case's n vertices: the float view of L, the entry bounds,
         # the edge pattern; Lf, B, adjacent are their dense arrays, built only if asked
-        self.Ls = self.embed(self.L.to_scipy())
+        self.Ls = self.embed(laplacian_view(self.surface).copy())
         self.Bs = self.embed(b.B)
         self.adjacent_s = self.embed(b.adjacent)
 

@@ -23,6 +23,7 @@ shrink candidates does not evict the reference values of the examples.
 
 from __future__ import annotations
 
+import weakref
 from collections import OrderedDict
 
 
@@ -56,6 +57,14 @@ class Table:
             entries.popitem(last=False)
         return value
 
+    def get(self, key, default=None):
+        """The value kept for ``key`` (marked recently used), else ``default``; adds nothing."""
+        try:
+            self._entries.move_to_end(key)
+        except KeyError:
+            return default
+        return self._entries[key]
+
     def clear(self) -> None:
         self._entries.clear()
 
@@ -73,8 +82,42 @@ DRAWN = Table(DRAWN_LIMIT)
 shared = VALUES.shared
 
 
+def of(fn, obj):
+    """``fn(obj)``, computed once per *object* ``obj`` while it lives: for the exact values
+    of one surface (or metric) that several callers ask for, e.g. a property's reference
+    values and the reference adapter's answer on a mesh file, whose surfaces are one object
+    (:data:`DRAWN`).  The values are kept beside a weak reference to ``obj`` and dropped
+    with it, so they never outlive what they are computed from; ``fn`` must be a
+    module-level function (its name is the key).
+
+    >>> class Mesh(list): pass
+    >>> calls, xs = [], Mesh([1, 2])
+    >>> def double(xs): calls.append(1); return [2 * x for x in xs]
+    >>> of(double, xs), of(double, xs), len(calls)
+    ([2, 4], [2, 4], 1)
+    >>> k = id(xs); del xs; k in _OF
+    False
+    """
+    k = id(obj)
+    entry = _OF.get(k)
+    if entry is None or entry[0]() is not obj:
+        def drop(ref, k=k, table=_OF):      # the table bound: module globals go at exit
+            if table.get(k, (None,))[0] is ref:
+                del table[k]
+        entry = _OF[k] = (weakref.ref(obj, drop), {})
+    values, name = entry[1], (fn.__module__, fn.__qualname__)
+    if name not in values:
+        values[name] = fn(obj)
+    return values[name]
+
+
+#: id(object) -> (weak reference to it, {function name: value}) (see :func:`of`)
+_OF: dict = {}
+
+
 def clear() -> None:
     """Forget every kept value and drawn example (tests that measure a computation call
     this first)."""
     VALUES.clear()
     DRAWN.clear()
+    _OF.clear()

@@ -43,6 +43,7 @@ from . import curvature_fast
 from .errors import InputError
 from .exact import Angle, Surd, corner_angle, pi, sign, sqrt
 from .exact.measures import AngleLength
+from .exact.rationals import points_on_common_denominator
 from .exact.surds import exact_sum
 from .metric import as_metric
 from .polyhedral import PolyhedralSurface
@@ -441,10 +442,14 @@ def dihedral_angles(surface) -> dict[int, Angle]:
                 "orientation")
         i, j, k = cyclic(t.faces[f], corner_of(h))
         l_ = t.faces[g][opposite_corner(h2)]
-        edge = _sub(x[j], x[i])
-        nf = _cross(edge, _sub(x[k], x[i]))
-        ng = _cross(_sub(x[i], x[j]), _sub(x[l_], x[j]))
-        height = _dot(nf, _sub(x[l_], x[i]))
+        # the four points over their common denominator D: integer arithmetic, and the
+        # cotangent below is homogeneous of degree 0 in the positions (D^4 / (D D^3)), so
+        # the integers give it exactly; the signs are those of the rationals (D > 0)
+        (xi, xj, xk, xl), _ = points_on_common_denominator(x[i], x[j], x[k], x[l_])
+        edge = _sub(xj, xi)
+        nf = _cross(edge, _sub(xk, xi))
+        ng = _cross(_sub(xi, xj), _sub(xl, xj))
+        height = _dot(nf, _sub(xl, xi))
         cos_part = _dot(nf, ng)
         if height == 0:
             if cos_part > 0:
@@ -452,7 +457,7 @@ def dihedral_angles(surface) -> dict[int, Angle]:
                 continue
             raise InputError(f"edge {e} {t.edge_vertices(e)}: faces {f} and {g} are folded onto "
                              "each other (dihedral angle +-pi)")
-        cot = cos_part / (sqrt(_dot(edge, edge)) * abs(height))
+        cot = Fraction(cos_part) / (sqrt(_dot(edge, edge)) * abs(height))
         theta = corner_angle(cot)
         out[e] = theta if height < 0 else -theta
     return out

@@ -337,7 +337,7 @@ class IntrinsicTriangulation:
     True
     """
 
-    __slots__ = ("triangulation", "squared_lengths", "areas")
+    __slots__ = ("triangulation", "squared_lengths", "areas", "__weakref__")   # weakref: as metric.py
 
     def __init__(self, surface):
         m = _metric(surface)

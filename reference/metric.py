@@ -24,7 +24,7 @@ from typing import Protocol, Sequence, runtime_checkable
 from .combinatorics import HalfedgeMesh, Triangulation
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
-from .exact.rationals import on_common_denominator
+from .exact.rationals import points_on_common_denominator
 
 __all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of", "heron16"]
 
@@ -77,7 +77,9 @@ class PiecewiseFlatSurface:
     Surd('1/4*sqrt(3)')
     """
 
-    __slots__ = ("triangulation", "squared_lengths", "areas", "_cots", "_face_cots")
+    __slots__ = ("triangulation", "squared_lengths", "areas", "_cots", "_face_cots", "__weakref__")
+    # weakly referenceable: a caller may keep values computed from one surface beside it
+    # (a memo of derived values) without keeping the surface alive
 
     def __init__(self, triangulation: Triangulation, squared_lengths: Sequence, areas=None):
         t = triangulation
@@ -261,7 +263,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     sq = []
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)
-        (X, Y), D = _on_common_denominator(points[i], points[j])
+        (X, Y), D = points_on_common_denominator(points[i], points[j])
         sq.append(Fraction(sum((x - y) ** 2 for x, y in zip(X, Y)), D * D))
     for e, x in enumerate(sq):
         # checked before the areas: a zero edge makes its faces zero-area, and
@@ -272,7 +274,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
                                  "(coincident vertices); its faces have zero area")
     areas = []
     for f, (i, j, k) in enumerate(t.faces):
-        (P, Q, R), D = _on_common_denominator(points[i], points[j], points[k])
+        (P, Q, R), D = points_on_common_denominator(points[i], points[j], points[k])
         u = [y - x for x, y in zip(P, Q)]
         v = [y - x for x, y in zip(P, R)]
         uv = sum(x * y for x, y in zip(u, v))
@@ -281,13 +283,6 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
             raise degenerate_face(t, f)
         areas.append(sqrt(Fraction(four_a2, D ** 4)) / 2)
     return PiecewiseFlatSurface._trusted(t, sq, areas)
-
-
-def _on_common_denominator(*points) -> tuple[list[list[int]], int]:
-    """Rational points as integer points over one positive common denominator D."""
-    flat, D = on_common_denominator([x for p in points for x in p])
-    n = len(points[0])
-    return [flat[k:k + n] for k in range(0, len(flat), n)], D
 
 
 def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:

@@ -28,7 +28,9 @@ class PolyhedralSurface:
     (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1))
     """
 
-    __slots__ = ("triangulation", "positions", "_metric")
+    __slots__ = ("triangulation", "positions", "_metric", "__weakref__")
+    # weakly referenceable: a caller may keep values computed from one surface beside it
+    # (a memo of derived values) without keeping the surface alive
 
     def __init__(self, triangulation: Triangulation, positions: Iterable[Sequence]):
         if not isinstance(triangulation, Triangulation):

@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 from ddg_oracle.oracles.pymeshlab import (PyMeshLab, VertexOrderChanged, boundary_edge_angles,
-                               exact_mixed_voronoi_areas)
+                               exact_mixed_voronoi_areas, mixed_voronoi_areas)
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, run_property
@@ -132,6 +132,19 @@ def test_exact_mixed_areas_partition_the_area_and_match_numpy(name):
     for v in range(len(got)):
         tol = 2 * U * sum(c.face_area[f] * (10 + 4 * c.kappa[f] ** 2) for f in c.faces_at(v))
         assert abs(got[v] - ref[v]) <= tol
+
+
+@pytest.mark.parametrize("name", list(MESHES))
+def test_the_adapters_float_mixed_areas_are_the_exact_ones_rounded_in_double(name):
+    """What angle_defects multiplies by: each vertex within the float64 error of its faces'
+    terms (as above) of the exact areas, far inside vcg's single-precision error."""
+    c = case(name)
+    exact = exact_mixed_voronoi_areas(c.V, c.F)
+    got = mixed_voronoi_areas(c.V, c.F)
+    for v in range(len(exact)):
+        tol = 2 * U * sum(c.face_area[f] * (10 + 4 * c.kappa[f] ** 2) for f in c.faces_at(v))
+        assert abs(got[v] - exact[v]) <= tol
+        assert tol < _area_error(c, v) / 100
 
 
 def test_exact_mixed_areas_fallback_equals_the_reference_function():

@@ -152,6 +152,12 @@ class Angle(ArccotSum):
         """-1, 0 or 1, decided exactly (see the module docstring)."""
         if not self._parts:
             return (self._pi > 0) - (self._pi < 0)
+        # every arccot lies in (0, pi): terms of one sign (a corner angle, a sum of corner
+        # angles) have that sign, no enclosure needed
+        if self._pi >= 0 and all(m > 0 for m in self._parts.values()):
+            return 1
+        if self._pi <= 0 and all(m < 0 for m in self._parts.values()):
+            return -1
         limit = arccots.PRECISION_LIMIT
         bits = min(128 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(), limit)
         # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)

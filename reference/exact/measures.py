@@ -228,7 +228,9 @@ class AngleLength(ArccotSum):
 
     def __float__(self):
         """The correctly rounded float (see the module docstring)."""
-        bits = 60
+        # the enclosure is absolute: 128 bits round values down to about 2^-70 in one
+        # step (60 bits needed a second enclosure for most edges of a real mesh, |H| ~ 2^-13)
+        bits = 128
         while True:
             lo, hi = self.interval_at(bits)
             if lo <= 0 <= hi and self.sign() == 0:

@@ -69,6 +69,17 @@ def on_common_denominator(values) -> tuple[list[int], int]:
     return [x.numerator * (D // x.denominator) for x in values], D
 
 
+def points_on_common_denominator(*points) -> tuple[list[list[int]], int]:
+    """(integer points, D): rational points over one positive common denominator D.
+
+    >>> points_on_common_denominator((Fraction(1, 2), 1), (0, Fraction(1, 4)))
+    ([[2, 4], [0, 1]], 4)
+    """
+    flat, D = on_common_denominator([x for p in points for x in p])
+    n = len(points[0])
+    return [flat[k:k + n] for k in range(0, len(flat), n)], D
+
+
 def rounded_root_sum(terms, den: int = 1) -> float:
     """``float(sum n / sqrt(G) / den)`` over ``terms`` [(n, G)] (ints, G > 0), correctly
     rounded, from integers: each term times 2^p lies in [s, s + 1) for
