@@ -112,38 +112,61 @@ MESH_CHECKS = [("pymeshlab:bunny10k_textured.obj", None), ("pymeshlab:bunny10k_t
 
 
 def run_mesh_checks(mode: Mode) -> dict:
-    """``ddg-oracle check --mesh MESH [--impl libigl] --report DIR`` once per row of
-    :data:`MESH_CHECKS` (``--quick``: the 10k bunny only): wall time, exit code, the load
-    average before, and from timings.json the task-seconds per implementation and the
-    slowest (property, implementation)."""
+    """``ddg-oracle check --mesh MESH [--impl libigl] --report DIR`` per row of
+    :data:`MESH_CHECKS` (``--quick``: the 10k bunny only), then ``ddg-oracle compare`` on
+    the same meshes (every installed implementation), each 3 times (``--quick``: once),
+    alternating: the median wall time, every wall time, exit code, the load average before
+    the first run, and from the median run's timings.json the task-seconds per
+    implementation and the slowest (property, implementation)."""
     import json
+    import statistics
     import tempfile
 
-    rows = []
+    rounds = 1 if mode.quick else 3
     plan = [(m, i) for m, i in MESH_CHECKS if not mode.quick or "10k" in m]
-    for mesh, impl in plan:
-        with tempfile.TemporaryDirectory() as tmp:
-            load = round(os.getloadavg()[0], 1)
-            report = os.path.join(tmp, "report")
-            argv = [sys.executable, "-m", "ddg_oracle", "check", "--mesh", mesh, "--report", report]
-            argv += ["--impl", impl] if impl else []
-            t0 = time.perf_counter()
-            p = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
-            wall = time.perf_counter() - t0
-            timings = json.loads(open(os.path.join(report, "timings.json")).read())
+    plan += [(m, "compare") for m in dict.fromkeys(m for m, _ in plan)]
+    runs: dict = {k: [] for k in plan}
+    load0 = {}
+    for _ in range(rounds):
+        for mesh, impl in plan:
+            load0.setdefault((mesh, impl), round(os.getloadavg()[0], 1))
+            with tempfile.TemporaryDirectory() as tmp:
+                report = os.path.join(tmp, "report")
+                if impl == "compare":
+                    argv = [sys.executable, "-m", "ddg_oracle", "compare", mesh]
+                else:
+                    argv = [sys.executable, "-m", "ddg_oracle", "check", "--mesh", mesh,
+                            "--report", report] + (["--impl", impl] if impl else [])
+                t0 = time.perf_counter()
+                p = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
+                wall = time.perf_counter() - t0
+                run = {"wall": wall, "exit": p.returncode}
+                if impl != "compare":
+                    timings = json.loads(open(os.path.join(report, "timings.json")).read())
+                    results = json.loads(open(os.path.join(report, "results.json")).read())
+                    run["timings"], run["results"] = timings["results"], results["results"]
+            runs[mesh, impl].append(run)
+            say(f"  {'compare' if impl == 'compare' else 'check --mesh'} {mesh} "
+                f"({impl or 'all installed'}): {wall:.1f} s exit {p.returncode}")
+    rows = []
+    for (mesh, impl), done in runs.items():
+        walls = [r["wall"] for r in done]
+        mid = sorted(done, key=lambda r: r["wall"])[(len(done) - 1) // 2]
+        row = {"mesh": mesh, "impl": impl or "all installed", "wall": statistics.median(walls),
+               "walls": walls, "exit": mid["exit"], "load": load0[mesh, impl],
+               "command": "compare" if impl == "compare" else "check --mesh"}
+        if "timings" in mid:
             per: dict = {}
-            for r in timings["results"]:
+            for r in mid["timings"]:
                 per[r["implementation"]] = per.get(r["implementation"], 0.0) + r["seconds"]
-            slow = max(timings["results"], key=lambda r: r["seconds"])
-            results = json.loads(open(os.path.join(report, "results.json")).read())["results"]
+            slow = max(mid["timings"], key=lambda r: r["seconds"])
             statuses: dict = {}
-            for r in results:
+            for r in mid["results"]:
                 statuses[r["status"]] = statuses.get(r["status"], 0) + 1
-        row = {"mesh": mesh, "impl": impl or "all installed", "wall": wall, "exit": p.returncode,
-               "load": load, "task_seconds": per, "statuses": statuses,
-               "slowest": f"{slow['property_id']} / {slow['implementation']}",
-               "slowest_seconds": slow["seconds"]}
+            row.update(task_seconds=per, statuses=statuses,
+                       slowest=f"{slow['property_id']} / {slow['implementation']}",
+                       slowest_seconds=slow["seconds"])
+        if impl == "compare":
+            row["impl"] = "all installed"
         rows.append(row)
-        say(f"  check --mesh {mesh} ({row['impl']}): {wall:.1f} s exit {p.returncode}, slowest "
-            f"{row['slowest']} {row['slowest_seconds']:.1f} s (load {load})")
     return {"rows": rows}

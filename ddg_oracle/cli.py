@@ -550,7 +550,8 @@ def _compare(args) -> int:
     worse = 0
     try:
         for k, mesh in enumerate(meshes):
-            rows = compare_mesh(mesh, [started[s] for s in specs], ReferenceImplementation())
+            rows = compare_mesh(mesh, [started[s] for s in specs], ReferenceImplementation(),
+                                workers=_default_workers())
             print(("\n" if k else "") + format_comparisons(mesh, rows))
             worse += sum(r.status in ("DIFFERS", "crashed") for r in rows)
     finally:

@@ -304,49 +304,140 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
                       over=over, elements=err.size)
 
 
-def compare_mesh(mesh: MeshInput, impls, reference) -> list[Comparison]:
+def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``:
     how each answer compares is its declared quantity's
-    (:data:`ddg_oracle.properties.registry.QUANTITIES`)."""
-    from ddg_oracle.properties.protocol import METHODS, OutsideDomain, capabilities, implementation_name
+    (:data:`ddg_oracle.properties.registry.QUANTITIES`).
+
+    ``workers > 1``: the exact values and their bounds are computed by that many spawned
+    processes, one method at a time (the costly chapters first), while this process asks
+    the implementations; the rows are the same as with one worker."""
+    from ddg_oracle.properties.protocol import (METHODS, OutsideDomain, capabilities,
+                                                implementation_name, machine_epsilon)
     from ddg_oracle.properties.registry import all_quantities, unmet
 
     quantities = all_quantities()
     ex = MeshExamples(mesh)
     V = np.array(mesh.V, dtype=np.float64)
     F = np.array(mesh.F, dtype=np.int64)
-    wanted: dict = {}
-
-    def expected(q):
-        # the values to compare with, once per method (and machine epsilon: the float views
-        # do not depend on it, the bounds below do)
-        if q.method not in wanted:
-            answer = lambda: getattr(reference, q.method)(V, F)       # noqa: E731
-            wanted[q.method] = q.expected(ex.example(), answer) if q.expected else answer()
-        return wanted[q.method]
-
-    rows = []
+    asked: dict = {}                    # method -> the machine epsilons of its bounds
+    todo = []
     for impl in impls:
-        name = implementation_name(impl)
         caps = capabilities(impl)
         for method in METHODS:
             q = quantities[method]
             why = ("not provided" if method not in caps else q.not_on_a_mesh
                    or unmet(q.requires, ex.facts))
-            if why:
-                rows.append(Comparison(method, name, "not applicable", note=why))
-                continue
-            try:
-                got = getattr(impl, method)(V, F)
-            except OutsideDomain as e:          # the implementation has no value on this mesh
-                rows.append(Comparison(method, name, "not applicable", note=str(e)))
-                continue
-            except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
-                rows.append(Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}"))
-                continue
-            with _epsilon_of(impl):
-                rows.append(_compare_one(q, name, got, expected(q), ex))
+            todo.append((impl, method, why))
+            if not why:
+                asked.setdefault(method, set()).add(machine_epsilon(impl))
+    pending = _expected_in_workers(mesh, asked, workers) if workers > 1 and asked else None
+    answers = []
+    for impl, method, why in todo:
+        name = implementation_name(impl)
+        if why:
+            answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
+            continue
+        try:
+            got = getattr(impl, method)(V, F)
+        except OutsideDomain as e:          # the implementation has no value on this mesh
+            got = Comparison(method, name, "not applicable", note=str(e))
+        except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
+            got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
+        answers.append((impl, method, got))
+    expected = pending() if pending is not None else \
+        _ExpectedValues(ex, lambda method: getattr(reference, method)(V, F))
+    rows = []
+    for impl, method, got in answers:
+        if isinstance(got, Comparison):
+            rows.append(got)
+            continue
+        with _epsilon_of(impl):
+            want, bound = expected(quantities[method], machine_epsilon(impl))
+            rows.append(_compare_one(quantities[method], implementation_name(impl), got, want,
+                                     ex, bound))
     return rows
+
+
+class _ExpectedValues:
+    """(the values to compare with, their bound) per method and machine epsilon, computed
+    once each: the float views do not depend on the epsilon, the bounds do."""
+
+    def __init__(self, ex: "MeshExamples", answer):
+        self.ex, self.answer, self.wanted, self.bounds = ex, answer, {}, {}
+
+    def __call__(self, q, epsilon: float):
+        from ddg_oracle.properties.protocol import at_machine_epsilon
+        if q.method not in self.wanted:
+            answer = lambda: self.answer(q.method)       # noqa: E731
+            self.wanted[q.method] = q.expected(self.ex.example(), answer) if q.expected \
+                else answer()
+        want = self.wanted[q.method]
+        if (q.method, epsilon) not in self.bounds:
+            with at_machine_epsilon(epsilon):
+                self.bounds[q.method, epsilon] = _bound_of(q, self.ex, want)
+        return want, self.bounds[q.method, epsilon]
+
+
+def _bound_of(q, ex: "MeshExamples", want):
+    """The quantity's derived bound for ``want`` (None for exact kinds: integers, flags...)."""
+    if q.kind in ("integer", "boolean", "loops", "flags"):
+        return None
+    return q.bound(ex.example(), want)
+
+
+class _Worker:
+    """What a compare worker process keeps between its methods: the mesh's examples and the
+    reference (one per process, set by the pool's initializer, read only in this module)."""
+
+    mesh = examples = reference = None
+
+
+def _start_worker(mesh: MeshInput) -> None:
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    _Worker.mesh, _Worker.examples = mesh, MeshExamples(mesh)
+    _Worker.reference = ReferenceImplementation()
+
+
+def _expected_in_worker(job):
+    """(method, {epsilon: (want, bound)}) in a worker; an exception comes back as a value."""
+    from ddg_oracle.properties.registry import all_quantities
+    method, epsilons = job
+    V = np.array(_Worker.mesh.V, dtype=np.float64)
+    F = np.array(_Worker.mesh.F, dtype=np.int64)
+    values = _ExpectedValues(_Worker.examples,
+                             lambda m: getattr(_Worker.reference, m)(V, F))
+    q = all_quantities()[method]
+    try:
+        return method, {e: values(q, e) for e in sorted(epsilons)}
+    except Exception as e:  # noqa: BLE001  (raised again in the parent, as in one process)
+        return method, e
+
+
+def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
+    """Start computing every asked method's values and bounds in ``workers`` spawned
+    processes; returns a function that waits for them and answers as :class:`_ExpectedValues`."""
+    import multiprocessing as mp
+    from ddg_oracle.properties.protocol import METHODS
+    # the later chapters hold the costly quantities (curvature, Laplacians, Delaunay): first
+    jobs = [(m, asked[m]) for m in reversed(METHODS) if m in asked]
+    pool = mp.get_context("spawn").Pool(min(workers, len(jobs)), _start_worker, (mesh,))
+    running = pool.imap_unordered(_expected_in_worker, jobs)
+
+    def wait():
+        try:
+            done = dict(running)
+        finally:
+            pool.terminate()
+            pool.join()
+        for method, got in done.items():
+            if isinstance(got, BaseException):
+                raise got
+
+        def expected(q, epsilon):
+            return done[q.method][epsilon]
+        return expected
+    return wait
 
 
 def _matrix(quantity, name, got, want, bound) -> Comparison:
@@ -413,8 +504,9 @@ _WHERE = {"corner": lambda k: f"face {k[0]}, corner {k[1]}",
           "total": lambda k: "total"}
 
 
-def _compare_one(q, name, got, want, ex) -> Comparison:
-    """One answer against ``want`` by its quantity's kind."""
+def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
+    """One answer against ``want`` by its quantity's kind (``bound``: its derived bound,
+    computed here if None)."""
     method = q.method
     if q.kind in ("integer", "boolean"):
         same = type(want)(got) == want
@@ -433,7 +525,8 @@ def _compare_one(q, name, got, want, ex) -> Comparison:
                                            "ties may go either way)")
         return Comparison(method, name, "agrees" if not len(diff) else "DIFFERS",
                           elements=int(want.size), over=int(len(diff)), note=note)
-    bound = q.bound(ex.example(), want)
+    if bound is None:
+        bound = q.bound(ex.example(), want)
     if q.kind == "edges":
         got = {(int(min(i, j)), int(max(i, j))): float(h) for (i, j), h in dict(got).items()}
         if set(got) != set(want):

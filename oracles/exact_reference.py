@@ -168,8 +168,9 @@ class ReferenceImplementation:
     def is_locally_delaunay(self, V, F):
         m = self._s(V, F).metric()
         t = m.triangulation
-        return np.array([[delaunay.is_delaunay_edge(m, t.edge_of(3 * f + next_corner(c)))
-                          for c in range(3)] for f in range(t.n_faces)], dtype=bool)
+        flags = memo.of(_delaunay_flags, m)        # once per edge, not per side
+        return np.array([[flags[t.edge_of(3 * f + next_corner(c))] for c in range(3)]
+                         for f in range(t.n_faces)], dtype=bool)
 
     def intrinsic_delaunay_laplacian(self, V, F):
         # delaunay.laplace_beltrami, with the flips and the matrix the properties' (once)
@@ -197,3 +198,8 @@ class ReferenceImplementation:
         pts = [(x, y) for x, y, *_ in V]
         return np.array(planar_flip_to_delaunay(pts, np.asarray(F).tolist()).triangulation.faces,
                         dtype=np.int64)
+
+
+def _delaunay_flags(metric) -> list[bool]:
+    """D4.2, decided exactly for every edge of ``metric``, by edge id."""
+    return [delaunay.is_delaunay_edge(metric, e) for e in range(metric.triangulation.n_edges)]

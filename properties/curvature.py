@@ -440,16 +440,16 @@ def star_kind_decides_curvature_sign(impl, star: Example):
 
 
 def corner_angle_views(surface) -> np.ndarray:
-    """(m, 3) float views of the exact corner angles of the metric built from the squared
-    lengths of ``surface`` alone (no positions used), D2.6, once per surface object."""
+    """(m, 3) float views of the exact corner angles of the piecewise flat metric of
+    ``surface`` (D2.6), once per surface object.  The metric's cotangents are functions of
+    the squared edge lengths and the face areas, and its areas are Heron's of the lengths
+    identically (``reference.metric.metric_of``): these are the angles the lengths alone
+    determine (tests/test_curvature.py checks them against a metric built from lengths)."""
     return memo.of(_corner_angle_views, surface)
 
 
 def _corner_angle_views(surface) -> np.ndarray:
-    from ddg_oracle.reference.metric import PiecewiseFlatSurface
-    m = surface.metric()
-    flat = PiecewiseFlatSurface(surface.triangulation, m.squared_lengths)
-    return np.array([[float(a) for a in face] for face in ref.corner_angles(flat)])
+    return np.array([[float(a) for a in face] for face in ref.corner_angles(surface.metric())])
 
 
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "

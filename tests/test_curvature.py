@@ -128,6 +128,17 @@ def test_T2_6_gauss_bonnet_exact_on_jittered_subdivided_meshes(case):
         assert C.total_curvature(s) == 2 * case.chi * pi
 
 
+@given(P.jittered_surfaces(intrinsic=True))
+@FAST
+def test_D2_6_corner_angle_views_are_those_of_the_lengths_alone(case):
+    """What D2.6 compares with (the surface's metric, shared with the other properties) is
+    the corner angles of a metric built from the squared lengths alone, exactly."""
+    s = case.surface
+    flat = PiecewiseFlatSurface(s.triangulation, s.metric().squared_lengths)
+    assert C.corner_angles(flat) == C.corner_angles(s.metric())
+    assert P.corner_angle_views(s).tolist() == [[float(a) for a in f] for f in C.corner_angles(flat)]
+
+
 def test_T2_6_gauss_bonnet_decision_is_not_vacuous():
     # A surface whose triangulation claims another chi: same angles, wrong total.
     s = surfaces.cube()

@@ -107,3 +107,17 @@ def test_the_intrinsic_delaunay_laplacian_is_a_mesh_file_check():
     assert r.status == PASSED, (r.note, r.error)
     r, = run_mesh_properties(ex, LaplaceBeltramiWithoutHalf(), only={"D4.8 / R4.9"})
     assert r.status == FAILED and "Laplace-Beltrami" in str(r.failure)
+
+
+def test_compare_with_worker_processes_gives_the_rows_of_one_process():
+    # the exact values and bounds computed in two spawned processes, the implementations
+    # asked here: every row as in a single process (a wrong weight still found)
+    V, F = _bumpy_grid(8, seed=3)
+    mesh = MeshInput("small bumpy grid", V.tolist(), F.tolist())
+    i, j = int(F[40, 0]), int(F[40, 1])
+    impls = [Libigl(), OneWrongWeight(i, j)]
+    one = compare_mesh(mesh, impls, ReferenceImplementation())
+    two = compare_mesh(mesh, impls, ReferenceImplementation(), workers=2)
+    assert [vars(r) for r in two] == [vars(r) for r in one]
+    assert any(r.status == "DIFFERS" and r.quantity == "cotan_laplacian" for r in two)
+    assert sum(r.status == "agrees" for r in two) >= 10
