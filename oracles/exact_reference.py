@@ -13,7 +13,7 @@ import numpy as np
 
 from ddg_oracle.reference import delaunay, laplacian
 from ddg_oracle.reference.combinatorics import Triangulation, next_corner
-from ddg_oracle.reference.exact import exact_sum
+from ddg_oracle.reference.exact import rounded_sum
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from ddg_oracle.properties import curvature as views, memo
@@ -107,7 +107,11 @@ class ReferenceImplementation:
                 for e, h in views.mean_curvature_views(s).items()}
 
     def area(self, V, F) -> float:
-        return _view(exact_sum(self._s(V, F).metric().areas))
+        # the exact sum correctly rounded, from enclosures (no canonical form: any size)
+        try:
+            return rounded_sum(self._s(V, F).metric().areas)
+        except OverflowError:
+            return math.inf
 
     # chapter 3
     def cotan_laplacian(self, V, F):

@@ -189,14 +189,11 @@ REQUIREMENTS: dict[str, Callable[[dict], str | None]] = {
     "bordered": lambda f: None if f["boundary"] else "the mesh is closed",
     "connected": lambda f: None if f["components"] == 1 else f"{f['components']} components",
     "orientable": lambda f: None if f["orientable"] else "the mesh is not orientable",
-    # an exact total area has one square root per face of a float mesh: beyond this many
-    # faces a property needing it is not applicable (compare then sums the correctly
-    # rounded face areas and widens the bound)
-    "exact total area": lambda f: None if f["faces"] <= EXACT_SUM_LIMIT else (
-        f"{f['faces']} faces > {EXACT_SUM_LIMIT} (exact total area: one square root per face)"),
 }
 
-#: largest face count for an exact total area (see REQUIREMENTS)
+#: largest face count for R2.5's exact sums (one square root per face of a float mesh):
+#: beyond it the total mean curvature is the fsum of the correctly rounded H(e), the bound
+#: widened (properties.curvature._steiner_views)
 EXACT_SUM_LIMIT = 400
 
 

@@ -121,3 +121,29 @@ def test_compare_with_worker_processes_gives_the_rows_of_one_process():
     assert [vars(r) for r in two] == [vars(r) for r in one]
     assert any(r.status == "DIFFERS" and r.quantity == "cotan_laplacian" for r in two)
     assert sum(r.status == "agrees" for r in two) >= 10
+
+
+class AreaOffByOnePart(Libigl):
+    """libigl with the total area 1 + 1e-9 times too large (a bug far above rounding)."""
+
+    name = "area-off"
+
+    def area(self, V, F):
+        return super().area(V, F) * (1 + 1e-9)
+
+
+def test_steiner_coefficients_run_on_a_mesh_beyond_the_exact_sum_limit():
+    # R2.5 on 1,280 float faces (> EXACT_SUM_LIMIT): the sums from the correctly rounded
+    # face areas and H(e), the bounds widened by their error; libigl passes, a total area
+    # off by 1e-9 relative fails on the area
+    from benchmarks.meshes import float_icosphere
+    from ddg_oracle.properties.registry import EXACT_SUM_LIMIT
+    s = float_icosphere(3)
+    mesh = MeshInput("icosphere", [[float(x) for x in p] for p in s.positions],
+                     [list(f) for f in s.triangulation.faces])
+    assert len(mesh.F) > EXACT_SUM_LIMIT
+    ex = MeshExamples(mesh)
+    r, = run_mesh_properties(ex, Libigl(), only={"R2.5"})
+    assert r.status == PASSED, (r.note, r.error)
+    r, = run_mesh_properties(ex, AreaOffByOnePart(), only={"R2.5"})
+    assert r.status == FAILED and "area off" in str(r.failure)
