@@ -302,21 +302,41 @@ def task_group(task: Task):
     return task.property_id if task.mesh is None else ("mesh", task.mesh, task.property_id)
 
 
-def next_task(queue: list[int], tasks: list[Task], mine, others: set) -> int:
+def next_task(queue: list[int], tasks: list[Task], mine, others: set, score=None) -> int:
     """The position in ``queue`` of the task a free worker takes next: one of its own group
     ``mine`` while any is left (the implementations see the same examples, whose exact
     reference values the worker has memoized: properties.memo), else one of a group no
-    other worker is on (``others``), else the first.
+    other worker is on (``others``; of those the first with the highest ``score(group)``,
+    if given), else the first.
 
     >>> ts = [Task("a", "P"), Task("b", "P"), Task("a", "Q"), Task("b", "Q")]
     >>> next_task([0, 1, 2, 3], ts, "Q", {"P"}), next_task([0, 1, 2, 3], ts, None, {"P"})
     (2, 2)
+    >>> ts += [Task("a", "R")]
+    >>> next_task([0, 2, 4], ts, None, set(), score=lambda g: g == "R")
+    2
     """
-    for wanted in (lambda g: g == mine, lambda g: g not in others):
-        for i, k in enumerate(queue):
-            if wanted(task_group(tasks[k])):
-                return i
-    return 0
+    for i, k in enumerate(queue):
+        if task_group(tasks[k]) == mine:
+            return i
+    free = [i for i, k in enumerate(queue) if task_group(tasks[k]) not in others]
+    if not free:
+        return 0
+    if score is None:
+        return free[0]
+    best = max(score(task_group(tasks[queue[i]])) for i in free)
+    return next(i for i in free if score(task_group(tasks[queue[i]])) == best)
+
+
+def needs_of(group) -> frozenset:
+    """The protocol methods a mesh file's property group calls (its exact values are those
+    methods' reference values: groups that share methods share memoized values); empty for
+    generated examples, which differ per property."""
+    if not isinstance(group, tuple):
+        return frozenset()
+    from ddg_oracle.properties.registry import PROPERTIES
+    p = PROPERTIES.get(group[2])
+    return p.methods if p is not None else frozenset()
 
 
 def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
@@ -333,9 +353,21 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     why_died: dict[int, str] = {}
     last: dict = {}                     # connection -> group of the last task it was sent
 
+    done_needs: dict = {}               # connection -> the methods of the groups it ran
+
     def pick(conn) -> int:
         others = {last.get(c) for c in running if c is not conn}
-        return queue.pop(next_task(queue, tasks, last.get(conn), others))
+        mine = done_needs.setdefault(conn, set())
+        if conn in last:
+            mine |= needs_of(last[conn])
+        theirs = set().union(*(needs_of(g) for g in others if g is not None))
+
+        # a mesh file's next property: one whose methods this worker has computed the
+        # values of (memoized here), not one another worker is computing them for now
+        def score(group):
+            needs = needs_of(group)
+            return len(needs & mine) - len(needs & theirs)
+        return queue.pop(next_task(queue, tasks, last.get(conn), others, score))
 
     def start():
         parent, child = ctx.Pipe()

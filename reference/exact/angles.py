@@ -159,7 +159,7 @@ class Angle(ArccotSum):
         if self._pi <= 0 and all(m < 0 for m in self._parts.values()):
             return -1
         limit = arccots.PRECISION_LIMIT
-        bits = min(128 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(), limit)
+        bits = min(64 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(), limit)
         # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)
         nonzero = (self._pi * 24).denominator != 1
         while True:
