@@ -355,8 +355,10 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
 
     done_needs: dict = {}               # connection -> the methods of the groups it ran
 
-    def pick(conn) -> int:
-        others = {last.get(c) for c in running if c is not conn}
+    def pick(conn) -> int | None:
+        # the groups other workers are running a task of now (an idle worker's last group
+        # is free: two idle workers must not wait on each other)
+        others = {last.get(c) for c in running if c is not conn and running[c][1] is not None}
         mine = done_needs.setdefault(conn, set())
         if conn in last:
             mine |= needs_of(last[conn])
@@ -367,7 +369,14 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
         def score(group):
             needs = needs_of(group)
             return len(needs & mine) - len(needs & theirs)
-        return queue.pop(next_task(queue, tasks, last.get(conn), others, score))
+        i = next_task(queue, tasks, last.get(conn), others, score)
+        group = task_group(tasks[queue[i]])
+        if isinstance(group, tuple) and group != last.get(conn) and group in others:
+            # only a mesh property another worker is on is left: its exact values cost
+            # more than its remaining tasks (memoized there), so wait rather than compute
+            # them again; fed again when a task finishes
+            return None
+        return queue.pop(i)
 
     def start():
         parent, child = ctx.Pipe()
@@ -382,6 +391,9 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
         proc, _ = running[conn]
         if queue:
             k = pick(conn)
+            if k is None:
+                running[conn] = (proc, None)          # idle until another task finishes
+                return
             last[conn] = task_group(tasks[k])
             try:
                 conn.send((k, tasks[k]))
@@ -431,6 +443,8 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                     continue
                 finish(got, results)
                 feed(conn)
+            for idle in [c for c in running if running[c][1] is None]:
+                feed(idle)                  # a waiting worker: a task may be free for it now
     finally:
         for conn, (proc, _) in list(running.items()):
             if proc.is_alive():
