@@ -147,3 +147,21 @@ def test_steiner_coefficients_run_on_a_mesh_beyond_the_exact_sum_limit():
     assert r.status == PASSED, (r.note, r.error)
     r, = run_mesh_properties(ex, AreaOffByOnePart(), only={"R2.5"})
     assert r.status == FAILED and "area off" in str(r.failure)
+
+
+def test_the_zero_area_filter_certifies_only_what_is_certain():
+    # compare.nondegenerate: a float cross product beyond its rounding bound certifies a
+    # nonzero area; a face collinear in exact arithmetic is never certified (the exact
+    # metric then names it), nor is one whose cross product is below the bound
+    from ddg_oracle.compare import nondegenerate
+    rng = np.random.default_rng(5)
+    V = rng.standard_normal((30, 3))
+    F = np.array([[i, i + 1, i + 2] for i in range(0, 27, 3)])
+    assert nondegenerate(V, F)
+    P = V.copy()
+    P[0:3] = [[1, 2, 3], [4, 6, 8], [7, 10, 13]]       # collinear, exactly
+    assert not nondegenerate(P, F)
+    P[2, 2] += 2.0 ** -40                              # off the line: certified again
+    assert nondegenerate(P, F)
+    P[2, 2] = 13 + 2.0 ** -50 * 13                     # within the bound (8.2 u |a| ~ 1e-14)
+    assert not nondegenerate(P, F)

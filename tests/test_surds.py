@@ -390,6 +390,24 @@ def test_float_correctly_rounded_sums(x):
     assert float(x) == float(lo)
 
 
+@given(st.lists(surds(3), min_size=1, max_size=12), st.booleans())
+def test_rounded_sum_is_the_exact_sums_float(xs, cancel):
+    """exact.rounded_sum (integer enclosures, no canonical form) == float(exact_sum), also
+    when the sum cancels to exactly 0 or nearly so (a value and its negative appended)."""
+    from ddg_oracle.reference.exact import exact_sum, rounded_sum
+    if cancel:
+        xs = xs + [-x for x in xs[:-1]]
+    assert rounded_sum(xs) == float(exact_sum(xs))
+
+
+def test_rounded_sum_of_many_radicands_and_exact_cancellation():
+    from ddg_oracle.reference.exact import rounded_sum
+    roots = [sqrt(p) for p in (2, 3, 5, 7, 11, 13, 17, 19, 23, 29)]
+    assert rounded_sum(roots + [-r for r in roots]) == 0.0
+    tiny = Fraction(1, 2**200)
+    assert rounded_sum(roots + [-r for r in roots] + [tiny]) == float(tiny)
+
+
 def test_float_extremes():
     assert float(sqrt(2) * 2**1000) == math.sqrt(2) * 2.0**1000
     assert float(sqrt(2) * 2**1023) == math.sqrt(2) * 2.0**1023
