@@ -209,3 +209,37 @@ def test_a_large_multiplicity_is_one_power_by_squaring(monkeypatch):
     theta = Angle({Surd(1): 10_000}, -2500)
     assert theta.sign() == 0 and theta == 0
     assert 0 < len(calls) <= 64
+
+
+# --- multiples of pi/24 with large multiplicities (a wrong sign before 2026-12-04) ----------
+
+# arccot(c) = j pi / 24 for these cotangents, written with the square root of 3 or 2 times
+# the square of a prime p: sqrt(3 p^2) / p is sqrt(3), but its radicand keeps p^2 when p
+# is above 100 (canonical forms strip the squares of small primes only)
+_PI24 = [(lambda r3, r2: r3, 4), (lambda r3, r2: 1 / r3, 8), (lambda r3, r2: -1 / r3, 16),
+         (lambda r3, r2: 2 + r3, 2), (lambda r3, r2: 1 + r2, 3), (lambda r3, r2: r2 - 1, 9)]
+
+
+@given(st.integers(1, 2**80), st.sampled_from(_PI24), st.sampled_from([1, 5, 193, 10007]))
+def test_large_multiples_of_pi_over_24_are_decided_exactly(m, known, p):
+    """m arccot(c) - m j pi / 24 is exactly 0 whatever m: the multiple of pi / 24 an
+    enclosure picks must be exact at every size (a fixed 30-bit pi picked a neighbour
+    of k = 100,663,296 and gave the sign -1 to 0 on a mean-curvature invariance test)."""
+    cot, j = known
+    c = cot(sqrt(3 * p * p) / p, sqrt(2 * p * p) / p)
+    zero = Angle({c: m}, -Fraction(m * j, 24))
+    assert zero.sign() == 0 and zero == 0 and float(zero) == 0.0
+    assert (zero + pi / 24).sign() == 1 and (zero - pi * Fraction(1, 2**40)).sign() == -1
+    assert Angle({c: m}, 0).as_multiple_of_pi() \
+        == Fraction(m * j, 24)
+
+
+def test_the_mean_curvature_zero_found_by_the_rotation_test():
+    """The AngleLength of the failing example: 2097152/193 sqrt(111747) arccot(-sqrt(111747)
+    / 579) - 4194304/3 sqrt(3) pi, exactly 0 (sqrt(111747) = 193 sqrt(3), the arccot is
+    2 pi / 3); it raised Undecidable after the per-radicand angle was given the sign -1."""
+    from ddg_oracle.reference.exact.measures import AngleLength
+    a = sqrt(111747)
+    x = (AngleLength.of(corner_angle(-a / 579), Fraction(2097152, 193) * a)
+         - AngleLength.of(pi, Fraction(4194304, 3) * sqrt(3)))
+    assert x.is_zero() and x.sign() == 0 and x == 0

@@ -163,7 +163,7 @@ class Angle(ArccotSum):
         # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)
         nonzero = (self._pi * 24).denominator != 1
         while True:
-            lo, hi = self._interval(bits)
+            lo, hi = self._scaled(bits)
             if lo > 0:
                 return 1
             if hi < 0:
@@ -188,6 +188,12 @@ class Angle(ArccotSum):
 
     def interval_at(self, bits: int) -> tuple[Fraction, Fraction]:
         """A rigorous enclosure (lo, hi) computed with ``bits`` bits per term."""
+        lo, hi = self._scaled(bits)
+        return Fraction(lo, 1 << bits), Fraction(hi, 1 << bits)
+
+    def _scaled_at(self, bits: int) -> tuple[int, int]:
+        """Integers lo <= theta * 2**bits <= hi, every term bounded with ``bits`` bits (on
+        integers: a float view costs one such enclosure, no Fraction)."""
         lo = hi = 0
         for c, m in self._parts.items():
             a, b = _arccot_bounds(c, bits)
@@ -201,38 +207,46 @@ class Angle(ArccotSum):
             a, b = _pi_bounds(bits)
             n, d = self._pi.numerator, self._pi.denominator
             if n > 0:
-                lo += Fraction(n * a, d)
-                hi += Fraction(n * b, d)
+                lo += n * a // d
+                hi -= -n * b // d                   # ceiling
             else:
-                lo += Fraction(n * b, d)
-                hi += Fraction(n * a, d)
-        scale = Fraction(1, 1 << bits)
-        return Fraction(lo) * scale, Fraction(hi) * scale
+                lo += n * b // d
+                hi -= -n * a // d
+        return lo, hi
 
     def _interval_bits(self, bits: int) -> int:
         n = 1 + sum(abs(m) for m in self._parts.values()) + abs(self._pi.numerator)
         return bits + n.bit_length() + 3
 
-    def _interval(self, bits: int) -> tuple[Fraction, Fraction]:
-        """:meth:`interval_at`, or a narrower enclosure computed before."""
+    def _scaled(self, bits: int) -> tuple[int, int]:
+        """:meth:`_scaled_at`, or (rescaled) a narrower enclosure computed before."""
         e = self._enc
         if e is None or e[0] < bits:
-            e = self._enc = (bits, *self.interval_at(bits))
-        return e[1], e[2]
+            e = self._enc = (bits, *self._scaled_at(bits))
+            return e[1], e[2]
+        shift = e[0] - bits
+        return e[1] >> shift, -(-e[2] >> shift)
 
     def __float__(self):
-        if self.sign() == 0:
-            return 0.0
-        # the enclosure that decided the sign (0 outside it), if sign() needed one
-        bits, lo, hi = self._enc or (64, *self._interval(64))
-        small = min(abs(lo), abs(hi))
-        # 53 bits relative to |theta| >= small, and a guard: usually one more enclosure
-        bits = max(bits, 64 + small.denominator.bit_length() - small.numerator.bit_length())
+        # correctly rounded: the int quotients lo / 2^b and hi / 2^b are (Python's int
+        # division rounds correctly); when they agree every number between them, theta
+        # among them, rounds to that float
+        terms = (1 + sum(abs(m) for m in self._parts.values())).bit_length()
+        bits = self._enc[0] if self._enc is not None else 72 + 2 * terms
         while True:
-            lo, hi = self._interval(bits)
-            if float(lo) == float(hi):
-                return float(lo)
-            bits *= 2
+            lo, hi = self._scaled(bits)
+            if lo <= 0 <= hi:
+                if self.sign() == 0:
+                    return 0.0
+                bits = self._enc[0]             # the enclosure that decided the sign
+                lo, hi = self._scaled(bits)
+            x = lo / (1 << bits)
+            if x == hi / (1 << bits):
+                return x
+            # 53 bits relative to |theta| >= small / 2^bits, the terms' widths and a guard
+            # (usually one more enclosure); near a rounding boundary, twice the bits
+            need = bits - min(abs(lo), abs(hi)).bit_length() + 64 + terms
+            bits = need if need > bits else 2 * bits
             if bits > arccots.PRECISION_LIMIT * 4:   # cannot happen for theta != 0
                 raise Undecidable(f"float({self!r}) did not converge")
 
@@ -366,9 +380,25 @@ def _pi24_multiple(parts: dict) -> int | None:
         x, y = _tpow(_tprod([_tprod(ws) for ws in by_key.values()]), 24)
         if y or _t_sign(x, ()) <= 0:
             return None
-    lo, hi = Angle._raw(parts, Fraction(0)).interval(20)
-    plo, phi = _pi_bounds(30)
-    return round(24 * (lo + hi) * (1 << 30) / (plo + phi))
+    return _nearest_pi24(Angle._raw(parts, Fraction(0)))
+
+
+def _nearest_pi24(a: Angle) -> int:
+    """The integer k with a = k pi / 24, for an angle known to be such a multiple: the only
+    integer in the enclosure of 24 a / pi, refined until one is left (k grows with the
+    multiplicities: a fixed precision would pick a neighbour of a large k)."""
+    size = (1 + sum(abs(m) for m in a._parts.values())).bit_length()   # |a| < pi 2^size
+    bits = 40 + size
+    while True:
+        lo, hi = a._scaled(bits)                    # lo <= a 2^bits <= hi
+        plo, phi = _pi_bounds(bits)                 # plo <= pi 2^bits <= phi, plo > 0
+        first = -(-24 * lo // (plo if lo < 0 else phi))     # ceil of the least 24 a / pi
+        last = 24 * hi // (phi if hi < 0 else plo)          # floor of the largest
+        if first == last:
+            return first
+        if bits > 4 * arccots.PRECISION_LIMIT:      # pragma: no cover - a is such a multiple
+            raise AssertionError(f"{a!r} is not a multiple of pi / 24")
+        bits *= 2
 
 
 def _primitive(z):
