@@ -43,14 +43,15 @@ from . import curvature_fast
 from .errors import InputError
 from .exact import Angle, Surd, corner_angle, pi, sign, sqrt
 from .exact.measures import AngleLength
-from .exact.rationals import points_on_common_denominator
+from .exact.rationals import points_on_common_denominator, shared_denominator
 from .exact.surds import exact_sum
 from .metric import as_metric
 from .polyhedral import PolyhedralSurface
 from .combinatorics import corner_of, cyclic, face_of, opposite_corner
 
 __all__ = [
-    "corner_angles", "angle_sums", "angle_sums_from_corners", "angle_defects",
+    "corner_angles", "corner_angles_from_cotangents", "angle_sums", "angle_sums_from_corners",
+    "angle_defects",
     "turning_angles", "total_curvature", "gauss_bonnet_holds", "gauss_bonnet_holds_by_faces",
     "vertex_type",
     "is_convex_star", "is_planar_star", "is_saddle_star",
@@ -108,13 +109,25 @@ def corner_angles(surface) -> list[tuple[Angle, Angle, Angle]]:
     """The three corner angles of every face, exact, each in (0, pi).
 
     Entry ``f`` lists the angles at corners 0, 1, 2 of face ``f`` (the corners
-    of ``triangulation.faces[f]`` in order).
+    of ``triangulation.faces[f]`` in order).  The definition is
+    :func:`corner_angles_from_cotangents`; for a polyhedral surface, or a piecewise flat
+    one with rational squared lengths, this returns the equal angles of
+    :func:`ddg_oracle.reference.curvature_fast.corner_angles_fast` (tested angle by angle).
 
     >>> from ddg_oracle.reference import surfaces
     >>> from ddg_oracle.reference.exact import pi
     >>> corner_angles(surfaces.cube())[0] == (pi / 4, pi / 2, pi / 4)   # face (0, 1, 2)
     True
     """
+    if curvature_fast.applies(surface):
+        return curvature_fast.corner_angles_fast(surface)
+    return corner_angles_from_cotangents(surface)
+
+
+def corner_angles_from_cotangents(surface) -> list[tuple[Angle, Angle, Angle]]:
+    """The definition of :func:`corner_angles`: ``arccot`` of the metric's exact corner
+    cotangents (:meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface.corner_angle`).
+    Accepts every surface (irrational squared lengths too)."""
     m = as_metric(surface)
     return [(m.corner_angle(f, 0), m.corner_angle(f, 1), m.corner_angle(f, 2))
             for f in range(m.triangulation.n_faces)]
@@ -426,10 +439,24 @@ def dihedral_angles(surface) -> dict[int, Angle]:
     >>> sorted(set(dihedral_angles(surfaces.cube()).values()), key=float) == [0, pi / 2]
     True
     """
-    s = _in_r3(surface, "dihedral_angles")
+    return {e: theta for e, theta, _ in _dihedral_angles_and_lengths(surface, "dihedral_angles")}
+
+
+#: positions whose common denominator has at most this many bits are put over it once
+#: (a float mesh: the binary exponents' spread); beyond, one denominator per edge
+_SHARED_DENOMINATOR_BITS = 128
+
+
+def _dihedral_angles_and_lengths(surface, what: str):
+    """(e, theta(e), l(e)) for every interior edge: :func:`dihedral_angles`' angle and the
+    exact length, both from the edge's integer vector (one square root per edge)."""
+    s = _in_r3(surface, what)
     t = s.triangulation
     x = s.positions
-    out: dict[int, Angle] = {}
+    # the points over a common denominator D: integer arithmetic, and the cotangent below
+    # is homogeneous of degree 0 in the positions (D^4 / (D D^3)), so the integers give it
+    # exactly; the signs are those of the rationals (D > 0)
+    shared = shared_denominator(x, _SHARED_DENOMINATOR_BITS)
     for e in range(t.n_edges):
         h, h2 = t.edge_halfedges(e)
         if h2 < 0:
@@ -442,25 +469,28 @@ def dihedral_angles(surface) -> dict[int, Angle]:
                 "orientation")
         i, j, k = cyclic(t.faces[f], corner_of(h))
         l_ = t.faces[g][opposite_corner(h2)]
-        # the four points over their common denominator D: integer arithmetic, and the
-        # cotangent below is homogeneous of degree 0 in the positions (D^4 / (D D^3)), so
-        # the integers give it exactly; the signs are those of the rationals (D > 0)
-        (xi, xj, xk, xl), _ = points_on_common_denominator(x[i], x[j], x[k], x[l_])
+        if shared is not None:
+            P, D = shared
+            xi, xj, xk, xl = P[i], P[j], P[k], P[l_]
+        else:
+            (xi, xj, xk, xl), D = points_on_common_denominator(x[i], x[j], x[k], x[l_])
         edge = _sub(xj, xi)
         nf = _cross(edge, _sub(xk, xi))
         ng = _cross(_sub(xi, xj), _sub(xl, xj))
         height = _dot(nf, _sub(xl, xi))
         cos_part = _dot(nf, ng)
+        E = _dot(edge, edge)
+        root = sqrt(E)                                  # D l(e)
+        length = root * Fraction(1, D)
         if height == 0:
             if cos_part > 0:
-                out[e] = _ZERO_ANGLE
+                yield e, _ZERO_ANGLE, length
                 continue
             raise InputError(f"edge {e} {t.edge_vertices(e)}: faces {f} and {g} are folded onto "
                              "each other (dihedral angle +-pi)")
-        cot = Fraction(cos_part) / (sqrt(_dot(edge, edge)) * abs(height))
-        theta = corner_angle(cot)
-        out[e] = theta if height < 0 else -theta
-    return out
+        # cot |theta| = <n_f, n_g> / (sqrt(E) |height|) = <n_f, n_g> sqrt(E) / (E |height|)
+        theta = corner_angle(root * Fraction(cos_part, E * abs(height)))
+        yield e, (theta if height < 0 else -theta), length
 
 
 def mean_curvature(surface) -> dict[int, AngleLength]:
@@ -469,10 +499,8 @@ def mean_curvature(surface) -> dict[int, AngleLength]:
     theta(e) as in :func:`dihedral_angles` (positive where convex), l(e) the
     exact length (a Surd).  Integrated over the edge, not divided by an area.
     """
-    s = _in_r3(surface, "mean_curvature")
-    m = s.metric()
-    return {e: AngleLength.of(theta, sqrt(m.squared_lengths[e]) / 2)
-            for e, theta in dihedral_angles(s).items()}
+    return {e: AngleLength.of(theta, length / 2)
+            for e, theta, length in _dihedral_angles_and_lengths(surface, "mean_curvature")}
 
 
 def total_mean_curvature(surface) -> AngleLength:

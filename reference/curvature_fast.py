@@ -47,7 +47,7 @@ from fractions import Fraction
 from .cotangents import _maybe_square, applies, face_data
 from .exact import Angle, corner_angle
 
-__all__ = ["applies", "angle_sums_fast", "gauss_bonnet_holds_fast"]
+__all__ = ["applies", "angle_sums_fast", "corner_angles_fast", "gauss_bonnet_holds_fast"]
 
 _ZERO = Fraction(0)
 
@@ -66,6 +66,36 @@ def angle_sums_fast(surface) -> list[Angle]:
     return _angle_sums(surface)
 
 
+def _special(residue: int) -> bool:
+    """Whether a face's corners may be multiples of pi / 24 (k G a square for k = 1, 2, 3
+    or 6: odd part 1 or 3; see the module docstring): they take the definition's route."""
+    return _maybe_square(residue) or _maybe_square(3 * residue)
+
+
+def corner_angles_fast(surface) -> list[tuple[Angle, Angle, Angle]]:
+    """The three corner angles of every face, equal (``==``) to
+    :func:`ddg_oracle.reference.curvature.corner_angles` (D2.6): ``arccot`` of the lazy
+    cotangent, or the definition's angle on a face whose corners may be multiples of
+    pi / 24 (see the module docstring).
+
+    >>> from ddg_oracle.reference import surfaces
+    >>> from ddg_oracle.reference.exact import pi
+    >>> corner_angles_fast(surfaces.cube())[0] == (pi / 4, pi / 2, pi / 4)
+    True
+    """
+    fd = face_data(surface)
+    N, residue, lazy, value = fd.N, fd.residue, fd.lazy, fd.value
+    out = []
+    for f in range(len(fd.G)):
+        special = _special(residue[f])
+        k = 3 * f
+        # corners 0, 1, 2 are opposite the halfedges 3f + 1, 3f + 2, 3f
+        out.append(tuple(corner_angle(value((f, n))) if special or not n
+                         else Angle._raw({lazy((f, n)): 1}, _ZERO)
+                         for n in (2 * N[k + 1], 2 * N[k + 2], 2 * N[k])))
+    return out
+
+
 def _angle_sums(surface) -> list[Angle]:
     t = surface.triangulation
     fd = face_data(surface)
@@ -73,8 +103,7 @@ def _angle_sums(surface) -> list[Angle]:
     parts: list[dict] = [{} for _ in range(t.n_vertices)]
     pis = [_ZERO] * t.n_vertices
     for f, face in enumerate(t.faces):
-        r = residue[f]              # k G is a square for k = 1, 2, 3 or 6: odd part 1 or 3
-        special = _maybe_square(r) or _maybe_square(3 * r)
+        special = _special(residue[f])
         k = 3 * f
         # corners 0, 1, 2 with the halfedges opposite them, 3f + 1, 3f + 2, 3f
         # (opposite_halfedge(f, c), written out: this loop runs over every corner)

@@ -26,8 +26,9 @@ from ddg_oracle.reference import cotangents, curvature_fast, surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.cotan_fast import cotan_laplacian_fast, cotan_weights_fast
 from ddg_oracle.reference.cotangents import CotanSum, applies, face_cotangents
-from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, gauss_bonnet_holds,
-                                 gauss_bonnet_holds_by_faces, turning_angles)
+from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, corner_angles,
+                                            corner_angles_from_cotangents, gauss_bonnet_holds,
+                                            gauss_bonnet_holds_by_faces, turning_angles)
 from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
 from ddg_oracle.reference.errors import DegenerateFace, NotFlippable
 from ddg_oracle.reference.exact import Surd, pi, sqrt
@@ -350,6 +351,10 @@ def assert_same_curvature(s):
     sums = angle_sums_from_corners(s)
     fast = curvature_fast.angle_sums_fast(s)
     assert len(fast) == len(sums) and all(a == b for a, b in zip(fast, sums))
+    corners, defined = corner_angles(s), corner_angles_from_cotangents(s)
+    assert len(corners) == len(defined) == s.triangulation.n_faces
+    assert all(a == b and float(a) == float(b) for fa, fb in zip(corners, defined)
+               for a, b in zip(fa, fb))
     boundary = {v for v in range(len(sums)) if s.triangulation.is_boundary_vertex(v)}
     assert angle_defects(s) == {v: 2 * pi - x for v, x in enumerate(sums) if v not in boundary}
     assert turning_angles(s) == {v: pi - x for v, x in enumerate(sums) if v in boundary}

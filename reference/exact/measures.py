@@ -53,7 +53,7 @@ from fractions import Fraction
 
 from ..errors import InputError, Undecidable
 from . import arccots
-from .angles import Angle, pi as _PI
+from .angles import Angle, _arccot_bounds, _pi_bounds
 from .arccots import ArccotSum
 from .rationals import rational
 from .surds import Surd, _refine, _reexpress
@@ -61,6 +61,7 @@ from .surds import Surd, _refine, _reexpress
 __all__ = ["AngleLength"]
 
 _SCALARS = (int, Fraction, Surd, numbers.Rational)
+_ZERO_SURD = Surd(0)
 
 
 def _surd(k) -> Surd:
@@ -69,10 +70,6 @@ def _surd(k) -> Surd:
     if isinstance(k, bool) or not isinstance(k, (int, Fraction, numbers.Rational)):
         raise InputError(f"a coefficient must be an int, Fraction or Surd, got {k!r}")
     return Surd(rational(k))
-
-
-def _pi_interval(bits: int) -> tuple[Fraction, Fraction]:
-    return _PI.interval_at(bits)
 
 
 class AngleLength(ArccotSum):
@@ -123,7 +120,9 @@ class AngleLength(ArccotSum):
         s = _surd(factor)
         if not s:
             return cls._raw({}, Surd(0))
-        return cls._raw({c: s * m for c, m in angle.parts.items()}, s * angle.pi_coefficient)
+        r = angle.pi_coefficient
+        return cls._raw({c: s if m == 1 else s * m for c, m in angle.parts.items()},
+                        s * r if r else _ZERO_SURD)
 
     # -- arithmetic (addition and subtraction: ArccotSum) ---------------------------------
 
@@ -187,7 +186,7 @@ class AngleLength(ArccotSum):
         if not self._parts:
             return self._pi.sign()
         bits = 64 + len(self._parts).bit_length()
-        lo, hi = self.interval_at(bits)
+        lo, hi = self._scaled_at(bits)
         if lo > 0:
             return 1
         if hi < 0:
@@ -196,7 +195,7 @@ class AngleLength(ArccotSum):
             return 0
         while bits <= arccots.PRECISION_LIMIT:
             bits *= 2
-            lo, hi = self.interval_at(bits)
+            lo, hi = self._scaled_at(bits)
             if lo > 0:
                 return 1
             if hi < 0:
@@ -209,14 +208,24 @@ class AngleLength(ArccotSum):
 
     def interval_at(self, bits: int) -> tuple[Fraction, Fraction]:
         """A rigorous enclosure (lo, hi), every factor enclosed to ``bits`` bits."""
-        lo = hi = Fraction(0)
-        terms = [(s, Angle({c: 1}).interval_at(bits)) for c, s in self._parts.items()]
+        lo, hi = self._scaled_at(bits)
+        return Fraction(lo, 1 << 2 * bits), Fraction(hi, 1 << 2 * bits)
+
+    def _scaled_at(self, bits: int) -> tuple[int, int]:
+        """Integers lo <= x * 2**(2 bits) <= hi: every coefficient and every arccot (or pi)
+        bounded at the scale 2**bits, the products by interval arithmetic on integers."""
+        lo = hi = 0
+        terms = [(s, _arccot_bounds(c, bits)) for c, s in self._parts.items()]
         if self._pi:
-            terms.append((self._pi, _pi_interval(bits)))
-        for s, (alo, ahi) in terms:          # the angle factors are positive
-            slo, shi = s.interval(bits)
-            lo += slo * alo if slo >= 0 else slo * ahi
-            hi += shi * ahi if shi >= 0 else shi * alo
+            terms.append((self._pi, _pi_bounds(bits)))
+        for s, (alo, ahi) in terms:
+            slo, shi = s.scaled_bounds(bits)
+            if alo >= 0:                    # an angle's lower bound; 0 <= floor always
+                lo += slo * (alo if slo >= 0 else ahi)
+                hi += shi * (ahi if shi >= 0 else alo)
+            else:                           # arccot(c) near 0 (c huge): a bound below 0
+                ps = (slo * alo, slo * ahi, shi * alo, shi * ahi)
+                lo, hi = lo + min(ps), hi + max(ps)
         return lo, hi
 
     def _interval_bits(self, bits: int) -> int:
@@ -232,11 +241,14 @@ class AngleLength(ArccotSum):
         # step (60 bits needed a second enclosure for most edges of a real mesh, |H| ~ 2^-13)
         bits = 128
         while True:
-            lo, hi = self.interval_at(bits)
+            lo, hi = self._scaled_at(bits)
             if lo <= 0 <= hi and self.sign() == 0:
                 return 0.0
-            if float(lo) == float(hi):
-                return float(lo)
+            # the int quotients are correctly rounded (Python's int division): when the
+            # two ends agree, every number between them rounds to that float
+            x = lo / (1 << 2 * bits)
+            if x == hi / (1 << 2 * bits):
+                return x
             bits *= 2
             if bits > 4 * arccots.PRECISION_LIMIT:
                 raise Undecidable(f"float({self!r}) did not converge")

@@ -69,6 +69,23 @@ def on_common_denominator(values) -> tuple[list[int], int]:
     return [x.numerator * (D // x.denominator) for x in values], D
 
 
+def shared_denominator(points, max_bits: int) -> tuple[list[tuple[int, ...]], int] | None:
+    """(integer points, D): every point of ``points`` (tuples of Fractions) over their
+    least common denominator D, or None when D has more than ``max_bits`` bits (then one
+    denominator per element keeps the integers small: :func:`points_on_common_denominator`).
+
+    >>> shared_denominator([(Fraction(1, 2), 1), (0, Fraction(1, 4))], 8)
+    ([(2, 4), (0, 1)], 4)
+    >>> shared_denominator([(Fraction(1, 2**9),)], 8) is None
+    True
+    """
+    points = [tuple(Fraction(x) for x in p) for p in points]
+    D = math.lcm(*{x.denominator for p in points for x in p})
+    if D.bit_length() > max_bits:
+        return None
+    return [tuple(x.numerator * (D // x.denominator) for x in p) for p in points], D
+
+
 def points_on_common_denominator(*points) -> tuple[list[list[int]], int]:
     """(integer points, D): rational points over one positive common denominator D.
 
