@@ -29,7 +29,7 @@ from hypothesis import strategies as st
 
 from ddg_oracle.reference.dirichlet import directional_derivative
 from ddg_oracle.reference.laplacian import (dirichlet_energy_pl, dirichlet_inner_product_pl,
-                                            weight_sign_by_angles)
+                                            weight_signs_by_angles)
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -302,9 +302,6 @@ def harmonic_value_in_convex_hull(impl, case: Example):
     record("P3.10", max(worst, 0.0), 1.0)           # worst is a ratio already
 
 
-def _signs_by_angles(surface) -> list[int]:
-    """The exact sign of every edge's weight from its opposite angles (E3.12), by edge id."""
-    return [weight_sign_by_angles(surface, e) for e in range(surface.triangulation.n_edges)]
 
 
 @prop("E3.12", "nu(ij) >= 0 iff alpha_ij + alpha_ji <= pi: the sign of each off-diagonal entry "
@@ -321,7 +318,7 @@ def weight_sign_by_opposite_angles(impl, case: Example):
     pairs = [[X.keep[v] for v in t.edge_vertices(e)] for e in range(t.n_edges)]
     I, J = (np.array([p[k] for p in pairs], dtype=np.int64) for k in (0, 1))
     weights, bounds = -entries_at(A, I, J), entries_at(X.Bs, I, J)
-    signs = memo.of(_signs_by_angles, X.surface)       # the example's, not the implementation's
+    signs = memo.of(weight_signs_by_angles, X.surface)       # the example's, not the implementation's
     for e in range(t.n_edges):
         i, j = pairs[e]
         s = signs[e]

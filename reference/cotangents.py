@@ -68,7 +68,7 @@ from fractions import Fraction
 from math import gcd, isqrt, lcm, prod
 
 from .combinatorics import next_corner
-from .exact.rationals import shared_denominator
+from .exact.rationals import points_on_common_denominator, shared_denominator
 from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress, simplest
 from .metric import PiecewiseFlatSurface, degenerate_face
 from .polyhedral import PolyhedralSurface
@@ -132,11 +132,9 @@ def _is_square(n: int) -> bool:
 
 # --- step 1: integers per face, from lengths ------------------------------------------------
 
-# One denominator for the whole mesh if it stays this small (float meshes: all
-# coordinates of magnitude above 2**-70 or zero); else one per face, so that a
-# single tiny coordinate does not blow up every face's integers.
-_COMMON_DENOMINATOR_BITS = 128
-
+# One denominator for the whole mesh if it stays small (exact.rationals.shared_denominator;
+# float meshes: all coordinates of magnitude above 2**-70 or zero); else one per face, so
+# that a single tiny coordinate does not blow up every face's integers.
 
 class FaceData:
     """The integers of step 1 for every face of a surface (see the module docstring).
@@ -238,8 +236,8 @@ def _integer_squared_lengths(surface: PolyhedralSurface):
     """Positions -> lengths: ``(a, b, c), S`` with ``a[f], b[f], c[f]`` the squared lengths
     of the halfedges 0, 1, 2 of face f times ``S = D^2`` (integers; D the common
     denominator of every coordinate), or None when D is too large to share
-    (:data:`_COMMON_DENOMINATOR_BITS`)."""
-    shared = shared_denominator(surface.positions, _COMMON_DENOMINATOR_BITS)
+    (:data:`~ddg_oracle.reference.exact.rationals.SHARED_DENOMINATOR_BITS`)."""
+    shared = shared_denominator(surface.positions)
     if shared is None:
         return None
     pts, D = shared
@@ -307,7 +305,7 @@ def _positions_data(surface: PolyhedralSurface) -> FaceData:
     P = surface.positions
     degenerate = lambda f: _degenerate(surface, f)              # noqa: E731
     if surface.dimension == 3:
-        shared = shared_denominator(P, _COMMON_DENOMINATOR_BITS)
+        shared = shared_denominator(P)
         if shared is not None:
             return _positions_data_3d(surface, *shared)
     shared = _integer_squared_lengths(surface)
@@ -316,8 +314,7 @@ def _positions_data(surface: PolyhedralSurface) -> FaceData:
         return _face_integers(abc, [S] * t.n_faces, degenerate=degenerate)
     per_face, S = [], []
     for face in t.faces:
-        D = lcm(*{x.denominator for v in face for x in P[v]})
-        A, B, C = ([x.numerator * (D // x.denominator) for x in P[v]] for v in face)
+        (A, B, C), D = points_on_common_denominator(*(P[v] for v in face))
         per_face.append(tuple(sum((x - y) * (x - y) for x, y in zip(p, q))
                               for p, q in ((A, B), (B, C), (C, A))))
         S.append(D * D)

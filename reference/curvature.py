@@ -442,11 +442,6 @@ def dihedral_angles(surface) -> dict[int, Angle]:
     return {e: theta for e, theta, _ in _dihedral_angles_and_lengths(surface, "dihedral_angles")}
 
 
-#: positions whose common denominator has at most this many bits are put over it once
-#: (a float mesh: the binary exponents' spread); beyond, one denominator per edge
-_SHARED_DENOMINATOR_BITS = 128
-
-
 def _dihedral_angles_and_lengths(surface, what: str):
     """(e, theta(e), l(e)) for every interior edge: :func:`dihedral_angles`' angle and the
     exact length, both from the edge's integer vector (one square root per edge)."""
@@ -456,7 +451,7 @@ def _dihedral_angles_and_lengths(surface, what: str):
     # the points over a common denominator D: integer arithmetic, and the cotangent below
     # is homogeneous of degree 0 in the positions (D^4 / (D D^3)), so the integers give it
     # exactly; the signs are those of the rationals (D > 0)
-    shared = shared_denominator(x, _SHARED_DENOMINATOR_BITS)
+    shared = shared_denominator(x)
     for e in range(t.n_edges):
         h, h2 = t.edge_halfedges(e)
         if h2 < 0:

@@ -32,6 +32,7 @@ from __future__ import annotations
 from collections import deque
 
 from .errors import DDGError, InputError
+from . import cotangents
 from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, unfold
 from .laplacian import cotan_laplacian, cotan_weights
 from .exact import sign
@@ -283,6 +284,9 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
     """
     m = _metric(surface)
     history = _History(m)
+    # each edge's test on the input, by integers where the squared lengths are rational;
+    # an edge keeps its answer until a flip changes one of its faces (then UNKNOWN)
+    known = _delaunay_by_integers(m)
     m = IntrinsicTriangulation(m)           # flipped in place, frozen at the end
     tri = m.triangulation                   # a live view: changes with every flip
     queue = deque(range(tri.n_edges))
@@ -291,7 +295,7 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
     while queue:
         e = queue.popleft()
         queued[e] = False
-        if is_delaunay_edge(m, e):
+        if is_delaunay_edge(m, e) if known[e] == _UNKNOWN else known[e] == _YES:
             continue
         if max_flips is not None and len(log) >= max_flips:
             raise DelaunayError(f"more than max_flips = {max_flips} flips needed")
@@ -312,10 +316,47 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
         history.faces.append((out, into))
         log.append(FlipRecord(e, history, len(log)))
         for x in _edges_of_face(tri, f) + _edges_of_face(tri, g):
+            known[x] = _UNKNOWN
             if x != e and not queued[x]:
                 queued[x] = True
                 queue.append(x)
     return m.surface(), log
+
+
+_NO, _YES, _UNKNOWN = 0, 1, 2
+
+
+def _delaunay_by_integers(m: PiecewiseFlatSurface) -> bytearray:
+    """Per edge _YES or _NO: :func:`is_delaunay_edge` decided on the integers of
+    :func:`~ddg_oracle.reference.cotangents.face_data` (``cot = N / sqrt(G)`` per corner):
+    ``N_h / sqrt(G_f) + N_t / sqrt(G_g) >= 0`` by the signs of the N, and for opposite
+    signs by ``N^2 G`` of one side against the other's (exact).  All _UNKNOWN where the
+    squared lengths are not all rational (the definition then decides each edge)."""
+    t = m.triangulation
+    if not cotangents.applies(m):
+        return bytearray([_UNKNOWN]) * t.n_edges
+    fd = cotangents.face_data(m)
+    N, G = fd.N, fd.G
+    out = bytearray(t.n_edges)
+    for e in range(t.n_edges):
+        h, k = t.edge_halfedges(e)
+        if k < 0:
+            out[e] = _YES                       # a boundary edge (D4.4: interior edges only)
+            continue
+        a, b = N[h], N[k]
+        f, g = face_of(h), face_of(k)
+        if f == g:
+            ok = a + b >= 0
+        elif a >= 0 and b >= 0:
+            ok = True
+        elif a <= 0 and b <= 0:
+            ok = False                          # one < 0, neither > 0: the sum is < 0
+        elif a > 0:
+            ok = a * a * G[g] >= b * b * G[f]   # a / sqrt(G_f) >= -b / sqrt(G_g)
+        else:
+            ok = b * b * G[f] >= a * a * G[g]
+        out[e] = _YES if ok else _NO
+    return out
 
 
 def delaunay_tessellation_edges(surface) -> set[int]:

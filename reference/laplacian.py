@@ -36,6 +36,7 @@ from fractions import Fraction
 from typing import Iterable, Sequence
 
 from . import cotan_fast, cotangents
+from .curvature import corner_angles
 from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
 from .exact.rationals import on_common_denominator, rounded_root_sum
@@ -49,7 +50,8 @@ __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weight
            "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
            "dirichlet_inner_product_pl",
            "gradient_pl", "vertex_areas_barycentric", "vertex_areas_voronoi",
-           "opposite_angle_sum", "weight_sign_by_angles", "cotan_weight_by_sines",
+           "opposite_angle_sum", "weight_sign_by_angles", "weight_signs_by_angles",
+           "cotan_weight_by_sines",
            "metric_of_surface"]
 
 _ZERO = Fraction(0)
@@ -436,6 +438,21 @@ def opposite_angle_sum(surface, e: int) -> Angle:
     for f, c in _opposite_corners(m.triangulation, e):
         total = total + corner_angle(m.corner_cot(f, c))
     return total
+
+
+def weight_signs_by_angles(surface) -> list[int]:
+    """E3.12 for every edge: ``[weight_sign_by_angles(surface, e) for e in edges]``, from
+    the corner angles computed once (:func:`ddg_oracle.reference.curvature.corner_angles`,
+    the fast route where it applies: equal angles)."""
+    m = metric_of_surface(surface)
+    t = m.triangulation
+    angles = corner_angles(m)
+    half = pi * Fraction(1, 2)
+    out = []
+    for e in range(t.n_edges):
+        total = sum((angles[f][c] for f, c in _opposite_corners(t, e)), Angle())
+        out.append(((half if t.is_boundary_edge(e) else pi) - total).sign())
+    return out
 
 
 def weight_sign_by_angles(surface, e: int) -> int:

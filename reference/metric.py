@@ -24,7 +24,7 @@ from typing import Protocol, Sequence, runtime_checkable
 from .combinatorics import HalfedgeMesh, Triangulation
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
-from .exact.rationals import points_on_common_denominator
+from .exact.rationals import points_on_common_denominator, shared_denominator
 
 __all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of", "heron16"]
 
@@ -244,8 +244,8 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
 
     Areas come from the Lagrange identity 4 A^2 = |u|^2 |v|^2 - (u.v)^2, which
     holds in every dimension; a zero-area face raises :class:`DegenerateFace`.
-    Exact: each edge's and each face's points are written on their own common
-    denominator D (x = X / D, X integer), so |X_i - X_j|^2 / D^2 and the Lagrange
+    Exact: the points are written on one common denominator D (x = X / D, X integer;
+    one per edge and per face when the common one would be large), so |X_i - X_j|^2 / D^2 and the Lagrange
     identity are integer arithmetic, one Fraction per result (float input: D a
     power of two).  16 A^2 = 4 (4 A^2) is then Heron's 16 A^2 of the squared
     lengths identically, and 4 A^2 > 0 is the strict triangle inequality: the
@@ -260,10 +260,16 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     # points may come as floats: take every coordinate exactly first
     points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
                     for x in p) for i, p in enumerate(points)]
+    shared = shared_denominator(points)
+
+    def on_denominator(*vertices):
+        if shared is not None:                  # one denominator for all (float meshes)
+            return [shared[0][v] for v in vertices], shared[1]
+        return points_on_common_denominator(*(points[v] for v in vertices))
+
     sq = []
     for e in range(t.n_edges):
-        i, j = t.edge_vertices(e)
-        (X, Y), D = points_on_common_denominator(points[i], points[j])
+        (X, Y), D = on_denominator(*t.edge_vertices(e))
         sq.append(Fraction(sum((x - y) ** 2 for x, y in zip(X, Y)), D * D))
     for e, x in enumerate(sq):
         # checked before the areas: a zero edge makes its faces zero-area, and
@@ -274,7 +280,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
                                  "(coincident vertices); its faces have zero area")
     areas = []
     for f, (i, j, k) in enumerate(t.faces):
-        (P, Q, R), D = points_on_common_denominator(points[i], points[j], points[k])
+        (P, Q, R), D = on_denominator(i, j, k)
         u = [y - x for x, y in zip(P, Q)]
         v = [y - x for x, y in zip(P, R)]
         uv = sum(x * y for x, y in zip(u, v))

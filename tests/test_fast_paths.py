@@ -504,3 +504,48 @@ def test_one_tiny_coordinate_takes_per_face_denominators():
     t = PolyhedralSurface.from_arrays(pts, s.faces)
     assert max(x.denominator for p in t.positions for x in p).bit_length() > 1000
     assert_same_cotan(t)
+
+
+# --- the Delaunay test on integers (flip_to_delaunay's first pass) ------------------------------
+
+from ddg_oracle.reference.delaunay import _delaunay_by_integers, is_delaunay_edge  # noqa: E402
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.one_of(hard_meshes(), thin_triangles(), any_meshes().map(lambda c: c.surface)))
+def test_delaunay_by_integers_equals_the_definition(s):
+    """Every edge's D4.4 answer from the integers N, G equals is_delaunay_edge's (exact
+    Surd sums), cocircular pairs (cot sum exactly 0: Delaunay) and right angles (N = 0)
+    included."""
+    m = s.metric() if isinstance(s, PolyhedralSurface) else s
+    known = _delaunay_by_integers(m)
+    assert [k == 1 for k in known] == [is_delaunay_edge(m, e)
+                                       for e in range(m.triangulation.n_edges)]
+
+
+@pytest.mark.parametrize("build", [
+    lambda: surfaces.torus(5, 7).metric(),
+    lambda: random_flips(flat_torus(6, 6, (3, 1), (1, 2)), random.Random(2), 200),
+    lambda: random_flips(surfaces.genus_surface(2).metric(), random.Random(5), 30)])
+def test_flip_to_delaunay_from_the_integer_answers_equals_the_immutable_loop(build):
+    """flip_to_delaunay starts from the integer answers (rational squared lengths) and asks
+    the definition only for edges a flip changed: the same flips as the loop that asks the
+    definition for every edge."""
+    m = build()
+    assert applies(m)
+    d, log = flip_to_delaunay(m)
+    d0, log0 = flip_to_delaunay_immutable(m)
+    assert_same_surface(d, d0)
+    assert [(r.edge, r.h_before, r.h_after) for r in log] == log0 and log
+
+
+def test_delaunay_by_integers_on_cocircular_and_irrational_metrics():
+    g = surfaces.grid(3, 2).metric()              # squares cut by diagonals: cot sums 0
+    known = _delaunay_by_integers(g)
+    inner = [e for e in range(g.triangulation.n_edges) if not g.triangulation.is_boundary_edge(e)]
+    assert all(known[e] == 1 for e in range(g.triangulation.n_edges))
+    assert any(cotan_weights(g)[e] == 0 for e in inner)
+    t = random_flips(_BASES["icosahedron"](), random.Random(3), 10)     # sqrt lengths
+    assert not applies(t) and set(_delaunay_by_integers(t)) == {2}    # the definition decides
+    d, log = flip_to_delaunay(t)
+    assert [(r.edge, r.h_before, r.h_after) for r in log] == flip_to_delaunay_immutable(t)[1]

@@ -69,7 +69,14 @@ def on_common_denominator(values) -> tuple[list[int], int]:
     return [x.numerator * (D // x.denominator) for x in values], D
 
 
-def shared_denominator(points, max_bits: int) -> tuple[list[tuple[int, ...]], int] | None:
+#: positions whose least common denominator has at most this many bits are put over it once
+#: (a float mesh: the spread of its binary exponents); beyond, one denominator per element
+#: (per edge, per face) keeps the integers small
+SHARED_DENOMINATOR_BITS = 128
+
+
+def shared_denominator(points, max_bits: int = SHARED_DENOMINATOR_BITS
+                       ) -> tuple[list[tuple[int, ...]], int] | None:
     """(integer points, D): every point of ``points`` (tuples of Fractions) over their
     least common denominator D, or None when D has more than ``max_bits`` bits (then one
     denominator per element keeps the integers small: :func:`points_on_common_denominator`).

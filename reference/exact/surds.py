@@ -52,7 +52,7 @@ import operator
 import re
 from contextlib import contextmanager
 from fractions import Fraction
-from math import gcd, isqrt
+from math import gcd, isqrt, prod
 
 from ..errors import InputError, TermLimitExceeded
 from .rationals import rational
@@ -114,15 +114,27 @@ _SMALL_SQUARES = tuple(
 )
 
 
+_ODD_SMALL_PRIMES = prod(p for p, _ in _SMALL_SQUARES[1:])
+
+
 def _strip_small_squares(m):
-    """``(c, m')`` with ``m == c*c*m'`` and m' free of squares of primes < 100."""
+    """``(c, m')`` with ``m == c*c*m'`` and m' free of squares of primes < 100 (m > 0).
+
+    >>> _strip_small_squares(2**5 * 3**3 * 97**2 * 101**2)
+    (1164, 61206)
+    """
     c = 1
-    for p, pp in _SMALL_SQUARES:
-        if pp > m:
-            break
-        while m % pp == 0:
-            m //= pp
-            c *= p
+    twos = (m & -m).bit_length() - 1            # the power of 2 in m, by a bit trick
+    if twos > 1:
+        m >>= twos & ~1
+        c <<= twos >> 1
+    g = gcd(m, _ODD_SMALL_PRIMES)               # one gcd finds the odd primes to try
+    if g > 1:
+        for p, pp in _SMALL_SQUARES[1:]:
+            if g % p == 0:
+                while m % pp == 0:
+                    m //= pp
+                    c *= p
     return c, m
 
 
