@@ -49,10 +49,16 @@ class ReferenceImplementation:
 
     name = "reference"
 
-    @staticmethod
-    def _t(V, F) -> Triangulation:
+    def _t(self, V, F) -> Triangulation:
+        """The triangulation of these faces, built once per content for the last couple of
+        meshes (a mesh file's topology properties ask for it several times)."""
         r = Referenced(V, F)
-        return Triangulation.from_faces(r.F, n_vertices=len(r.V))
+        try:
+            table = self._triangulations
+        except AttributeError:          # made here, not in __init__: a subclass need not call it
+            table = self._triangulations = memo.Table(2)
+        return table.shared((len(r.V), r.F.shape, r.F.tobytes()),
+                            lambda: Triangulation.from_faces(r.F, n_vertices=len(r.V)))
 
     def _s(self, V, F) -> PolyhedralSurface:
         """The exact surface of these arrays, built once per content for the last couple of
