@@ -584,6 +584,11 @@ def _targets(results: dict) -> list[str]:
         lines.append(f"| no undecided sign on the sample meshes and fans (issue 18) | "
                      f"{undecided} of {sum(r['defects'] for r in real['rows']):,} | "
                      f"{'yes' if undecided == 0 else 'no'} |")
+        samples = [r for r in real["rows"] if not r["mesh"].startswith("fan")]
+        exact, floats = (sum(r[k] for r in samples) for k in ("exact_s", "float_s"))
+        lines.append(f"| float views of the angle defects as fast as the exact values, sample "
+                     f"meshes summed (issue 18) | floats {floats:.2f} s, exact {exact:.2f} s | "
+                     f"{'yes' if floats <= exact else 'no'} |")
         for name, limit in (("bunny10k_textured.obj", 30), ("bunny.obj", 180)):
             for r in real["flips"]:
                 if r["mesh"] == name:
