@@ -73,6 +73,13 @@ def is_delaunay_edge(surface, e: int) -> bool:
     n_h, n_t = _cot_numerator(m, h), _cot_numerator(m, t)
     if f == g:
         return sign(simplest(n_h + n_t)) >= 0
+    # enclosures first (relative to each factor's size: after flips the products have
+    # thousands of terms, and a scaled mesh's values may lie near 2^-2400)
+    for bits in (64, 256):
+        s = (Interval.relative(n_h, bits) * Interval.relative(m.areas[g], bits)
+             + Interval.relative(n_t, bits) * Interval.relative(m.areas[f], bits)).sign()
+        if s is not None:
+            return s > 0
     return sign(simplest(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
 
 
@@ -193,15 +200,15 @@ def _exact_change(out, into):
 def _decrease_sign(out, into) -> int:
     """C4.19: the exact sign of :func:`_exact_change` (pairs (s, A), A > 0): interval
     enclosures (:class:`~ddg_oracle.reference.exact.intervals.Interval`) at 64 and 256 bits
-    first, no division of square-root numbers; the exact quotients only when both contain 0."""
+    relative to each value's size first, no division of square-root numbers; the exact quotients only when both contain 0."""
     for bits in (64, 256):
         total = Interval(0)
         for direction, pairs in ((1, into), (-1, out)):
             for s, A in pairs:
-                area = Interval.enclosing(A, bits)
+                area = Interval.relative(A, bits)       # bits below each value's size
                 if area.lo <= 0:
                     break
-                q = Interval.enclosing(s, bits) / area
+                q = Interval.relative(s, bits) / area
                 total = total + q if direction > 0 else total - q
             else:
                 continue

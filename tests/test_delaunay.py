@@ -309,3 +309,24 @@ def test_surfaces_from_R3_irrational_data(name, seed):
     assert all(r.h_after < r.h_before for r in log)
     assert cotan_laplacian(d) == cotan_laplacian(base)
     assert d.total_area() == base.total_area()
+
+
+def test_flips_of_a_tiny_bicone_are_decided_by_relative_enclosures():
+    """A metric drawn by tests/test_fast_paths.py::hard_meshes (a 30-gon bicone scaled far
+    below 1: squared lengths with 731-bit denominators, benchmarks/data): after a few flips
+    the cotangent sums lie near 2^-1200 and have thousands of square-root terms.  Absolute
+    2^-256 enclosures said nothing about them, so every Delaunay test and Surd sign fell to
+    exact expansion (more than 4 minutes, or TermLimitExceeded); enclosures relative to
+    each value's size decide them."""
+    import json
+    from pathlib import Path
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
+    data = json.loads((Path(__file__).parents[1] / "benchmarks" / "data"
+                       / "flip_limit_bicone.json").read_text())
+    m = PiecewiseFlatSurface(Triangulation.from_faces(data["faces"]),
+                             [Fraction(x) for x in data["squared_lengths"]])
+    assert max(x.denominator.bit_length() for x in m.squared_lengths) > 700
+    d, log = flip_to_delaunay(m)        # raises DelaunayError should a flip not decrease h
+    assert len(log) == 26 and is_delaunay(d)
+    assert d.triangulation.faces != m.triangulation.faces
+    assert d.triangulation.n_vertices == m.triangulation.n_vertices

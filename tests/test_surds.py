@@ -23,7 +23,7 @@ from ddg_oracle.reference.exact.surds import Surd, limits, settings, sqrt
 
 # --- independent reference evaluation -------------------------------------------
 
-DEC = decimal.Context(prec=220)
+DEC = decimal.Context(prec=420)      # the 330-digit sign test below needs > 350
 EPS = Fraction(1, 10**190)   # bound on the Decimal evaluation error used below
 
 
@@ -309,10 +309,10 @@ def _truncate(x: Surd, digits: int) -> Fraction:
     return Fraction(DEC.quantize(d, decimal.Decimal(10) ** -digits))
 
 
-@pytest.mark.parametrize("digits", [30, 90, 150])
+@pytest.mark.parametrize("digits", [30, 150, 330])
 def test_signs_beyond_enclosure_filters(digits, monkeypatch):
-    """x - (x rounded to `digits` decimals) is tiny: 90 and 150 digits force the
-    exact recursion (the enclosures stop at 256 bits = 77 digits)."""
+    """x - (x rounded to `digits` decimals) is tiny: 330 digits force the exact recursion
+    (the enclosures stop at 1,024 bits below the largest term, about 308 digits here)."""
     splits = []
     real_split = surds_module._t_split
     monkeypatch.setattr(surds_module, "_t_split",
@@ -330,7 +330,7 @@ def test_signs_beyond_enclosure_filters(digits, monkeypatch):
         assert (x > approx) == (expected == 1)
         assert (x < approx) == (expected == -1)
         assert x != approx
-    assert bool(splits) == (digits > 77)
+    assert bool(splits) == (digits > 308)
 
 
 @hsettings(max_examples=200)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-__all__ = ["Interval", "dot", "scaled_bounds"]
+__all__ = ["Interval", "dot", "scaled_bounds", "top_bit"]
 
 
 class Interval:
@@ -54,6 +54,18 @@ class Interval:
                 return cls._raw(*x.interval(bits))
             x = Fraction(x)
         return cls._raw(x, x)           # one object at both ends: a point (see __mul__)
+
+    @classmethod
+    def relative(cls, x, bits: int) -> "Interval":
+        """:meth:`enclosing` ``x`` to about ``bits`` bits below its largest term
+        (:func:`top_bit`): values of a mesh scaled by 2^-1200 are enclosed as finely,
+        relative to their size, as those of a unit mesh.
+
+        >>> from ddg_oracle.reference.exact import sqrt
+        >>> Interval.relative(sqrt(2) / 2**3000, 64).sign()
+        1
+        """
+        return cls.enclosing(x, max(0, bits - top_bit(x)))
 
     @staticmethod
     def _of(x):
@@ -152,6 +164,18 @@ def dot(u, v) -> Interval:
     for a, b in zip(u, v):
         acc = acc + (a.square() if a is b else a * b)
     return acc
+
+
+def top_bit(x) -> int:
+    """t with every term of the exact number ``x`` below 2^t in absolute value (an int or
+    Fraction: x itself; a Surd: its terms q sqrt(r)); read off bit lengths, no arithmetic.
+
+    >>> top_bit(Fraction(3, 4)), top_bit(Fraction(1, 2**100))
+    (0, -99)
+    """
+    pairs = x.terms() if hasattr(x, "terms") else ((1, Fraction(x)),)
+    return max((abs(q.numerator).bit_length() - q.denominator.bit_length() + 1
+                + (r.bit_length() + 1) // 2 - (r == 1) for r, q in pairs), default=0)
 
 
 def scaled_bounds(x, k: int) -> tuple[int, int]:

@@ -343,8 +343,12 @@ def _t_sign(terms, base):
         # q1^2 r1 != q2^2 r2: the two square roots are independent over Q
         return s1 if q1 * q1 * r1 > q2 * q2 * r2 else -s1
     extra = (2 * n + 1).bit_length()
-    for bits in (64, 256):
-        lo, hi = _t_bounds(terms, bits + extra)
+    # relative precision: bits below the largest term (about 2^top), so that a tiny mesh's
+    # values (terms near 2^-1200 after a scaling) are enclosed as finely as unit-size ones
+    top = max(q.numerator.bit_length() - q.denominator.bit_length() + (r.bit_length() >> 1)
+              for r, q in terms.items())
+    for bits in (64, 256, 1024):
+        lo, hi = _t_bounds(terms, max(0, bits + extra - top))
         if lo > 0:
             return 1
         if hi < 0:
