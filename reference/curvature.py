@@ -106,7 +106,8 @@ def _sum_angles(angles) -> Angle:
 
 
 def corner_angles(surface) -> list[tuple[Angle, Angle, Angle]]:
-    """The three corner angles of every face, exact, each in (0, pi).
+    """The three corner angles of every face (D2.2, D2.6: what angle defects sum and the
+    lengths determine), exact, each in (0, pi).
 
     Entry ``f`` lists the angles at corners 0, 1, 2 of face ``f`` (the corners
     of ``triangulation.faces[f]`` in order).  The definition is
@@ -125,7 +126,7 @@ def corner_angles(surface) -> list[tuple[Angle, Angle, Angle]]:
 
 
 def corner_angles_from_cotangents(surface) -> list[tuple[Angle, Angle, Angle]]:
-    """The definition of :func:`corner_angles`: ``arccot`` of the metric's exact corner
+    """D2.6, the definition of :func:`corner_angles`: ``arccot`` of the metric's exact corner
     cotangents (:meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface.corner_angle`).
     Accepts every surface (irrational squared lengths too)."""
     m = as_metric(surface)

@@ -577,3 +577,15 @@ def test_floor_ceil_trunc_are_exact():
     assert math.floor(-x) == -(10**20)
     assert math.floor(Surd(Fraction(-7, 2))) == -4 and math.ceil(Surd(Fraction(7, 2))) == 4
     assert math.floor(sqrt(2) + sqrt(3)) == 3 and math.ceil(sqrt(2) * sqrt(8)) == 4
+
+
+@given(st.integers(1, 10**60), st.lists(st.sampled_from([2, 3, 5, 7, 97, 101, 193]), max_size=8))
+def test_strip_small_squares_keeps_the_value_and_strips_only_small_prime_squares(m, squares):
+    """m = c^2 m' exactly, m' has no square of a prime below 100, and squares of larger
+    primes stay (the gcd shortcut must neither miss a small prime nor strip a large one)."""
+    from math import prod
+    n = m * prod(p * p for p in squares)
+    c, rest = surds_module._strip_small_squares(n)
+    assert c * c * rest == n
+    assert all(rest % (p * p) for p, _ in surds_module._SMALL_SQUARES)
+    assert rest % 101 ** (2 * squares.count(101)) == 0 and rest % 193 ** (2 * squares.count(193)) == 0
