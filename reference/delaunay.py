@@ -38,7 +38,7 @@ from .laplacian import cotan_laplacian, cotan_weights
 from .exact import sign
 from .metric import PiecewiseFlatSurface
 from .exact.intervals import Interval
-from .exact.surds import exact_sum, simplest
+from .exact.surds import Surd, exact_sum, simplest
 from .combinatorics import corner_of, face_of
 
 __all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_delaunay",
@@ -73,14 +73,27 @@ def is_delaunay_edge(surface, e: int) -> bool:
     n_h, n_t = _cot_numerator(m, h), _cot_numerator(m, t)
     if f == g:
         return sign(simplest(n_h + n_t)) >= 0
+    A_f, A_g = m.areas[f], m.areas[g]
+    if _n_terms(n_h) * _n_terms(A_g) + _n_terms(n_t) * _n_terms(A_f) <= _SMALL_PRODUCT:
+        # small products (a rational metric: one square root per area): exact at once,
+        # cheaper than the enclosures
+        return sign(simplest(n_h * A_g + n_t * A_f)) >= 0
     # enclosures first (relative to each factor's size: after flips the products have
     # thousands of terms, and a scaled mesh's values may lie near 2^-2400)
     for bits in (64, 256):
-        s = (Interval.relative(n_h, bits) * Interval.relative(m.areas[g], bits)
-             + Interval.relative(n_t, bits) * Interval.relative(m.areas[f], bits)).sign()
+        s = (Interval.relative(n_h, bits) * Interval.relative(A_g, bits)
+             + Interval.relative(n_t, bits) * Interval.relative(A_f, bits)).sign()
         if s is not None:
             return s > 0
-    return sign(simplest(n_h * m.areas[g] + n_t * m.areas[f])) >= 0
+    return sign(simplest(n_h * A_g + n_t * A_f)) >= 0
+
+
+#: products of at most this many terms in all decide the D4.4 test exactly at once
+_SMALL_PRODUCT = 8
+
+
+def _n_terms(x) -> int:
+    return x.n_terms if isinstance(x, Surd) else 1
 
 
 def _cot_numerator(m: PiecewiseFlatSurface, h: int):

@@ -65,6 +65,8 @@ class Interval:
         >>> Interval.relative(sqrt(2) / 2**3000, 64).sign()
         1
         """
+        if type(x) is Fraction:
+            return cls._raw(x, x)        # a rational encloses itself: no size needed
         return cls.enclosing(x, max(0, bits - top_bit(x)))
 
     @staticmethod
@@ -173,7 +175,8 @@ def top_bit(x) -> int:
     >>> top_bit(Fraction(3, 4)), top_bit(Fraction(1, 2**100))
     (0, -99)
     """
-    pairs = x.terms() if hasattr(x, "terms") else ((1, Fraction(x)),)
+    pairs = (x.terms() if hasattr(x, "terms")
+             else ((1, x if type(x) is Fraction else Fraction(x)),))
     return max((abs(q.numerator).bit_length() - q.denominator.bit_length() + 1
                 + (r.bit_length() + 1) // 2 - (r == 1) for r, q in pairs), default=0)
 

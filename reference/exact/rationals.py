@@ -60,7 +60,7 @@ def on_common_denominator(values) -> tuple[list[int], int]:
     >>> on_common_denominator([Fraction(1, 2), Fraction(3, 4), 2])
     ([2, 3, 8], 4)
     """
-    values = [Fraction(x) for x in values]
+    values = [x if type(x) is Fraction else Fraction(x) for x in values]
     D = 1
     for x in values:
         d = x.denominator
@@ -86,10 +86,16 @@ def shared_denominator(points, max_bits: int = SHARED_DENOMINATOR_BITS
     >>> shared_denominator([(Fraction(1, 2**9),)], 8) is None
     True
     """
-    points = [tuple(Fraction(x) for x in p) for p in points]
+    # Fraction(x) of a Fraction goes through an abstract-base-class check: it was a third
+    # of the cotan weights' time on a float mesh, whose coordinates all are Fractions
+    if not {type(x) for p in points for x in p} <= {Fraction, int}:
+        points = [tuple(map(Fraction, p)) for p in points]
     D = math.lcm(*{x.denominator for p in points for x in p})
     if D.bit_length() > max_bits:
         return None
+    if {len(p) for p in points} == {3}:             # points in R^3, written out (2x faster)
+        return [(x.numerator * (D // x.denominator), y.numerator * (D // y.denominator),
+                 z.numerator * (D // z.denominator)) for x, y, z in points], D
     return [tuple(x.numerator * (D // x.denominator) for x in p) for p in points], D
 
 
