@@ -589,3 +589,50 @@ def test_strip_small_squares_keeps_the_value_and_strips_only_small_prime_squares
     assert c * c * rest == n
     assert all(rest % (p * p) for p, _ in surds_module._SMALL_SQUARES)
     assert rest % 101 ** (2 * squares.count(101)) == 0 and rest % 193 ** (2 * squares.count(193)) == 0
+
+
+# --- the term product on integer pairs (one reduction per output term) ------------------------
+
+_RADICANDS = (1, 2, 3, 5, 6, 10, 15, 30, 7, 14, 21, 42, 105, 210)
+
+
+def _naive_product(ta, tb):
+    """sum q1 q2 sqrt(r1 r2) term by term, Fraction arithmetic, sqrt(g^2 m) = g sqrt(m)."""
+    out = {}
+    for r1, q1 in ta.items():
+        for r2, q2 in tb.items():
+            g = math.gcd(r1, r2)
+            r = (r1 // g) * (r2 // g)
+            out[r] = out.get(r, 0) + Fraction(q1) * q2 * g
+    return {r: q for r, q in out.items() if q}
+
+
+def _term_dicts(values):
+    return st.dictionaries(st.sampled_from(_RADICANDS), values.filter(bool), max_size=6)
+
+
+_BIG_FRACTIONS = st.builds(Fraction, st.integers(-2 ** 300, 2 ** 300), st.integers(1, 2 ** 200))
+
+
+@given(_term_dicts(_BIG_FRACTIONS), _term_dicts(_BIG_FRACTIONS))
+def test_term_product_equals_the_fraction_products(ta, tb):
+    # equal denominators and different ones meet in one output term (radicand 1 collects
+    # r * r from every pair of equal radicands); zero sums drop out
+    got = surds_module._t_mul(ta, tb)
+    assert got == _naive_product(ta, tb)
+    assert all(type(q) is Fraction and q.denominator > 0 for q in got.values())
+
+
+@given(_term_dicts(st.integers(-10, 10)), _term_dicts(st.integers(-10, 10)))
+def test_term_product_of_integers_stays_integer(ta, tb):
+    got = surds_module._t_mul(ta, tb)
+    assert got == _naive_product(ta, tb)
+    assert all(type(q) is int for q in got.values())
+
+
+def test_term_product_cancels_to_nothing():
+    # (sqrt2 + sqrt3)(sqrt2 - sqrt3) = 2 - 3: the sqrt6 terms cancel, and are dropped
+    assert surds_module._t_mul({2: 1, 3: 1}, {2: 1, 3: -1}) == {1: -1}
+    half = Fraction(1, 2)
+    assert surds_module._t_mul({2: half, 3: Fraction(1, 3)},
+                               {2: half, 3: Fraction(-1, 3)}) == {1: Fraction(1, 2) - Fraction(1, 3)}

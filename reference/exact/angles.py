@@ -159,7 +159,11 @@ class Angle(ArccotSum):
         if self._pi <= 0 and all(m < 0 for m in self._parts.values()):
             return -1
         limit = arccots.PRECISION_LIMIT
-        bits = min(64 + max(1, sum(abs(m) for m in self._parts.values())).bit_length(), limit)
+        terms = max(1, sum(abs(m) for m in self._parts.values())).bit_length()
+        bits = min(64 + terms, limit)
+        # the exact zero test costs far more than an enclosure: it waits until one of
+        # 128 bits (and the terms' widths) has failed too
+        zero_test_bits = min(128 + terms, limit)
         # a pi part off the multiples of pi/24 makes theta != 0 (module docstring)
         nonzero = (self._pi * 24).denominator != 1
         while True:
@@ -168,7 +172,7 @@ class Angle(ArccotSum):
                 return 1
             if hi < 0:
                 return -1
-            if not nonzero:
+            if not nonzero and bits >= zero_test_bits:
                 # the test builds nothing larger than the products of one cotangent's
                 # conjugates, so it always finishes
                 k = _pi24_multiple(self._parts)

@@ -257,31 +257,46 @@ def _t_add(ta, tb, negate=False):
 def _t_mul(ta, tb):
     """``ta * tb`` for term dicts over one base (radicands squarefree over it).
 
-    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.
+    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.  Each output
+    coefficient is accumulated as an integer pair (numerator, denominator) and reduced
+    once: a Fraction product and sum cost about four gcds each, and after many intrinsic
+    flips the coefficients have hundreds of digits (the gcds were most of the time).
+    Integer coefficients stay integers.
     """
-    out = {}
+    acc: dict[int, list] = {}
+    fractions = False
     for r1, q1 in ta.items():
+        n1, d1 = q1.numerator, q1.denominator
         for r2, q2 in tb.items():
             if r1 == 1:
-                r, q = r2, q1 * q2
+                r, n = r2, n1 * q2.numerator
             elif r2 == 1:
-                r, q = r1, q1 * q2
+                r, n = r1, n1 * q2.numerator
             else:
                 g = gcd(r1, r2)
                 if g == 1:
-                    r, q = r1 * r2, q1 * q2
+                    r, n = r1 * r2, n1 * q2.numerator
                 else:
-                    r, q = (r1 // g) * (r2 // g), q1 * q2 * g
-            s = out.get(r)
-            if s is None:
-                out[r] = q
+                    r, n = (r1 // g) * (r2 // g), n1 * q2.numerator * g
+            d = d1 * q2.denominator
+            a = acc.get(r)
+            if a is None:
+                acc[r] = [n, d]
+            elif a[1] == d:
+                a[0] += n
             else:
-                s += q
-                if s:
-                    out[r] = s
-                else:
-                    del out[r]
-    return out
+                # one common denominator (the lcm: a plain product would grow with every
+                # term that lands here)
+                e = a[1]
+                g = gcd(e, d)
+                a[0], a[1] = a[0] * (d // g) + n * (e // g), e // g * d
+        if type(q1) is not int:
+            fractions = True
+    if not fractions and any(type(q) is not int for q in tb.values()):
+        fractions = True
+    if fractions:
+        return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
+    return {r: n for r, (n, d) in acc.items() if n}
 
 
 def _t_scale(terms, k):
