@@ -119,7 +119,10 @@ def _angle_sums(surface) -> list[Angle]:
                 cot = lazy((f, n))
                 acc = parts[v]
                 acc[cot] = acc.get(cot, 0) + 1
-    return [Angle._raw({c: k for c, k in p.items() if k}, q) for p, q in zip(parts, pis)]
+    # each vertex's dict becomes its Angle's (a copy only where a multiplicity cancelled):
+    # a second dict per vertex would only feed the garbage collector
+    return [Angle._raw(p if all(p.values()) else {c: k for c, k in p.items() if k}, q)
+            for p, q in zip(parts, pis)]
 
 
 def gauss_bonnet_holds_fast(surface) -> bool | None:
