@@ -213,7 +213,8 @@ def _exact_change(out, into):
 def _decrease_sign(out, into) -> int:
     """C4.19: the exact sign of :func:`_exact_change` (pairs (s, A), A > 0): interval
     enclosures (:class:`~ddg_oracle.reference.exact.intervals.Interval`) at 64 and 256 bits
-    relative to each value's size first, no division of square-root numbers; the exact quotients only when both contain 0."""
+    relative to each value's size first, no division of square-root numbers; the exact
+    quotients only when both contain 0."""
     for bits in (64, 256):
         total = Interval(0)
         for direction, pairs in ((1, into), (-1, out)):

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-__all__ = ["Interval", "dot", "scaled_bounds", "top_bit"]
+__all__ = ["Interval", "dot", "scaled_bounds", "top_bit", "terms_top_bit"]
 
 
 class Interval:
@@ -177,6 +177,16 @@ def top_bit(x) -> int:
     """
     pairs = (x.terms() if hasattr(x, "terms")
              else ((1, x if type(x) is Fraction else Fraction(x)),))
+    return terms_top_bit(pairs)
+
+
+def terms_top_bit(pairs) -> int:
+    """:func:`top_bit` of the sum of ``q sqrt(r)`` over the pairs ``(r, q)`` (0 for none):
+    |q| < 2^(bits(num) - bits(den) + 1) and sqrt(r) <= 2^ceil(bits(r) / 2).
+
+    >>> terms_top_bit([(2, Fraction(3))]), terms_top_bit([(1, Fraction(-1, 8)), (3, 1)])
+    (3, 2)
+    """
     return max((abs(q.numerator).bit_length() - q.denominator.bit_length() + 1
                 + (r.bit_length() + 1) // 2 - (r == 1) for r, q in pairs), default=0)
 

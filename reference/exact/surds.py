@@ -55,6 +55,7 @@ from fractions import Fraction
 from math import gcd, isqrt, prod
 
 from ..errors import InputError, TermLimitExceeded
+from .intervals import terms_top_bit
 from .rationals import rational
 
 __all__ = ["Surd", "sqrt", "simplest", "exact_sum", "rounded_sum", "settings", "limits"]
@@ -360,8 +361,7 @@ def _t_sign(terms, base):
     extra = (2 * n + 1).bit_length()
     # relative precision: bits below the largest term (about 2^top), so that a tiny mesh's
     # values (terms near 2^-1200 after a scaling) are enclosed as finely as unit-size ones
-    top = max(q.numerator.bit_length() - q.denominator.bit_length() + (r.bit_length() >> 1)
-              for r, q in terms.items())
+    top = terms_top_bit(terms.items())
     for bits in (64, 256, 1024):
         lo, hi = _t_bounds(terms, max(0, bits + extra - top))
         if lo > 0:
