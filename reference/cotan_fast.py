@@ -20,6 +20,8 @@ sign, are decided on the integers (:mod:`~ddg_oracle.reference.cotangents`, step
 from __future__ import annotations
 
 from fractions import Fraction
+from collections import Counter
+from itertools import accumulate, chain
 from math import isqrt
 
 from .combinatorics import face_of, next_corner
@@ -85,7 +87,11 @@ def cotan_weights_fast(surface) -> dict:
     """
     t = surface.triangulation
     fd = face_data(surface)
-    N, lazy = fd.N, fd.lazy
+    N, lazy_slice = fd.N, fd.lazy_slice
+    # the common case's raw (f, n1, g, n2) of every edge in one list (only appended to):
+    # one object for the garbage collector, not a tuple per edge
+    edge_raws: list[int] = []
+    extend = edge_raws.extend
     out = {}
     for e, (h, tw) in enumerate(map(t.edge_halfedges, range(t.n_edges))):
         # the common case inline (an interior edge, both corners not right, G_f G_g not a
@@ -95,7 +101,9 @@ def cotan_weights_fast(surface) -> dict:
             n1, n2 = N[h], N[tw]
             f, g = h // 3, tw // 3
             if n1 and n2 and _certainly_irrational(fd, f, g):
-                out[e] = lazy((f, n1, g, n2))
+                k = len(edge_raws)
+                extend((f, n1, g, n2))
+                out[e] = lazy_slice(edge_raws, k, k + 4)
                 continue
         out[e] = _weight(fd, h, tw)
     return out
@@ -166,36 +174,50 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
     fd = face_data(surface) if fd is None else fd
     n = t.n_vertices
     N = fd.N
-    # diag[i] = [f1, n1, f2, n2, ...]: the faces at vertex i and the numerators of
-    # their two other corners' cotangents, summed (positive; see the module docstring)
-    diag: list[list] = [[] for _ in range(n)]
+    faces = t.faces
+    # vertex i's diagonal as pairs f, n (the faces at i and the numerators of their two
+    # other corners' cotangents, summed: positive, see the module docstring) in
+    # flat[start[i]:pos[i]]: one list for all vertices, not one per vertex for the garbage
+    # collector to visit.  Room for two pairs per corner: on a face with a loop halfedge
+    # the third vertex gets two.
+    count = Counter(chain.from_iterable(faces))
+    start = list(accumulate((4 * count[i] for i in range(n)), initial=0))
+    pos, flat = start[:n], [0] * start[n]
     rational = [True] * n          # every face at i has a square G
-    for f, (a, b, c) in enumerate(t.faces):
+    for f, (a, b, c) in enumerate(faces):
         if f in left_out:
             continue
         n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
         if a != b and b != c and a != c:
             # corner a: halfedges a->b (opposite corner 2) and c->a (opposite corner 1)
-            diag[a] += (f, n1 + n2)
-            diag[b] += (f, n0 + n2)
-            diag[c] += (f, n0 + n1)
+            p = pos[a]
+            flat[p], flat[p + 1], pos[a] = f, n1 + n2, p + 2
+            p = pos[b]
+            flat[p], flat[p + 1], pos[b] = f, n0 + n2, p + 2
+            p = pos[c]
+            flat[p], flat[p + 1], pos[c] = f, n0 + n1, p + 2
             at = (a, b, c)
         else:                   # a loop halfedge (tail == head) adds nothing
             at = []
             for k, x in ((0, n2), (1, n0), (2, n1)):
                 i, j = (a, b, c)[k], (a, b, c)[next_corner(k)]
                 if i != j and x:
-                    diag[i] += (f, x)
-                    diag[j] += (f, x)
+                    for v in (i, j):
+                        p = pos[v]
+                        flat[p], flat[p + 1], pos[v] = f, x, p + 2
                     at += (i, j)
         if not fd.is_square(f):
             for i in at:
                 rational[i] = False
     rows: dict[int, dict] = {}
-    for i, raw in enumerate(diag):
-        if raw:
-            rows[i] = {i: fd.value(tuple(raw)) if rational[i] else fd.lazy(tuple(raw))}
-    faces, lazy = t.faces, fd.lazy
+    lazy_slice = fd.lazy_slice
+    for i, lo, hi in zip(range(n), start, pos):
+        if hi > lo:
+            rows[i] = {i: fd.value(flat[lo:hi]) if rational[i] else lazy_slice(flat, lo, hi)}
+    # the common case's raw (f, -n1, g, -n2) of every edge, in one list (only appended to;
+    # each CotanSum reads its four ints): one object, not one tuple per edge
+    edge_raws: list[int] = []
+    extend = edge_raws.extend
     for h, tw in map(t.edge_halfedges, range(t.n_edges)):
         # face_of(h), corner_of(h), tail and head inline in this loop over every edge;
         # face[c - 2] is face[next_corner(c)]
@@ -204,18 +226,17 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
         i, j = face[c], face[c - 2]
         if i == j:
             continue
-        if tw >= 0:
+        n1 = N[h]
+        if tw >= 0 and n1 and N[tw] and _certainly_irrational(fd, f, tw // 3):
             # the common case inline, as in cotan_weights_fast: minus an irrational weight
-            n1, n2 = N[h], N[tw]
-            g = tw // 3
-            if n1 and n2 and _certainly_irrational(fd, f, g):
-                w = lazy((f, -n1, g, -n2))
-            else:
-                w = _weight(fd, h, tw, -1)
+            # (never 0: no zero test)
+            k = len(edge_raws)
+            extend((f, -n1, tw // 3, -N[tw]))
+            w = lazy_slice(edge_raws, k, k + 4)
         else:
             w = _weight(fd, h, tw, -1)
-        if not w:               # zero, or equal radicands in two spellings cancelled
-            continue
+            if not w:           # zero, or equal radicands in two spellings cancelled
+                continue
         ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
         if j in ri:                                  # another edge between i and j
             w = simplest(ri[j] + w)

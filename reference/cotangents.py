@@ -151,11 +151,11 @@ class FaceData:
 
     def __init__(self, G: list, S: list, N: list):
         self.G, self.S, self.N = G, S, N
-        self.residue, self.twos = [], []
-        for g in G:
-            r, p = _odd_residue(g)
-            self.residue.append(r)
-            self.twos.append(p)
+        # _odd_residue of every G, written out (one call per face was a tenth of the
+        # Gauss-Bonnet decision's time)
+        vs = [(g & -g).bit_length() - 1 for g in G]
+        self.residue = [(g >> v) % _RESIDUE_MODULUS for g, v in zip(G, vs)]
+        self.twos = [v & 1 for v in vs]
         self.parts = {1: (1, 1)}          # radicand m -> (s, M), see _split_root
         self._roots = [None] * len(G)
         self._by_G = {}                   # equal G on many faces (regular meshes)
@@ -225,7 +225,15 @@ class FaceData:
         """The same value as a :class:`CotanSum`; only for values known to be irrational
         (and raw numerators that are not 0)."""
         x = _new(CotanSum)
-        x._src, x._raw, x._hash = self, raw, None
+        x._src, x._seq, x._lo, x._hi, x._hash = self, raw, 0, len(raw), None
+        return x
+
+    def lazy_slice(self, seq, lo: int, hi: int) -> "CotanSum":
+        """:meth:`lazy` of ``seq[lo:hi]``, without that slice: a sequence shared by many
+        values (every edge weight of a Laplacian) costs the garbage collector one object,
+        not one per value.  ``seq`` must not change afterwards."""
+        x = _new(CotanSum)
+        x._src, x._seq, x._lo, x._hi, x._hash = self, seq, lo, hi, None
         return x
 
 
@@ -360,7 +368,7 @@ def face_data(surface) -> FaceData:
 class CotanSum(Surd):
     """An irrational :class:`~ddg_oracle.reference.exact.Surd` known as ``1/2 sum n_k / sqrt(G_k)``.
 
-    The terms are integers of a :class:`FaceData` (``raw = (f1, n1, f2, n2, ...)``,
+    The terms are integers of a :class:`FaceData` (``_raw = (f1, n1, f2, n2, ...)``,
     ``G_k = G[f_k]``, nonzero ``n_k``); the value is known to be irrational when
     it is made.  It *is* a Surd: everything a Surd does works, equal Surds
     compare and hash equal.  The canonical form (``_base``, ``_terms``) is
@@ -369,12 +377,18 @@ class CotanSum(Surd):
     0 are decided from the integers without it.
     """
 
-    __slots__ = ("_src", "_raw")
+    __slots__ = ("_src", "_seq", "_lo", "_hi")
+
+    @property
+    def _raw(self):
+        """``(f1, n1, f2, n2, ...)``: ``_seq[_lo:_hi]`` (the whole of ``_seq`` but on the
+        Laplacian's shared sequences, see :meth:`FaceData.lazy_slice`)."""
+        return self._seq[self._lo:self._hi]
 
     def __getattr__(self, name):
         if name != "_base" and name != "_terms":
             raise AttributeError(f"'CotanSum' object has no attribute {name!r}")
-        v = self._src.value(self._raw)
+        v = self._src.value(self._seq[self._lo:self._hi])          # self._raw
         if type(v) is not Surd or not v._base:       # pragma: no cover - a bug
             raise AssertionError(f"a CotanSum made for the rational value {v}")
         self._base, self._terms = v._base, v._terms
@@ -404,7 +418,7 @@ class CotanSum(Surd):
         return self._src.lazy(tuple(-x if i & 1 else x for i, x in enumerate(raw)))
 
     def _bound_count(self):
-        return len(self._raw) // 2
+        return (self._hi - self._lo) // 2
 
     def _bounds(self, k):
         if k > 8192:

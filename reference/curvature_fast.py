@@ -21,7 +21,10 @@ that for almost every face of a float mesh (:func:`ddg_oracle.reference.cotangen
 and those corners get a
 :class:`~ddg_oracle.reference.cotangents.CotanSum` cotangent (canonical form on demand;
 its hash, enclosures and sign come from the integers).  The other faces take
-the definition's route: canonical cotangent, then ``corner_angle``.
+the definition's route: canonical cotangent, then ``corner_angle``.  A vertex all of
+whose corners are of the first kind gets a :class:`CornerSum`: its corners as
+integers, the dict of those CotanSums built only when something needs it (sign,
+``float()`` and ``2 pi`` minus it do not).
 
 Gauss-Bonnet.  The total curvature minus ``2 pi chi`` regroups face by face as
 ``sum_f (pi - angle sum of f) + (2 |V_int| + |V_bd| - F - 2 chi) pi`` (see
@@ -46,8 +49,10 @@ from fractions import Fraction
 
 from .cotangents import _maybe_square, applies, face_data
 from .exact import Angle, corner_angle
+from .exact.angles import _arccot_bounds
 
-__all__ = ["applies", "angle_sums_fast", "corner_angles_fast", "gauss_bonnet_holds_fast"]
+__all__ = ["applies", "angle_sums_fast", "corner_angles_fast", "gauss_bonnet_holds_fast",
+           "CornerSum"]
 
 _ZERO = Fraction(0)
 
@@ -99,8 +104,11 @@ def corner_angles_fast(surface) -> list[tuple[Angle, Angle, Angle]]:
 def _angle_sums(surface) -> list[Angle]:
     t = surface.triangulation
     fd = face_data(surface)
-    N, residue, lazy = fd.N, fd.residue, fd.lazy
-    parts: list[dict] = [{} for _ in range(t.n_vertices)]
+    N, residue = fd.N, fd.residue
+    # per vertex the corners (f, n) with cot = n / (2 sqrt(G_f)), flat; the corners of faces
+    # that may hold multiples of pi / 24 go the definition's way, into that vertex's dict
+    raws: list[list] = [[] for _ in range(t.n_vertices)]
+    defined: dict[int, dict] = {}
     pis = [_ZERO] * t.n_vertices
     for f, face in enumerate(t.faces):
         special = _special(residue[f])
@@ -108,21 +116,102 @@ def _angle_sums(surface) -> list[Angle]:
         # corners 0, 1, 2 with the halfedges opposite them, 3f + 1, 3f + 2, 3f
         # (opposite_halfedge(f, c), written out: this loop runs over every corner)
         for v, h in zip(face, (k + 1, k + 2, k)):
-            n = 2 * N[h]                            # cot = n / (2 sqrt(G))
+            n = 2 * N[h]
             if special or not n:                    # maybe a multiple of pi / 24: as defined
                 a = corner_angle(fd.value((f, n)))
-                acc = parts[v]
-                for cot, k in a.parts.items():
-                    acc[cot] = acc.get(cot, 0) + k
+                acc = defined.setdefault(v, {})
+                for cot, m in a.parts.items():
+                    acc[cot] = acc.get(cot, 0) + m
                 pis[v] += a.pi_coefficient
             else:
-                cot = lazy((f, n))
-                acc = parts[v]
-                acc[cot] = acc.get(cot, 0) + 1
-    # each vertex's dict becomes its Angle's (a copy only where a multiplicity cancelled):
-    # a second dict per vertex would only feed the garbage collector
-    return [Angle._raw(p if all(p.values()) else {c: k for c, k in p.items() if k}, q)
-            for p, q in zip(parts, pis)]
+                raws[v] += (f, n)
+    out = []
+    for v, (raw, q) in enumerate(zip(raws, pis)):
+        if v not in defined:
+            # the common case: parts left to the first use that needs them (one object per
+            # vertex instead of one per corner, see CornerSum)
+            out.append(CornerSum._of(fd, tuple(raw), 1, q))
+            continue
+        acc = defined[v]
+        for i in range(0, len(raw), 2):
+            cot = fd.lazy_slice(raw, i, i + 2)
+            acc[cot] = acc.get(cot, 0) + 1
+        out.append(Angle._raw({c: m for c, m in acc.items() if m}, q))
+    return out
+
+
+class CornerSum(Angle):
+    """An :class:`~ddg_oracle.reference.exact.Angle` known as ``s sum_k arccot(n_k / (2
+    sqrt(G_k))) + r pi`` (``s = 1`` or ``-1``): an angle sum of :func:`angle_sums_fast`, or
+    ``2 pi`` or ``pi`` minus one (a defect, D2.2, or turning angle, R2.4), exact.
+
+    ``_corners = (f1, n1, f2, n2, ...)`` are corners of a :class:`~ddg_oracle.reference.
+    cotangents.FaceData` (``G_k = G[f_k]``, ``n_k != 0``).  It *is* an Angle: everything an
+    Angle does works.  Its parts (``{cotangent: multiplicity}``, one
+    :class:`~ddg_oracle.reference.cotangents.CotanSum` per distinct corner cotangent,
+    equal ones merged: the definition's dict) are built on first use (``__getattr__``:
+    the slot stays unset until then); the sign when no enclosure is needed, enclosures,
+    ``float()``, ``hash()``, negation and adding a multiple of pi are computed from the
+    integers without them.  Why: one object per vertex instead of one per corner, which
+    the garbage collector would visit over and over on a large mesh.
+    """
+
+    __slots__ = ("_src", "_corners", "_s")
+
+    @classmethod
+    def _of(cls, src, corners: tuple, s: int, r) -> "CornerSum":
+        a = object.__new__(cls)
+        a._src, a._corners, a._s, a._pi, a._hash, a._enc = src, corners, s, r, None, None
+        return a
+
+    @staticmethod
+    def _raw(parts, r):
+        # what Angle's arithmetic builds from a CornerSum's parts is a plain Angle
+        return Angle._raw(parts, r)
+
+    def __getattr__(self, name):
+        if name != "_parts":
+            raise AttributeError(f"'CornerSum' object has no attribute {name!r}")
+        lazy, raw, s = self._src.lazy_slice, self._corners, self._s
+        parts: dict = {}
+        for i in range(0, len(raw), 2):
+            c = lazy(raw, i, i + 2)
+            parts[c] = parts.get(c, 0) + s
+        self._parts = parts
+        return parts
+
+    def __reduce__(self):
+        # pickled as the plain Angle it equals (not with the whole mesh's FaceData)
+        return (Angle._raw, (self._parts, self._pi))
+
+    def _weight(self) -> int:
+        return len(self._corners) >> 1
+
+    def _one_signed(self) -> int:
+        return self._s
+
+    def _arccots_scaled(self, bits: int) -> tuple[int, int]:
+        # the corner's CotanSum lives only for its bounds
+        lazy, raw = self._src.lazy_slice, self._corners
+        lo = hi = 0
+        for i in range(0, len(raw), 2):
+            a, b = _arccot_bounds(lazy(raw, i, i + 2), bits)
+            lo += a
+            hi += b
+        return (lo, hi) if self._s > 0 else (-hi, -lo)
+
+    def __neg__(self):
+        return CornerSum._of(self._src, self._corners, -self._s, -self._pi)
+
+    def __add__(self, other):
+        # a rational multiple of pi (or the number 0) keeps the form; an angle with parts
+        # adds them (ArccotSum.__add__)
+        o = self._coerce(other)
+        if type(o) is Angle and not o._parts:
+            return CornerSum._of(self._src, self._corners, self._s, self._pi + o._pi) if o._pi else self
+        return Angle.__add__(self, other)
+
+    __radd__ = __add__
 
 
 def gauss_bonnet_holds_fast(surface) -> bool | None:
@@ -139,8 +228,8 @@ def gauss_bonnet_holds_fast(surface) -> bool | None:
     t = surface.triangulation
     fd = face_data(surface)
     N = fd.N
-    for f, G in enumerate(fd.G):
-        n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
+    # N[3f], N[3f + 1], N[3f + 2] are face f's N_2, N_0, N_1
+    for G, n2, n0, n1 in zip(fd.G, N[0::3], N[1::3], N[2::3]):
         if n0 * n1 + n1 * n2 + n2 * n0 != G or n0 * n1 * n2 >= G * (n0 + n1 + n2):
             return None
     boundary = len(t.boundary_vertices())

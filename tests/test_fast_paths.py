@@ -31,7 +31,8 @@ from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corne
                                             gauss_bonnet_holds_by_faces, turning_angles)
 from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
 from ddg_oracle.reference.errors import DegenerateFace, NotFlippable
-from ddg_oracle.reference.exact import Surd, pi, sqrt
+from ddg_oracle.reference.curvature_fast import CornerSum
+from ddg_oracle.reference.exact import Angle, Surd, pi, sqrt
 from ddg_oracle.reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
 from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_laplacian_from_weights,
                                             cotan_weights_from_corners as cotan_weights)
@@ -398,6 +399,45 @@ def test_fast_angle_sums_on_intrinsic_surfaces_and_the_benchmark_icosphere():
     cots = [c for a in fast for c in a.parts]         # the residue test lets a few through
     assert len(cots) == 3 * s.triangulation.n_faces
     assert sum(isinstance(c, CotanSum) for c in cots) > 0.95 * len(cots)
+
+
+def _parts_built(a) -> bool:
+    """Whether a CornerSum's parts slot is set (read through the slot itself, not through
+    ``__getattr__``, which would build them)."""
+    try:
+        Angle.__dict__["_parts"].__get__(a, type(a))
+    except AttributeError:
+        return False
+    return True
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.one_of(hard_meshes(), thin_triangles()))
+def test_corner_sums_answer_from_their_integers_as_their_parts_would(s):
+    """A CornerSum (the fast angle sum of a vertex without multiples of pi / 24) gives the
+    enclosures, sign, float and hash of the Angle of its parts, and keeps its form under
+    negation and a multiple of pi added (defects, turning angles) without building them;
+    pickled, it is that plain Angle."""
+    lazy = [a for a in curvature_fast.angle_sums_fast(s) if isinstance(a, CornerSum)]
+    assume(lazy)
+    for a in lazy:
+        assert a + 0 is a and 0 + a is a
+        for b in (a, -a, 2 * pi - a, a - pi, pi * Fraction(-3, 2) + a):
+            assert type(b) is CornerSum
+            for bits in (8, 70, 200):
+                b._scaled_at(bits)
+            sign, x, h = b.sign(), float(b), hash(b)
+            assert not _parts_built(b)
+            plain = Angle._raw(b._parts, b._pi)             # builds them
+            assert _parts_built(b) and type(plain) is Angle
+            for bits in (8, 70, 200):
+                assert b._scaled_at(bits) == plain._scaled_at(bits)
+            assert (sign, x, h) == (plain.sign(), float(plain), hash(plain))
+            assert b._weight() == plain._weight() == len(b._corners) // 2
+            assert b._one_signed() == plain._one_signed() == b._s
+            copy = pickle.loads(pickle.dumps(b))
+            assert type(copy) is Angle and copy == b and copy.parts == b.parts
+        assert type(a + a) is Angle and a + a == 2 * a
 
 
 def test_gauss_bonnet_falls_back_to_the_definition(monkeypatch):

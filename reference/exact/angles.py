@@ -150,16 +150,18 @@ class Angle(ArccotSum):
 
     def sign(self) -> int:
         """-1, 0 or 1, decided exactly (see the module docstring)."""
-        if not self._parts:
+        weight = self._weight()
+        if not weight:
             return (self._pi > 0) - (self._pi < 0)
         # every arccot lies in (0, pi): terms of one sign (a corner angle, a sum of corner
         # angles) have that sign, no enclosure needed
-        if self._pi >= 0 and all(m > 0 for m in self._parts.values()):
+        one = self._one_signed()
+        if one > 0 and self._pi >= 0:
             return 1
-        if self._pi <= 0 and all(m < 0 for m in self._parts.values()):
+        if one < 0 and self._pi <= 0:
             return -1
         limit = arccots.PRECISION_LIMIT
-        terms = max(1, sum(abs(m) for m in self._parts.values())).bit_length()
+        terms = weight.bit_length()
         bits = min(64 + terms, limit)
         # the exact zero test costs far more than an enclosure: it waits until one of
         # 128 bits (and the terms' widths) has failed too
@@ -195,9 +197,20 @@ class Angle(ArccotSum):
         lo, hi = self._scaled(bits)
         return Fraction(lo, 1 << bits), Fraction(hi, 1 << bits)
 
-    def _scaled_at(self, bits: int) -> tuple[int, int]:
-        """Integers lo <= theta * 2**bits <= hi, every term bounded with ``bits`` bits (on
-        integers: a float view costs one such enclosure, no Fraction)."""
+    # -- what the decisions read of the arccot part (a lazy subclass answers from its own data)
+
+    def _weight(self) -> int:
+        """``sum |m_i|``: how many arccots the enclosures add up."""
+        return sum(abs(m) for m in self._parts.values())
+
+    def _one_signed(self) -> int:
+        """1 if every multiplicity is positive, -1 if every one is negative, else 0."""
+        ms = self._parts.values()
+        return 1 if all(m > 0 for m in ms) else -1 if all(m < 0 for m in ms) else 0
+
+    def _arccots_scaled(self, bits: int) -> tuple[int, int]:
+        """Integers lo <= (sum m_i arccot(c_i)) * 2**bits <= hi, each arccot bounded with
+        ``bits`` bits."""
         lo = hi = 0
         for c, m in self._parts.items():
             a, b = _arccot_bounds(c, bits)
@@ -207,6 +220,12 @@ class Angle(ArccotSum):
             else:
                 lo += m * b
                 hi += m * a
+        return lo, hi
+
+    def _scaled_at(self, bits: int) -> tuple[int, int]:
+        """Integers lo <= theta * 2**bits <= hi, every term bounded with ``bits`` bits (on
+        integers: a float view costs one such enclosure, no Fraction)."""
+        lo, hi = self._arccots_scaled(bits)
         if self._pi:
             a, b = _pi_bounds(bits)
             n, d = self._pi.numerator, self._pi.denominator
@@ -219,7 +238,7 @@ class Angle(ArccotSum):
         return lo, hi
 
     def _interval_bits(self, bits: int) -> int:
-        n = 1 + sum(abs(m) for m in self._parts.values()) + abs(self._pi.numerator)
+        n = 1 + self._weight() + abs(self._pi.numerator)
         return bits + n.bit_length() + 3
 
     def _scaled(self, bits: int) -> tuple[int, int]:
@@ -235,7 +254,7 @@ class Angle(ArccotSum):
         # correctly rounded: the int quotients lo / 2^b and hi / 2^b are (Python's int
         # division rounds correctly); when they agree every number between them, theta
         # among them, rounds to that float
-        terms = (1 + sum(abs(m) for m in self._parts.values())).bit_length()
+        terms = (1 + self._weight()).bit_length()
         bits = self._enc[0] if self._enc is not None else 72 + 2 * terms
         while True:
             lo, hi = self._scaled(bits)
@@ -391,7 +410,7 @@ def _nearest_pi24(a: Angle) -> int:
     """The integer k with a = k pi / 24, for an angle known to be such a multiple: the only
     integer in the enclosure of 24 a / pi, refined until one is left (k grows with the
     multiplicities: a fixed precision would pick a neighbour of a large k)."""
-    size = (1 + sum(abs(m) for m in a._parts.values())).bit_length()   # |a| < pi 2^size
+    size = (1 + a._weight()).bit_length()                # |a| < pi 2^size
     bits = 40 + size
     while True:
         lo, hi = a._scaled(bits)                    # lo <= a 2^bits <= hi
