@@ -630,6 +630,14 @@ def test_term_product_of_integers_stays_integer(ta, tb):
     assert all(type(q) is int for q in got.values())
 
 
+@given(_term_dicts(st.one_of(st.integers(-10, 10), _BIG_FRACTIONS)),
+       _term_dicts(st.one_of(st.integers(-10, 10), _BIG_FRACTIONS)))
+def test_term_product_of_a_mix_is_exact_whichever_way_it_takes(ta, tb):
+    # the first coefficients pick the way (integers as they are, or integer pairs): any
+    # mix behind them still gives the exact product
+    assert surds_module._t_mul(ta, tb) == _naive_product(ta, tb)
+
+
 def test_term_product_cancels_to_nothing():
     # (sqrt2 + sqrt3)(sqrt2 - sqrt3) = 2 - 3: the sqrt6 terms cancel, and are dropped
     assert surds_module._t_mul({2: 1, 3: 1}, {2: 1, 3: -1}) == {1: -1}

@@ -258,28 +258,32 @@ def _t_add(ta, tb, negate=False):
 def _t_mul(ta, tb):
     """``ta * tb`` for term dicts over one base (radicands squarefree over it).
 
-    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.  Each output
-    coefficient is accumulated as an integer pair (numerator, denominator) and reduced
-    once: a Fraction product and sum cost about four gcds each, and after many intrinsic
-    flips the coefficients have hundreds of digits (the gcds were most of the time).
-    Integer coefficients stay integers.
+    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.  Integer
+    coefficients (the exact zero test's products) are multiplied and added as they are and
+    stay integers (``angles.py`` relies on that).  Rational ones are accumulated as integer
+    pairs (numerator, denominator) and reduced once per output term: a Fraction product
+    and sum cost about four gcds each, and after many intrinsic flips the coefficients
+    have hundreds of digits (the gcds were most of the time).  Which way is chosen by the
+    first coefficient of each (a scan of every one cost more than these small products):
+    both are exact for any mix.
     """
-    acc: dict[int, list] = {}
-    fractions = False
+    if not ta or not tb:
+        return {}
+    ints = type(next(iter(ta.values()))) is int and type(next(iter(tb.values()))) is int
+    acc: dict = {}
     for r1, q1 in ta.items():
-        n1, d1 = q1.numerator, q1.denominator
         for r2, q2 in tb.items():
             if r1 == 1:
-                r, n = r2, n1 * q2.numerator
+                r, g = r2, 1
             elif r2 == 1:
-                r, n = r1, n1 * q2.numerator
+                r, g = r1, 1
             else:
                 g = gcd(r1, r2)
-                if g == 1:
-                    r, n = r1 * r2, n1 * q2.numerator
-                else:
-                    r, n = (r1 // g) * (r2 // g), n1 * q2.numerator * g
-            d = d1 * q2.denominator
+                r = r1 * r2 if g == 1 else (r1 // g) * (r2 // g)
+            if ints:
+                acc[r] = acc.get(r, 0) + q1 * q2 * g
+                continue
+            n, d = q1.numerator * q2.numerator * g, q1.denominator * q2.denominator
             a = acc.get(r)
             if a is None:
                 acc[r] = [n, d]
@@ -291,13 +295,9 @@ def _t_mul(ta, tb):
                 e = a[1]
                 g = gcd(e, d)
                 a[0], a[1] = a[0] * (d // g) + n * (e // g), e // g * d
-        if type(q1) is not int:
-            fractions = True
-    if not fractions and any(type(q) is not int for q in tb.values()):
-        fractions = True
-    if fractions:
-        return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
-    return {r: n for r, (n, d) in acc.items() if n}
+    if ints:
+        return {r: n for r, n in acc.items() if n}
+    return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
 
 
 def _t_scale(terms, k):
