@@ -93,7 +93,9 @@ CURVATURE = """\
 from the float meshes of section 1.  **fast path**: what the public functions
 dispatch to, `ddg_oracle.reference.curvature_fast` (see its module docstring): the angle
 at a corner is `arccot(N / sqrt(G))` with the cotangent kept as a `CotanSum`
-(its hash and enclosures come from the integers), and Gauss-Bonnet needs, per
+(its hash and enclosures come from the integers), a vertex's angle sum as a
+`CornerSum` (its corners' integers; sign, enclosures, `float()` and `2 pi` minus
+it need no per-corner object), and Gauss-Bonnet needs, per
 face, only the integer identity `N0 N1 + N1 N2 + N2 N0 = G` with
 `N0 N1 N2 < G (N0 + N1 + N2)`, which proves that its three angles sum to pi;
 then it is combinatorial.  **definition**: `angle_sums_from_corners` (the

@@ -25,7 +25,7 @@ from itertools import accumulate, chain
 from math import isqrt
 
 from .combinatorics import face_of, next_corner
-from .cotangents import FaceData, _lengths_data, _maybe_square, face_data
+from .cotangents import CotanSum, FaceData, _lengths_data, face_data
 from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 from .sparse import SparseMatrix
@@ -50,7 +50,7 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
     g, n2 = face_of(t), N[t] * sign
     if n1 and n2:
         raw = (f, n1, g, n2)
-        if _certainly_irrational(fd, f, g):
+        if fd.certainly_irrational(f, g):
             return fd.lazy(raw)
         P = fd.G[f] * fd.G[g]
         return fd.value(raw) if isqrt(P) ** 2 == P else fd.lazy(raw)
@@ -58,12 +58,6 @@ def _weight(fd: FaceData, h: int, t: int, sign: int = 1):
         raw = (f, n1) if n1 else (g, n2)
         return fd.value(raw) if fd.is_square(raw[0]) else fd.lazy(raw)
     return _ZERO
-
-
-def _certainly_irrational(fd: FaceData, f: int, g: int) -> bool:
-    """``G_f G_g`` is certainly no square (from residues): the weight ``1/2 (n_1 /
-    sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is irrational."""
-    return fd.twos[f] != fd.twos[g] or not _maybe_square(fd.residue[f] * fd.residue[g])
 
 
 # --- the public functions -----------------------------------------------------------------
@@ -87,23 +81,23 @@ def cotan_weights_fast(surface) -> dict:
     """
     t = surface.triangulation
     fd = face_data(surface)
-    N, lazy_slice = fd.N, fd.lazy_slice
-    # the common case's raw (f, n1, g, n2) of every edge in one list (only appended to):
-    # one object for the garbage collector, not a tuple per edge
+    N, new = fd.N, object.__new__
+    # the common case's raw (f, n1, g, n2) of every edge in one list, as in _laplacian
     edge_raws: list[int] = []
     extend = edge_raws.extend
     out = {}
     for e, (h, tw) in enumerate(map(t.edge_halfedges, range(t.n_edges))):
         # the common case inline (an interior edge, both corners not right, G_f G_g not a
-        # square: a CotanSum), the rest through _weight; h // 3 is face_of(h), inline in
-        # this loop over every edge
+        # square: a CotanSum), the rest through _weight; h // 3 is face_of(h) and the
+        # CotanSum is made in place, in this loop over every edge
         if tw >= 0:
             n1, n2 = N[h], N[tw]
             f, g = h // 3, tw // 3
-            if n1 and n2 and _certainly_irrational(fd, f, g):
+            if n1 and n2 and fd.certainly_irrational(f, g):
                 k = len(edge_raws)
                 extend((f, n1, g, n2))
-                out[e] = lazy_slice(edge_raws, k, k + 4)
+                w = out[e] = new(CotanSum)         # FaceData.lazy_slice, written out
+                w._src, w._seq, w._lo, w._hi, w._hash = fd, edge_raws, k, k + 4, None
                 continue
         out[e] = _weight(fd, h, tw)
     return out
@@ -217,7 +211,7 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
     # the common case's raw (f, -n1, g, -n2) of every edge, in one list (only appended to;
     # each CotanSum reads its four ints): one object, not one tuple per edge
     edge_raws: list[int] = []
-    extend = edge_raws.extend
+    extend, new = edge_raws.extend, object.__new__
     for h, tw in map(t.edge_halfedges, range(t.n_edges)):
         # face_of(h), corner_of(h), tail and head inline in this loop over every edge;
         # face[c - 2] is face[next_corner(c)]
@@ -227,12 +221,13 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
         if i == j:
             continue
         n1 = N[h]
-        if tw >= 0 and n1 and N[tw] and _certainly_irrational(fd, f, tw // 3):
+        if tw >= 0 and n1 and N[tw] and fd.certainly_irrational(f, tw // 3):
             # the common case inline, as in cotan_weights_fast: minus an irrational weight
-            # (never 0: no zero test)
+            # (never 0: no zero test); FaceData.lazy_slice written out
             k = len(edge_raws)
             extend((f, -n1, tw // 3, -N[tw]))
-            w = lazy_slice(edge_raws, k, k + 4)
+            w = new(CotanSum)
+            w._src, w._seq, w._lo, w._hi, w._hash = fd, edge_raws, k, k + 4, None
         else:
             w = _weight(fd, h, tw, -1)
             if not w:           # zero, or equal radicands in two spellings cancelled

@@ -68,7 +68,8 @@ from fractions import Fraction
 from math import gcd, isqrt, lcm, prod
 
 from .combinatorics import next_corner
-from .exact.rationals import points_on_common_denominator, shared_denominator
+from .exact.rationals import (points_on_common_denominator, shared_denominator,
+                              shared_denominator_of_fractions)
 from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress, simplest
 from .metric import PiecewiseFlatSurface, degenerate_face
 from .polyhedral import PolyhedralSurface
@@ -160,6 +161,15 @@ class FaceData:
         self._roots = [None] * len(G)
         self._by_G = {}                   # equal G on many faces (regular meshes)
 
+    def certainly_irrational(self, f: int, g: int) -> bool:
+        """``G_f G_g`` is certainly no square (from residues), so a weight ``1/2 (n_1 /
+        sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is irrational
+        (:func:`_maybe_square` written out: this runs for every edge of a mesh)."""
+        if self.twos[f] != self.twos[g]:
+            return True
+        r = self.residue[f] * self.residue[g]
+        return not (_SQ64[r & 63] and _SQ1[r % _M1] and _SQ2[r % _M2] and _SQ3[r % _M3])
+
     def is_square(self, f: int) -> bool:
         """Whether ``G[f]`` is a perfect square (the face's cotangents are rational)."""
         return (not self.twos[f] and _maybe_square(self.residue[f])
@@ -206,7 +216,7 @@ class FaceData:
                 a[0] += n
             else:
                 a[0], a[1] = a[0] * d + n * a[1], a[1] * d
-        return {m: _fraction(n, d) for m, (n, d) in acc.items() if n}
+        return {m: Fraction(n, d) for m, (n, d) in acc.items() if n}
 
     def value(self, raw):
         """``1/2 sum n / sqrt(G[f])`` over ``raw`` as a canonical Surd, or a Fraction."""
@@ -217,21 +227,20 @@ class FaceData:
             m2, d2, k2 = self._roots[f2] or self.root(f2)
             if m1 != 1 and m2 != 1 and gcd(m1, m2) == 1:
                 return _make((m1, m2) if m1 < m2 else (m2, m1),
-                             {m1: _fraction(n1 * k1, d1), m2: _fraction(n2 * k2, d2)},
+                             {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
                              prune=False)
         return _value(self.terms(raw), self.parts)
 
     def lazy(self, raw) -> "CotanSum":
         """The same value as a :class:`CotanSum`; only for values known to be irrational
         (and raw numerators that are not 0)."""
-        x = _new(CotanSum)
-        x._src, x._seq, x._lo, x._hi, x._hash = self, raw, 0, len(raw), None
-        return x
+        return self.lazy_slice(raw, 0, len(raw))
 
     def lazy_slice(self, seq, lo: int, hi: int) -> "CotanSum":
         """:meth:`lazy` of ``seq[lo:hi]``, without that slice: a sequence shared by many
         values (every edge weight of a Laplacian) costs the garbage collector one object,
-        not one per value.  ``seq`` must not change afterwards."""
+        not one per value.  ``seq[lo:hi]`` must not change afterwards (appending to the
+        list is fine)."""
         x = _new(CotanSum)
         x._src, x._seq, x._lo, x._hi, x._hash = self, seq, lo, hi, None
         return x
@@ -313,7 +322,8 @@ def _positions_data(surface: PolyhedralSurface) -> FaceData:
     P = surface.positions
     degenerate = lambda f: _degenerate(surface, f)              # noqa: E731
     if surface.dimension == 3:
-        shared = shared_denominator(P)
+        # a PolyhedralSurface's coordinates are Fractions (polyhedral._point)
+        shared = shared_denominator_of_fractions(P, True)
         if shared is not None:
             return _positions_data_3d(surface, *shared)
     shared = _integer_squared_lengths(surface)
@@ -482,11 +492,6 @@ def _split_root(G: int):
 def _small_primes(s: int) -> tuple:
     """The primes below 100 of a product of distinct ones."""
     return tuple(p for p in _PRIMES if s % p == 0)
-
-
-def _fraction(n: int, d: int) -> Fraction:
-    """``Fraction(n, d)`` for ints, ``d > 0`` (the public constructor: it reduces)."""
-    return Fraction(n, d)
 
 
 def _coprime_large_parts(rads, parts) -> bool:
