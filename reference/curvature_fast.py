@@ -208,7 +208,9 @@ class CornerSum(Angle):
         # adds them (ArccotSum.__add__)
         o = self._coerce(other)
         if type(o) is Angle and not o._parts:
-            return CornerSum._of(self._src, self._corners, self._s, self._pi + o._pi) if o._pi else self
+            if not o._pi:
+                return self
+            return CornerSum._of(self._src, self._corners, self._s, self._pi + o._pi)
         return Angle.__add__(self, other)
 
     __radd__ = __add__

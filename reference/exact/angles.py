@@ -184,7 +184,10 @@ class Angle(ArccotSum):
                 nonzero = True                  # theta != 0: refining will separate it
             if bits >= limit:
                 break
-            bits = min(2 * bits, limit)             # the last try at the limit itself
+            # the zero test's precision next (never above twice this one), then doubling;
+            # the last try at the limit itself
+            bits = min(zero_test_bits if not nonzero and bits < zero_test_bits else 2 * bits,
+                       limit)
         why = ("its pi part is off the multiples of pi/24" if (self._pi * 24).denominator != 1
                else "exact zero test")
         raise Undecidable(

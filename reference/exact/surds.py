@@ -255,21 +255,27 @@ def _t_add(ta, tb, negate=False):
     return out, cancelled
 
 
+#: _t_mul multiplies and adds coefficients with denominators up to this size as they are
+_SMALL_DENOMINATOR_BITS = 64
+
+
 def _t_mul(ta, tb):
     """``ta * tb`` for term dicts over one base (radicands squarefree over it).
 
-    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.  Integer
-    coefficients (the exact zero test's products) are multiplied and added as they are and
-    stay integers (``angles.py`` relies on that).  Rational ones are accumulated as integer
-    pairs (numerator, denominator) and reduced once per output term: a Fraction product
-    and sum cost about four gcds each, and after many intrinsic flips the coefficients
-    have hundreds of digits (the gcds were most of the time).  Which way is chosen by the
-    first coefficient of each (a scan of every one cost more than these small products):
-    both are exact for any mix.
+    ``sqrt(r1)*sqrt(r2) = g*sqrt((r1/g)*(r2/g))`` with ``g = gcd(r1, r2)``.  Integers and
+    small fractions (the exact zero test's products) are multiplied and added as they are;
+    integer coefficients stay integers (``angles.py`` relies on that).  Large fractions are
+    accumulated as integer pairs (numerator, denominator) and reduced once per output
+    term: a Fraction product and sum cost about four gcds each, and after many intrinsic
+    flips the coefficients have hundreds of digits (the gcds were most of the time).  The
+    first coefficient of each picks the way (a scan of every one cost more than the small
+    products): both are exact for any mix.
     """
     if not ta or not tb:
         return {}
-    ints = type(next(iter(ta.values()))) is int and type(next(iter(tb.values()))) is int
+    q1, q2 = next(iter(ta.values())), next(iter(tb.values()))
+    direct = ((type(q1) is int or q1.denominator.bit_length() <= _SMALL_DENOMINATOR_BITS)
+              and (type(q2) is int or q2.denominator.bit_length() <= _SMALL_DENOMINATOR_BITS))
     acc: dict = {}
     for r1, q1 in ta.items():
         for r2, q2 in tb.items():
@@ -280,8 +286,9 @@ def _t_mul(ta, tb):
             else:
                 g = gcd(r1, r2)
                 r = r1 * r2 if g == 1 else (r1 // g) * (r2 // g)
-            if ints:
-                acc[r] = acc.get(r, 0) + q1 * q2 * g
+            if direct:
+                q = q1 * q2
+                acc[r] = acc.get(r, 0) + (q if g == 1 else q * g)
                 continue
             n, d = q1.numerator * q2.numerator * g, q1.denominator * q2.denominator
             a = acc.get(r)
@@ -295,8 +302,8 @@ def _t_mul(ta, tb):
                 e = a[1]
                 g = gcd(e, d)
                 a[0], a[1] = a[0] * (d // g) + n * (e // g), e // g * d
-    if ints:
-        return {r: n for r, n in acc.items() if n}
+    if direct:
+        return {r: q for r, q in acc.items() if q}
     return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
 
 
