@@ -162,9 +162,11 @@ class FaceData:
         self._by_G = {}                   # equal G on many faces (regular meshes)
 
     def certainly_irrational(self, f: int, g: int) -> bool:
-        """``G_f G_g`` is certainly no square (from residues), so a weight ``1/2 (n_1 /
-        sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is irrational
-        (:func:`_maybe_square` written out: this runs for every edge of a mesh)."""
+        """``G_f G_g`` is certainly no square (from residues), so a cotan weight (3.3)
+        ``1/2 (n_1 / sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is
+        irrational; exact (a residue that is no square mod m proves it).  False means
+        "maybe a square": the caller then decides with ``isqrt``.  (:func:`_maybe_square`
+        written out: this runs for every edge of a mesh.)"""
         if self.twos[f] != self.twos[g]:
             return True
         r = self.residue[f] * self.residue[g]
