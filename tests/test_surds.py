@@ -143,6 +143,30 @@ def test_refinement_of_shared_factors():
     assert sqrt(p * q) * sqrt(p * 5) == p * sqrt(q * 5)
 
 
+
+_PRIMES = (2, 3, 5, 7, 11, 13, 1000003, 998244353, 2**61 - 1)
+
+
+@given(st.lists(st.lists(st.sampled_from(_PRIMES), min_size=1, max_size=4),
+                min_size=1, max_size=30),
+       st.lists(st.sampled_from(_PRIMES), unique=True, max_size=4))
+def test_refine_many_elements_is_the_coprime_base_merged_one_by_one(factor_lists, coprime):
+    """More than 8 elements take the product shortcut (one gcd with the product of the
+    base so far); merged one at a time they take the gcd per element.  Both give the
+    same base: pairwise coprime, every element a product of powers of it."""
+    elements = [math.prod(f) for f in factor_lists]
+    base = surds_module._refine(elements, coprime=tuple(coprime))
+    one_by_one = tuple(coprime)
+    for n in elements:
+        one_by_one = surds_module._refine([n], coprime=one_by_one)
+    assert base == one_by_one
+    assert all(math.gcd(a, b) == 1 for i, a in enumerate(base) for b in base[:i])
+    for n in elements + list(coprime):
+        for b in base:
+            while n % b == 0:
+                n //= b
+        assert n == 1
+
 def test_constructor_inputs():
     assert Surd() == 0 and Surd(3) == 3 and Surd(Fraction(2, 3)) == Fraction(2, 3)
     assert Surd(0.1) == Fraction(0.1)

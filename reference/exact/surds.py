@@ -157,20 +157,31 @@ def _refine(elements, coprime=()):
     """
     out = list(coprime)
     work = [n for n in elements if n > 1]
+    # many elements (the zero test of a 128-corner vertex refines 128 distinct 300-bit
+    # radicands): one gcd with the product of ``out`` tells that n is coprime to all of
+    # it, the common case, where a gcd per element made the loop quadratic.  A few merged
+    # into a large base: the product would cost more than the gcds it saves.
+    whole = prod(out) if len(work) > 8 else None
     while work:
         n = work.pop()
+        if whole is not None and gcd(n, whole) == 1:
+            out.append(n)
+            whole *= n
+            continue
         for i, b in enumerate(out):
             g = gcd(n, b)
             if g != 1:
                 out[i] = out[-1]
                 out.pop()
+                if whole is not None:
+                    whole //= b
                 work.append(g)
                 if b != g:
                     work.append(b // g)
                 if n != g:
                     work.append(n // g)
                 break
-        else:
+        else:               # never with the product: gcd(n, whole) != 1 named such a b
             out.append(n)
     result = []
     for c in out:
