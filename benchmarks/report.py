@@ -198,9 +198,10 @@ exact / Gauss-Bonnet / libigl, one run for signs and floats.
 The target "float views as fast as the exact values" (issue 18) is no longer met, and why:
 since commit abf2ba2 an exact angle sum is a `CornerSum`, its corners' integers, so making
 the exact values no longer computes anything per corner (the sample meshes' `exact` fell
-from 1.86 s to 0.67 s), while a float view still needs one enclosure per corner (1.50 s
-before, 1.53 s now; 2 to 4.5 times faster than at 0225b43, section 11).  The target was set
-when the exact values built and hashed one object per corner.
+from 1.86 s at 6f9028c to the figure in the targets table), while a float view still needs
+one enclosure per corner (1.50 s at 6f9028c; 2 to 4.5 times faster than at 0225b43,
+section 11).  The target was set when the exact values built and hashed one object per
+corner.
 """
 
 REAL_FLIPS = """\
