@@ -167,6 +167,16 @@ def test_refine_many_elements_is_the_coprime_base_merged_one_by_one(factor_lists
                 n //= b
         assert n == 1
 
+
+def test_refine_many_coprime_elements_costs_one_gcd_each(monkeypatch):
+    """The product shortcut is taken: 40 distinct primes cost one gcd each against the
+    product of the base so far, not one per element of it (780 for 40)."""
+    primes = [p for p in range(10**6, 10**6 + 600) if all(p % q for q in range(2, 1001))][:40]
+    calls = []
+    monkeypatch.setattr(surds_module, "gcd", lambda a, b: calls.append(1) or math.gcd(a, b))
+    assert surds_module._refine(primes) == tuple(primes)
+    assert len(calls) == len(primes)
+
 def test_constructor_inputs():
     assert Surd() == 0 and Surd(3) == 3 and Surd(Fraction(2, 3)) == Fraction(2, 3)
     assert Surd(0.1) == Fraction(0.1)
