@@ -208,8 +208,10 @@ class FaceData:
         """``{m: q}`` with ``sum q sqrt(m) = 1/2 sum n / sqrt(G[f])`` over the pairs
         ``raw = (f1, n1, f2, n2, ...)``: equal radicands added, zeros dropped."""
         acc: dict[int, list] = {}
+        roots, root = self._roots, self.root
         for i in range(0, len(raw), 2):
-            m, d, k = self.root(raw[i])
+            f = raw[i]
+            m, d, k = roots[f] or root(f)
             n = raw[i + 1] * k
             a = acc.get(m)
             if a is None:
@@ -222,15 +224,33 @@ class FaceData:
 
     def value(self, raw):
         """``1/2 sum n / sqrt(G[f])`` over ``raw`` as a canonical Surd, or a Fraction."""
-        if len(raw) == 4:
-            # an edge weight, the common case: two coprime radicands are their own base
+        if len(raw) == 4 and raw[1] and raw[3]:
+            # an edge weight, the common case (what terms() and _value() give, written
+            # out: this runs for every edge of a mesh)
             f1, n1, f2, n2 = raw
             m1, d1, k1 = self._roots[f1] or self.root(f1)
             m2, d2, k2 = self._roots[f2] or self.root(f2)
-            if m1 != 1 and m2 != 1 and gcd(m1, m2) == 1:
-                return _make((m1, m2) if m1 < m2 else (m2, m1),
-                             {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
-                             prune=False)
+            if m1 == m2:
+                # one radicand (faces of one shape: a quarter of a regular mesh's edges)
+                n = n1 * k1 + n2 * k2 if d1 == d2 else n1 * k1 * d2 + n2 * k2 * d1
+                if not n:
+                    return _ZERO
+                q = Fraction(n, d1 if d1 == d2 else d1 * d2)
+                return q if m1 == 1 else _make((m1,), {m1: q}, prune=False)
+            g = gcd(m1, m2)
+            if g == 1:
+                # coprime radicands are their own base (1, the rational part, is none)
+                base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
+            else:
+                M1, M2 = self.parts[m1][1], self.parts[m2][1]
+                if M1 != M2 and gcd(M1, M2) != 1:
+                    return _refined(self.terms(raw), self.parts)
+                # equal or coprime large parts, squarefree small ones: g, m1 / g and
+                # m2 / g are pairwise coprime, the coarsest coprime base (_value's
+                # grouping: what both share, what each has alone)
+                base = tuple(sorted(x for x in (g, m1 // g, m2 // g) if x != 1))
+            return _make(base, {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
+                         prune=False)
         return _value(self.terms(raw), self.parts)
 
     def lazy(self, raw) -> "CotanSum":

@@ -227,6 +227,31 @@ def test_canonical_values_with_large_shared_primes_and_hidden_squares():
             assert cotangents._refined(terms, fd.parts) == expected
 
 
+def test_edge_values_are_the_general_route_written_out():
+    """FaceData.value of an edge's four integers (f1, n1, f2, n2) takes its own route
+    (equal, coprime, sharing small primes, sharing a large prime, a rational face,
+    terms that cancel); it gives the canonical form the general route (terms, then
+    _value) gives, base and coefficients alike, and the value 1/2 sum n / sqrt(G)."""
+    G = [101 * 103, 101 * 107 * 4, 101 ** 2 * 2 * 9, 103, 4 * 103, 49, 4 * 49,
+         6 * 101 * 113, 6 * 5, 9 * 30, 10 * 7, 101 ** 2 * 103 * 3]
+    fd = cotangents.FaceData(G, [1] * len(G), [1] * (3 * len(G)))
+    seen = set()
+    for f in range(len(G)):
+        for g in range(len(G)):
+            for n1, n2 in ((1, 1), (1, -1), (1, -2), (-3, 2), (2, -1), (5, 7)):
+                raw = (f, n1, g, n2)
+                fast = fd.value(raw)
+                general = cotangents._value(fd.terms(raw), fd.parts)
+                expected = (Fraction(n1, 2) * sqrt(Fraction(1, G[f]))
+                            + Fraction(n2, 2) * sqrt(Fraction(1, G[g])))
+                assert type(fast) is type(general) and fast == general == expected
+                if type(fast) is Surd:
+                    assert fast.base == general.base and fast._terms == general._terms
+                seen.add((type(fast), len(fast.base) if type(fast) is Surd else 0))
+    # rational values (a square G, or terms that cancel) and bases of 1, 2 and 3 elements
+    assert {(Fraction, 0), (Surd, 1), (Surd, 2), (Surd, 3)} <= seen
+
+
 # --- the lazy values: CotanSum ------------------------------------------------------------
 
 
