@@ -298,8 +298,18 @@ def _t_mul(ta, tb):
                 g = gcd(r1, r2)
                 r = r1 * r2 if g == 1 else (r1 // g) * (r2 // g)
             if direct:
-                q = q1 * q2
-                acc[r] = acc.get(r, 0) + (q if g == 1 else q * g)
+                # a nonzero product; a sum that cancels leaves the dict at once (no
+                # filtering pass over the result: this runs in every exact zero test)
+                q = q1 * q2 if g == 1 else q1 * q2 * g
+                s = acc.get(r)
+                if s is None:
+                    acc[r] = q
+                else:
+                    s += q
+                    if s:
+                        acc[r] = s
+                    else:
+                        del acc[r]
                 continue
             n, d = q1.numerator * q2.numerator * g, q1.denominator * q2.denominator
             a = acc.get(r)
@@ -314,7 +324,7 @@ def _t_mul(ta, tb):
                 g = gcd(e, d)
                 a[0], a[1] = a[0] * (d // g) + n * (e // g), e // g * d
     if direct:
-        return {r: q for r, q in acc.items() if q}
+        return acc
     return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
 
 
