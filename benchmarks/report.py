@@ -471,8 +471,8 @@ def _sidebyside(res: dict) -> list[str]:
     out = [SIDEBYSIDE, _meta(res),
            f"Before: {res['base']}; after: {res['this']}; {rounds}.{drift}  "
            f"{within} of {len(rows)} lines within 10%, {len(moved) - len(slower)} faster, "
-           f"{len(slower)} slower, {len(collector)} of them within 10% with the collector "
-           "paused; the lines not within 10%:", "",
+           + (f"{len(slower)} slower, {len(collector)} of them within 10% with the collector "
+              "paused" if slower else "none slower") + "; the lines not within 10%:", "",
            "| line | before s | after s | after / before | collector paused: before s | "
            "after s | after / before |", "|---|---|---|---|---|---|---|"]
     for r in sorted(moved, key=lambda r: -r["after"] / r["before"]):

@@ -27,3 +27,30 @@ def test_every_timing_line_is_read_with_its_key():
         ("real", "fan 128, exactly planar", 128, "", "signs"): 0.01,
         ("real", "fan 128, exactly planar", 128, "", "floats"): 0.02,
     }
+
+
+def _row(key, before, after, paused=None):
+    r = {"key": key, "before": before, "after": after}
+    if paused:
+        r["paused_before"], r["paused_after"] = paused
+    return r
+
+
+def test_the_side_by_side_summary_counts_lines_as_the_bar_reads_them():
+    """Lines under 10 ms are left out; a line more than 10% slower is counted as such,
+    and apart when it is within 10% with the collector paused; none slower says so."""
+    from benchmarks.report import _sidebyside
+    peer = ["cotan", "icosphere", 80, "numpy (float64)", "weights"]
+    mine = ["cotan", "icosphere", 80, "reference fast path", "weights"]
+    res = {"base": "a", "this": "b", "rounds": 2, "meta": {}}
+    rows = [_row(peer, 0.10, 0.104), _row(mine, 0.10, 0.08),
+            _row(mine[:3] + ["x", "y"], 0.001, 1.0),
+            _row(mine[:3] + ["slow", "gc"], 0.10, 0.12, (0.10, 0.105)),
+            _row(mine[:3] + ["slow", "code"], 0.10, 0.12, (0.10, 0.12))]
+    text = "\n".join(_sidebyside(dict(res, rows=rows)))
+    assert "(the peers, 1 lines) moved by 1.04 to 1.04" in text
+    assert ("1 of 4 lines within 10%, 1 faster, 2 slower, 1 of them within 10% with the "
+            "collector paused" in text)
+    assert "x / y" not in text and "slow / code | 0.1000 | 0.1200 | 1.20" in text
+    text = "\n".join(_sidebyside(dict(res, rows=rows[:2])))
+    assert "1 of 2 lines within 10%, 1 faster, none slower;" in text
