@@ -20,12 +20,12 @@ def run(mode: Mode) -> dict:
         t, runs, (d, log) = median_time(lambda: flip_to_delaunay(m), mode)
         rows.append({"faces": nf, "peer": "in place (IntrinsicTriangulation)", "seconds": t,
                      "runs": runs, "flips": len(log), "flips_per_s": len(log) / t})
-        say(f"  flips {nf:6} in place   {len(log):6} flips {t:8.3f} s")
+        say(f"  flips {nf:6} in place   {len(log):6} flips {t:8.4f} s")
         if nf <= (2100 if mode.quick else 5100):
             t, runs, (d, log) = median_time(lambda: peers.flip_to_delaunay_immutable(m), mode)
             rows.append({"faces": nf, "peer": "immutable flips (before)", "seconds": t,
                          "runs": runs, "flips": len(log), "flips_per_s": len(log) / t})
-            say(f"  flips {nf:6} immutable {len(log):6} flips {t:8.3f} s")
+            say(f"  flips {nf:6} immutable {len(log):6} flips {t:8.4f} s")
     fits = {}
     for peer in {r["peer"] for r in rows}:
         pts = [(r["faces"], r["seconds"]) for r in rows if r["peer"] == peer]
@@ -57,5 +57,5 @@ def run_r3(mode: Mode) -> dict:
                      "runs": runs, "flips": len(log),
                      "max_terms": max(_terms(x) for x in data),
                      "max_terms_h": max((_terms(r.h_after) for r in log), default=0)})
-        say(f"  r3 {label:16} {m.triangulation.n_faces:5} {len(log):5} flips {t:8.3f} s")
+        say(f"  r3 {label:16} {m.triangulation.n_faces:5} {len(log):5} flips {t:8.4f} s")
     return {"rows": rows}

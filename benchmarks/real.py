@@ -112,10 +112,10 @@ def _row(label: str, s: PolyhedralSurface, mode: Mode) -> dict:
         V, F = s.to_arrays()
         V, F = np.asarray(V, dtype=float), np.asarray(F, dtype=np.int64)
         row["libigl_s"], _, _ = median_time(lambda: igl.gaussian_curvature(V, F), mode)
-    # milliseconds printed: sidebyside reads these lines, and a 10-ms rounding step was
-    # a 25% move on the fans
-    say(f"  real {label:40} {nf:6} faces  exact {t_exact:7.3f}  signs {t_sign:7.3f}  "
-        f"floats {t_float:7.3f}  undecided {undecided}  zero tests {zero_tests.calls}")
+    # a tenth of a millisecond printed: sidebyside reads these lines, and a 10-ms
+    # rounding step was a 25% move on the fans (a 1-ms step still 8% on a 12-ms line)
+    say(f"  real {label:40} {nf:6} faces  exact {t_exact:8.4f}  signs {t_sign:8.4f}  "
+        f"floats {t_float:8.4f}  undecided {undecided}  zero tests {zero_tests.calls}")
     return row
 
 
@@ -131,7 +131,7 @@ def _flip_row(label: str, s: PolyhedralSurface) -> dict:
         with _Counter(angles, "_pi24_multiple") as zero_tests:
             kept = all(a == b for a, b in zip(angle_sums(m), angle_sums(d)))
         t_check = time.process_time() - t0
-    say(f"  real {label}: {len(log)} flips {t_flip:.3f} s ({exact.calls} exact decreases), "
+    say(f"  real {label}: {len(log)} flips {t_flip:.4f} s ({exact.calls} exact decreases), "
         f"angle sums kept: {kept}" + (f" ({t_check:.2f} s)" if kept is not None else ""))
     return {"mesh": label, "faces": s.triangulation.n_faces, "flips": len(log),
             "flip_s": t_flip, "exact_decreases": exact.calls, "check_s": t_check, "kept": kept,
