@@ -225,8 +225,8 @@ class FaceData:
     def value(self, raw):
         """``1/2 sum n / sqrt(G[f])`` over ``raw`` as a canonical Surd, or a Fraction."""
         if len(raw) == 4 and raw[1] and raw[3]:
-            # an edge weight, the common case (what terms() and _value() give, written
-            # out: this runs for every edge of a mesh)
+            # an edge weight, the common case: what terms() and _value() give, without
+            # their dict of lists (this runs for every edge of a mesh)
             f1, n1, f2, n2 = raw
             m1, d1, k1 = self._roots[f1] or self.root(f1)
             m2, d2, k2 = self._roots[f2] or self.root(f2)
@@ -237,18 +237,9 @@ class FaceData:
                     return _ZERO
                 q = Fraction(n, d1 if d1 == d2 else d1 * d2)
                 return q if m1 == 1 else _make((m1,), {m1: q}, prune=False)
-            g = gcd(m1, m2)
-            if g == 1:
-                # coprime radicands are their own base (1, the rational part, is none)
-                base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
-            else:
-                M1, M2 = self.parts[m1][1], self.parts[m2][1]
-                if M1 != M2 and gcd(M1, M2) != 1:
-                    return _refined(self.terms(raw), self.parts)
-                # equal or coprime large parts, squarefree small ones: g, m1 / g and
-                # m2 / g are pairwise coprime, the coarsest coprime base (_value's
-                # grouping: what both share, what each has alone)
-                base = tuple(sorted(x for x in (g, m1 // g, m2 // g) if x != 1))
+            base = _pair_base(m1, m2, self.parts)
+            if base is None:
+                return _refined(self.terms(raw), self.parts)
             return _make(base, {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
                          prune=False)
         return _value(self.terms(raw), self.parts)
@@ -531,6 +522,21 @@ def _coprime_large_parts(rads, parts) -> bool:
     return True
 
 
+def _pair_base(m1: int, m2: int, parts):
+    """The coarsest coprime base of two distinct radicands (what :func:`_value`'s grouping
+    gives for two), or None when their large parts share a prime (:func:`_refined`)."""
+    g = gcd(m1, m2)
+    if g == 1:
+        # coprime radicands are their own base (1, the rational part, is none)
+        return (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
+    M1, M2 = parts[m1][1], parts[m2][1]
+    if M1 != M2 and gcd(M1, M2) != 1:
+        return None
+    # equal or coprime large parts, squarefree small ones: g, m1 / g and m2 / g are
+    # pairwise coprime (what both share, what each has alone)
+    return tuple(sorted(x for x in (g, m1 // g, m2 // g) if x != 1))
+
+
 def _value(terms: dict, parts):
     """``sum q * sqrt(m)`` over ``terms = {m: q}`` (q nonzero Fractions) as a canonical
     Surd, or a Fraction when rational."""
@@ -540,11 +546,8 @@ def _value(terms: dict, parts):
         (m, q), = terms.items()
         return q if m == 1 else _make((m,), terms, prune=False)
     if len(terms) == 2:                 # an edge: two faces, the common case
-        m1, m2 = terms
-        if gcd(m1, m2) == 1:
-            # coprime radicands are their own base (1, the rational part, is none)
-            base = (m2,) if m1 == 1 else (m1,) if m2 == 1 else (m1, m2) if m1 < m2 else (m2, m1)
-            return _make(base, terms, prune=False)
+        base = _pair_base(*terms, parts)
+        return _refined(terms, parts) if base is None else _make(base, terms, prune=False)
     if not _coprime_large_parts(terms, parts):
         return _refined(terms, parts)
     # The coarsest coprime base: one element per set of radicands a factor divides.

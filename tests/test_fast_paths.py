@@ -14,6 +14,7 @@ No timings here (they live in benchmarks/).
 
 import pickle
 import random
+from math import gcd, prod
 from fractions import Fraction
 from unittest import mock
 
@@ -227,6 +228,20 @@ def test_canonical_values_with_large_shared_primes_and_hidden_squares():
             assert cotangents._refined(terms, fd.parts) == expected
 
 
+_PRIMORIAL_100 = prod(p for p in range(2, 100) if all(p % q for q in range(2, p)))
+
+
+def _assert_coprime_base(base, terms, coarsest):
+    """``base``: sorted, pairwise coprime, every radicand of ``terms`` the product of some of
+    its elements; ``coarsest``: no two elements dividing the same radicands (one would do)."""
+    assert list(base) == sorted(base) and all(b > 1 for b in base)
+    assert all(gcd(a, b) == 1 for i, a in enumerate(base) for b in base[i + 1:])
+    for m in terms:
+        assert m == prod(b for b in base if m % b == 0)
+    patterns = [frozenset(m for m in terms if m % b == 0) for b in base]
+    assert all(patterns) and (not coarsest or len(set(patterns)) == len(patterns))
+
+
 def test_edge_values_are_the_general_route_written_out():
     """FaceData.value of an edge's four integers (f1, n1, f2, n2) takes its own route
     (equal, coprime, sharing small primes, sharing a large prime, a rational face,
@@ -247,6 +262,11 @@ def test_edge_values_are_the_general_route_written_out():
                 assert type(fast) is type(general) and fast == general == expected
                 if type(fast) is Surd:
                     assert fast.base == general.base and fast._terms == general._terms
+                    # the coarsest base unless two different large parts (primes above
+                    # 100) share a prime: then gcd splitting refines it further
+                    L = [m // gcd(m, _PRIMORIAL_100) for m in (fd.root(f)[0], fd.root(g)[0])]
+                    shared = L[0] != L[1] and gcd(*L) != 1
+                    _assert_coprime_base(fast.base, fast._terms, coarsest=not shared)
                 seen.add((type(fast), len(fast.base) if type(fast) is Surd else 0))
     # rational values (a square G, or terms that cancel) and bases of 1, 2 and 3 elements
     assert {(Fraction, 0), (Surd, 1), (Surd, 2), (Surd, 3)} <= seen
