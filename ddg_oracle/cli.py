@@ -4,7 +4,9 @@ them on given meshes, print the catalog.
 Exit codes (the same for every subcommand, so CI can tell a finding from a broken tool):
 
 - 0: no failure (passes, not applicable, tie disagreements, expected conventions);
-- 1: a property failed or a checked implementation crashed (or, for ``theorems
+- 1: a property failed, a checked implementation crashed or hung, or a check ran fewer
+  examples than its profile asks for (``incomplete``; ``check --accept-incomplete``
+  accepts it) (or, for ``theorems
   --check``, the table is not true; for ``compare``, an implementation differs);
 - 2: bad usage or bad input (one line on stderr, no traceback);
 - 3: ddg-oracle itself failed (its traceback, and a request for a bug report).
@@ -34,6 +36,7 @@ EXIT_CODES = """\
 exit codes:
   0  no failure (passes, not applicable, tie disagreements, expected conventions)
   1  a property failed or a checked implementation crashed
+     (check: or hung, or a check was incomplete, unless --accept-incomplete)
   2  bad usage or bad input (one line on stderr)
   3  ddg-oracle itself failed (traceback; please report it)"""
 
@@ -133,6 +136,10 @@ def parser() -> argparse.ArgumentParser:
                         "compact report")
     c.add_argument("--width", type=int, default=100, metavar="COLUMNS",
                    help="columns of the compact report (default 100)")
+    c.add_argument("--accept-incomplete", action="store_true",
+                   help="exit 0 although some checks are incomplete (their budget ran out, "
+                        "or the implementation declined most examples, before the profile's "
+                        "number of examples ran); they are still reported as incomplete")
     c.add_argument("--expect-conventions", action="store_true",
                    help="a failure of an implementation using a documented library convention "
                         "(e.g. 'libigl(boundary=library)') that the reference-convention adapter "
@@ -301,6 +308,16 @@ def _warn(message: str) -> None:
     print(f"ddg-oracle: note: {message}", file=sys.stderr)
 
 
+def _warn_near_misses(impls) -> None:
+    """A warning per implementation with a method that looks like a protocol method it
+    lacks (a misnamed ``cotmatrix``): its properties would be silently not applicable."""
+    from ddg_oracle.properties.protocol import near_miss_warning
+    for impl in impls:
+        said = near_miss_warning(impl)
+        if said:
+            print(f"ddg-oracle: warning: {said}", file=sys.stderr)
+
+
 def _start(specs, timeout):
     """{spec: implementation}: the reference in this process, the others isolated, started
     in parallel; an unloadable spec raises ImplementationNotFound (exit 2)."""
@@ -453,6 +470,7 @@ def _check(args, argv) -> int:
     plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
     pool = workers > 1 or client is not None
     started = _start([s for s in specs if not pool or s not in plain], args.timeout)
+    _warn_near_misses(started.values())
     names = {s: getattr(i, "name", s) for s, i in started.items()}
     names.update({s: s for s in plain if s not in names})   # their display name is the name
     if not pool:
@@ -491,7 +509,9 @@ def _check(args, argv) -> int:
 
     from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
     from ddg_oracle.report import write_report
-    bad = [r for r in results if not r.ok]
+    from ddg_oracle.properties.runner import INCOMPLETE
+    bad = [r for r in results if not r.ok
+           and not (args.accept_incomplete and r.status == INCOMPLETE)]
     # display name -> spec: of the implementations started here, else as results say
     spec_of = {r.implementation: r.spec for r in results if r.spec}
     spec_of.update({n: s for s, n in names.items()})
@@ -522,7 +542,8 @@ def _check(args, argv) -> int:
                 print("\n" + describe(r, files=folders.get(k)))
     else:
         print(terminal_report(results, width=args.width, files=folders))
-    print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed), args.width))
+    print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed,
+                                  args.accept_incomplete), args.width))
     if args.report:
         print(f"report: {where / 'summary.md'}")
     elif files:
@@ -584,6 +605,7 @@ def _verify(args) -> int:
     if args.impl:
         started = _start([args.impl], args.timeout)
         impl = started[args.impl]
+        _warn_near_misses([impl])
         try:
             lines = vectors.answers(corpus, impl)
             float32 = float32 or machine_epsilon(impl) > FLOAT64_EPSILON
@@ -592,16 +614,17 @@ def _verify(args) -> int:
             getattr(impl, "close", lambda: None)()
         if args.write_answers:
             Path(args.write_answers).write_text(
-                "".join(json.dumps(x, allow_nan=False) + "\n" for x in lines), encoding="utf-8")
+                "".join(json.dumps(x, allow_nan=False) + "\n" for x in lines
+                        if "not_run" not in x), encoding="utf-8")
     else:
         lines = vectors.read_answers(args.answers)
         name = args.answers
     verdicts = vectors.verify(corpus, lines, float32=float32)
     for x in verdicts:
-        if x.status == "FAIL":
-            print(f"FAIL {x.id}: {x.message}")
+        if x.status in ("FAIL", "not run"):
+            print(f"{x.status.upper() if x.status == 'FAIL' else x.status} {x.id}: {x.message}")
     counts = {s: sum(x.status == s for x in verdicts)
-              for s in ("pass", "FAIL", "acceptable", "not applicable")}
+              for s in ("pass", "FAIL", "acceptable", "not applicable", "not run")}
     print(f"{name}: {len(verdicts)} cases ({'float32' if float32 else 'float64'} tolerances): "
           + ", ".join(f"{n} {s}" for s, n in counts.items() if n or s in ("pass", "FAIL")))
     return 1 if counts["FAIL"] else 0

@@ -24,13 +24,14 @@ import multiprocessing as mp
 import os
 import resource
 import tempfile
+import time
 import traceback
 
-from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, call_limit, exit_text, rows_of,
-                                          stderr_tail)
-from ddg_oracle.properties.budget import check_time_left, time_left
+from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
+                                          rows_of, stderr_tail)
+from ddg_oracle.properties.budget import check_time_left, cut_short, time_left
 from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
-                                           declared_conventions, machine_epsilon,
+                                           declared_conventions, machine_epsilon, near_misses,
                                            require_protocol)
 
 
@@ -94,7 +95,8 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
         methods = sorted(require_protocol(impl))
         declared_conventions(impl)               # a malformed declaration: refused here
         conn.send(("ready", methods, (getattr(impl, "name", spec), machine_epsilon(impl),
-                                      dict(getattr(impl, "conventions", None) or {}))))
+                                      dict(getattr(impl, "conventions", None) or {}),
+                                      near_misses(impl))))
     except NotAnImplementation as e:
         conn.send(("not-an-implementation", str(e), None))
         return
@@ -113,6 +115,8 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
             conn.send(("ok", getattr(impl, method)(*args), None))
         except OutsideDomain as e:        # an answer, not a crash: re-raised as such
             conn.send(("outside", str(e), None))
+        except NotSent as e:              # a program never saw it: re-raised as such
+            conn.send(("not sent", str(e), None))
         except MemoryError as e:
             conn.send(("memory", "".join(traceback.format_exception_only(type(e), e)).strip(),
                        None))
@@ -169,7 +173,7 @@ class Isolated:
             self._kill()
             raise ImplementationNotFound(payload)
         self.methods = frozenset(payload)
-        self.name, self.machine_epsilon, self.conventions = name
+        self.name, self.machine_epsilon, self.conventions, self.near_misses = name
 
     def _abandon(self) -> None:
         """Interrupted (Ctrl-C, the time limit of a property example) while a request or its
@@ -204,6 +208,7 @@ class Isolated:
         wait = limit if left is None else min(limit, left)
         if self._proc is None or not self._proc.is_alive():
             self._start()
+        started = time.monotonic()
         try:
             self._conn.send((method, args))
         except (BrokenPipeError, OSError):
@@ -219,13 +224,9 @@ class Isolated:
             self._abandon()
             raise
         if not done:
-            self._kill()
-            self._start()
-            if wait < limit:
-                raise ImplementationCrashed(
-                    self.name, method, f"did not return within {wait:.3g} s, the rest of the "
-                    f"check task's time budget (killed); a longer budget: ddg-oracle check "
-                    f"--budget SECONDS")
+            self._abandon()                 # a fresh worker for the next call, if one comes
+            if wait < limit:                # the task's budget ran out: a hang, or a late call
+                raise cut_short(f"{self.name}.{method}", started)
             scaled = "" if limit == self.timeout else \
                 f" ({self.timeout:g} s per {ROWS_PER_TIMEOUT:,} faces)"
             raise ImplementationCrashed(self.name, method,
@@ -254,6 +255,8 @@ class Isolated:
                 if self.memory else f"ran out of memory ({payload})")
         if status == "outside":
             raise OutsideDomain(payload)
+        if status == "not sent":
+            raise NotSent(payload)
         if status == "raised":
             raise ImplementationError(f"{self.name}.{method} raised {payload}")
         return payload

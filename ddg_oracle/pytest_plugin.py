@@ -5,7 +5,9 @@ ddg-oracle is installed, entry point ``pytest11``) adds the options below and
 nothing else: no import of the properties, no Hypothesis profile registered or
 loaded, nothing on ``sys.path``.  With ``--ddg-impl`` every registered
 property becomes one test item ``ddg[<impl>][<catalog ID>]``; a property
-whose protocol methods the implementation lacks is skipped, naming them.  The
+whose protocol methods the implementation lacks is skipped, naming them; an item
+fails when the property fails, the implementation crashes or hangs, or fewer examples
+ran than the profile asks for (``incomplete``: ``--ddg-budget`` gives more time).  The
 items run under our own profile (``--ddg-profile default|ci|thorough``,
 Hypothesis profile ``ddg-oracle-<name>``), so the user's own Hypothesis
 profile is neither changed nor used by them.
@@ -25,25 +27,31 @@ def pytest_addoption(parser):
     group.addoption("--ddg-only", action="append", default=[], metavar="ID",
                     help="only the properties of these catalog IDs (any part of a joint ID "
                          "such as 'L4.3' of 'L4.3 / P4.4')")
+    group.addoption("--ddg-budget", default=None, type=float, metavar="SECONDS",
+                    help="wall-clock seconds per item, shrinking included (0: none; default: "
+                         "the profile's, as ddg-oracle check --budget): a call still running "
+                         "then is a hang, a search stopped before its examples ran fails the "
+                         "item as incomplete")
     group.addoption("--ddg-profile", default=None, metavar="NAME",
                     help="ddg-oracle's Hypothesis profile for its items: default, ci, thorough "
                          "(default: ci when $CI is set, else default)")
 
 
 class PropertyItem(pytest.Item):
-    def __init__(self, *, prop, impl, spec, profile, **kw):
+    def __init__(self, *, prop, impl, spec, profile, budget=None, **kw):
         super().__init__(**kw)
         self.prop, self.impl, self.spec, self.profile = prop, impl, spec, profile
+        self.budget = budget
 
     def runtest(self):
-        from ddg_oracle.properties.runner import (CRASHED, FAILED, NOT_APPLICABLE, UNDECIDED,
-                                                  describe, run_property)
-        r = run_property(self.prop, self.impl, self.profile)
+        from ddg_oracle.properties.runner import (NOT_APPLICABLE, UNDECIDED, describe,
+                                                  run_property)
+        r = run_property(self.prop, self.impl, self.profile, budget=self.budget)
         if r.status == NOT_APPLICABLE:
             pytest.skip(f"{self.spec} {r.note}")
         if r.status == UNDECIDED:            # the exact reference hit a guard: nothing checked
             pytest.skip(f"undecided: {r.error}")
-        if r.status in (FAILED, CRASHED):
+        if not r.ok:                         # FAILED, crashed (a hang too), incomplete
             raise PropertyCheckFailed(describe(r))
 
     def repr_failure(self, excinfo):
@@ -64,13 +72,21 @@ def pytest_collection_modifyitems(session, config, items):
     if not specs:
         return
     from ddg_oracle.implementations import ImplementationNotFound, load_implementation
-    from ddg_oracle.properties.profiles import profile
-    from ddg_oracle.properties.protocol import NotAnImplementation, require_protocol
+    from ddg_oracle.properties.budget import Budget
+    from ddg_oracle.properties.profiles import profile, profile_budget
+    from ddg_oracle.properties.protocol import (NotAnImplementation, near_miss_warning,
+                                                require_protocol)
     from ddg_oracle.properties.registry import select_properties
 
     name = config.getoption("ddg_profile") or ("ci" if os.environ.get("CI") else "default")
     try:
         settings = profile(name)
+        budget = profile_budget(name)
+        seconds = config.getoption("ddg_budget")
+        if seconds is not None:
+            if not seconds >= 0:
+                raise ValueError(f"--ddg-budget must be >= 0 seconds (0: none), got {seconds}")
+            budget = Budget(seconds or None, budget.crashes if seconds else None, budget.shrink)
         props = select_properties(config.getoption("ddg_only") or None)
     except ValueError as e:
         raise pytest.UsageError(f"ddg-oracle: {e}") from None
@@ -80,7 +96,11 @@ def pytest_collection_modifyitems(session, config, items):
             require_protocol(impl)
         except (ImplementationNotFound, NotAnImplementation) as e:
             raise pytest.UsageError(f"ddg-oracle: {e}") from None
+        said = near_miss_warning(impl)
+        if said:
+            config.issue_config_time_warning(pytest.PytestWarning(f"ddg-oracle: {said}"),
+                                             stacklevel=2)
         for p in props:
             items.append(PropertyItem.from_parent(
                 session, name=f"ddg[{spec}][{p.id}]", prop=p, impl=impl, spec=spec,
-                profile=settings))
+                profile=settings, budget=budget))

@@ -333,7 +333,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     implementation, then every non-passing result in full (``files``: result index ->
     where its whole mesh and snippet are)."""
     from ddg_oracle.properties.runner import CONVENTION, CRASHED, FAILED, NOT_APPLICABLE, PASSED
-    from ddg_oracle.properties.runner import TIE, UNDECIDED, describe
+    from ddg_oracle.properties.runner import INCOMPLETE, TIE, UNDECIDED, describe
 
     findings = known_findings()
     impls = list(dict.fromkeys(r.implementation for r in results))
@@ -341,7 +341,9 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     sources = list(dict.fromkeys(r.source for r in results))
 
     def row(r):
-        what = (r.failure.message if r.failure is not None else (r.error or r.status)).splitlines()[0]
+        what = (r.failure.message if r.failure is not None else
+                (r.error or (r.note if r.status == INCOMPLETE else None) or r.status)
+                ).splitlines()[0]
         known = known_finding(r, findings)
         where = "" if r.source == "generated" else f" [{r.source}]"
         head = f"  {r.property_id:<14} {r.implementation[:22]:<22} "
@@ -351,6 +353,8 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
         return head + what + where + tail
 
     for title, statuses in (("FAILED", (FAILED,)), ("crashed", (CRASHED,)),
+                            ("incomplete: fewer examples ran than the profile asks for",
+                             (INCOMPLETE,)),
                             ("tie disagreements", (TIE,)), ("conventions", (CONVENTION,)),
                             ("undecided", (UNDECIDED,))):
         chosen = [r for r in results if r.status in statuses]
@@ -376,13 +380,15 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     return "\n".join(lines)
 
 
-def closing_line(results, seconds: float, workers: int, profile: str, seed) -> str:
+def closing_line(results, seconds: float, workers: int, profile: str, seed,
+                 accept_incomplete: bool = False) -> str:
     """The last lines: counts, what the exit code means, what to run next."""
-    from ddg_oracle.properties.runner import CRASHED, FAILED
+    from ddg_oracle.properties.runner import CRASHED, FAILED, INCOMPLETE
 
     c = counts(results)
     findings = known_findings()
     bad = [r for r in results if r.status in (FAILED, CRASHED)]
+    partial = sum(r.status == INCOMPLETE for r in results)
     known = sorted({k for r in bad if (k := known_finding(r, findings))})
     head = (f"{len(results)} checks in {seconds:.1f} s, {workers} worker"
             f"{'s' if workers != 1 else ''}, profile {profile}"
@@ -392,9 +398,14 @@ def closing_line(results, seconds: float, workers: int, profile: str, seed) -> s
         unknown = len(bad) - sum(1 for r in bad if known_finding(r, findings))
         meaning = (f"exit 1: {len(bad)} check{'s' if len(bad) != 1 else ''} failed or crashed"
                    + (f"; known findings {', '.join(known)} (docs/findings.md)" if known else "")
-                   + (f"; {unknown} not documented" if unknown and known else ""))
+                   + (f"; {unknown} not documented" if unknown and known else "")
+                   + (f"; {partial} incomplete" if partial else ""))
+    elif partial and not accept_incomplete:
+        meaning = (f"exit 1: no failure, but {partial} check{'s' if partial != 1 else ''} "
+                   "ran fewer examples than the profile asks for (incomplete: not a pass; "
+                   "--budget SECONDS gives each more time, --accept-incomplete exits 0)")
     else:
-        meaning = "exit 0: no failure"
+        meaning = "exit 0: no failure" + (f" ({partial} incomplete, accepted)" if partial else "")
     return (head + "\n" + meaning + "\nnext: ddg-oracle check --impl module:Class checks your "
             "own code; --report DIR writes every counterexample; --wide shows the full grid")
 
@@ -445,7 +456,8 @@ def snippet(r, spec: str, name: str = "reproduce.py") -> str:
 def describe_line(r) -> str:
     if r.failure is not None:
         return str(r.failure).splitlines()[0]
-    return f"[{r.property_id}] {r.implementation}: {r.status}: {(r.error or '').splitlines()[0]}"
+    said = (r.error or r.note or "").splitlines()
+    return f"[{r.property_id}] {r.implementation}: {r.status}" + (f": {said[0]}" if said else "")
 
 
 def _slug(text: str) -> str:

@@ -745,8 +745,11 @@ def _call(impl, method: str, req: dict):
 def answers(corpus: dict[str, dict], impl) -> list[dict]:
     """The answers-file lines of ``impl`` on every case of the methods it has (values encoded
     as in the executable protocol; an exception is an error line: ``outside_domain`` for
-    :class:`OutsideDomain`, else ``failed`` with the exception's type and message)."""
+    :class:`OutsideDomain`, else ``failed`` with the exception's type and message).  A case
+    the implementation never received (a program of the executable protocol cannot be sent
+    a NaN coordinate) is a ``{"id", "not_run": why}`` line: no answer, and no pass."""
     from ddg_oracle.oracles.executable import _encode
+    from ddg_oracle.oracles.processes import NotSent
     from ddg_oracle.properties.protocol import capabilities
     caps = capabilities(impl)
     out = []
@@ -756,6 +759,9 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
         for c in file["cases"]:
             try:
                 value = _encode(method, _call(impl, method, c["input"]))
+            except NotSent as e:
+                out.append({"id": c["id"], "not_run": str(e)})
+                continue
             except OutsideDomain as e:
                 out.append({"id": c["id"], "error": {"kind": "outside_domain", "message": str(e)}})
                 continue
@@ -792,7 +798,8 @@ def read_answers(path: str | Path) -> list[dict]:
 @dataclass
 class Verdict:
     """One case of one answers file: ``pass``, ``FAIL``, ``acceptable`` (a value for an input
-    the reference refuses), or ``not applicable`` (the implementation said outside_domain)."""
+    the reference refuses), ``not applicable`` (the implementation said outside_domain), or
+    ``not run`` (the implementation never received the case)."""
 
     id: str
     status: str
@@ -966,6 +973,9 @@ def verify(corpus: dict[str, dict], lines: list[dict], float32: bool = False) ->
             raise VectorsError(f"answer for {line['id']!r}: no such case in the corpus "
                                "(another corpus version?)")
         method, c = by_id[line["id"]]
+        if "not_run" in line:
+            out.append(Verdict(c["id"], "not run", str(line["not_run"])))
+            continue
         if c["result"] != "valid":
             if "error" in line or _has_non_finite(_unportable(line["value"])):
                 out.append(Verdict(c["id"], "pass"))

@@ -39,12 +39,16 @@ import time
 import numpy as np
 import scipy.sparse
 
+from ddg_oracle.properties.budget import check_time_left, cut_short, time_left
 from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain
 
 from .arrays import checked_arrays
-from .processes import call_limit, exit_text, stderr_tail
+from .processes import NotSent, call_limit, exit_text, stderr_tail
 
 PROTOCOL_VERSION = 1
+#: the longest answer line read: this many bytes, plus as many per vertex and face of the
+#: request (a sparse Laplacian takes about 500 bytes per vertex); a longer line is garbage
+ANSWER_BYTES, ANSWER_BYTES_PER_ROW = 1 << 20, 4096
 #: seconds a program may take to answer the handshake (it may import a lot, or JIT)
 START_TIMEOUT = 60.0
 
@@ -134,6 +138,27 @@ def _decode(method: str, value, n: int, m: int):
     return _array(value, method, (None, 3), np.int64)            # a planar triangulation
 
 
+def program_of(argv: list[str]) -> list[str]:
+    """The part of a command line that names the program, without its own arguments: up to
+    its last existing file (``node driver.js``, ``python3 /abs/driver.py``,
+    ``./cotan_driver``) or a ``-m module``; else the first word.  A convention counterpart
+    is this program started with other arguments.
+
+    >>> import sys
+    >>> program_of([sys.executable, "-m", "mydriver", "--sign=libigl"])[1:]
+    ['-m', 'mydriver']
+    >>> program_of(["no-such-program", "--weights=library"])
+    ['no-such-program']
+    """
+    end = 1
+    for k, a in enumerate(argv):
+        if os.path.isfile(a):
+            end = k + 1
+        elif a == "-m" and k + 1 < len(argv):
+            end = k + 2
+    return list(argv[:end])
+
+
 def _manifest(path: str, spec: str) -> dict:
     """A driver manifest (docs/protocol.md): the handshake's fields plus ``command``, the
     program and its arguments (files relative to the manifest's directory);
@@ -184,7 +209,7 @@ class Executable:
         self.timeout, self.cwd = timeout, cwd
         self._proc = None
         self._next_id = 0
-        self._buffer = b""
+        self._buffer = bytearray()
         fd, self._stderr = tempfile.mkstemp(prefix="ddg-oracle-exec-", suffix=".stderr")
         os.close(fd)
         hello = self._start()
@@ -220,7 +245,7 @@ class Executable:
             raise DriverFailed(f"{self.spec}: conventions.counterpart_arguments must be a list "
                                f"of strings, got {_short(args)}")
         return {"follows": declared["follows"],
-                "counterpart": "exec:" + shlex.join([self.argv[0], *args])}
+                "counterpart": "exec:" + shlex.join([*program_of(self.argv), *args])}
 
     # --- the process ------------------------------------------------------------------
 
@@ -234,7 +259,7 @@ class Executable:
         except OSError as e:
             raise DriverFailed(f"{self.spec}: cannot start {self.argv[0]!r}: "
                                f"{e.strerror or e}") from None
-        self._buffer = b""
+        self._buffer = bytearray()
         if self.manifest:
             return self.manifest
         self._send({"protocol": "ddg-oracle", "version": PROTOCOL_VERSION, "method": "hello"},
@@ -286,12 +311,22 @@ class Executable:
         except (BrokenPipeError, OSError):
             raise self._fail(method, "the program is not reading its input") from None
 
-    def _receive(self, method: str, timeout: float):
+    def _receive(self, method: str, timeout: float, longest: int = 1 << 30,
+                 budget_cut: float | None = None):
+        """The next answer line, parsed: at most ``timeout`` seconds and ``longest`` bytes.
+        ``budget_cut``: the wait is the rest of a check task's budget, and the call began
+        then (out of time: :func:`~ddg_oracle.properties.budget.cut_short` decides whether
+        the program hangs)."""
         deadline = time.monotonic() + timeout
-        while b"\n" not in self._buffer:
+        buffer, seen = self._buffer, 0
+        while (end := buffer.find(b"\n", seen)) < 0:
+            seen = len(buffer)
             left = deadline - time.monotonic()
             if left <= 0:
-                raise self._fail(method, f"no answer within {timeout:g} s (killed)")
+                if budget_cut is not None:
+                    self._stop()
+                    raise cut_short(f"{self.name}.{method}", budget_cut)
+                raise self._fail(method, f"no answer within {timeout:.3g} s (killed)")
             with selectors.DefaultSelector() as sel:
                 sel.register(self._proc.stdout, selectors.EVENT_READ)
                 if not sel.select(left):
@@ -299,10 +334,12 @@ class Executable:
             chunk = os.read(self._proc.stdout.fileno(), 1 << 16)
             if not chunk:
                 raise self._fail(method, "the program closed its output (it died or exited)")
-            self._buffer += chunk
-            if len(self._buffer) > 1 << 30:
-                raise self._fail(method, "an answer line longer than 1 GiB")
-        line, self._buffer = self._buffer.split(b"\n", 1)
+            buffer += chunk                     # a bytearray: no copy of what came before
+            if len(buffer) > longest:
+                raise self._fail(method, f"an answer line longer than {longest:,} bytes, more "
+                                         f"than any answer to this request needs")
+        line = bytes(buffer[:end])
+        del buffer[:end + 1]
         try:
             return json.loads(line)
         except (json.JSONDecodeError, UnicodeDecodeError):
@@ -325,7 +362,10 @@ class Executable:
             raise TypeError(f"{method} takes {', '.join(names)}, got {len(args)} arguments")
         given = dict(zip(names, args))
         if "V" in given:
-            given["V"], given["F"] = checked_arrays(given["V"], given["F"])
+            try:
+                given["V"], given["F"] = checked_arrays(given["V"], given["F"])
+            except ValueError as e:
+                raise NotSent(f"not sent to {self.name}: {e}") from None
         request = {"id": k, "method": method}
         for name, x in given.items():
             dtype, ndim = _ARGUMENTS[name]
@@ -333,8 +373,23 @@ class Executable:
             request[name] = (a if ndim == 2 else a.reshape(-1)).tolist()
         n = len(request["V"] if "V" in request else request["P"])
         m = len(request.get("F", ()))
-        self._send(request, method)
-        answer = self._receive(method, call_limit(self.timeout, max(n, m)))
+        # inside a check task, wait at most what its budget has left (properties.budget):
+        # an answer still missing then is this program's hang
+        check_time_left(f"{self.name}.{method}")
+        left, limit = time_left(), call_limit(self.timeout, max(n, m))
+        wait = limit if left is None else min(limit, left)
+        started = time.monotonic()
+        try:
+            self._send(request, method)
+            answer = self._receive(method, wait, ANSWER_BYTES + ANSWER_BYTES_PER_ROW * (n + m),
+                                   started if wait < limit else None)
+        except DriverFailed:
+            raise
+        except BaseException:
+            # interrupted (a signal, the example's time limit) with the request or its answer
+            # in the pipe: the next call would read that answer as its own
+            self._stop()
+            raise
         if not isinstance(answer, dict) or answer.get("id") != k:
             raise self._fail(method, f"answered {_short(answer)} to request id {k}")
         if "error" in answer:

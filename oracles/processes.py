@@ -10,6 +10,13 @@ from __future__ import annotations
 import signal
 
 
+class NotSent(ValueError):
+    """An input no protocol request can carry (a NaN coordinate, an index out of range: the
+    request's JSON would not be read as the same arrays): the program never saw it, so
+    nothing about the program follows from it (raised by the executable protocol, passed
+    on as such by an isolated worker)."""
+
+
 def exit_text(code: int | None) -> str:
     """How a process ended, from its exit code (negative: the signal that killed it).
 

@@ -32,8 +32,78 @@ from dataclasses import dataclass
 
 
 class BudgetExceeded(BaseException):
-    """The task's budget ran out: stop the search (a BaseException, so that Hypothesis
-    stops at once instead of treating it as a failure to shrink)."""
+    """The task's budget ran out between two calls of the implementation: stop the search
+    (a BaseException, so that Hypothesis stops at once instead of treating it as a failure
+    to shrink).  Out of time *inside* a call is :class:`ImplementationHang` instead."""
+
+
+class ImplementationHang(BaseException):
+    """A call of the checked implementation was still running when its time ran out (the
+    task's budget or the time limit per example): a hang of the implementation, reported
+    with its input.  A BaseException, so that the implementation's own ``except
+    Exception`` cannot swallow it and Hypothesis does not spend the budget shrinking it."""
+
+
+#: a call the task's budget cuts short is a hang once it has run this share of the
+#: budget (6 s of the default 18): no protocol method takes that long on a drawn mesh of a
+#: few hundred faces; a call cut sooner merely began late, and the task is incomplete
+HANG_SHARE = 1 / 3
+
+_call: contextvars.ContextVar[tuple[str, float] | None] = contextvars.ContextVar(
+    "ddg_implementation_call", default=None)
+_hang_after: contextvars.ContextVar[float | None] = contextvars.ContextVar(
+    "ddg_hang_after", default=None)
+
+
+@contextmanager
+def calling(what: str):
+    """Mark the block as a call of the checked implementation (``what``: "name.method"):
+    a clock that stops it there stops the implementation (:func:`current_call`)."""
+    token = _call.set((what, time.monotonic()))
+    try:
+        yield
+    finally:
+        _call.reset(token)
+
+
+def current_call() -> str | None:
+    """The implementation call running now ("name.method"), or None: our own code (the
+    exact reference, the property's arithmetic) or between calls.
+
+    >>> with calling("mine.angle_defects"):
+    ...     current_call()
+    'mine.angle_defects'
+    >>> current_call() is None
+    True
+    """
+    call = _call.get()
+    return None if call is None else call[0]
+
+
+def cut_short(what: str, started: float | None = None) -> BaseException:
+    """What to raise when the task's budget runs out during a call of the implementation
+    (``what``: "name.method", running since ``started``, by default the marked call's
+    start): :class:`ImplementationHang` if it has run :data:`HANG_SHARE` of the budget or
+    more, else :class:`BudgetExceeded` (the call began late: the task is incomplete).
+
+    >>> with task_budget(30):
+    ...     type(cut_short("mine.area", time.monotonic())).__name__
+    'BudgetExceeded'
+    >>> with task_budget(30):
+    ...     type(cut_short("mine.area", time.monotonic() - 11)).__name__
+    'ImplementationHang'
+    """
+    if started is None:
+        call = _call.get()
+        started = call[1] if call is not None else time.monotonic()
+    ran = time.monotonic() - started
+    limit = _hang_after.get()
+    if limit is None or ran >= limit:
+        return ImplementationHang(
+            f"{what} did not return within {ran:.3g} s, when the check task's time budget "
+            f"ran out (a longer budget: ddg-oracle check --budget SECONDS)")
+    return BudgetExceeded(f"the task's time budget ran out during a call of {what}, "
+                          f"{ran:.2g} s after it began")
 
 
 @dataclass(frozen=True)
@@ -60,9 +130,11 @@ _deadline: contextvars.ContextVar[float | None] = contextvars.ContextVar(
 def task_budget(seconds: float | None):
     """Run the block with a wall-clock deadline ``seconds`` from now (None: none)."""
     token = _deadline.set(None if seconds is None else time.monotonic() + seconds)
+    share = _hang_after.set(None if seconds is None else seconds * HANG_SHARE)
     try:
         yield
     finally:
+        _hang_after.reset(share)
         _deadline.reset(token)
 
 

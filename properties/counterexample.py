@@ -85,8 +85,9 @@ def _is_faces(x) -> bool:
 
 
 def exact_mesh(example):
-    """(points as exact coordinates, faces) of an example, or None: ``.positions`` /
-    ``.surface.positions`` with ``.faces`` / a triangulation, or a (points, faces, ...)
+    """(points as exact coordinates, faces) of an example, or None: an
+    :class:`~.example.Example`'s ``exact_mesh`` (indexed as the arrays the implementation
+    received), ``.positions`` / ``.surface.positions`` with ``.faces`` / a triangulation, or a (points, faces, ...)
     tuple such as the planar examples; the first such part of a tuple otherwise."""
     if isinstance(example, tuple):
         if len(example) >= 2 and _is_points(example[0]) and _is_faces(example[1]):
@@ -96,6 +97,9 @@ def exact_mesh(example):
             if m is not None:
                 return m
         return None
+    given = getattr(example, "exact_mesh", None)           # an Example: as it was drawn
+    if isinstance(given, tuple):
+        return given
     surface = getattr(example, "surface", None)
     holder = surface if surface is not None and not callable(surface) else example
     positions = getattr(holder, "positions", None)

@@ -183,6 +183,21 @@ class Example:
             V[i] = [float(x) for x in p]
         return V, [[at[v] for v in f] for f in self.faces]
 
+    @property
+    def exact_mesh(self):
+        """(points, faces) as lists, indexed as :attr:`mesh`, with the exact coordinates
+        the floats of :meth:`arrays` were made from: the isolated vertices in their places,
+        nothing built (a face list that leaves a vertex unused has no surface to build)."""
+        if not self.isolated:
+            return [list(p) for p in self.positions], [list(f) for f in self.faces]
+        at = self.layout
+        P = [None] * (len(at) + len(self.isolated))
+        for v, p in zip(at, self.positions):
+            P[v] = list(p)
+        for i, p in self.isolated:
+            P[i] = list(p)
+        return P, [[at[v] for v in f] for f in self.faces]
+
     def arrays(self):
         """(V float64 n x 3, F int64 m x 3), exactly what an implementation receives: new
         arrays each call (a drawn example is shared by the checks of every implementation in

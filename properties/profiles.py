@@ -29,9 +29,12 @@ keeps its runs reproducible: ``pytest --hypothesis-seed 0`` or
 ``ddg-oracle check --seed 0``.
 
 Time limit: every property example runs under :func:`example_time_limit`
-(``DDG_EXAMPLE_TIME_LIMIT`` seconds, default 120, ``0`` for none).  An example
-that overruns raises :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` saying what
-to change; Hypothesis then shrinks and reports it like any failure.  (Hypothesis's
+(``DDG_EXAMPLE_TIME_LIMIT`` seconds, default 120, ``0`` for none).  Whose time ran
+out decides what an overrun is: inside a call of the implementation
+(:func:`~.budget.current_call`) it is the implementation's hang
+(:class:`~.budget.ImplementationHang`, a crash with its input); in our own computation
+it raises :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` (the result is
+``undecided``: the implementation is not blamed for the reference's time).  (Hypothesis's
 own ``deadline`` stays off: it only measures after the example has returned,
 so it cannot stop one that never returns.)
 """
@@ -49,7 +52,8 @@ from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 
 from ddg_oracle.reference.errors import InputError, TimeLimitExceeded
 
-from .budget import BUDGETS, Budget, BudgetExceeded, time_left
+from .budget import (BUDGETS, Budget, BudgetExceeded, ImplementationHang, current_call,
+                     cut_short, time_left)
 
 PROFILES = ("default", "ci", "thorough")
 #: Hypothesis profile name of each of ours: a prefix no user or Hypothesis profile has.
@@ -222,13 +226,22 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
         return
 
     def error():
+        # whose time it was: a call of the implementation still running is its hang; else
+        # our own computation (the exact reference, the property) was running
+        call = current_call()
+        if call is not None and by_budget:
+            return cut_short(call)         # a hang, or a call that merely began late
+        if call is not None:
+            return ImplementationHang(
+                f"{call} did not return within the time limit of {seconds:g} s per property "
+                f"example (raise it with {TIME_LIMIT_ENV}=SECONDS)")
         if by_budget:
-            return BudgetExceeded(f"{what}: the task's time budget ran out during an example")
+            return BudgetExceeded(f"{what}: the task's time budget ran out during an example, "
+                                  "outside the implementation's calls")
         return TimeLimitExceeded(
-            f"{what}: one example ran longer than the time limit of {seconds:g} s per "
-            f"property example. If it is just slow, raise the limit with the environment "
-            f"variable {TIME_LIMIT_ENV}=SECONDS (0: no limit); otherwise the exact "
-            f"reference or the implementation does not finish on this input")
+            f"{what}: the exact reference did not finish one example within the time limit "
+            f"of {seconds:g} s per property example. If it is just slow, raise the limit "
+            f"with the environment variable {TIME_LIMIT_ENV}=SECONDS (0: no limit)")
 
     fired = []
 

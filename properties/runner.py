@@ -7,7 +7,13 @@ observed).  The CLI uses :func:`run_properties` and prints the results instead.
 
 A :class:`Result` has one of these statuses:
 
-* ``passed``: every example held;
+* ``passed``: every example held, and the property ran the profile's number of examples
+  on the implementation (or Hypothesis exhausted the examples its strategy can draw);
+* ``incomplete``: every example that ran held, but fewer than the profile's number ran:
+  the task's time budget ran out in our own computation (a call of the implementation
+  still running then is its hang: ``crashed``), or the implementation declined so many
+  examples as outside its domain that the search stopped.  Not a pass: :attr:`Result.ok`
+  is False, ``ddg-oracle check`` exits 1 unless ``--accept-incomplete``;
 * ``FAILED``: a :class:`~ddg_oracle.properties.registry.PropertyFailure` on the shrunk example;
 * ``tie disagreement``: no failure, but on some example the exact reference
   decided an exact tie the implementation decided otherwise within its rounding
@@ -15,16 +21,19 @@ A :class:`Result` has one of these statuses:
 * ``convention``: a failure that disappears when the implementation's documented
   convention is mapped onto the reference's (``counterpart``, see
   :func:`run_property`): expected, not an error;
-* ``crashed``: the implementation raised, died or hung on the (shrunk) example;
-* ``undecided``: the exact reference hit one of its guards (a term limit, a
-  precision limit; the per-example time limit counts as a hang:
+* ``crashed``: the implementation raised, died, answered NaN where a failure is not
+  the property's own, or hung (a call still running when the time ran out) on the
+  (shrunk) example;
+* ``undecided``: the exact reference hit one of its guards (a term limit, a precision
+  limit, the time limit per example while our own computation ran:
   :class:`ddg_oracle.reference.errors.ExactArithmeticLimit`) before deciding; the message
   says which limit to raise;
 * ``not applicable``: the implementation lacks a method the property needs, or
   declined every example as outside its domain
-  (:class:`~ddg_oracle.properties.protocol.OutsideDomain`; declined examples are not counted).
+  (:class:`~ddg_oracle.properties.protocol.OutsideDomain`; a declined example is not
+  counted, and Hypothesis draws another in its place).
 
-Only ``FAILED`` and ``crashed`` are failures (:attr:`Result.ok` is False).
+``FAILED``, ``crashed`` and ``incomplete`` are not ok (:attr:`Result.ok` is False).
 """
 
 from __future__ import annotations
@@ -34,22 +43,37 @@ import time
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
-from hypothesis import Phase, given, seed as hypothesis_seed, settings as Settings
+from hypothesis import HealthCheck, Phase, given, reject, seed as hypothesis_seed, settings as Settings
+from hypothesis.errors import Unsatisfiable
+from hypothesis.reporting import with_reporter
 
-from ddg_oracle.reference.errors import ExactArithmeticLimit, TimeLimitExceeded
+from ddg_oracle.reference.errors import ExactArithmeticLimit
 
-from .budget import Budget, BudgetExceeded, shrink_from_now, task_budget
+from .budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
+from .calls import Watched
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
 from .profiles import profile as named_profile, profile_budget
-from .protocol import OutsideDomain, capabilities, implementation_name, require_protocol
+from .protocol import (OutsideDomain, capabilities, implementation_name, near_miss_warning,
+                       require_protocol)
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
 from .stream import same_stream
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
+INCOMPLETE = "incomplete"
 #: every status, in the order of the summary counts
-STATUSES = (PASSED, FAILED, TIE, CONVENTION, CRASHED, UNDECIDED, NOT_APPLICABLE)
+STATUSES = (PASSED, FAILED, TIE, CONVENTION, CRASHED, INCOMPLETE, UNDECIDED, NOT_APPLICABLE)
+#: statuses that are not a verdict of "holds": FAILED and crashed are the implementation's
+#: failures, incomplete a check that did not run all its examples
+NOT_OK = (FAILED, CRASHED, INCOMPLETE)
+#: what stops a search at once, without shrinking: the task's time ran out between calls
+#: (BudgetExceeded) or inside one (ImplementationHang, recorded as a crash first)
+_STOPS = (BudgetExceeded, ImplementationHang)
+
+
+class NearMissWarning(UserWarning):
+    """An implementation has a public method that looks like a protocol method it lacks."""
 
 
 @dataclass
@@ -59,6 +83,7 @@ class Result:
     implementation: str
     status: str
     examples: int = 0
+    wanted: int = 0                   # examples the profile asks for (0: one given example)
     seconds: float = 0.0
     failure: PropertyFailure | None = None   # the failure (or tie) on the shrunk example
     error: str | None = None          # the exception of a crash of the implementation
@@ -74,12 +99,14 @@ class Result:
 
     @property
     def ok(self) -> bool:
-        return self.status not in (FAILED, CRASHED)
+        return self.status not in NOT_OK
 
     def summary(self) -> str:
         """The table cell."""
         if self.status == PASSED:
             return f"passed ({self.examples} example{'s' if self.examples != 1 else ''})"
+        if self.status == INCOMPLETE:
+            return f"incomplete ({self.examples} of {self.wanted} examples)"
         if self.status == TIE:
             return f"tie disagreement ({self.ties}/{self.examples})"
         return self.status
@@ -119,7 +146,9 @@ def _flatten(e: BaseException) -> list[BaseException]:
 def _crash_text(e: BaseException) -> str:
     """``module.Type: message`` of what the implementation raised, without the notes
     Hypothesis attaches (its seed, "Failing test case: body(...)", explanations): the
-    input is reported on its own, as a mesh."""
+    input is reported on its own, as a mesh; ``hang: ...`` for a call the clock stopped."""
+    if isinstance(e, ImplementationHang):
+        return f"hang: {e}"
     name = type(e).__qualname__
     module = type(e).__module__
     if module not in ("builtins", "__main__"):
@@ -154,10 +183,9 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dic
     """Status and details from what the run raised (several if Hypothesis found several)."""
     failures = [e for e in errors if isinstance(e, PropertyFailure)
                 and not isinstance(e, TieDisagreement)]
-    # an example over its time limit counts as a hang of the implementation (a failure),
-    # not as undecided: the reference's own guards are term and precision limits
-    limits = [e for e in errors if isinstance(e, ExactArithmeticLimit)
-              and not isinstance(e, TimeLimitExceeded)]
+    # the reference's guards (term, precision, and time limits: an overrun inside a call of
+    # the implementation is an ImplementationHang instead, a crash)
+    limits = [e for e in errors if isinstance(e, ExactArithmeticLimit)]
     crashes = [e for e in errors if not isinstance(e, PropertyFailure) and e not in limits]
     ties = [e for e in errors if isinstance(e, TieDisagreement)]
     if failures:
@@ -189,9 +217,10 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     ``budget`` (:class:`~.budget.Budget`): wall-clock seconds and crash outcomes
     the whole run may take, shrinking included; when it runs out the search stops
     and the smallest failing (or crashing) example seen so far is the result, with
-    a note.  Every implementation of a property sees the same examples (the
-    derandomized stream, or the same ``seed``): results are comparable across
-    libraries.
+    a note; with none seen, the result is ``incomplete`` (a call of the implementation
+    still running then is its hang: ``crashed``).  Every implementation of a property
+    sees the same examples (the derandomized stream, or the same ``seed``): results
+    are comparable across libraries.
     """
     name = implementation_name(impl)
     if not p.applies_to(capabilities(impl)):
@@ -200,8 +229,14 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                            "property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
              "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
-             "stopped": None, "shrink": budget.shrink if budget is not None else None}
+             "stopped": None, "refused": False,
+             "shrink": budget.shrink if budget is not None else None,
+             # declined examples the search draws past before it stops: room for an
+             # implementation that declines three examples in four (OpenMesh declines the
+             # non-orientable ones); with none checked Hypothesis gives up after about 460
+             "max_outside": 4 * settings.max_examples}
     max_crashes = budget.crashes if budget is not None else None
+    watched = Watched(impl, p.id)
     # examples the implementation declines are counted, not checked; the check is wrapped
     # here so that `run` below keeps its source, hence Hypothesis's derandomized seeds
     prop, p = p, replace(p, check=_in_domain(p.check, state))
@@ -212,8 +247,9 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         # Hypothesis replays the shrunk example last, so "last" is minimal.
         state["n"] += 1
         state["last"] = example
+        declined = state["outside"]
         try:
-            p.check(impl, example)
+            p.check(watched, example)
         except TieDisagreement as t:
             # keep the smallest tie of either pass
             if state["tie"] is None or _size(t.mesh) < _size(state["tie"][0].mesh):
@@ -241,6 +277,17 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
             # candidates is not chased (each hang costs the call timeout); stop here, the
             # smallest tie seen so far stands
             state["abort"] = True
+        if state["outside"] > declined:
+            # declined (OutsideDomain): not an example of its domain, so Hypothesis draws
+            # another in its place (and the shrinker never steps into the declined part);
+            # while no failure is found, an implementation that declines nearly
+            # everything stops the search
+            if (state["failure"] is None and state["crash"] is None
+                    and state["outside"] >= state["max_outside"]):
+                state["refused"] = True
+                raise BudgetExceeded(f"the implementation declined {state['outside']} "
+                                     f"examples as outside its domain")
+            reject()
 
     # each property its own database key and derandomized seed, the same for every
     # implementation (one example stream per property: results comparable across libraries,
@@ -255,26 +302,53 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
             errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
     r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
-               seconds=time.perf_counter() - t0, ties=state["ties"], example=state["last"], **out)
+               wanted=settings.max_examples, seconds=time.perf_counter() - t0,
+               ties=state["ties"], example=state["last"], **out)
     _note_outside(r, state)
+    _judge_completeness(r, state)
     r.spec = implementation_spec(impl)
     _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
-    if state["stopped"] is not None:
-        what = ("shrinking stopped early" if r.status in (FAILED, CRASHED)
-                else f"search stopped after {r.examples} examples")
-        r.note = "; ".join(filter(None, [r.note, f"{what}: the task's budget ran out "
-                                                 f"({state['stopped']})"]))
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, prop, counterpart, convention)
     return r
 
 
+def _judge_completeness(r: Result, state: dict) -> None:
+    """A search that found nothing wrong but ran fewer examples than the profile asks
+    for is ``incomplete`` (or ``not applicable`` if the implementation declined them
+    all), whether the budget or the implementation's refusals stopped it; one that
+    Hypothesis ended by itself with fewer (every example the strategy can draw was run,
+    none declined) is a pass.  A failure or crash keeps its status, with a note."""
+    stopped = state["stopped"]
+    if r.status in (FAILED, CRASHED):
+        if stopped is not None and stopped not in (r.error or ""):
+            r.note = _joined(r.note, f"shrinking stopped early: {stopped}")
+        return
+    if r.status not in (PASSED, TIE) or r.examples >= r.wanted:
+        return
+    draws = state["n"]
+    if stopped is None and not (state["outside"] and draws >= r.wanted):
+        return                       # Hypothesis exhausted the strategy: every example ran
+    if r.examples == 0 and state["outside"] and (state["refused"] or stopped is None):
+        r.status = NOT_APPLICABLE
+        return
+    why = stopped if stopped is not None and not state["refused"] else \
+        f"the implementation declined {state['outside']} examples as outside its domain " \
+        f"({state['why']})"
+    r.note = f"{r.examples} of {r.wanted} examples ran: {why}"
+    r.status = INCOMPLETE
+
+
+def _joined(*notes) -> str:
+    return "; ".join(filter(None, notes))
+
+
 def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
     """Run Hypothesis on ``body``: (what it raised, flattened; the wrapped test).
 
-    A :class:`~.budget.BudgetExceeded` stops the search: what it raised is then
-    the smallest failure (else crash) ``state`` recorded, and ``state["stopped"]``
-    says why."""
+    A :class:`~.budget.BudgetExceeded` or an :class:`~.budget.ImplementationHang` stops
+    the search: what it raised is then the smallest failure (else crash, the hang
+    included) ``state`` recorded, and ``state["stopped"]`` says why."""
     # one failure per property, the shrunk one: several distinct failures would come
     # back as an ExceptionGroup and read as a crash.  No explain phase: its report is not
     # ours to print, and on Python < 3.12 it runs the failing example under sys.settrace,
@@ -282,13 +356,22 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
     # run: "Exception ignored in ... scrutineer trace", and once a segfault of the worker)
     if "phases" not in changes:
         changes["phases"] = tuple(x for x in settings.phases if x != Phase.explain)
+    # declined examples are rejected (body): many of them are the implementation's choice,
+    # not a strategy that filters too much
+    changes["suppress_health_check"] = tuple(settings.suppress_health_check) + (
+        HealthCheck.filter_too_much,)
     run = Settings(settings, report_multiple_bugs=False, **changes)(given(p.strategy())(body))
+    if seed is None and settings.derandomize:
+        seed = derandomized_seed(p.id)
     if seed is not None:
         run = hypothesis_seed(seed)(run)
     try:
-        with same_stream():            # the property's stream, whatever this process loaded
+        # the property's stream, whatever this process loaded; Hypothesis's own reports
+        # ("You can reproduce this failure by adding @seed...", falsifying examples) are not
+        # ours to print: the result says what happened, with its own replay
+        with same_stream(), with_reporter(lambda text: None):
             run()
-    except BudgetExceeded as e:
+    except _STOPS as e:
         if state is None:
             raise
         state["stopped"] = str(e)
@@ -297,11 +380,27 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
             return [], run
         state["last"] = best[1]
         return [best[0]], run
+    except Unsatisfiable:
+        return [], run                 # every example declined: judged from the counts
     except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
         if isinstance(e, (KeyboardInterrupt, SystemExit)):
             raise
         return _flatten(e), run
     return [], run
+
+
+def derandomized_seed(property_id: str) -> int:
+    """The seed of a derandomized run (the ``ci`` profile) of a property: from its catalog
+    ID alone.  Hypothesis would derive it from the test function's source, so every edit of
+    the runner would change which examples ci draws; this way the stream changes only
+    with the property's strategy.
+
+    >>> derandomized_seed("D1.6") == derandomized_seed("D1.6") != derandomized_seed("D2.2")
+    True
+    """
+    import hashlib
+    return int.from_bytes(hashlib.sha256(b"ddg-oracle " + property_id.encode()).digest()[:16],
+                          "big")
 
 
 def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list:
@@ -324,8 +423,10 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
                                                  None)
     state["ties_raise"] = True
     try:
-        errors, _ = _search(body, p, settings, seed, database=None, max_examples=n)
-    except BudgetExceeded:
+        # the first pass's examples that ran (declined ones are drawn past, as there)
+        errors, _ = _search(body, p, settings, seed, database=None,
+                            max_examples=max(1, n - outside))
+    except _STOPS:
         errors = []                      # out of time: the smallest tie so far stands
     finally:
         state.update(n=n, ties=ties, outside=outside, ties_raise=False, abort=False)
@@ -343,12 +444,18 @@ REPLAY_FACES = 2000
 def _attach_counterexample(r: Result, impl, example) -> None:
     """What a user needs to act on a non-passing result: the implementation's spec, the
     exact coordinates where its floats round them, the example encoded for replay."""
-    if r.status in (PASSED, NOT_APPLICABLE) or example is None:
-        return
+    if r.status in (PASSED, NOT_APPLICABLE, INCOMPLETE) or example is None:
+        return                                  # nothing failed: no counterexample
     r.spec = implementation_spec(impl)
-    exact = exact_mesh(example)
-    if exact is not None and rounded_by_floats(exact[0]):
-        r.exact = [[str(Fraction(c)) for c in p] for p in exact[0]]
+    try:
+        if r.mesh is None:
+            r.mesh = example_mesh(example)
+        exact = exact_mesh(example)
+        if exact is not None and rounded_by_floats(exact[0]):
+            r.exact = [[str(Fraction(c)) for c in p] for p in exact[0]]
+    except Exception as e:  # noqa: BLE001  (our own bug must not hide the verdict)
+        r.note = _joined(r.note, f"ddg-oracle could not attach the exact mesh "
+                                 f"({type(e).__name__}: {e}); please report it")
     if r.source != "generated" or (r.mesh is not None and len(r.mesh[1]) > REPLAY_FACES):
         return                                  # a mesh file's snippet checks the file again
     try:
@@ -380,7 +487,7 @@ def _note_outside(r: Result, state: dict) -> None:
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
     """Re-check the shrunk example with the reference-convention counterpart."""
     try:
-        p.check(counterpart, r.example)
+        p.check(Watched(counterpart, p.id), r.example)
     except TieDisagreement:
         pass
     except BaseException as e:  # noqa: BLE001
@@ -403,7 +510,7 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     state = {"n": 1, "last": example, "ties": 0, "tie": None, "outside": 0, "why": None}
     t0 = time.perf_counter()
     try:
-        p.check(impl, example)
+        p.check(Watched(impl, p.id), example)
         errors = []
     except OutsideDomain as o:
         state["outside"], state["why"], errors = 1, str(o), []
@@ -426,8 +533,13 @@ def run_properties(impl, profile: str = "default", only=None, seed: int | None =
                    on_result=None) -> list[Result]:
     """Every registered property (or those of the catalog IDs ``only``, parts of joint IDs
     included) on ``impl``; :class:`~.protocol.NotAnImplementation` if ``impl`` defines
-    none of the protocol's methods (every property would pass vacuously)."""
+    none of the protocol's methods (every property would pass vacuously), a warning if it
+    has a method that looks like one it lacks (:func:`~.protocol.near_miss_warning`)."""
     require_protocol(impl)
+    said = near_miss_warning(impl)
+    if said:
+        import warnings
+        warnings.warn(said, NearMissWarning, stacklevel=3)
     s, budget = named_profile(profile), profile_budget(profile)
     results = []
     for p in select_properties(only):
@@ -471,7 +583,7 @@ def describe(r: Result, limit: int | None = None, snippet_lines: int | None = No
         text = f"[{r.property_id}] {r.implementation}: {r.status}"
         if r.error:
             text += "\n  " + r.error.replace("\n", "\n  ")
-        if r.mesh is None and r.example is not None:
+        if r.mesh is None and r.example is not None and r.status not in (INCOMPLETE, PASSED):
             text += f"\n  input: {r.example!r}"
     if r.source != "generated":
         text += f"\n  on: {r.source}"

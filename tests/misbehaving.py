@@ -50,6 +50,16 @@ class HangsOnBoundary(ReferenceImplementation):
         return super().euler_characteristic(V, F)
 
 
+class Hangs(ReferenceImplementation):
+    """Its Laplacian never returns: a check must never call that a pass."""
+    name = "hangs"
+
+    def cotan_laplacian(self, V, F):
+        import time
+        while True:
+            time.sleep(0.05)
+
+
 class AllocatesOnBoundary(ReferenceImplementation):
     """Asks for 2 GiB of address space on meshes with boundary.
 

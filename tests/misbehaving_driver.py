@@ -7,7 +7,9 @@ per request, according to MODE: ``ok`` answers correctly; ``dies`` exits; ``segf
 kills itself with SIGSEGV after printing to stderr; ``hangs`` never answers; ``garbage``
 prints a line that is not JSON; ``wrong-shape`` answers a list for the matrix;
 ``wrong-id`` answers another request's id; ``outside`` declines (outside_domain);
-``fails`` reports an error; ``flaky`` dies on every other request.
+``fails`` reports an error; ``flaky`` dies on every other request; ``hangs-later``
+answers three requests, then never answers; ``half-line`` writes the start of an answer
+and no end of line; ``huge-line`` streams an answer line of 100 MB.
 """
 
 import json
@@ -35,8 +37,20 @@ for line in sys.stdin:
     if MODE == "segfault":
         os.write(2, b"driver.c:17: about to dereference a null pointer\n")
         os.kill(os.getpid(), signal.SIGSEGV)
-    if MODE == "hangs":
+    if MODE == "hangs" or (MODE == "hangs-later" and count > 3):
         time.sleep(3600)
+    if MODE == "half-line":
+        sys.stdout.write(json.dumps({"id": k, "value": chi})[:-3])
+        sys.stdout.flush()
+        time.sleep(3600)
+    if MODE == "huge-line":
+        chunk = "1" * (1 << 20)
+        sys.stdout.write('{"id": %d, "value": ' % k)
+        for _ in range(100):
+            sys.stdout.write(chunk)
+        sys.stdout.write("}\n")
+        sys.stdout.flush()
+        continue
     if MODE == "garbage":
         print("Segmentation fault (core dumped)? no: just not JSON", flush=True)
         continue

@@ -1,0 +1,98 @@
+"""The checked implementation, watched: each protocol call marked as the implementation's
+time, each answer that must be a finite number screened for NaN and infinity.
+
+The runner hands every property the implementation wrapped in :class:`Watched`:
+
+- a clock that stops a call (the task's budget, the time limit per example) stops the
+  implementation, so it is the implementation's hang, reported with its input, not a
+  search that merely ran out of time (:func:`~.budget.calling`);
+- an answer of a method whose exact value is always a finite real number (``numbers``:
+  angles, defects, areas, area gradients, Dirichlet solutions; ``edges``: mean
+  curvatures; ``intrinsic triangulation``: squared lengths) that holds a NaN or an
+  infinity fails the property being checked, at its first such element, before the
+  property compares anything: a NaN compares false with every bound, so a check written
+  ``abs(x - y) > bound`` would let it through.  Matrices are screened by
+  :func:`~.harness.implementation_matrix`, which also knows the faces whose float area a
+  correct implementation cannot resolve.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .budget import calling
+from .protocol import METHODS, implementation_name
+from .registry import PropertyFailure
+
+__all__ = ["Watched", "first_non_finite"]
+
+#: answers whose exact value is always finite, screened here (matrices: harness)
+SCREENED = ("numbers", "edges", "intrinsic triangulation")
+
+
+class Watched:
+    """``impl`` as the properties of ``property_id`` see it: the same attributes and
+    protocol methods, each call marked and its answer screened (module docstring)."""
+
+    def __init__(self, impl, property_id: str):
+        self.__dict__.update(_impl=impl, _pid=property_id, name=implementation_name(impl))
+
+    def __getattr__(self, attr: str):
+        value = getattr(self._impl, attr)
+        if attr not in METHODS or not callable(value):
+            return value
+
+        def call(*args):
+            with calling(f"{self.name}.{attr}"):
+                answer = value(*args)
+            found = first_non_finite(attr, answer)
+            if found is not None:
+                where, x = found
+                mesh = _mesh(args) if METHODS[attr].arguments[:2] == ("V", "F") else None
+                raise PropertyFailure(self._pid, self._impl,
+                                      f"{attr} answered {x!r} where the exact value is a "
+                                      "finite number", mesh=mesh, element=where,
+                                      expected="a finite number", observed=x)
+            return answer
+        return call
+
+
+def first_non_finite(method: str, answer):
+    """(where, value) of the first NaN or infinity in ``answer`` of ``method`` (an index,
+    an edge, or None for a single number), or None; None too for an answer of the wrong
+    shape or type, which the property reports as such.
+
+    >>> first_non_finite("angle_defects", [0.5, float("nan")])
+    ((1,), nan)
+    >>> first_non_finite("edge_mean_curvature", {(0, 1): 0.25, (1, 2): float("inf")})
+    ((1, 2), inf)
+    >>> first_non_finite("euler_characteristic", 2) is None
+    True
+    """
+    kind = METHODS[method].kind
+    if kind not in SCREENED:
+        return None
+    try:
+        if kind == "edges":
+            for edge, h in dict(answer).items():
+                if not np.isfinite(float(h)):
+                    return edge, float(h)
+            return None
+        if kind == "intrinsic triangulation":
+            answer = answer[1]
+        a = np.asarray(answer, dtype=np.float64)
+    except (TypeError, ValueError, IndexError, KeyError):
+        return None
+    bad = np.argwhere(~np.isfinite(a))
+    if not len(bad):
+        return None
+    where = tuple(int(i) for i in bad[0])
+    return (where or None), float(a[where])
+
+
+def _mesh(args):
+    try:
+        V, F = np.asarray(args[0], dtype=np.float64), np.asarray(args[1], dtype=np.int64)
+        return V.tolist(), F.tolist()
+    except (TypeError, ValueError):
+        return None

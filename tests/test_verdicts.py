@@ -1,0 +1,328 @@
+"""A verdict is what it says: never a pass for an implementation that hangs, answers NaN,
+or ran fewer examples than the profile asks for; never a failure hidden by our own crash.
+
+Each test here is a false pass or a hidden failure that a session found on landed main
+(issue 40), kept so it cannot come back.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import textwrap
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import settings
+
+from ddg_oracle.cli import main
+from ddg_oracle.isolation import Isolated
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.oracles.executable import Executable, program_of
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.budget import Budget
+from ddg_oracle.properties.calls import first_non_finite
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.protocol import METHODS, OutsideDomain
+from ddg_oracle.properties.registry import all_properties
+from ddg_oracle.properties.runner import (CRASHED, FAILED, INCOMPLETE, NOT_APPLICABLE, PASSED,
+                                          NearMissWarning, check_implementation, run_property,
+                                          run_properties)
+from tests.misbehaving import Hangs
+
+ROOT = Path(__file__).resolve().parent.parent
+DRIVER = ROOT / "tests" / "misbehaving_driver.py"
+SHORT = Budget(2.0, 6, 1.0)
+
+
+def _run(capsys, *argv):
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+# --- a hanging implementation is a crash with its input, never a pass ---------------------
+
+
+def test_an_in_process_hang_is_a_crash_with_its_input():
+    t0 = time.monotonic()
+    r = run_property(PROPERTIES["D3.1"], Hangs(), profile("default"), budget=SHORT)
+    assert time.monotonic() - t0 < 6
+    assert r.status == CRASHED and not r.ok
+    assert r.error.startswith("hang: hangs.cotan_laplacian did not return")
+    assert r.mesh is not None and r.replay is not None
+
+
+def test_an_isolated_hang_is_a_crash_and_the_worker_is_killed():
+    with Isolated("tests.misbehaving:Hangs", timeout=60) as impl:
+        r = run_property(PROPERTIES["D3.1"], impl, profile("default"), budget=Budget(3.0, 6, 1.0))
+        assert r.status == CRASHED and "hang" in r.error and r.mesh is not None
+        assert impl._proc is None or not impl._proc.is_alive()
+
+
+def test_check_implementation_raises_for_a_hang():
+    with pytest.raises(AssertionError, match="did not return"):
+        with _budget_of_default(SHORT):
+            check_implementation(Hangs(), only={"D3.1"})
+
+
+@pytest.mark.parametrize("mode", ["hangs", "hangs-later", "half-line"])
+def test_a_driver_that_stops_answering_is_a_crash(mode):
+    impl = Executable([sys.executable, str(DRIVER), mode], timeout=60)
+    try:
+        r = run_property(PROPERTIES["D1.6"], impl, profile("default"), budget=Budget(4.0, 6, 1.0))
+    finally:
+        impl.close()
+    assert r.status == CRASHED and "hang" in r.error, (r.status, r.error)
+
+
+def test_a_driver_streaming_a_huge_line_is_a_crash_within_seconds():
+    impl = Executable([sys.executable, str(DRIVER), "huge-line"], timeout=60)
+    t0 = time.monotonic()
+    try:
+        r = run_property(PROPERTIES["D1.6"], impl, profile("default"), budget=Budget(20.0, 2, 1.0))
+    finally:
+        impl.close()
+    assert r.status == CRASHED and "longer than" in r.error
+    assert time.monotonic() - t0 < 15
+
+
+def test_the_cli_exits_1_for_a_hang_and_never_says_passed(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.misbehaving:Hangs", "--only", "D3.1",
+                      "T3.6", "--budget", "2", "--workers", "1")
+    assert rc == 1
+    assert "passed (" not in out.split("passed (of the applicable checks)")[0]
+    assert "hang: hangs.cotan_laplacian did not return" in out
+
+
+# --- fewer examples than asked for: incomplete, not passed ---------------------------------
+
+
+class Slow(ReferenceImplementation):
+    name = "slow"
+
+    def euler_characteristic(self, V, F):
+        time.sleep(0.3)
+        return super().euler_characteristic(V, F)
+
+
+def test_a_search_the_budget_cut_short_is_incomplete():
+    r = run_property(PROPERTIES["D1.6"], Slow(), profile("default"), budget=Budget(1.5, 6, 1.0))
+    assert r.status == INCOMPLETE and not r.ok
+    assert 0 < r.examples < r.wanted == 25
+    assert r.summary() == f"incomplete ({r.examples} of 25 examples)"
+    assert "budget ran out" in r.note and r.mesh is None and r.replay is None
+
+
+def test_incomplete_fails_check_implementation_and_exits_1_unless_accepted(capsys, monkeypatch):
+    with _budget_of_default(Budget(1.5, 6, 1.0)):
+        with pytest.raises(AssertionError, match="incomplete"):
+            check_implementation(Slow(), only={"D1.6"})
+    monkeypatch.syspath_prepend(str(Path(__file__).parent))
+    args = ("check", "--impl", "tests.test_verdicts:Slow", "--only", "D1.6", "--budget", "1.5",
+            "--workers", "1")
+    rc, out, _ = _run(capsys, *args)
+    assert rc == 1 and "of 25 examples ran" in out and "--accept-incomplete" in out
+    assert "passed (1 example" not in out and "passed (2" not in out
+    rc, out, _ = _run(capsys, *args, "--accept-incomplete")
+    assert rc == 0 and "1 incomplete, accepted" in out
+
+
+class Declines(ReferenceImplementation):
+    """Declines every mesh of more than ``keep`` faces (OutsideDomain)."""
+
+    def __init__(self, keep: int):
+        self.keep, self.name = keep, f"declines-above-{keep}"
+
+    def euler_characteristic(self, V, F):
+        if len(F) > self.keep:
+            raise OutsideDomain(f"more than {self.keep} faces")
+        return super().euler_characteristic(V, F)
+
+
+QUICK = settings(profile("default"), max_examples=25)
+
+
+def test_declined_examples_are_replaced_and_a_full_count_passes():
+    r = run_property(PROPERTIES["D1.6"], Declines(40), QUICK)
+    assert r.status == PASSED and r.examples == 25 and "outside its domain" in r.note
+
+
+def test_an_implementation_declining_nearly_everything_is_incomplete_or_not_applicable():
+    some = run_property(PROPERTIES["D1.6"], Declines(4), QUICK)
+    assert some.status in (INCOMPLETE, NOT_APPLICABLE) and some.examples < 25
+    if some.status == INCOMPLETE:
+        assert "declined" in some.note and not some.ok
+    none = run_property(PROPERTIES["D1.6"], Declines(0), QUICK)
+    assert none.status == NOT_APPLICABLE and none.examples == 0
+
+
+# --- NaN and infinity are failures in every property ---------------------------------------
+
+
+SCREENED = [m for m, spec in METHODS.items()
+            if spec.kind in ("numbers", "edges", "intrinsic triangulation")]
+
+
+def _poisoned(method: str, value):
+    class Poisoned(ReferenceImplementation):
+        name = f"{method}-{value}"
+
+    def answer(self, *args):
+        got = getattr(ReferenceImplementation, method)(self, *args)
+        if METHODS[method].kind == "edges":
+            return {e: value for e in got}
+        if METHODS[method].kind == "intrinsic triangulation":
+            F2, l2 = got
+            return F2, np.full(np.shape(l2), value)
+        return np.full(np.shape(got), value)
+    setattr(Poisoned, method, answer)
+    return Poisoned()
+
+
+@pytest.mark.parametrize("method", SCREENED)
+def test_a_nan_answer_fails_every_property_that_reads_it(method):
+    props = [p for p in all_properties() if method in p.methods]
+    assert props, method
+    for value in (float("nan"), float("inf")):
+        impl = _poisoned(method, value)
+        for p in props:
+            r = run_property(p, impl, settings(profile("ci"), max_examples=8))
+            assert r.status in (FAILED, NOT_APPLICABLE), (p.id, method, value, r.status)
+            if r.status == FAILED:
+                assert "finite" in r.failure.message or "non-finite" in r.failure.message
+
+
+def test_first_non_finite_finds_nan_in_every_screened_shape():
+    where, x = first_non_finite("corner_angles", np.array([[1.0, 2.0, np.nan]]))
+    assert where == (0, 2) and x != x
+    assert first_non_finite("area", float("inf")) == (None, float("inf"))
+    assert first_non_finite("intrinsic_delaunay_triangulation",
+                            (np.zeros((1, 3)), np.array([[1.0, np.inf, 1.0]])))[0] == (0, 1)
+    assert first_non_finite("corner_angles", "not an array") is None
+
+
+# --- a failure is never hidden by a crash of our own code ----------------------------------
+
+
+class IsolatedVertexLaplacian(ReferenceImplementation):
+    """Puts 1 on the diagonal at vertices used by no face (their row must be zero)."""
+    name = "isolated-vertex-laplacian"
+
+    def cotan_laplacian(self, V, F):
+        L = super().cotan_laplacian(V, F).tolil()
+        used = np.zeros(len(V), dtype=bool)
+        used[np.asarray(F).ravel()] = True
+        for i in np.flatnonzero(~used):
+            L[i, i] = 1.0
+        return L.tocsr()
+
+
+def test_a_failure_on_a_mesh_with_an_unused_vertex_is_reported_with_that_mesh(capsys):
+    r = run_property(PROPERTIES["C3.3"], IsolatedVertexLaplacian(), profile("ci"))
+    assert r.status == FAILED
+    V, F = r.mesh
+    assert len({v for f in F for v in f}) < len(V)          # the unused vertex is in the mesh
+    assert r.replay is not None
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.test_verdicts:IsolatedVertexLaplacian",
+                      "--only", "C3.3", "--workers", "1", "--profile", "ci")
+    assert rc == 1 and "FAILED" in out and "could not" not in out
+
+
+def test_exact_mesh_of_an_example_with_isolated_vertices_is_indexed_as_its_arrays():
+    from ddg_oracle.properties.counterexample import exact_mesh
+    from ddg_oracle.properties.example import Example
+    from fractions import Fraction
+    P = [(Fraction(0), Fraction(0), Fraction(0)), (Fraction(1), Fraction(0), Fraction(0)),
+         (Fraction(0), Fraction(1, 3), Fraction(0))]
+    case = Example.of_mesh(P, [(0, 1, 2)], "triangle").with_data(
+        isolated=((1, (Fraction(5), Fraction(5), Fraction(5))),))
+    points, faces = exact_mesh(case)
+    V, F = case.mesh
+    assert faces == F and len(points) == len(V) == 4
+    assert [[float(c) for c in p] for p in points] == V
+
+
+# --- the convention counterpart of an interpreted driver keeps its interpreter -------------
+
+
+def test_the_counterpart_of_an_interpreted_driver_is_the_same_script(tmp_path):
+    script = tmp_path / "driver.py"
+    script.write_text(textwrap.dedent("""\
+        import json, sys
+        for line in sys.stdin:
+            r = json.loads(line)
+            if r["method"] == "hello":
+                print(json.dumps({"methods": ["euler_characteristic"], "conventions": {
+                    "follows": {"MINE-1": "chi of the closed surface"},
+                    "counterpart_arguments": ["--reference"]}}), flush=True)
+    """))
+    impl = Executable([sys.executable, str(script), "--library"], timeout=10)
+    try:
+        counterpart = impl.conventions["counterpart"]
+    finally:
+        impl.close()
+    assert counterpart == "exec:" + " ".join([sys.executable, str(script), "--reference"])
+    assert program_of([sys.executable, "-m", "pkg.driver", "--x"]) == [sys.executable, "-m",
+                                                                         "pkg.driver"]
+
+
+# --- verify never counts a case it did not send ---------------------------------------------
+
+
+def test_verify_of_a_driver_reports_inputs_it_could_not_send_as_not_run(capsys, tmp_path):
+    rc, _, _ = _run(capsys, "vectors", "--out", str(tmp_path / "v"))
+    assert rc == 0
+    server = tmp_path / "reference_server.py"
+    server.write_text("from ddg_oracle.oracles.exact_reference import ReferenceImplementation\n"
+                      "from ddg_oracle.oracles.executable import serve\n"
+                      "serve(ReferenceImplementation())\n")
+    spec = f"exec:{sys.executable} {server}"
+    rc, out, _ = _run(capsys, "verify", str(tmp_path / "v"), "--impl", spec)
+    lines = [x for x in out.splitlines() if x.startswith("not run ")]
+    assert lines and all("nan-coordinate" in x or "index-out-of-range" in x or "invalid" in x
+                         for x in lines), out
+    assert " not run" in out.splitlines()[-1]
+
+
+# --- a misnamed method is warned about even beside others that match ----------------------
+
+
+class HalfNamed(ReferenceImplementation):
+    name = "half-named"
+
+    def cotmatrix(self, V, F):
+        return ReferenceImplementation.cotan_laplacian(self, V, F)
+
+    cotan_laplacian = None          # only the library's name is defined
+
+
+def test_a_near_miss_beside_real_methods_is_warned_about(capsys):
+    with pytest.warns(NearMissWarning, match="cotmatrix.*cotan_laplacian"):
+        run_properties(HalfNamed(), only=["D1.6"])
+    rc, _, err = _run(capsys, "check", "--impl", "tests.test_verdicts:HalfNamed", "--only", "D1.6",
+                      "--workers", "1")
+    assert rc == 0 and "warning: half-named: `cotmatrix` is not a protocol method" in err
+
+
+# --- helpers ----------------------------------------------------------------------------------
+
+
+class _budget_of_default:
+    """check_implementation with the default profile's budget replaced (it reads BUDGETS)."""
+
+    def __init__(self, budget):
+        self.budget = budget
+
+    def __enter__(self):
+        from ddg_oracle.properties import budget as b
+        self.saved = b.BUDGETS["default"]
+        b.BUDGETS["default"] = self.budget
+
+    def __exit__(self, *exc):
+        from ddg_oracle.properties import budget as b
+        b.BUDGETS["default"] = self.saved
