@@ -509,9 +509,10 @@ def _check(args, argv) -> int:
 
     from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
     from ddg_oracle.report import write_report
-    from ddg_oracle.properties.runner import INCOMPLETE
+    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL
     bad = [r for r in results if not r.ok
            and not (args.accept_incomplete and r.status == INCOMPLETE)]
+    ours = any(r.status == INTERNAL for r in results)
     # display name -> spec: of the implementations started here, else as results say
     spec_of = {r.implementation: r.spec for r in results if r.spec}
     spec_of.update({n: s for s, n in names.items()})
@@ -555,6 +556,8 @@ def _check(args, argv) -> int:
                  if args.report else "shown above (--report DIR keeps them for --resume)"),
               file=sys.stderr)
         return interrupted.code
+    if ours:                         # a bug of ours on some example: the run went on, said so
+        return EXIT_TOOL
     return 1 if bad else 0
 
 

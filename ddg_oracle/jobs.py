@@ -108,7 +108,16 @@ def _counterpart(impl):
 
 
 def run_task(task: Task) -> list:
-    """The results of one task (in this process)."""
+    """The results of one task (in this process); a bug of ours while running it is an
+    ``internal error`` result, never a dead worker that would read as the library's crash."""
+    try:
+        return _run_task(task)
+    except Exception as e:  # noqa: BLE001  (ours: reported as such, the run goes on)
+        from ddg_oracle.properties.runner import INTERNAL, _internal_text
+        return crashed(task, _internal_text(e), status=INTERNAL)
+
+
+def _run_task(task: Task) -> list:
     from ddg_oracle.properties.profiles import profile, profile_budget
     from ddg_oracle.properties.registry import PROPERTIES, all_properties
     from ddg_oracle.properties.runner import run_property
@@ -133,11 +142,13 @@ def run_task(task: Task) -> list:
     return run_mesh_properties(examples[task.mesh], impl, only, counterpart, convention)
 
 
-def crashed(task: Task, why: str) -> list:
+def crashed(task: Task, why: str, status: str | None = None) -> list:
+    """The one result of a task that could not run: ``crashed`` (the implementation), or
+    the given ``status``."""
     from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import CRASHED, Result
     p = PROPERTIES.get(task.property_id)
-    return [Result(task.property_id or "-", p.name if p else "-", task.spec, CRASHED,
+    return [Result(task.property_id or "-", p.name if p else "-", task.spec, status or CRASHED,
                    error=why, source="generated" if task.mesh is None else f"mesh {task.mesh}")]
 
 

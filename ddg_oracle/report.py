@@ -333,7 +333,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     implementation, then every non-passing result in full (``files``: result index ->
     where its whole mesh and snippet are)."""
     from ddg_oracle.properties.runner import CONVENTION, CRASHED, FAILED, NOT_APPLICABLE, PASSED
-    from ddg_oracle.properties.runner import INCOMPLETE, TIE, UNDECIDED, describe
+    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED, describe
 
     findings = known_findings()
     impls = list(dict.fromkeys(r.implementation for r in results))
@@ -352,7 +352,9 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
         what = what if len(what) <= room else what[:room - 3] + "..."
         return head + what + where + tail
 
-    for title, statuses in (("FAILED", (FAILED,)), ("crashed", (CRASHED,)),
+    for title, statuses in (("internal errors of ddg-oracle (not the implementation's: please "
+                             "report them)", (INTERNAL,)),
+                            ("FAILED", (FAILED,)), ("crashed", (CRASHED,)),
                             ("incomplete: fewer examples ran than the profile asks for",
                              (INCOMPLETE,)),
                             ("tie disagreements", (TIE,)), ("conventions", (CONVENTION,)),
@@ -383,7 +385,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
 def closing_line(results, seconds: float, workers: int, profile: str, seed,
                  accept_incomplete: bool = False) -> str:
     """The last lines: counts, what the exit code means, what to run next."""
-    from ddg_oracle.properties.runner import CRASHED, FAILED, INCOMPLETE
+    from ddg_oracle.properties.runner import CRASHED, FAILED, INCOMPLETE, INTERNAL
 
     c = counts(results)
     findings = known_findings()
@@ -394,7 +396,12 @@ def closing_line(results, seconds: float, workers: int, profile: str, seed,
             f"{'s' if workers != 1 else ''}, profile {profile}"
             + (f", seed {seed} (rerun: --seed {seed})" if seed is not None else "") + ": "
             + ", ".join(f"{n} {s}" for s, n in c.items() if n))
-    if bad:
+    ours = sum(r.status == INTERNAL for r in results)
+    if ours:
+        meaning = (f"exit 3: ddg-oracle itself failed on {ours} check{'s' if ours != 1 else ''} "
+                   "(internal error: not the implementation's; please report it with the "
+                   "example shown)" + (f"; {len(bad)} failed or crashed" if bad else ""))
+    elif bad:
         unknown = len(bad) - sum(1 for r in bad if known_finding(r, findings))
         meaning = (f"exit 1: {len(bad)} check{'s' if len(bad) != 1 else ''} failed or crashed"
                    + (f"; known findings {', '.join(known)} (docs/findings.md)" if known else "")

@@ -64,9 +64,13 @@ class Potpourri3d:
 
     def euler_characteristic(self, V, F) -> int:
         """#V - #``potpourri3d.edges(V, F)`` + #F: the edges of geometry-central's
-        ``SurfaceMesh(F)`` (one per unordered vertex pair of a manifold mesh)."""
+        ``SurfaceMesh(F)`` (one per unordered vertex pair of a manifold mesh).  Its mesh
+        refuses a vertex used by no face below the largest index (F-potpourri3d-1): the
+        edges are counted on the used vertices, renumbered, and every row of V counts."""
         V, F = _arrays(V, F)
-        return len(V) - len(potpourri3d.edges(V, F)) + len(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        edges = potpourri3d.edges(V[used], inverse.reshape(F.shape))
+        return len(V) - len(edges) + len(F)
 
     def area(self, V, F) -> float:
         """``potpourri3d.face_areas(V, F)`` (1/2 |cross product|) summed with math.fsum."""

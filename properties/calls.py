@@ -20,11 +20,28 @@ from __future__ import annotations
 
 import numpy as np
 
-from .budget import calling
-from .protocol import METHODS, implementation_name
+from .budget import BudgetExceeded, calling
+from .protocol import METHODS, OutsideDomain, implementation_name
 from .registry import PropertyFailure
 
-__all__ = ["Watched", "first_non_finite"]
+__all__ = ["Watched", "first_non_finite", "raised_by_implementation"]
+
+#: what a call lets through unmarked: a declined input, the task's own clock, an interrupt
+_NOT_THE_IMPLEMENTATIONS = (OutsideDomain, BudgetExceeded, KeyboardInterrupt, SystemExit)
+
+
+class ImplementationRaised(RuntimeError):
+    """What the implementation raised, when it was an exception that takes no mark."""
+
+    _ddg_raised_by_implementation = True
+
+
+def raised_by_implementation(e: BaseException) -> bool:
+    """Whether ``e`` came out of a call of the checked implementation (marked by
+    :class:`Watched`): a crash of the implementation.  Anything else a property raises
+    that is not a failure, a decline or a limit of the exact reference is a bug of
+    ddg-oracle (an ``internal error``), never blamed on the implementation."""
+    return getattr(e, "_ddg_raised_by_implementation", False)
 
 #: answers whose exact value is always finite, screened here (matrices: harness)
 SCREENED = ("numbers", "edges", "intrinsic triangulation")
@@ -43,8 +60,17 @@ class Watched:
             return value
 
         def call(*args):
-            with calling(f"{self.name}.{attr}"):
-                answer = value(*args)
+            try:
+                with calling(f"{self.name}.{attr}"):
+                    answer = value(*args)
+            except _NOT_THE_IMPLEMENTATIONS:
+                raise
+            except BaseException as e:
+                try:
+                    e._ddg_raised_by_implementation = True
+                except AttributeError:         # an exception type without attributes
+                    raise ImplementationRaised(f"{type(e).__name__}: {e}") from e
+                raise
             found = first_non_finite(attr, answer)
             if found is not None:
                 where, x = found

@@ -51,6 +51,7 @@ from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
                          single_triangles)
 from .metrics import polycube_surfaces
+from .precision import representable
 from .protocol import eps
 from .registry import PropertyFailure, TieDisagreement, faces_text, prop, quantity
 from ddg_oracle.reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
@@ -700,8 +701,10 @@ def _near_tie(pid, impl, mesh, message, **kw):
 
 def _planar_points():
     from .planar_points import rational_point_sets
-    return rational_point_sets().map(lambda pts: tuple((Fraction(float(x)), Fraction(float(y)))
-                                                       for x, y in pts))
+    # rounded to the checked implementation's input format; distinct points after it
+    return rational_point_sets().map(lambda pts: tuple((representable(x), representable(y))
+                                                       for x, y in pts)).filter(
+        lambda pts: len(set(pts)) == len(pts))
 
 
 def _planar_result(impl, pts, pid):

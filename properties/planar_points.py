@@ -15,6 +15,8 @@ from hypothesis import strategies as st
 
 from ddg_oracle.reference.planar import orientation
 
+from .precision import representable
+
 #: the 12 integer points on the circle x^2 + y^2 = 25 (from 3^2 + 4^2 = 5^2)
 CIRCLE5 = ((5, 0), (4, 3), (3, 4), (0, 5), (-3, 4), (-4, 3),
            (-5, 0), (-4, -3), (-3, -4), (0, -5), (3, -4), (4, -3))
@@ -130,7 +132,8 @@ def planar_triangulations(draw, max_points: int = 12):
     """``(points, faces, on_hull)``: a straight-line triangulation of planar points, far
     from Delaunay, to be flipped to Delaunay (A4.13 in the plane).
 
-    The points are :func:`rational_point_sets` rounded to floats and taken exactly
+    The points are :func:`rational_point_sets` rounded to floats (of the checked
+    implementation's input format, :mod:`.precision`) and taken exactly
     (what a float implementation sees is what the reference sees).  The start is
     the sweep triangulation (long fans: rarely Delaunay), then random flips of
     strictly convex quadrilaterals, then sometimes a boundary face removed (a
@@ -140,7 +143,7 @@ def planar_triangulations(draw, max_points: int = 12):
     from ddg_oracle.reference.errors import InputError
     from ddg_oracle.reference.planar import planar_triangulation, straight_line_flip
 
-    pts = tuple((Fraction(float(x)), Fraction(float(y)))
+    pts = tuple((representable(x), representable(y))
                 for x, y in draw(rational_point_sets(max_points)))
     if not spans_plane(pts) or len(set(pts)) < len(pts):
         pts = ((Fraction(0), Fraction(0)), (Fraction(1), Fraction(0)), (Fraction(0), Fraction(1)))

@@ -31,9 +31,14 @@ A :class:`Result` has one of these statuses:
 * ``not applicable``: the implementation lacks a method the property needs, or
   declined every example as outside its domain
   (:class:`~ddg_oracle.properties.protocol.OutsideDomain`; a declined example is not
-  counted, and Hypothesis draws another in its place).
+  counted, and Hypothesis draws another in its place);
+* ``internal error``: ddg-oracle itself raised (in a strategy, the exact reference's
+  arithmetic or a property's own code), not the implementation: nothing is said about
+  the implementation, and the traceback is kept for a bug report (a failure found
+  before it still stands, with a note).
 
-``FAILED``, ``crashed`` and ``incomplete`` are not ok (:attr:`Result.ok` is False).
+``FAILED``, ``crashed``, ``incomplete`` and ``internal error`` are not ok
+(:attr:`Result.ok` is False).
 """
 
 from __future__ import annotations
@@ -44,32 +49,39 @@ from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 from hypothesis import HealthCheck, Phase, given, reject, seed as hypothesis_seed, settings as Settings
-from hypothesis.errors import Unsatisfiable
+from hypothesis.errors import Unsatisfiable, UnsatisfiedAssumption
 from hypothesis.reporting import with_reporter
 
 from ddg_oracle.reference.errors import ExactArithmeticLimit
 
 from .budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
-from .calls import Watched
+from .calls import Watched, raised_by_implementation
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
 from .profiles import profile as named_profile, profile_budget
-from .protocol import (OutsideDomain, capabilities, implementation_name, near_miss_warning,
-                       require_protocol)
+from .precision import inputs_at
+from .protocol import (OutsideDomain, capabilities, implementation_name, machine_epsilon,
+                       near_miss_warning, require_protocol)
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
 from .stream import same_stream
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
-INCOMPLETE = "incomplete"
+INCOMPLETE, INTERNAL = "incomplete", "internal error"
 #: every status, in the order of the summary counts
-STATUSES = (PASSED, FAILED, TIE, CONVENTION, CRASHED, INCOMPLETE, UNDECIDED, NOT_APPLICABLE)
+STATUSES = (PASSED, FAILED, TIE, CONVENTION, CRASHED, INCOMPLETE, UNDECIDED, INTERNAL,
+            NOT_APPLICABLE)
 #: statuses that are not a verdict of "holds": FAILED and crashed are the implementation's
-#: failures, incomplete a check that did not run all its examples
-NOT_OK = (FAILED, CRASHED, INCOMPLETE)
+#: failures, incomplete a check that did not run all its examples, internal error ours
+NOT_OK = (FAILED, CRASHED, INCOMPLETE, INTERNAL)
 #: what stops a search at once, without shrinking: the task's time ran out between calls
 #: (BudgetExceeded) or inside one (ImplementationHang, recorded as a crash first)
 _STOPS = (BudgetExceeded, ImplementationHang)
+
+
+class _InternalError(BaseException):
+    """Our own code raised while checking an example: stop the search at once (nothing
+    more is learnt about the implementation, and shrinking our bug is not its job)."""
 
 
 class NearMissWarning(UserWarning):
@@ -157,6 +169,16 @@ def _crash_text(e: BaseException) -> str:
     return f"{name}: {text}" if text else name
 
 
+def _internal_text(e: BaseException) -> str:
+    """Our own exception, with where it was raised (the last frames of its traceback) and a
+    request for a bug report: the implementation is not to blame."""
+    import traceback
+    frames = traceback.extract_tb(e.__traceback__)[-3:]
+    where = "; ".join(f"{f.filename.rsplit('/', 1)[-1]}:{f.lineno} in {f.name}" for f in frames)
+    return (f"ddg-oracle raised {_crash_text(e)} (at {where}), not the implementation: "
+            "this is a bug of ddg-oracle; please report it with this example")
+
+
 def _keep_smallest(state: dict, key: str, e: BaseException, example) -> None:
     """Remember the smallest failing (``key="failure"``) or crashing example seen, in case
     the budget stops the search before Hypothesis has replayed its shrunk one.  The first
@@ -186,8 +208,14 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dic
     # the reference's guards (term, precision, and time limits: an overrun inside a call of
     # the implementation is an ImplementationHang instead, a crash)
     limits = [e for e in errors if isinstance(e, ExactArithmeticLimit)]
-    crashes = [e for e in errors if not isinstance(e, PropertyFailure) and e not in limits]
+    crashes = [e for e in errors if not isinstance(e, PropertyFailure) and e not in limits
+               and (raised_by_implementation(e) or isinstance(e, ImplementationHang))]
+    ours = [e for e in errors if not isinstance(e, PropertyFailure) and e not in limits
+            and e not in crashes]
     ties = [e for e in errors if isinstance(e, TieDisagreement)]
+    if ours and not failures:
+        return dict(status=INTERNAL, error=_internal_text(ours[0]),
+                    mesh=example_mesh(state["last"]))
     if failures:
         f = failures[0]
         return dict(status=FAILED, failure=f, mesh=f.mesh or example_mesh(state["last"]),
@@ -229,12 +257,13 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                            "property needs)")
     state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
              "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
-             "stopped": None, "refused": False,
+             "stopped": None, "refused": False, "internal": None,
              "shrink": budget.shrink if budget is not None else None,
              # declined examples the search draws past before it stops: room for an
-             # implementation that declines three examples in four (OpenMesh declines the
-             # non-orientable ones); with none checked Hypothesis gives up after about 460
-             "max_outside": 4 * settings.max_examples}
+             # implementation that declines seven examples in eight (OpenMesh declines
+             # non-orientable and inconsistently oriented input: CS draws two surfaces, each
+             # may be either); with none checked Hypothesis gives up after about 460
+             "max_outside": 8 * settings.max_examples}
     max_crashes = budget.crashes if budget is not None else None
     watched = Watched(impl, p.id)
     # examples the implementation declines are counted, not checked; the check is wrapped
@@ -262,9 +291,14 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
             if not state["ties_raise"]:
                 _keep_smallest(state, "failure", e, example)
             raise
-        except BudgetExceeded:
-            raise
+        except (BudgetExceeded, UnsatisfiedAssumption):
+            raise                    # the task's clock; a property's assume(): not an example
         except BaseException as e:
+            if not isinstance(e, (KeyboardInterrupt, SystemExit, ExactArithmeticLimit,
+                                  ImplementationHang)) and not raised_by_implementation(e):
+                # not the implementation's: ddg-oracle's own code raised
+                state["internal"] = (e, example)
+                raise _InternalError() from e
             if not state["ties_raise"]:
                 if not isinstance(e, (KeyboardInterrupt, SystemExit)):
                     _keep_smallest(state, "crash", e, example)
@@ -296,7 +330,10 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     # its pytest plugin uses for parametrized tests (no public API exists for it)
     body._hypothesis_internal_add_digest = p.id.encode()
     t0 = state["t0"] = time.perf_counter()
-    with task_budget(budget.seconds if budget is not None else None):
+    # examples drawn in the implementation's own input format (float32 ones for a float32
+    # implementation): it receives exactly the numbers the reference computes with
+    with task_budget(budget.seconds if budget is not None else None), \
+            inputs_at(machine_epsilon(impl)):
         errors, run = _search(body, p, settings, seed, state=state)
         if not errors and state["tie"] is not None and state["stopped"] is None:
             errors = _shrink_tie(body, p, settings, seed, run, state)
@@ -306,6 +343,8 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                ties=state["ties"], example=state["last"], **out)
     _note_outside(r, state)
     _judge_completeness(r, state)
+    if state["internal"] is not None and r.status != INTERNAL:
+        r.note = _joined(r.note, "then " + _internal_text(state["internal"][0]))
     r.spec = implementation_spec(impl)
     _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
     if r.status == FAILED and counterpart is not None:
@@ -320,7 +359,7 @@ def _judge_completeness(r: Result, state: dict) -> None:
     Hypothesis ended by itself with fewer (every example the strategy can draw was run,
     none declined) is a pass.  A failure or crash keeps its status, with a note."""
     stopped = state["stopped"]
-    if r.status in (FAILED, CRASHED):
+    if r.status in (FAILED, CRASHED, INTERNAL):
         if stopped is not None and stopped not in (r.error or ""):
             r.note = _joined(r.note, f"shrinking stopped early: {stopped}")
         return
@@ -380,6 +419,16 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
             return [], run
         state["last"] = best[1]
         return [best[0]], run
+    except _InternalError:
+        if state is None:
+            raise
+        e, example = state["internal"]
+        best = state["failure"] or state["crash"]
+        if best is None:                     # our bug on this example: that is the result
+            state["last"] = example
+            return [e], run
+        state["last"] = best[1]
+        return [best[0]], run
     except Unsatisfiable:
         return [], run                 # every example declined: judged from the counts
     except BaseException as e:  # noqa: BLE001  (anything the implementation did is a result)
@@ -426,7 +475,7 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
         # the first pass's examples that ran (declined ones are drawn past, as there)
         errors, _ = _search(body, p, settings, seed, database=None,
                             max_examples=max(1, n - outside))
-    except _STOPS:
+    except (*_STOPS, _InternalError):
         errors = []                      # out of time: the smallest tie so far stands
     finally:
         state.update(n=n, ties=ties, outside=outside, ties_raise=False, abort=False)

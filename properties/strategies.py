@@ -23,6 +23,7 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo, variants
 from .example import Example
+from .precision import input_format, representable
 
 
 def expected_classification(orientable: bool, genus: int, holes: int) -> Classification:
@@ -111,14 +112,35 @@ def _placeholder_positions(t: Triangulation) -> tuple:
     return tuple((Fraction(i), Fraction(i * i), Fraction(i * i * i)) for i in range(t.n_vertices))
 
 
+#: second components of :func:`triangulated_surfaces` (name -> triangulation, its class)
+_TOPOLOGY_COMPONENTS = {
+    "tetrahedron": (lambda: surfaces.tetrahedron().triangulation, (True, 0, 0)),
+    "disk": (lambda: surfaces.disk(4).triangulation, (True, 0, 1)),
+    "Möbius strip": (lambda: surfaces.mobius_strip(3).triangulation, (False, 1, 1)),
+    "projective plane": (surfaces.projective_plane, (False, 1, 0)),
+    "torus": (lambda: surfaces.torus(3, 3).triangulation, (True, 1, 0)),
+}
+
+
 @st.composite
 def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
                           max_genus: int = 2, max_holes: int = 2, moves: bool = True,
-                          relabel: bool = True):
+                          relabel: bool = True, reversed: bool = False, components: int = 0,
+                          isolated: int = 0):
     """A :class:`Example`: any topology (orientable or not, genus, holes), refined and flipped.
 
     Fixed arguments pin the topology; the rest is drawn.  The combinatorics are
     always a simplicial complex (strongly regular), as array-based libraries expect.
+    Where bugs hide (each drawn 0 first, so a failure shrinks to the plain surface):
+
+    * ``reversed``: some faces listed the other way (the same surface inconsistently
+      oriented: orientable stays orientable; what breaks is code that follows the
+      faces' own direction);
+    * ``components``: up to this many more components (a tetrahedron, a disk, a Möbius
+      strip, a projective plane, a torus), after the first; the expected class then
+      has chi, orientability and boundary loops of the union, and no genus (None);
+    * ``isolated``: up to this many vertices used by no face (each counts 1 in
+      chi = V - E + F), at drawn indices of the arrays.
     """
     if max_genus < 0 or max_holes < 0:
         raise ValueError("max_genus and max_holes must be >= 0")
@@ -139,11 +161,36 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
         start = draw(st.integers(0, 1 << 16))
         t = punch_holes(t, k, start)
         recipe += f", {k} hole(s)"
+    expected = expected_classification(o, g, k)
+    if reversed and draw(st.integers(0, 2)) == 2:
+        t, n = variants.reversed_faces(t, draw(st.integers(0, 1 << 16)))
+        recipe += f", {n} face(s) reversed"
+    for _ in range(draw(st.integers(0, components)) if components else 0):
+        name = draw(st.sampled_from(sorted(_TOPOLOGY_COMPONENTS)))
+        build, (o2, g2, k2) = _TOPOLOGY_COMPONENTS[name]
+        other = expected_classification(o2, g2, k2)
+        t = variants.union_of(t, build())
+        expected = Classification(expected.orientable and other.orientable, None,
+                                  expected.boundary_components + other.boundary_components,
+                                  expected.euler_characteristic + other.euler_characteristic)
+        recipe += f", and a {name}"
     positions = _placeholder_positions(t)
     if relabel:
         key = draw(st.integers(0, 1 << 16))
         t, positions, _ = variants.relabelled(t, positions, key)
-    return Example.of_triangulation(t, positions, expected_classification(o, g, k), recipe)
+    case = Example.of_triangulation(t, positions, expected, recipe)
+    n_iso = draw(st.integers(0, isolated)) if isolated else 0
+    if not n_iso:
+        return case
+    size = t.n_vertices + n_iso
+    spots = sorted(draw(st.lists(st.integers(0, size - 1), min_size=n_iso, max_size=n_iso,
+                                 unique=True)))
+    # a far point, past the moment curve's (distinct from every vertex's)
+    iso = tuple((i, (Fraction(-1 - i), Fraction(0), Fraction(0))) for i in spots)
+    expected = Classification(expected.orientable, expected.genus, expected.boundary_components,
+                              expected.euler_characteristic + len(iso))
+    return case.with_data(isolated=iso, expected=expected,
+                          recipe=recipe + f", isolated vertices at {list(spots)}")
 
 
 def closed_surfaces(**kw):
@@ -198,7 +245,8 @@ def mobius_strips(max_size: int = 6):
 
 
 def floated(surface: PolyhedralSurface) -> PolyhedralSurface:
-    """The surface with every coordinate rounded to the nearest float (then taken exactly)."""
+    """The surface with every coordinate rounded to the nearest float of the checked
+    implementation's input format (:mod:`.precision`; then taken exactly)."""
     return surface.with_positions([floated_point(p) for p in surface.positions])
 
 
@@ -264,14 +312,8 @@ FAN_LIFT_LIMIT = 20
 def _reversed_faces(s: PolyhedralSurface, seed: int) -> tuple[PolyhedralSurface, int]:
     """The surface with a random nonempty subset of its faces reversed (same vertices, same
     metric: an orientable surface inconsistently oriented); (surface, faces reversed)."""
-    rng = random.Random(seed)
-    faces = [list(f) for f in s.triangulation.faces]
-    flip = [f for f in range(len(faces)) if rng.random() < 0.5] or [0]
-    for f in flip:
-        a, b, c = faces[f]
-        faces[f] = [a, c, b]
-    t = Triangulation.from_faces(faces, n_vertices=s.n_vertices)
-    return PolyhedralSurface(t, s.positions), len(flip)
+    t, k = variants.reversed_faces(s.triangulation, seed)
+    return PolyhedralSurface(t, s.positions), k
 
 
 def _scaled_and_moved(s: PolyhedralSurface, k: int, e: int | None, signs: int) -> PolyhedralSurface:
@@ -362,16 +404,20 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
       surfaces with a random subset of faces reversed -- same metric, other halfedges;
     * ``wide=True``: a sliver (a face split at 2**-k, k <= 30, from a corner --
       needles -- or from an edge's midpoint -- a cap, on the boundary if that edge
-      is), a second component (beside it, or touching it at one point: two
-      vertices at one position), up to 2 isolated vertices (used by no face; at
-      a far point or exactly at a vertex's position; ``isolated=False`` leaves them
-      out), and a random order of vertices, faces and corners;
+      is), alone or 2-5 of them clustered at one point or banded across the mesh
+      (as the degenerate-mesh benchmarks draw them); a second component (beside
+      it, or touching it at one point: two vertices at one position), up to 2
+      isolated vertices (used by no face; at a far point or exactly at a vertex's
+      position; ``isolated=False`` leaves them out), and a random order of
+      vertices, faces and corners;
     * ``far=True``: scaled by 2**k (k in -60..60) and moved by 2**e (e in 0..30)
       times its size (``far=False`` for a property that moves the surface itself:
       a rotated far-away surface rounded to floats can lose a face).  ``max_valence``
       caps the fans and bipyramids.
 
-    Coordinates end as floats.  Shrinks towards the tetrahedron at scale 1, at the
+    Coordinates end as floats of the checked implementation's input format
+    (:mod:`.precision`: a float32 implementation gets float32 numbers, and smaller
+    scales, offsets and slivers that float32 can hold).  Shrinks towards the tetrahedron at scale 1, at the
     origin, consistently oriented, connected, in its constructor's order.  Each
     building step is kept per drawn choices (:data:`.memo.DRAWN`), and so is the case:
     equal draws give the same, shared, read-only case object.
@@ -401,11 +447,12 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         key += ("jitter", level, seed, floats)
         s = _built(key, lambda s=s: _jittered(s, level, seed, floats))
         recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
-    sliver = draw(st.integers(0, 2)) if wide else 0          # 0 none, 1 needle, 2 cap
-    k_sliver = 0
+    fmt = input_format()              # the checked implementation's floats (precision)
+    sliver = draw(st.integers(0, 2)) if wide and fmt.sliver else 0   # 0 none, 1 needle, 2 cap
+    k_sliver, family = 0, None
     if sliver:
         kind = ("needle", "cap")[sliver - 1]
-        k_sliver = draw(st.integers(1, SLIVER_LIMIT))
+        k_sliver = draw(st.integers(1, min(SLIVER_LIMIT, fmt.sliver)))
         h = draw(st.integers(0, 1 << 16))
         if draw(st.booleans()):                               # a boundary edge, if any
             t = s.triangulation
@@ -413,10 +460,14 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
             h = border[h % len(border)] if border else h
         lift = draw(st.one_of(st.none(), st.integers(0, 8)))
         h %= s.triangulation.n_halfedges
-        key += (kind, h, k_sliver, lift)
-        s = _built(key, lambda s=s: variants.with_sliver(s, h, kind, k_sliver, lift))
+        # one sliver, or a cluster of them at one point, or a band across the mesh
+        family = variants.SLIVER_FAMILIES[draw(st.integers(0, 2))]
+        count = draw(st.integers(2, 5)) if family != "isolated" else 1
+        key += (kind, h, k_sliver, lift, family, count)
+        s = _built(key, lambda s=s: variants.slivers(s, h, kind, k_sliver, lift, family, count))
         recipe += f", {kind} 2^-{k_sliver} at halfedge {h}" + (
-            f" lifted 2^-{lift}" if lift is not None else "")
+            f" lifted 2^-{lift}" if lift is not None else "") + (
+            f", {family} ({count})" if count > 1 else "")
     if orientation == 2:
         which = draw(st.integers(0, 1 << 16))
         key += ("reversed", which)
@@ -439,20 +490,24 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         recipe += f", reordered (seed {order})"
     # scaling by 2**k is exact in floats, so a bug of the unit-size mesh shows scaled too:
     # scale most examples (a threshold bug shows only there)
-    k = draw(st.integers(-60, 60)) if far and draw(st.integers(0, 3)) else 0
-    e = draw(st.integers(0, 30)) if far and draw(st.integers(0, 3)) >= 2 else None
+    k = draw(st.integers(-fmt.scale, fmt.scale)) if far and draw(st.integers(0, 3)) else 0
+    e = draw(st.integers(0, fmt.offset)) if far and draw(st.integers(0, 3)) >= 2 else None
     if e is not None and sliver:
-        e = min(e, 36 - k_sliver)            # keep >= 12 bits of the sliver after rounding
+        # keep >= 12 bits of the sliver after rounding
+        e = max(0, min(e, fmt.bits - 17 - k_sliver))
     if k or e is not None:
         signs = draw(st.integers(0, 7)) if e is not None else 0
         key += ("scaled", k, e, signs)
         s = _built(key, lambda s=s: _scaled_and_moved(s, k, e, signs))
         recipe += f", scaled by 2^{k}" + (f", moved by 2^{e} x its size" if e is not None else "")
     def rounded(s=s):
-        s = floated(s)
+        try:
+            s = floated(s)
+        except OverflowError:
+            return None                          # beyond the input format's range
         # rounding collapsed a sliver or folded a flip: not an example (None)
         return None if variants.is_degenerate(s) or variants.has_fold(s) else s
-    key += ("floated",)
+    key += ("floated", fmt.name)
     s = _built(key, rounded)
     assume(s is not None)
     allow_isolated, isolated = isolated, ()
@@ -479,6 +534,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     params = (("scale exponent", k), ("offset exponent", e),
               ("orientation", ("consistent", "moebius", "faces reversed")[orientation]),
               ("sliver", (None, "needle", "cap")[sliver]), ("sliver exponent", k_sliver),
+              ("sliver family", family),
               ("components", 1 + (comp > 0)), ("touching", comp == 2),
               ("isolated", len(isolated)), ("reordered", order != 0))
     # one case object per drawn example: its float arrays and content key are computed once
@@ -488,16 +544,18 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
 
 
 def floated_point(p) -> tuple:
-    """A point with each coordinate rounded to the nearest float (then taken exactly)."""
-    return tuple(Fraction(float(x)) for x in p)
+    """A point with each coordinate rounded to the nearest float of the input format
+    (:func:`~.precision.representable`; then taken exactly)."""
+    return tuple(representable(x) for x in p)
 
 
 # --- meshes with exact dyadic positions (Laplacian, mass matrices, Delaunay) ------------------
 
 
 def _dyadic(x) -> Fraction:
-    """The exact value of the float nearest to x (what an implementation will see)."""
-    return Fraction(float(x))
+    """The exact value of the float nearest to x in the input format (what an
+    implementation will see)."""
+    return representable(x)
 
 
 def mesh_case(positions, faces, recipe) -> Example:
@@ -666,49 +724,75 @@ def closed_meshes(draw):
 
 
 @st.composite
-def surface_meshes(draw, closed: bool | None = None, isolated: bool = False):
-    """:func:`jittered_surfaces` as a :class:`Example` (not scaled, not moved: the Laplacian
-    bounds assume coordinates of the size of the edges): any topology, orientable or not,
-    faces reversed, high valence, slivers, several components, isolated and duplicated
-    vertices (``isolated=True``: then :meth:`Example.surface` refuses the case, as the
-    reference does; properties use :class:`~.laplacian.Exact`), any order.  Shrinks
-    towards the tetrahedron."""
-    c = draw(jittered_surfaces(closed=closed, intrinsic=True, far=False, isolated=isolated))
+def surface_meshes(draw, closed: bool | None = None, isolated: bool = False, far: bool = True):
+    """:func:`jittered_surfaces` as a :class:`Example`: any topology, orientable or not,
+    faces reversed, high valence, slivers alone, clustered or banded, several components,
+    isolated and duplicated vertices (``isolated=True``: then :meth:`Example.surface`
+    refuses the case, as the reference does; properties use :class:`~.laplacian.Exact`),
+    any order; ``far``: scaled by 2**k and moved by 2**e times its size (the chapter-3
+    bounds are relative to each face's own size: an implementation's edge vector
+    V[j] - V[i] of two floats is rounded once, relatively, wherever the mesh lies).
+    Shrinks towards the tetrahedron at the origin."""
+    c = draw(jittered_surfaces(closed=closed, intrinsic=True, far=far, isolated=isolated))
     V, F = c.mesh
     return Example.of_mesh(tuple(tuple(Fraction(x) for x in p) for p in V), tuple(tuple(f) for f in F),
                     c.recipe)
 
 
-def any_meshes(isolated: bool = False):
-    """Every kind above (``isolated=True``: also vertices used by no face); shrinks towards
-    a single triangle."""
-    return st.one_of(single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
-                     acute_meshes(), closed_meshes(), surface_meshes(isolated=isolated))
+def any_meshes(isolated: bool = False, far: bool = True):
+    """Every kind above (``isolated=True``: also vertices used by no face; ``far``: as
+    :func:`surface_meshes`): half the draws one of the small families, half
+    :func:`surface_meshes`, where the wide classes are (reversed faces, Möbius strips,
+    slivers, components, scales, offsets); shrinks towards a single triangle."""
+    small = st.one_of(single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
+                      acute_meshes(), closed_meshes())
+    return st.one_of(small, surface_meshes(isolated=isolated, far=far))
 
 
-#: binary exponents of the scales drawn by :func:`scaled_meshes`: 0 (shrinks there), and
-#: scales far from 1 at which products of four coordinates (|cross|^2, l^2 l^2) still stay
-#: normal float64 numbers (2**-800 .. 2**800), so only absolute thresholds fail
-SCALES = (0, 0, 0, 0, -64, 64, -200, 200)
+#: binary exponents of the scales drawn by :func:`scaled_meshes`, per input format: 0
+#: (shrinks there), and scales far from 1 at which products of four coordinates
+#: (|cross|^2, l^2 l^2) still stay normal numbers of the format (float64: 2**-800 ..
+#: 2**800; float32: 2**-96 .. 2**96), so only absolute thresholds fail
+SCALES = {"float64": (0, 0, 0, 0, -64, 64, -200, 200),
+          "float32": (0, 0, 0, 0, -12, 12, -24, 24),
+          "float16": (0, 0, 0, 0, -1, 1, -2, 2)}
 
 
 def scaled_meshes(meshes):
-    """``meshes`` multiplied by 2**k, k drawn from :data:`SCALES` (exact: powers of two).
+    """``meshes`` multiplied by 2**k, k drawn from :data:`SCALES` (exact: powers of two),
+    and one draw in four moved by 2**e times its size (e up to the input format's
+    offset, 30 in float64) along (+-1, +-1, +-1), rounded to the input format again.
 
-    Scale-invariant quantities (cotan weights, angles) must not change.  Catches
-    absolute thresholds (``if area < 1e-12``) and unscaled epsilons.  Beyond these
+    Scale-invariant quantities (cotan weights, angles) must not change, nor do
+    translation-invariant ones.  Catches absolute thresholds (``if area < 1e-12``),
+    unscaled epsilons and formulas that cancel in absolute coordinates.  Beyond these
     scales float64 itself runs out (e.g. libigl's ``doublearea`` squares the projected
     cross products, which underflow for coordinates below about 1e-77): that is a range
     limit, checked directly in the oracle tests, not here."""
     @st.composite
     def build(draw):
         c = draw(meshes)
-        k = draw(st.sampled_from(SCALES))
-        if k == 0:
+        fmt = input_format()
+        k = draw(st.sampled_from(SCALES[fmt.name]))
+        e = draw(st.integers(0, fmt.offset)) if draw(st.integers(0, 3)) == 3 else None
+        if k == 0 and e is None:
             return c
         s = Fraction(2) ** k
-        return Example.of_mesh(tuple(tuple(x * s for x in p) for p in c.positions), c.faces,
-                        f"{c.recipe}, scaled by 2**{k}", c.boundary, c.values, c.second)
+        pts = [tuple(x * s for x in p) for p in c.positions]
+        recipe = f"{c.recipe}, scaled by 2**{k}"
+        if e is not None:
+            signs = draw(st.integers(0, 7))
+            size = max((abs(x) for p in pts for x in p), default=Fraction(1)) or Fraction(1)
+            unit = Fraction(2) ** (size.numerator.bit_length() - size.denominator.bit_length() + e)
+            shift = [-unit if signs >> d & 1 else unit for d in range(3)]
+            try:
+                pts = [tuple(representable(x + o) for x, o in zip(p, shift)) for p in pts]
+            except OverflowError:
+                assume(False)
+            # rounding may have collapsed a face: not an example
+            assume(not variants.degenerate_faces(pts, c.faces))
+            recipe += f", moved by 2**{e} x its size"
+        return Example.of_mesh(tuple(pts), c.faces, recipe, c.boundary, c.values, c.second)
     return build()
 
 
@@ -752,7 +836,9 @@ def with_functions(meshes):
 
 def with_boundary(meshes, mesh_boundary: bool = False):
     """A mesh with a nonempty drawn boundary set V0 (or its boundary vertices) and
-    values on all vertices (only those on V0 are used)."""
+    values on all vertices (only those on V0 are used).  V0 is listed sorted, reversed
+    or shuffled (the order an implementation receives it in): a solver that assumes
+    sorted indices fails on the others."""
     @st.composite
     def build(draw):
         c = draw(meshes)
@@ -768,7 +854,14 @@ def with_boundary(meshes, mesh_boundary: bool = False):
                 V0.append(comp[draw(st.integers(0, len(comp) - 1))])
         f = draw(_values(c.n))
         g = draw(_values(c.n))
-        return Example.of_mesh(c.positions, c.faces, c.recipe, tuple(sorted(V0)), tuple(f), tuple(g))
+        V0 = sorted(V0)
+        order = draw(st.integers(0, 2))          # sorted, reversed, shuffled
+        if order == 1:
+            V0.reverse()
+        elif order == 2:
+            random.Random(draw(st.integers(0, 1 << 16))).shuffle(V0)
+        recipe = c.recipe + ("", ", V0 reversed", ", V0 shuffled")[order]
+        return Example.of_mesh(c.positions, c.faces, recipe, tuple(V0), tuple(f), tuple(g))
     return build()
 
 

@@ -27,8 +27,9 @@ from ddg_oracle.reference.combinatorics import Triangulation, cyclic, face_of, o
 from ddg_oracle.reference.exact.rationals import on_common_denominator
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-__all__ = ["relabelled", "permuted", "with_sliver", "disjoint_union", "fan", "bipyramid",
-           "circle_point", "is_degenerate", "has_fold"]
+__all__ = ["relabelled", "permuted", "reversed_faces", "with_sliver", "slivers", "disjoint_union",
+           "union_of", "fan", "bipyramid", "circle_point", "is_degenerate", "degenerate_faces",
+           "has_fold"]
 
 
 def relabelled(t: Triangulation, positions, key: int) -> tuple[Triangulation, tuple, list]:
@@ -61,6 +62,27 @@ def permuted(s: PolyhedralSurface, seed: int) -> PolyhedralSurface:
     for v, w in enumerate(perm):
         positions[w] = s.positions[v]
     return PolyhedralSurface(Triangulation.from_faces(faces, n_vertices=n), positions)
+
+
+def reversed_faces(t: Triangulation, seed: int) -> tuple[Triangulation, int]:
+    """``t`` with a random nonempty subset of its faces listed in the other direction
+    (chosen by ``seed``): the same surface, inconsistently oriented (an orientable one
+    stays orientable: no gluing changes, only which halfedges are listed); (t', how many).
+    A boundary walk or an orientation test that follows the faces' own direction breaks."""
+    rng = random.Random(seed)
+    faces = [list(f) for f in t.faces]
+    flip = [f for f in range(len(faces)) if rng.random() < 0.5] or [0]
+    for f in flip:
+        a, b, c = faces[f]
+        faces[f] = [a, c, b]
+    return Triangulation.from_faces(faces, n_vertices=t.n_vertices), len(flip)
+
+
+def union_of(t: Triangulation, other: Triangulation) -> Triangulation:
+    """Two triangulations as the components of one (``other``'s vertices after ``t``'s)."""
+    n = t.n_vertices
+    faces = [tuple(f) for f in t.faces] + [tuple(v + n for v in f) for f in other.faces]
+    return Triangulation.from_faces(faces, n_vertices=n + other.n_vertices)
 
 
 def _cross(u, v):
@@ -105,6 +127,34 @@ def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
                              list(x) + [tuple(p)])
 
 
+#: how several slivers lie (:func:`slivers`), as the degenerate-mesh benchmarks draw them
+SLIVER_FAMILIES = ("isolated", "clustered", "banded")
+
+
+def slivers(s: PolyhedralSurface, halfedge: int, kind: str, k: int, lift: int | None = None,
+            family: str = "isolated", count: int = 1) -> PolyhedralSurface:
+    """``count`` slivers (:func:`with_sliver`, all of one ``kind`` and size 2**-k): one
+    (``isolated``); each next one in a face at the previous one's new vertex
+    (``clustered``: several needles or caps around one point); or each next one in the
+    face across the previous face's far edge (``banded``: a row of slivers across the
+    mesh, which stops at the boundary)."""
+    if family not in SLIVER_FAMILIES:
+        raise ValueError(f"unknown sliver family {family!r}; one of {SLIVER_FAMILIES}")
+    h = halfedge % s.triangulation.n_halfedges
+    for i in range(count):
+        s = with_sliver(s, h, kind, k, lift)
+        m = s.triangulation.n_faces - 2            # the new faces: (b, c, q) = m, (c, a, q) = m + 1
+        if family == "clustered":
+            # the edge (q, b) of the face (b, c, q), the one of f's three that is not a
+            # sliver itself: the next sliver is as small, at q (not one inside another)
+            h = 3 * m + 2
+        elif family == "banded":
+            h = s.triangulation.twin(3 * m)         # across the edge (b, c), away from a
+            if h < 0:
+                break                               # the band reached the boundary
+    return s
+
+
 def disjoint_union(s: PolyhedralSurface, other: PolyhedralSurface,
                    touch: bool = False) -> PolyhedralSurface:
     """``s`` and ``other`` as two components of one mesh (other's vertices numbered after s's).
@@ -130,12 +180,9 @@ def disjoint_union(s: PolyhedralSurface, other: PolyhedralSurface,
         lo = min(p[0] for p in other.positions)
         width = max(p[0] for p in other.positions) - lo
         shift = [hi - lo + max(width, Fraction(1)) / 2, Fraction(0), Fraction(0)]
-    n = s.n_vertices
-    faces = [tuple(f) for f in s.triangulation.faces]
-    faces += [tuple(v + n for v in f) for f in other.triangulation.faces]
     positions = list(s.positions) + [tuple(p + d for p, d in zip(q, shift))
                                      for q in other.positions]
-    return PolyhedralSurface(Triangulation.from_faces(faces, n_vertices=len(positions)), positions)
+    return PolyhedralSurface(union_of(s.triangulation, other.triangulation), positions)
 
 
 def circle_point(angle: float, denominator: int = 1000) -> tuple[Fraction, Fraction]:
@@ -182,8 +229,15 @@ def _integer_positions(s: PolyhedralSurface) -> list[tuple[int, int, int]]:
 
 def is_degenerate(s: PolyhedralSurface) -> bool:
     """Whether some face has exactly zero area (its corners collinear), exactly."""
-    x = _integer_positions(s)
-    for a, b, c in s.triangulation.faces:
+    return degenerate_faces(s.positions, s.triangulation.faces)
+
+
+def degenerate_faces(positions, faces) -> bool:
+    """Whether some face of these exact positions has zero area (corners collinear or
+    equal), exactly (integer arithmetic on the common denominator)."""
+    flat, _ = on_common_denominator([c for p in positions for c in p])
+    x = [tuple(flat[k:k + 3]) for k in range(0, len(flat), 3)]
+    for a, b, c in faces:
         u = [x[b][i] - x[a][i] for i in range(3)]
         v = [x[c][i] - x[a][i] for i in range(3)]
         if not any(_cross(u, v)):

@@ -375,3 +375,100 @@ class TwoPiAtTheBoundary(ReferenceImplementation):
         K = super().angle_defects(V, F)
         boundary = {v for loop in self.boundary_loops(V, F) for v in loop}
         return np.array([k + math.pi if v in boundary else k for v, k in enumerate(K)])
+
+
+# --- topology on the inputs where it breaks: components, unused vertices, face direction ------
+
+
+class ChiOfUsedVertices(ReferenceImplementation):
+    """V - E + F with V the vertices some face uses (``np.unique(F)``): a vertex used by no
+    face, which counts 1, is dropped."""
+
+    name = "chi-of-used-vertices"
+    planted = ("euler_characteristic",)
+
+    def euler_characteristic(self, V, F):
+        F = np.asarray(F)
+        edges = {frozenset((int(f[c]), int(f[(c + 1) % 3]))) for f in F for c in range(3)}
+        return len(np.unique(F)) - len(edges) + len(F)
+
+
+class ChiOfFirstComponent(ReferenceImplementation):
+    """V - E + F of the component of face 0 (a flood fill over shared edges), the other
+    components forgotten."""
+
+    name = "chi-of-first-component"
+    planted = ("euler_characteristic",)
+
+    def euler_characteristic(self, V, F):
+        F = [tuple(int(v) for v in f) for f in np.asarray(F)]
+        by_edge = {}
+        for f, face in enumerate(F):
+            for c in range(3):
+                by_edge.setdefault(frozenset((face[c], face[(c + 1) % 3])), []).append(f)
+        reached, todo = {0}, [0]
+        while todo:
+            f = todo.pop()
+            for c in range(3):
+                for g in by_edge[frozenset((F[f][c], F[f][(c + 1) % 3]))]:
+                    if g not in reached:
+                        reached.add(g)
+                        todo.append(g)
+        faces = [F[f] for f in reached]
+        verts = {v for f in faces for v in f}
+        edges = {frozenset((f[c], f[(c + 1) % 3])) for f in faces for c in range(3)}
+        return len(verts) - len(edges) + len(faces)
+
+
+class OrientableByDirectedEdges(ReferenceImplementation):
+    """Orientable iff no directed edge is listed twice: that is whether the faces are
+    *consistently oriented*, so an orientable surface given with a reversed face is called
+    non-orientable (and its genus then counts crosscaps)."""
+
+    name = "orientable-by-directed-edges"
+    planted = ("is_orientable", "genus")
+
+    def is_orientable(self, V, F):
+        seen = set()
+        for f in np.asarray(F).tolist():
+            for c in range(3):
+                e = (f[c], f[(c + 1) % 3])
+                if e in seen:
+                    return False
+                seen.add(e)
+        return True
+
+    def genus(self, V, F):
+        chi = self.euler_characteristic(V, F)
+        k = len(self.boundary_loops(V, F))
+        return (2 - chi - k) // 2 if self.is_orientable(V, F) else 2 - chi - k
+
+
+class BoundaryLoopsByDirectedTwin(ReferenceImplementation):
+    """Boundary edges as the halfedges i -> j whose twin j -> i is missing, chained into
+    loops: an interior edge between a face and a reversed one (listed twice in one
+    direction) becomes two boundary edges."""
+
+    name = "boundary-loops-by-directed-twin"
+    planted = ("boundary_loops",)
+
+    def boundary_loops(self, V, F):
+        halfedges = {(int(f[c]), int(f[(c + 1) % 3])) for f in np.asarray(F) for c in range(3)}
+        nxt = {}
+        for i, j in halfedges:
+            if (j, i) not in halfedges:
+                nxt.setdefault(i, []).append(j)
+        loops, used = [], set()
+        for start in sorted(nxt):
+            for j0 in nxt[start]:
+                if (start, j0) in used:
+                    continue
+                loop, i, j = [start], start, j0
+                while (i, j) not in used:
+                    used.add((i, j))
+                    if j == start:
+                        break
+                    loop.append(j)
+                    i, j = j, next((k for k in nxt.get(j, []) if (j, k) not in used), start)
+                loops.append(loop)
+        return loops

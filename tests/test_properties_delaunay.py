@@ -38,10 +38,12 @@ def test_reference_passes_chapter4_property(pid):
 
 
 def test_forgetting_to_flip_is_caught_on_a_few_faces():
-    assert_caught("D4.8 / R4.9", NoFlips(), 4)
-    assert_caught("A4.13", NoFlips(), 4)
+    # at most 6: the ci stream meets a 6-face Möbius strip first, and the shrinker does
+    # not leave that kind for a 2-face quad (a different branch of the strategy)
+    assert_caught("D4.8 / R4.9", NoFlips(), 6)
+    assert_caught("A4.13", NoFlips(), 6)
     assert_caught("T4.5", NoFlips(), 12)      # smaller grids: near-cocircular, within rounding
-    r = assert_caught("L4.3 / P4.4", NoFlips(), 4)
+    r = assert_caught("L4.3 / P4.4", NoFlips(), 6)
     assert r.failure.observed > r.failure.bound
 
 

@@ -21,12 +21,15 @@ from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.strategies import jittered_surfaces
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, run_property
-from ddg_oracle.properties.strategies import surface_meshes, with_isolated, acute_meshes
+from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, scaled_meshes,
+                                              surface_meshes, triangulated_surfaces,
+                                              with_boundary, with_isolated)
 from tests.property_checks import assert_element_on_mesh
 from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, BoundaryByMissingTwin,
-                                ClampedArccos, CompactedVertices, FirstComponentOnly,
-                                MaxValence32, OffsetCancellation, TwinByReversedKey,
-                                WeldedByPosition)
+                                BoundaryLoopsByDirectedTwin, ChiOfFirstComponent,
+                                ChiOfUsedVertices, ClampedArccos, CompactedVertices,
+                                FirstComponentOnly, MaxValence32, OffsetCancellation,
+                                OrientableByDirectedEdges, TwinByReversedKey, WeldedByPosition)
 
 SEARCH = settings(max_examples=1000, database=None, deadline=None, derandomize=True,
                   suppress_health_check=list(HealthCheck))
@@ -185,7 +188,9 @@ DEFECTS = ("D2.2", "R2.4", "T2.6")          # the properties calling angle_defec
 @pytest.mark.parametrize("bug, pids, max_faces", [
     (ClampedArccos, ("D2.6",), 6),            # a tetrahedron with one face split at 2^-k
     (MaxValence32, DEFECTS, 66),              # valence 33: a fan of 33 faces, or a bipyramid
-    (FirstComponentOnly, DEFECTS, 8),         # a tetrahedron and a triangle (two, closed)
+    # a closed surface and a triangle: the ci stream's shrink stops at an octahedron
+    # with faces reversed (9 faces); Hypothesis's find reaches a tetrahedron (5)
+    (FirstComponentOnly, DEFECTS, 9),
     (WeldedByPosition, DEFECTS, 8),           # ... touching it at a vertex
     (BincountWithoutMinlength, DEFECTS, 4),   # a tetrahedron and an isolated vertex last
     (CompactedVertices, DEFECTS, 4),          # a tetrahedron and an isolated vertex first
@@ -208,3 +213,103 @@ def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
         assert len(r.failure.mesh[1]) <= max_faces, f"{bug.name}: shrunk to {len(r.failure.mesh[1])} faces"
     else:                              # not shrunk: a vertex of valence > 32 is there
         assert np.bincount(np.asarray(r.failure.mesh[1]).ravel()).max() > 32
+
+
+# --- topology: components, unused vertices, faces reversed (issue 40, item 4) -----------------
+
+
+def test_topology_examples_know_chi_of_components_and_unused_vertices():
+    wide = triangulated_surfaces(reversed=True, components=2, isolated=2)
+    case = find(wide, lambda c: len(c.triangulation.components()) > 1 and c.isolated,
+                settings=SEARCH)
+    V, F = case.arrays()
+    # chi counted directly from the arrays: V - E + F, every row of V counts
+    edges = {frozenset((int(f[c]), int(f[(c + 1) % 3]))) for f in F for c in range(3)}
+    assert case.expected.euler_characteristic == len(V) - len(edges) + len(F)
+    assert case.expected.genus is None                 # no genus of a disconnected surface
+    assert len({int(v) for v in F.ravel()}) < len(V)   # some row of V is used by no face
+    assert "isolated vertices at" in case.recipe and ", and a " in case.recipe
+
+
+def test_reversed_faces_keep_an_orientable_surface_orientable():
+    case = find(triangulated_surfaces(reversed=True), lambda c: "reversed" in c.recipe,
+                settings=SEARCH)
+    t = case.triangulation
+    assert any(t.reversed_gluing(e) for e in range(t.n_edges))
+    assert t.is_orientable() == case.expected.orientable
+
+
+@pytest.mark.parametrize("bug, pid", [(ChiOfUsedVertices, "D1.6"), (ChiOfFirstComponent, "D1.6"),
+                                      (OrientableByDirectedEdges, "T1.1 / C1.2"),
+                                      (BoundaryLoopsByDirectedTwin, "R1.6")])
+def test_topology_bugs_only_components_unused_vertices_or_reversed_faces_show(bug, pid):
+    r = run_property(PROPERTIES[pid], bug(), profile("ci"))
+    assert r.status == FAILED, f"{bug.name} passed {pid}"
+    assert len(r.failure.mesh[1]) <= 24
+
+
+# --- slivers in families, boundary sets in any order, translated meshes ------------------------
+
+
+@pytest.mark.parametrize("family", ["clustered", "banded"])
+def test_sliver_families_are_drawn(family):
+    case = find(jittered_surfaces(), lambda c: _param(c, "sliver family") == family,
+                settings=SEARCH)
+    assert f"{family} (" in case.recipe
+
+
+def test_clustered_slivers_meet_at_one_point_and_banded_ones_cross_faces():
+    from ddg_oracle.properties import variants
+    from ddg_oracle.reference import surfaces
+    grid = surfaces.grid(3, 3)
+    k = 12
+    size = Fraction(1, 2 ** (k - 2))              # every needle edge is shorter than this
+    for family in ("clustered", "banded"):
+        s = variants.slivers(grid, 7, "needle", k, None, family, 3)
+        new = range(grid.n_vertices, s.n_vertices)
+        assert len(new) == 3 if family == "clustered" else 1 <= len(new) <= 3
+        x = s.positions
+
+        def near(a, b):
+            return max(abs(p - q) for p, q in zip(x[a], x[b])) < size
+        # each new vertex is a needle: within 2**-k of an old or new vertex
+        assert all(any(near(q, v) for v in range(s.n_vertices) if v != q) for q in new)
+        if family == "clustered":                 # ... and of each other
+            assert all(near(a, b) for a in new for b in new)
+        else:                                     # in different faces of the grid: apart
+            assert not any(near(a, b) for a in new for b in new if a != b)
+
+
+def test_boundary_sets_come_unsorted_too():
+    case = find(with_boundary(acute_meshes()), lambda c: len(c.boundary) > 2
+                and list(c.boundary) != sorted(c.boundary), settings=SEARCH)
+    assert sorted(case.boundary) != list(case.boundary)
+    assert len(set(case.boundary)) == len(case.boundary)
+
+
+def test_scaled_meshes_are_also_moved_far_and_stay_floats():
+    case = find(scaled_meshes(any_meshes(far=False)), lambda c: "moved by 2**" in c.recipe,
+                settings=SEARCH)
+    V, _ = case.arrays()
+    assert all(Fraction(float(x)) == x for p in case.positions for x in p)
+    assert np.abs(V).min() > 0
+
+
+def test_float32_implementations_get_float32_inputs():
+    import struct
+    from ddg_oracle.properties.precision import inputs_at
+
+    def in_float32(c):
+        return all(struct.unpack("f", struct.pack("f", float(x)))[0] == x
+                   for p in c.mesh[0] for x in p)
+    with inputs_at(2.0 ** -23):
+        for strategy in (jittered_surfaces(), scaled_meshes(any_meshes(isolated=True, far=False)),
+                         any_meshes(isolated=True)):
+            with pytest.raises(NoSuchExample):
+                find(strategy, lambda c: not in_float32(c), settings=settings(SEARCH, max_examples=150))
+        # scales float32 holds with room for products of four coordinates
+        with pytest.raises(NoSuchExample):
+            find(jittered_surfaces(), lambda c: abs(_param(c, "scale exponent")) > 20,
+                 settings=settings(SEARCH, max_examples=150))
+    # and float64 ones get float64 numbers that float32 cannot hold
+    find(jittered_surfaces(), lambda c: not in_float32(c), settings=SEARCH)

@@ -326,3 +326,50 @@ class _budget_of_default:
     def __exit__(self, *exc):
         from ddg_oracle.properties import budget as b
         b.BUDGETS["default"] = self.saved
+
+
+# --- our own exception is an internal error, never the implementation's crash ----------------
+
+
+def _buggy(pid: str):
+    """Property ``pid`` whose own code divides by zero after asking the implementation."""
+    from dataclasses import replace
+    p = PROPERTIES[pid]
+
+    def check(impl, example):
+        impl.euler_characteristic(*example.arrays())
+        return 1 / 0
+    return replace(p, check=check)
+
+
+def test_an_exception_of_our_own_code_is_an_internal_error_not_a_crash():
+    from ddg_oracle.properties.runner import INTERNAL
+    r = run_property(_buggy("D1.6"), ReferenceImplementation(), QUICK)
+    assert r.status == INTERNAL and not r.ok
+    assert "ZeroDivisionError" in r.error and "not the implementation" in r.error
+    assert "test_verdicts.py" in r.error and r.mesh is not None
+
+
+def test_what_the_implementation_raises_is_still_its_crash():
+    class Raises(ReferenceImplementation):
+        name = "raises"
+
+        def euler_characteristic(self, V, F):
+            return 1 / 0
+    r = run_property(PROPERTIES["D1.6"], Raises(), QUICK)
+    assert r.status == CRASHED and "ZeroDivisionError" in r.error
+
+
+def test_a_failure_found_before_our_error_still_stands():
+    from dataclasses import replace
+    from ddg_oracle.properties.registry import PropertyFailure
+    p = PROPERTIES["D1.6"]
+    calls = []
+
+    def check(impl, example):
+        calls.append(1)
+        if len(calls) == 1:
+            raise PropertyFailure("D1.6", impl, "wrong on the first example", mesh=example.mesh)
+        raise KeyError("ours, while shrinking")
+    r = run_property(replace(p, check=check), ReferenceImplementation(), QUICK)
+    assert r.status == FAILED and "KeyError" in r.note and "bug of ddg-oracle" in r.note
