@@ -42,7 +42,8 @@ th, td { text-align: left; padding: 3px 6px; border-bottom: 1px solid #eee; }
 tr.result { cursor: pointer; }
 tr.result:hover { background: #eef4ff; }
 tr.selected { background: #dbe7ff !important; }
-.s-FAILED, .s-crashed { color: #b00020; font-weight: 600; }
+.s-FAILED, .s-crashed, .s-internal { color: #b00020; font-weight: 600; }
+.s-incomplete { color: #9a5b00; font-weight: 600; }
 .s-tie { color: #8a5a00; } .s-convention { color: #555; } .s-passed { color: #1b7a1b; }
 pre { white-space: pre-wrap; background: #fafafa; border: 1px solid #eee; padding: 6px;
       max-height: 30vh; overflow: auto; font-size: 12px; }
@@ -116,7 +117,8 @@ function render() {
     const tr = document.createElement("tr");
     tr.className = "result";
     tr.dataset.index = k;
-    for (const v of [r.property_id, r.property_name, r.implementation, r.status, r.examples,
+    const ran = r.status === "incomplete" ? r.examples + " of " + r.wanted : r.examples;
+    for (const v of [r.property_id, r.property_name, r.implementation, r.status, ran,
                      KNOWN[k] || ""]) {
       const td = document.createElement("td");
       td.textContent = v;

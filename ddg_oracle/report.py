@@ -160,7 +160,7 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
     return {"property_id": r.property_id, "property_name": r.property_name,
             "statement": statement, "implementation": r.implementation, "spec": spec,
             "source": r.source, "status": r.status, "ok": r.ok, "examples": r.examples,
-            "ties": r.ties, "note": r.note, "crash": r.error, "also": list(r.also),
+            "wanted": r.wanted, "ties": r.ties, "note": r.note, "crash": r.error, "also": list(r.also),
             "failure": _failure_record(r.failure), "mesh": _mesh_record(r), "files": files,
             "replay": r.replay}
 

@@ -73,7 +73,8 @@ def integer_point_sets(draw, max_points: int = 8, bound: int = 6):
 @st.composite
 def rational_point_sets(draw, max_points: int = 8):
     """:func:`integer_point_sets` divided by a common denominator in 1..3, sometimes
-    with rational points of the unit circle added (scaled by 5)."""
+    with rational points of the unit circle added (scaled by 5), sometimes with one point
+    moved off its circle by a relative 2**-k, k in 20..40 (a near-tie)."""
     pts = [tuple(Fraction(x) for x in p) for p in draw(integer_point_sets(max_points))]
     den = draw(st.integers(1, 3))
     pts = [(x / den, y / den) for x, y in pts]
@@ -84,6 +85,14 @@ def rational_point_sets(draw, max_points: int = 8):
             x, y = unit_circle_point(m, n)
             pts.append((5 * x, 5 * y))
     pts = list(dict.fromkeys(pts))[:max_points]
+    if draw(st.integers(0, 3)) == 3 and pts:
+        # a near-tie: one point moved radially by a relative 2**-k (1e-6 .. 1e-12), off
+        # the circle through its cocircular neighbours (every in-circle test beside a tie)
+        i = draw(st.integers(0, len(pts) - 1))
+        k = draw(st.integers(20, 40))
+        scale = 1 + (1 if draw(st.booleans()) else -1) * Fraction(1, 2 ** k)
+        pts[i] = (pts[i][0] * scale, pts[i][1] * scale)
+        pts = list(dict.fromkeys(pts))
     return _completed(pts, [(Fraction(7), Fraction(8)), (Fraction(-7), Fraction(9)),
                             (Fraction(0), Fraction(-7))])
 

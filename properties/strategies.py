@@ -698,9 +698,38 @@ def obtuse_quads(draw):
     return mesh_case(pts, [(0, 1, 2), (1, 0, 3)], f"quad L={L} apexes ({x1}/4,{h1}/16), ({x2}/4,-{h2}/16)")
 
 
+#: near-ties are drawn 2**-k off an exact tie, k in this range: 1e-6 .. 1e-12 relative
+NEAR_TIE_EXPONENTS = (20, 40)
+
+
+@st.composite
+def near_cocircular_quads(draw):
+    """Two triangles on four points of the circle of radius 5 (integer points: an exact
+    tie, cot a + cot b = 0 on the diagonal) with the fourth point moved radially by a
+    relative 2**-k, k in :data:`NEAR_TIE_EXPONENTS` (in or out: Delaunay or not by a
+    margin of 1e-6 .. 1e-12), or not at all: every sign decision on the diagonal (a
+    Delaunay flag, a weight's sign) is made at the tie or just beside it, where an
+    absolute epsilon decides it wrongly.  In z = 0, or tilted (z = x / 4: still
+    cocircular in its plane).  Shrinks to the exact tie in the plane."""
+    from .planar_points import CIRCLE5
+    picks = sorted(draw(st.lists(st.integers(0, len(CIRCLE5) - 1), min_size=4, max_size=4,
+                                 unique=True)))
+    a, b, c, d = (tuple(Fraction(x) for x in CIRCLE5[i]) for i in picks)   # counterclockwise
+    k = draw(st.one_of(st.none(), st.integers(*NEAR_TIE_EXPONENTS)))
+    if k is not None:
+        scale = 1 + (1 if draw(st.booleans()) else -1) * Fraction(1, 2 ** k)
+        d = (d[0] * scale, d[1] * scale)
+    tilt = draw(st.booleans())
+    pts = [(x, y, x / 4 if tilt else Fraction(0)) for x, y in (a, b, c, d)]
+    return mesh_case(pts, [(0, 1, 2), (0, 2, 3)],
+                     "cocircular quad" + (f", a corner moved by 2^-{k}" if k else "")
+                     + (", tilted" if tilt else ""))
+
+
 def obtuse_meshes():
-    """Meshes with obtuse and needle triangles (negative cotan weights are common)."""
-    return st.one_of(obtuse_quads(), obtuse_fans(), single_triangles())
+    """Meshes with obtuse and needle triangles (negative cotan weights are common), and
+    quads at or beside an exact Delaunay tie (:func:`near_cocircular_quads`)."""
+    return st.one_of(obtuse_quads(), obtuse_fans(), single_triangles(), near_cocircular_quads())
 
 
 _PLATONIC = {"tetrahedron": surfaces.tetrahedron, "octahedron": surfaces.octahedron,

@@ -39,3 +39,27 @@ def test_plugin_fails_a_planted_bug_with_the_counterexample(tmp_path):
 def test_plugin_reports_an_unknown_implementation_as_usage_error(tmp_path):
     out = _pytest("--ddg-impl", "nowhere:Nothing", cwd=tmp_path)
     assert out.returncode == 4 and "cannot import your module 'nowhere'" in out.stderr
+
+
+def test_plugin_fails_a_hang_and_an_incomplete_item(tmp_path):
+    # issue 40: a call that never returns was "passed (1 example)"; a search its budget cut
+    # short is not a pass either
+    (tmp_path / "mine.py").write_text(
+        "import time\n"
+        "from ddg_oracle.oracles.exact_reference import ReferenceImplementation\n"
+        "class Hangs:\n"
+        "    name = 'hangs'\n"
+        "    def euler_characteristic(self, V, F):\n"
+        "        while True:\n"
+        "            time.sleep(0.05)\n"
+        "class Slow(ReferenceImplementation):\n"
+        "    name = 'slow'\n"
+        "    def euler_characteristic(self, V, F):\n"
+        "        time.sleep(0.3)\n"
+        "        return super().euler_characteristic(V, F)\n")
+    out = _pytest("--ddg-impl", "mine:Hangs", "--ddg-impl", "mine:Slow", "--ddg-only", "D1.6",
+                  "--ddg-budget", "1.5", cwd=tmp_path)
+    assert out.returncode == 1, out.stdout + out.stderr
+    assert "2 failed" in out.stdout
+    assert "hang: hangs.euler_characteristic did not return" in out.stdout
+    assert "[D1.6] slow: incomplete" in out.stdout and "of 25 examples ran" in out.stdout
