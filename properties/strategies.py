@@ -475,8 +475,12 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         recipe += f", {k} face(s) reversed"
     comp = draw(st.integers(0, 2)) if wide else 0             # 0 none, 1 beside, 2 touching
     if comp:
+        # a Möbius strip only when the first component is one: then dropping the second
+        # shrinks towards the strip alone (a strip beside a consistently oriented
+        # surface would be a minimum the shrinker cannot leave: it never raises the
+        # orientation choice from "consistent" to "Möbius")
         names = [n for n, (_, _, c) in _COMPONENTS.items()
-                 if (c or closed is not True) and (intrinsic or n != "moebius strip")]
+                 if (c or closed is not True) and (orientation == 1 or n != "moebius strip")]
         other = draw(st.sampled_from(names))
         build, chi2, _ = _COMPONENTS[other]
         key += ("and", other, comp)
