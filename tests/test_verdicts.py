@@ -227,7 +227,12 @@ def test_a_failure_on_a_mesh_with_an_unused_vertex_is_reported_with_that_mesh(ca
     assert r.status == FAILED
     V, F = r.mesh
     assert len({v for f in F for v in f}) < len(V)          # the unused vertex is in the mesh
-    assert r.replay is not None
+    # the replay snippet raises the same failure, on the same mesh
+    from ddg_oracle.properties.counterexample import replay
+    from ddg_oracle.properties.registry import PropertyFailure
+    with pytest.raises(PropertyFailure) as again:
+        replay("C3.3", IsolatedVertexLaplacian(), r.replay)
+    assert again.value.mesh == r.failure.mesh
     rc, out, _ = _run(capsys, "check", "--impl", "tests.test_verdicts:IsolatedVertexLaplacian",
                       "--only", "C3.3", "--workers", "1", "--profile", "ci")
     assert rc == 1 and "FAILED" in out and "could not" not in out
