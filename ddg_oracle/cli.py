@@ -134,6 +134,9 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--wide", action="store_true",
                    help="print the full grid (property x implementation) instead of the "
                         "compact report")
+    c.add_argument("--ties", action="store_true",
+                   help="list every tie disagreement in full (default: one line per "
+                        "implementation; they are exact ties that rounding decides, not errors)")
     c.add_argument("--width", type=int, default=100, metavar="COLUMNS",
                    help="columns of the compact report (default 100)")
     c.add_argument("--accept-incomplete", action="store_true",
@@ -542,7 +545,8 @@ def _check(args, argv) -> int:
             if r.failure is not None or r.error:
                 print("\n" + describe(r, files=folders.get(k)))
     else:
-        print(terminal_report(results, width=args.width, files=folders))
+        print(terminal_report(results, width=args.width, files=folders,
+                              list_ties=args.ties))
     print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed,
                                   args.accept_incomplete), args.width))
     if args.report:

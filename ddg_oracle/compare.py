@@ -304,14 +304,16 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
                       over=over, elements=err.size)
 
 
-def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1) -> list[Comparison]:
+def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
+                 methods=None) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``:
     how each answer compares is its declared quantity's
     (:data:`ddg_oracle.properties.registry.QUANTITIES`).
 
     ``workers > 1``: the exact values and their bounds are computed by that many spawned
     processes, one method at a time (the costly chapters first), while this process asks
-    the implementations; the rows are the same as with one worker."""
+    the implementations; the rows are the same as with one worker.  ``methods``: only
+    these protocol methods (default: every one)."""
     from ddg_oracle.properties.protocol import (METHODS, OutsideDomain, capabilities,
                                                 implementation_name, machine_epsilon)
     from ddg_oracle.properties.registry import all_quantities, unmet
@@ -325,6 +327,8 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1) -> list[Co
     for impl in impls:
         caps = capabilities(impl)
         for method in METHODS:
+            if methods is not None and method not in methods:
+                continue
             q = quantities[method]
             why = ("not provided" if method not in caps else q.not_on_a_mesh
                    or unmet(q.requires, ex.facts))
@@ -542,6 +546,33 @@ def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
     shape = np.shape(want)
     return _numeric(method, name, np.asarray(got, dtype=np.float64).reshape(shape), want, bound,
                     _WHERE[q.element])
+
+
+def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:
+    """How each of ``methods`` (the protocol methods a failing property called) that
+    ``impl`` has answers on a counterexample ``mesh`` = (V, F), against the exact reference:
+    compare's row per method (quantity, status, where, expected, observed, worst, note).
+    The report names from these which method is wrong, and where ("cotan_laplacian:
+    entry (0, 1) expected -0.5, observed 0.5").  Empty for a mesh compare does not take
+    (a vertex used by no face, a degenerate face), a large one, or methods whose answer
+    one mesh does not determine."""
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from ddg_oracle.properties.protocol import capabilities
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    V, F = mesh
+    methods = set(methods) & capabilities(impl)
+    if not methods or len(F) > faces_limit or len({v for f in F for v in f}) < len(V):
+        return []
+    try:
+        PolyhedralSurface.from_arrays(V, F).metric()
+    except (InputError, ValueError):
+        return []
+    rows = compare_mesh(MeshInput("counterexample", V, F), [impl], ReferenceImplementation(),
+                        workers=1, methods=methods)
+    return [{"quantity": c.quantity, "status": c.status, "where": c.where,
+             "expected": _short(c.expected), "observed": _short(c.observed),
+             "worst": c.worst, "note": c.note}
+            for c in rows if c.status in ("agrees", "DIFFERS", "crashed")]
 
 
 def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:

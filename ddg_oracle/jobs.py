@@ -131,8 +131,10 @@ def _run_task(task: Task) -> list:
         return crashed(task, f"{task.spec} cannot be loaded: {e}")
     if task.mesh is None:
         budget = opts.budget if opts.budget is not None else profile_budget(opts.profile)
-        return [run_property(PROPERTIES[task.property_id], impl, profile(opts.profile), opts.seed,
-                             counterpart=counterpart, convention=convention, budget=budget)]
+        p = PROPERTIES[task.property_id]
+        r = run_property(p, impl, profile(opts.profile), opts.seed,
+                         counterpart=counterpart, convention=convention, budget=budget)
+        return [with_diagnosis(r, p, impl)]
     from ddg_oracle.compare import MeshExamples, run_mesh_properties
     examples = _HERE.examples
     if task.mesh not in examples:
@@ -140,6 +142,21 @@ def _run_task(task: Task) -> list:
         examples[task.mesh] = MeshExamples(_HERE.meshes[task.mesh])
     only = opts.only if task.property_id is None else frozenset([task.property_id])
     return run_mesh_properties(examples[task.mesh], impl, only, counterpart, convention)
+
+
+def with_diagnosis(r, p, impl):
+    """``r`` with, when it is a failure on a small generated counterexample, how each
+    protocol method the property calls answers there (``compare.diagnose``): the report
+    names the wrong method from it.  Our own trouble diagnosing never changes the result."""
+    from ddg_oracle.properties.runner import FAILED
+    if r.status != FAILED or r.source != "generated" or r.mesh is None:
+        return r
+    try:
+        from ddg_oracle.compare import diagnose
+        r.diagnosis = diagnose(r.mesh, impl, p.methods) or None
+    except Exception:  # noqa: BLE001  (a diagnosis is extra; the verdict stands without it)
+        r.diagnosis = None
+    return r
 
 
 def crashed(task: Task, why: str, status: str | None = None) -> list:

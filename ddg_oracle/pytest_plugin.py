@@ -52,7 +52,13 @@ class PropertyItem(pytest.Item):
         if r.status == UNDECIDED:            # the exact reference hit a guard: nothing checked
             pytest.skip(f"undecided: {r.error}")
         if not r.ok:                         # FAILED, crashed (a hang too), incomplete
-            raise PropertyCheckFailed(describe(r))
+            from ddg_oracle.jobs import with_diagnosis
+            from ddg_oracle.report import wrong_answer
+            text = describe(with_diagnosis(r, self.prop, self.impl))
+            where = wrong_answer(r)
+            if where:                        # the root cause first: the wrong answer
+                text = f"{where}\n{text}"
+            raise PropertyCheckFailed(text)
 
     def repr_failure(self, excinfo):
         if isinstance(excinfo.value, PropertyCheckFailed):

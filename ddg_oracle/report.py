@@ -17,17 +17,21 @@
 
 results.json::
 
-    {"schema": 1,
+    {"schema": 3,
      "command": {"profile", "seed", "implementations", "only", "meshes", "expect_conventions"},
      "versions": {"python", "numpy", "scipy", "hypothesis", "libigl", "pymeshlab", ...},
      "counts": {status: number}, "interrupted": false | true (a partial run),
      "results": [{"property_id", "property_name", "statement", "implementation", "spec",
-                  "source", "status", "ok", "examples", "ties", "note", "crash", "also",
+                  "source", "status", "ok", "examples", "wanted" (the profile's examples),
+                  "ties", "note", "crash", "also",
                   "failure": null | {"message", "element", "element_ids", "expected",
                                      "observed", "error", "bound", "error_in_bounds"},
                   "mesh": null | {"V", "F", "exact_V"?} | {"file", "vertices", "faces"},
                   "files": null | {"obj", "png", "snippet"},
-                  "replay": null | "ddg1:..." (the example, for counterexample.replay)}]}
+                  "replay": null | "ddg1:..." (the example, for counterexample.replay),
+                  "diagnosis": null | [{"quantity", "status", "where", "expected",
+                                        "observed", "worst", "note"}] (how each method the
+                               property called answers on the counterexample: compare's rows)}]}
 
 ``error_in_bounds`` is the observed error in units of the property's derived
 bound (> 1 is a failure), where the property states a bound.
@@ -41,10 +45,11 @@ import numbers
 import re
 import sys
 import textwrap
+from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
-SCHEMA = 2
+SCHEMA = 3
 VERSIONED = ("numpy", "scipy", "hypothesis", "libigl", "pymeshlab", "matplotlib")
 
 
@@ -162,7 +167,7 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
             "source": r.source, "status": r.status, "ok": r.ok, "examples": r.examples,
             "wanted": r.wanted, "ties": r.ties, "note": r.note, "crash": r.error, "also": list(r.also),
             "failure": _failure_record(r.failure), "mesh": _mesh_record(r), "files": files,
-            "replay": r.replay}
+            "replay": r.replay, "diagnosis": r.diagnosis}
 
 
 def counts(results) -> dict:
@@ -326,12 +331,112 @@ def fit(text: str, width: int) -> str:
     return "\n".join(out)
 
 
-def terminal_report(results, width: int = 100, files: dict | None = None) -> str:
-    """What ``ddg-oracle check`` prints: at most ``width`` columns.  Failures and crashes
-    first (one line each, with the known finding it is), then ties and conventions, then
-    the passes per implementation, the not-applicable ones in one line per
-    implementation, then every non-passing result in full (``files``: result index ->
-    where its whole mesh and snippet are)."""
+@dataclass
+class Cause:
+    """Failures of one implementation that one protocol method explains (a root cause), or
+    crashes of one implementation with one message: ``members`` are result indices, the
+    smallest counterexample first."""
+
+    implementation: str
+    methods: tuple                # the protocol methods blamed (empty: not known)
+    members: list
+    where: str | None = None      # the wrong answer on the smallest counterexample
+    message: str | None = None    # a crash's message
+
+    @property
+    def first(self) -> int:
+        return self.members[0]
+
+
+def _faces(r) -> int:
+    return len(r.mesh[1]) if r.mesh is not None else 1 << 30
+
+
+def blamed_methods(r) -> tuple:
+    """The protocol methods a failing result blames: those whose answer on the
+    counterexample differs from the exact one (its diagnosis); else the method its message
+    names ("cotan_laplacian has non-finite entries", "solve_dirichlet: ..."); else the
+    methods its property calls."""
+    from ddg_oracle.properties.protocol import METHODS
+    from ddg_oracle.properties.registry import PROPERTIES
+    wrong = [d["quantity"] for d in (r.diagnosis or []) if d["status"] in ("DIFFERS", "crashed")]
+    if wrong:
+        return tuple(wrong)
+    text = r.failure.message if r.failure is not None else (r.error or "")
+    named = [m for m in METHODS if re.match(rf"{m}\b", text)]
+    if named:
+        return (named[0],)
+    p = PROPERTIES.get(r.property_id)
+    order = list(METHODS)
+    return tuple(sorted(p.methods, key=order.index)) if p is not None else ()
+
+
+def _where(r, methods) -> str | None:
+    """The first wrong answer among ``methods`` in ``r``'s diagnosis, as a line, or None."""
+    for d in r.diagnosis or []:
+        if d["quantity"] in methods and d["status"] == "DIFFERS":
+            worst = d.get("worst")
+            units = "" if worst is None else (" (inf x the bound)" if worst == float("inf")
+                                              else f" ({worst:.3g} x the bound)")
+            return (f"{d['quantity']} at {d['where'] or '?'}: expected {d['expected']}, observed "
+                    f"{d['observed']}{units}" + (f" [{d['note']}]" if d.get("note") else ""))
+    return None
+
+
+def wrong_answer(r) -> str | None:
+    """The wrong answer a failing result's diagnosis shows for the methods it blames
+    ("cotan_laplacian at entry (0, 1): expected -0.5, observed 0.5 (...)"), or None."""
+    return _where(r, blamed_methods(r)) if r.diagnosis else None
+
+
+def _crash_message(r) -> str:
+    # the first line, numbers in the text (addresses, sizes, seconds) as one form
+    first = (r.error or "").splitlines()[0] if r.error else ""
+    return re.sub(r"\d+(\.\d+)?(e[-+]?\d+)?", "N", first)
+
+
+def root_causes(results) -> tuple[list, list]:
+    """(failure causes, crash groups): FAILED results grouped by implementation and the
+    protocol methods they blame (:func:`blamed_methods`), crashes by implementation and
+    message; each group's members sorted by counterexample size, largest groups first."""
+    from ddg_oracle.properties.runner import CRASHED, FAILED
+    groups: dict = {}
+    crashes: dict = {}
+    for k, r in enumerate(results):
+        if r.status == FAILED:
+            groups.setdefault((r.implementation, blamed_methods(r)), []).append(k)
+        elif r.status == CRASHED:
+            crashes.setdefault((r.implementation, _crash_message(r)), []).append(k)
+    causes = []
+    for (impl, methods), members in groups.items():
+        members.sort(key=lambda k: (_faces(results[k]), k))
+        where = next((w for k in members if (w := _where(results[k], methods))), None)
+        causes.append(Cause(impl, methods, members, where=where))
+    crashed = []
+    for (impl, message), members in crashes.items():
+        members.sort(key=lambda k: (_faces(results[k]), k))
+        crashed.append(Cause(impl, (), members, message=results[members[0]].error))
+    by_size = lambda c: (-len(c.members), c.first)          # noqa: E731
+    return sorted(causes, key=by_size), sorted(crashed, key=by_size)
+
+
+def _ids(results, members, limit: int = 8) -> str:
+    ids = [results[k].property_id for k in members]
+    return ", ".join(ids[:limit]) + (f", ... ({len(ids) - limit} more)" if len(ids) > limit else "")
+
+
+def terminal_report(results, width: int = 100, files: dict | None = None,
+                    list_ties: bool = False) -> str:
+    """What ``ddg-oracle check`` prints: at most ``width`` columns.  Root causes first: the
+    failures of each implementation grouped by the protocol method they blame, with the
+    wrong answer on the smallest counterexample ("cotan_laplacian at entry (0, 1):
+    expected -0.5, observed 0.5"), one line per failing property under it; crashes with
+    one message collapsed into one group with a count; then incomplete, undecided,
+    conventions and our own internal errors; tie disagreements in one line per
+    implementation (``list_ties``: in full); the passes per implementation, the
+    not-applicable ones in one line per implementation; then one full block per root
+    cause and crash group (its smallest counterexample; the others named) and per other
+    non-passing result (``files``: result index -> where its whole mesh and snippet are)."""
     from ddg_oracle.properties.runner import CONVENTION, CRASHED, FAILED, NOT_APPLICABLE, PASSED
     from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED, describe
 
@@ -339,30 +444,67 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     impls = list(dict.fromkeys(r.implementation for r in results))
     lines = []
     sources = list(dict.fromkeys(r.source for r in results))
+    causes, crashes = root_causes(results)
 
-    def row(r):
+    def row(r, indent="  ", more=""):
         what = (r.failure.message if r.failure is not None else
                 (r.error or (r.note if r.status == INCOMPLETE else None) or r.status)
                 ).splitlines()[0]
         known = known_finding(r, findings)
         where = "" if r.source == "generated" else f" [{r.source}]"
-        head = f"  {r.property_id:<14} {r.implementation[:22]:<22} "
-        tail = f"  (known: {known})" if known else ""
+        head = f"{indent}{r.property_id:<14} {r.implementation[:22]:<22} "
+        tail = more + (f"  (known: {known})" if known else "")
         room = max(10, width - len(head) - len(tail) - len(where))
         what = what if len(what) <= room else what[:room - 3] + "..."
         return head + what + where + tail
 
+    def group_known(c):
+        ids = sorted({k for m in c.members if (k := known_finding(results[m], findings))})
+        return f" (known: {', '.join(ids)})" if ids else ""
+
+    failed = sum(r.status == FAILED for r in results)
+    if failed:
+        lines.append(f"FAILED ({failed}): {len(causes)} root cause{'s' if len(causes) != 1 else ''}")
+        for c in causes:
+            n = len(c.members)
+            blame = " or ".join(c.methods) if c.methods else "an answer"
+            head = (f"{c.implementation}: {blame} {'is' if len(c.methods) <= 1 else 'are'} wrong, "
+                    f"{n} propert{'ies' if n != 1 else 'y'} fail{'s' if n == 1 else ''}"
+                    + group_known(c))
+            if c.where:
+                first = results[c.first]
+                head += (f"; smallest counterexample {_faces(first)} face"
+                         f"{'s' if _faces(first) != 1 else ''} ({first.property_id}): {c.where}")
+            lines.append(fit(head, width))
+            lines.extend(row(results[k]) for k in c.members)
+    if crashes:
+        n = sum(len(c.members) for c in crashes)
+        lines.append(f"crashed ({n}): {len(crashes)} message{'s' if len(crashes) != 1 else ''}")
+        for c in crashes:
+            first = results[c.first]
+            lines.append(row(first, more=f"  [x{len(c.members)}]" if len(c.members) > 1 else ""))
     for title, statuses in (("internal errors of ddg-oracle (not the implementation's: please "
                              "report them)", (INTERNAL,)),
-                            ("FAILED", (FAILED,)), ("crashed", (CRASHED,)),
                             ("incomplete: fewer examples ran than the profile asks for",
                              (INCOMPLETE,)),
-                            ("tie disagreements", (TIE,)), ("conventions", (CONVENTION,)),
-                            ("undecided", (UNDECIDED,))):
+                            ("conventions", (CONVENTION,)), ("undecided", (UNDECIDED,))):
         chosen = [r for r in results if r.status in statuses]
         if chosen:
             lines.append(f"{title} ({len(chosen)})")
             lines.extend(row(r) for r in chosen)
+    ties = [r for r in results if r.status == TIE]
+    if ties:
+        per = {}
+        for r in ties:
+            per.setdefault(r.implementation, []).append(r)
+        lines.append(f"tie disagreements ({len(ties)}): exact ties rounding decided otherwise, "
+                     "not errors" + ("" if list_ties else " (--ties lists them)"))
+        if list_ties:
+            lines.extend(row(r) for r in ties)
+        else:
+            lines.append(fit("  " + "; ".join(
+                f"{n} {len(rs)} ({', '.join(r.property_id for r in rs)})" for n, rs in per.items()),
+                width))
     passed = [(n, sum(r.status == PASSED for r in results if r.implementation == n),
                sum(r.status != NOT_APPLICABLE for r in results if r.implementation == n))
               for n in impls]
@@ -374,11 +516,23 @@ def terminal_report(results, width: int = 100, files: dict | None = None) -> str
     if any(k for _, k in na):
         lines.append("not applicable (the implementation lacks a method the property needs)")
         lines.append(fit("  " + ", ".join(f"{n} {k}" for n, k in na if k), width))
-    shown = [(k, r) for k, r in enumerate(results) if r.status not in (PASSED, NOT_APPLICABLE)]
-    for k, r in shown:
+
+    def block(k, others=()):
         where = (files or {}).get(k)
+        text = describe(results[k], limit=12, snippet_lines=14, files=where)
+        if others:
+            text += (f"\n  the same cause, {len(others)} more (their rows above): "
+                     + _ids(results, others, limit=len(others)))
         lines.append("")
-        lines.append(fit(describe(r, limit=12, snippet_lines=14, files=where), width))
+        lines.append(fit(text, width))
+
+    for c in causes + crashes:
+        block(c.first, c.members[1:])
+    shown = {k for c in causes + crashes for k in c.members}
+    for k, r in enumerate(results):
+        if k in shown or r.status in (PASSED, NOT_APPLICABLE) or (r.status == TIE and not list_ties):
+            continue
+        block(k)
     return "\n".join(lines)
 
 

@@ -108,6 +108,10 @@ class Result:
     replay: str | None = None         # the example, encoded (counterexample.encode_example)
     spec: str | None = None           # how to load the implementation again (None: unknown)
     exact: list | None = None         # exact coordinates (str) where the floats round them
+    # per protocol method the property called, how its answer on the counterexample compares
+    # with the exact one (ddg_oracle.compare.diagnose: quantity, status, where, expected,
+    # observed, worst): which method is wrong, and where
+    diagnosis: list | None = None
 
     @property
     def ok(self) -> bool:

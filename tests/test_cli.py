@@ -65,8 +65,10 @@ def test_failure_gives_exit_1_and_the_counterexample(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
                       "--only", "D1.6", "--workers", "1")
     assert rc == 1
-    assert re.search(r"^FAILED \(1\)\n  D1\.6 +chi-ignores-boundary +wrong Euler characteristic$",
-                     out, re.M)
+    # the root cause first (the method blamed), then the property's row
+    assert re.search(r"^FAILED \(1\): 1 root cause\nchi-ignores-boundary: euler_characteristic "
+                     r"is wrong, 1 property fails(.*\n)*?  D1\.6 +chi-ignores-boundary +wrong "
+                     r"Euler characteristic$", out, re.M)
     assert "expected: " in out and "observed: " in out and "mesh: " in out
 
 
@@ -163,13 +165,13 @@ def _report(tmp_path, name, workers, capsys):
 def test_report_files_and_json_schema(tmp_path, capsys):
     d = _report(tmp_path, "r", 2, capsys)
     doc = json.loads((d / "results.json").read_text())
-    assert doc["schema"] == 2
+    assert doc["schema"] == 3
     assert doc["command"]["profile"] == "ci" and "argv" not in doc["command"]
     assert doc["counts"]["FAILED"] == 1 and doc["counts"]["tie disagreement"] == 1
     assert set(doc["versions"]) >= {"python", "numpy", "hypothesis"}
     keys = {"property_id", "property_name", "statement", "implementation", "spec", "source",
-            "status", "ok", "examples", "ties", "note", "crash", "also", "failure", "mesh", "files",
-            "replay"}
+            "status", "ok", "examples", "wanted", "ties", "note", "crash", "also", "failure",
+            "mesh", "files", "replay", "diagnosis"}
     assert len(doc["results"]) == 6 and all(set(r) == keys for r in doc["results"])
     failed = [r for r in doc["results"] if r["status"] == FAILED]
     assert len(failed) == 1

@@ -1,0 +1,52 @@
+"""The report leads with the root cause: one group per wrong protocol method, with the wrong
+answer on the smallest counterexample; one line per crash message; ties in one line (issue 41,
+item 2)."""
+
+from __future__ import annotations
+
+import re
+
+from ddg_oracle.cli import main
+
+
+def _run(capsys, *argv):
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def test_one_planted_method_bug_is_one_root_cause_naming_the_method_and_the_entry(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "examples.numpy_cotan:SignError", "--only",
+                      "D3.1", "T3.6", "T3.1", "R3.3", "L4.18", "--workers", "1", "--profile", "ci")
+    assert rc == 1
+    head = out.split("passed (of the applicable checks)")[0]
+    assert re.search(r"^FAILED \(\d+\): 1 root cause$", head, re.M), head
+    cause = head.splitlines()[1]
+    assert "cotan_laplacian is wrong" in cause and "properties fail" in cause
+    # the wrong entry of the smallest counterexample, from compare's diagnosis
+    assert re.search(r"cotan_laplacian at entry \(\d+, \d+\): expected -?[\d.e-]+, observed "
+                     r"-?[\d.e-]+ \([\d.e+]+ x the bound\)", head.replace("\n  ", " ")), head
+    # one full block for the cause, naming the others
+    assert out.count("reproduce (raises the same failure)") == 1
+    assert "the same cause" in out
+
+
+def test_identical_crashes_collapse_into_one_line_with_a_count(capsys):
+    rc, out, _ = _run(capsys, "check", "--impl", "tests.misbehaving:AbortsAlways", "--only",
+                      "D1.6", "R1.5", "CS", "--workers", "1", "--budget", "20")
+    assert rc == 1
+    head = out.split("passed (of the applicable checks)")[0]
+    assert re.search(r"^crashed \(3\): 1 message$", head, re.M), head
+    assert re.search(r"\[x3\]$", head, re.M)
+
+
+def test_ties_are_one_line_per_implementation_unless_listed(capsys):
+    args = ("check", "--impl", "tests.test_cli:RoundsFlatVertices", "--only", "L2.4",
+            "--profile", "ci", "--workers", "1")
+    rc, out, _ = _run(capsys, *args)
+    assert rc == 0
+    assert re.search(r"^tie disagreements \(1\): .*--ties lists them\)$", out, re.M)
+    assert re.search(r"^  rounds-flat-vertices 1 \(L2\.4\)$", out, re.M), out
+    assert "tie disagreement: exactly flat vertex" not in out
+    rc, out, _ = _run(capsys, *args, "--ties")
+    assert "tie disagreement: exactly flat vertex" in out
