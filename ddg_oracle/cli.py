@@ -56,8 +56,27 @@ def _default_workers() -> int:
     return max(1, min(DEFAULT_WORKERS, os.cpu_count() or 1))
 
 
-def _epilog(examples: str, codes: str = EXIT_CODES) -> str:
-    return "examples:\n" + textwrap.indent(textwrap.dedent(examples).strip(), "  ") + "\n\n" + codes
+def _epilog(examples: str, codes: str = EXIT_CODES, specs: bool = False) -> str:
+    kinds = ""
+    if specs:
+        from ddg_oracle.implementations import BUILTIN
+        names = textwrap.fill(", ".join(BUILTIN), 70, subsequent_indent=" " * 20)
+        kinds = SPEC_KINDS.format(builtin=names) + "\n\n"
+    return ("examples:\n" + textwrap.indent(textwrap.dedent(examples).strip(), "  ") + "\n\n"
+            + kinds + codes)
+
+
+#: the kinds of implementation spec every --impl takes, one example each (the help's words)
+SPEC_KINDS = """\
+implementations (--impl SPEC):
+  NAME              a built-in adapter: {builtin}
+                    (options in parentheses: 'libigl(boundary=library)')
+  module:object     your Python class or object, imported as Python does with the current
+                    directory appended: --impl mypkg.geometry:MyImpl
+  exec:COMMAND      a program in any language speaking the executable protocol
+                    (docs/protocol.md): --impl 'exec:node driver.js', 'exec:./my_driver'
+  exec:FILE.json    a driver manifest (docs/protocol.md), for a program without a handshake
+the protocol methods an implementation may define: ddg-oracle methods"""
 
 
 def parser() -> argparse.ArgumentParser:
@@ -70,6 +89,8 @@ def parser() -> argparse.ArgumentParser:
         epilog=_epilog("""
             ddg-oracle check                          every installed library, every property
             ddg-oracle check --impl mymodule:MyImpl   your own implementation
+            ddg-oracle check --impl 'exec:node drv.js'  a program in any language
+            ddg-oracle methods                        the methods an implementation may define
             ddg-oracle compare bunny.obj              every quantity on one mesh
             ddg-oracle theorems --check               is the traceability table true?"""))
     top.add_argument("--version", action="version", version=f"ddg-oracle {__version__}")
@@ -84,12 +105,12 @@ def parser() -> argparse.ArgumentParser:
         epilog=_epilog("""
             ddg-oracle check
             ddg-oracle check --impl mypkg.geometry:MyImpl --profile ci
+            ddg-oracle check --impl 'exec:node driver.js'
             ddg-oracle check --impl libigl --only D3.1 L4.3 --report out/
-            ddg-oracle check --mesh bunny.obj --impl 'libigl(boundary=library)'"""))
-    c.add_argument("--impl", action="append", metavar="NAME|module:object",
-                   help="implementation to check (repeatable; default: every installed one); "
-                        "options in parentheses, e.g. 'libigl(boundary=library)'; module:object "
-                        "imports your module as Python does, the current directory included")
+            ddg-oracle check --mesh bunny.obj --impl 'libigl(boundary=library)'""", specs=True))
+    c.add_argument("--impl", action="append", metavar="SPEC",
+                   help="implementation to check (repeatable; default: every installed one): "
+                        "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
     c.add_argument("--drivers", metavar="DIR",
                    help="without --impl, also check the C++ library drivers built in DIR "
                         "(cgal_driver, openmesh_driver; default: $DDG_ORACLE_DRIVERS, else "
@@ -157,13 +178,15 @@ def parser() -> argparse.ArgumentParser:
         epilog=_epilog("""
             ddg-oracle compare bunny.obj
             ddg-oracle compare pymeshlab:bunny10k_textured.obj --impl libigl
-            ddg-oracle compare a.off b.ply --impl mymodule:MyImpl""",
+            ddg-oracle compare a.off b.ply --impl mymodule:MyImpl --impl 'exec:./my_driver'""",
                        EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "an implementation differs or crashed")))
+                                          "crashed", "an implementation differs or crashed"),
+                       specs=True))
     m.add_argument("mesh", nargs="+", metavar="MESH",
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes)")
-    m.add_argument("--impl", action="append", metavar="NAME|module:object",
-                   help="implementation to compare (repeatable; default: every installed one)")
+    m.add_argument("--impl", action="append", metavar="SPEC",
+                   help="implementation to compare (repeatable; default: every installed one): "
+                        "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
     m.add_argument("--timeout", type=float, default=60.0,
                    help="seconds per call, per 10,000 faces of the input (never less; default 60)")
 
@@ -191,17 +214,30 @@ def parser() -> argparse.ArgumentParser:
             ddg-oracle verify vectors/ answers.jsonl --float32
             ddg-oracle verify vectors/ --impl 'exec:./my_driver' --write-answers answers.jsonl""",
                        EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "a case failed")))
+                                          "crashed", "a case failed"), specs=True))
     w.add_argument("corpus", metavar="DIR", help="a directory written by 'ddg-oracle vectors'")
     w.add_argument("answers", nargs="?", metavar="ANSWERS", help="the answers file (JSON Lines)")
-    w.add_argument("--impl", metavar="NAME|module:object|exec:PROGRAM",
-                   help="compute the answers with this implementation instead of reading them")
+    w.add_argument("--impl", metavar="SPEC",
+                   help="compute the answers with this implementation instead of reading them: "
+                        "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
     w.add_argument("--write-answers", metavar="FILE", help="with --impl: also save its answers")
     w.add_argument("--float32", action="store_true",
                    help="hold the answers to the float32 tolerances (default: float64; with "
                         "--impl: the implementation's declared machine_epsilon)")
     w.add_argument("--timeout", type=float, default=60.0,
                    help="with --impl: seconds per call, per 10,000 faces (default 60)")
+
+    sub.add_parser(
+        "methods", formatter_class=fmt,
+        help="list the protocol methods an implementation may define",
+        description="Every protocol method: its arguments, what it answers in the reference's "
+                    "conventions, and the catalog IDs of the properties that call it.  Define "
+                    "any of them on a class (or list them in an exec driver's handshake); the "
+                    "properties of the others are not applicable.",
+        epilog=_epilog("""
+            ddg-oracle methods
+            ddg-oracle methods | grep cotan""", EXIT_CODES.replace(
+            "  1  a property failed or a checked implementation crashed\n", "")))
 
     t = sub.add_parser(
         "theorems", formatter_class=fmt, help="print the traceability table and the notes' items",
@@ -238,6 +274,8 @@ def main(argv=None) -> int:
             return _vectors(args)
         if args.command == "verify":
             return _verify(args)
+        if args.command == "methods":
+            return _methods(args)
         return _theorems(args)
     except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)
@@ -252,6 +290,23 @@ def main(argv=None) -> int:
         traceback.print_exc()
         print(BUG_REPORT, file=sys.stderr)
         return EXIT_TOOL
+
+
+def _methods(args) -> int:
+    """``ddg-oracle methods``: the protocol (properties.protocol.METHODS) and who checks it."""
+    from ddg_oracle.properties.protocol import METHODS
+    from ddg_oracle.properties.registry import all_properties
+    props = all_properties()
+    for name, m in METHODS.items():
+        ids = [p.id for p in props if name in p.methods]
+        print(f"{name}({', '.join(m.arguments)})")
+        print(textwrap.fill(str(m), 96, initial_indent="    ", subsequent_indent="    "))
+        print(textwrap.fill("checked by: " + (", ".join(ids) or "compare and the test vectors "
+                                               "only"), 96, initial_indent="    ",
+                            subsequent_indent="      "))
+    print(f"\n{len(METHODS)} methods; an implementation defines any of them "
+          "(ddg_oracle.properties.protocol.METHODS, docs/protocol.md for other languages)")
+    return 0
 
 
 def _theorems(args) -> int:

@@ -488,11 +488,24 @@ def test_version_and_help_are_plain_text_with_examples_and_exit_codes(capsys):
     from ddg_oracle import __version__
     rc, out, _ = _run(capsys, "--version")
     assert rc == 0 and out.strip() == f"ddg-oracle {__version__}"
-    for command in ("check", "compare", "theorems"):
+    for command in ("check", "compare", "theorems", "verify", "methods"):
         rc, out, _ = _run(capsys, command, "--help")
         assert rc == 0
         assert "examples:" in out and f"ddg-oracle {command}" in out and "exit codes:" in out
         assert "``" not in out and ":func:" not in out and ":mod:" not in out
+        if command in ("check", "compare", "verify"):    # every kind of --impl, with an example
+            for kind in ("NAME", "module:object", "exec:COMMAND", "exec:FILE.json", "libigl",
+                         "'exec:node driver.js'", "ddg-oracle methods"):
+                assert kind in out, (command, kind)
+
+
+def test_methods_lists_every_protocol_method_and_the_properties_calling_it(capsys):
+    from ddg_oracle.properties.protocol import METHODS
+    rc, out, _ = _run(capsys, "methods")
+    assert rc == 0
+    for name, m in METHODS.items():
+        assert f"{name}({', '.join(m.arguments)})" in out
+    assert re.search(r"cotan_laplacian\(V, F\)\n(.*\n){1,3}    checked by: D3\.1", out)
 
 
 class Typo:
