@@ -16,8 +16,22 @@ profile is neither changed nor used by them.
 from __future__ import annotations
 
 import os
+import re
 
 import pytest
+
+#: a node id of one of our items, as pytest prints it: ddg[<spec>][<catalog ID>]
+_NODE = re.compile(r"(?:.*::)?ddg\[(.+)\]\[([^\[\]]+)\]")
+
+
+def pytest_load_initial_conftests(early_config, parser, args):
+    """A node id of one of our items given back to pytest (``pytest 'ddg[mine:Impl][D3.1]'``,
+    copied from a failure) reruns that item: it becomes ``--ddg-impl mine:Impl --ddg-only
+    D3.1``, and only our items run.  Nothing happens without such an argument."""
+    ours = [(a, m) for a in args if (m := _NODE.fullmatch(a))]
+    for a, m in ours:
+        args.remove(a)
+        args += ["--ddg-impl", m[1], "--ddg-only", m[2], "--ddg-items-only"]
 
 
 def pytest_addoption(parser):
@@ -32,6 +46,7 @@ def pytest_addoption(parser):
                          "the profile's, as ddg-oracle check --budget): a call still running "
                          "then is a hang, a search stopped before its examples ran fails the "
                          "item as incomplete")
+    group.addoption("--ddg-items-only", action="store_true", help=argparse_suppress())
     group.addoption("--ddg-profile", default=None, metavar="NAME",
                     help="ddg-oracle's Hypothesis profile for its items: default, ci, thorough "
                          "(default: ci when $CI is set, else default)")
@@ -73,10 +88,19 @@ class PropertyCheckFailed(AssertionError):
     pass
 
 
+def argparse_suppress():
+    import argparse
+    return argparse.SUPPRESS            # an option of node-id reruns, not for users
+
+
 def pytest_collection_modifyitems(session, config, items):
     specs = config.getoption("ddg_impl")
     if not specs:
         return
+    if config.getoption("ddg_items_only"):
+        # a rerun by node id: the project's own tests were collected, not asked for
+        config.hook.pytest_deselected(items=list(items))
+        items.clear()
     from ddg_oracle.implementations import ImplementationNotFound, load_implementation
     from ddg_oracle.properties.budget import Budget
     from ddg_oracle.properties.profiles import profile, profile_budget
@@ -110,3 +134,11 @@ def pytest_collection_modifyitems(session, config, items):
             items.append(PropertyItem.from_parent(
                 session, name=f"ddg[{spec}][{p.id}]", prop=p, impl=impl, spec=spec,
                 profile=settings, budget=budget))
+    if config.getoption("ddg_items_only"):
+        # only the items named: their (spec, ID) pairs, not every spec x every ID given
+        wanted = {(m[1], m[2]) for a in config.invocation_params.args
+                  if (m := _NODE.fullmatch(a))}
+        if wanted:
+            keep = [i for i in items if (i.spec, i.prop.id) in wanted]
+            config.hook.pytest_deselected(items=[i for i in items if i not in keep])
+            items[:] = keep

@@ -598,7 +598,8 @@ from pathlib import Path
 
 mesh = str(Path(__file__).with_name("mesh.obj"))
 sys.exit(subprocess.call([sys.executable, "-m", "ddg_oracle", "check", "--mesh", mesh,
-                          "--impl", {spec!r}, "--only", {pid!r}, "--workers", "1"]))
+                          "--impl", {spec!r}, "--only", {pid!r}, "--workers", "1"],
+                         cwd={cwd!r}))   # where the implementation loads from
 '''
 
 
@@ -611,7 +612,11 @@ def snippet(r, spec: str, name: str = "reproduce.py") -> str:
     if r.replay is not None:
         return _SNIPPET.format(title=title, how=how, name=name,
                                code=replay_snippet(r.property_id, r.spec or spec, r.replay))
-    return _SNIPPET_FILE.format(title=title, how=how, name=name, spec=spec, pid=r.property_id)
+    from ddg_oracle.properties.counterexample import module_dir, program_dir
+    spec = r.spec or spec
+    cwd = module_dir(spec) or program_dir(spec)
+    return _SNIPPET_FILE.format(title=title, how=how, name=name, spec=spec, pid=r.property_id,
+                                cwd=cwd)
 
 
 def describe_line(r) -> str:

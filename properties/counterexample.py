@@ -26,7 +26,9 @@ terminal, ``check_implementation``'s AssertionError, a pytest failure,
 from __future__ import annotations
 
 import base64
+import importlib.machinery
 import importlib.util
+import os
 import pickle
 import sys
 import sysconfig
@@ -163,14 +165,21 @@ def implementation_spec(impl) -> str | None:
     return f"{cls.__module__}:{cls.__qualname__}"
 
 
-def _module_dir(spec: str) -> str | None:
+def module_dir(spec: str) -> str | None:
     """The directory to append to sys.path for ``spec``'s module, when it is not installed
-    (a user's module next to their tests), else None."""
+    (a user's module next to their tests), else None.  Found as loading it finds it: on
+    sys.path, else in the current directory (which ``load_implementation`` appends, in
+    whichever process loaded it: a pool worker, not this one)."""
+    if spec.startswith("exec:"):
+        return None
     module = spec.split("(")[0].partition(":")[0]
     if ":" not in spec.split("(")[0]:
         return None                                       # a built-in name
+    top = module.split(".")[0]
     try:
-        found = importlib.util.find_spec(module.split(".")[0])
+        found = importlib.util.find_spec(top)
+        if found is None:
+            found = importlib.machinery.PathFinder.find_spec(top, [os.getcwd()])
     except (ImportError, ValueError):
         return None
     if found is None or not found.origin:
@@ -185,12 +194,22 @@ def _module_dir(spec: str) -> str | None:
     return str(path)
 
 
+def program_dir(spec: str) -> str | None:
+    """For an ``exec:`` spec, the directory its program ran in (the current one: its own
+    files are named absolutely in the spec, but it may read others relative to where it
+    runs); None for any other spec."""
+    return os.getcwd() if spec.startswith("exec:") else None
+
+
 def snippet(property_id: str, spec: str | None, encoded: str, width: int = 88) -> str:
     """A few lines of Python that replay the example on the implementation ``spec``."""
     lines = []
-    where = _module_dir(spec) if spec else None
+    where = module_dir(spec) if spec else None
     if where is not None:
         lines.append(f"import sys; sys.path.append({where!r})  # where your module was found")
+    ran_in = program_dir(spec) if spec else None
+    if ran_in is not None:
+        lines.append(f"import os; os.chdir({ran_in!r})  # where the program ran")
     lines.append("from ddg_oracle.properties.counterexample import replay")
     if spec is None:
         lines.append("impl = ...  # your implementation object (its class could not be imported)")
