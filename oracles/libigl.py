@@ -120,7 +120,8 @@ class Libigl:
 
     def genus(self, V, F) -> int:
         """From libigl's chi and number of boundary loops k: (2 - chi - k) / 2 if orientable,
-        else the number of crosscaps 2 - chi - k (the reference's convention, README).
+        else the number of crosscaps 2 - chi - k (the reference's convention: docs/reference.md,
+        Conventions).
 
         A disconnected mesh raises ValueError, like the reference's ``classify()``.
         """

@@ -196,7 +196,7 @@ def _call(impl, method: str, case: Example):
     return getattr(impl, method)(V, F)
 
 
-ISOLATED_ANGLE_DEFECT = ISOLATED_VERTEX["angle_defects"]     # README, Conventions
+ISOLATED_ANGLE_DEFECT = ISOLATED_VERTEX["angle_defects"]     # docs/reference.md, Conventions
 
 
 def _defects(impl, case: Example, pid: str) -> np.ndarray:
@@ -212,7 +212,7 @@ def _defects(impl, case: Example, pid: str) -> np.ndarray:
         bound = gamma(1) * ISOLATED_ANGLE_DEFECT     # 2 pi minus an empty sum: one rounding
         if not abs(K[i] - ISOLATED_ANGLE_DEFECT) <= bound:
             raise PropertyFailure(pid, impl, "a vertex used by no face has angle defect 2 pi "
-                                  "(the empty angle sum; README, Conventions)", mesh=case.mesh,
+                                  "(the empty angle sum; docs/reference.md, Conventions)", mesh=case.mesh,
                                   element=f"vertex {i} (isolated)",
                                   expected=ISOLATED_ANGLE_DEFECT, observed=float(K[i]), bound=bound)
     return K[at] if case.isolated else K

@@ -2,7 +2,7 @@
 
 An implementation is any object with some of the methods below.  Each takes
 ``V`` (float64 array, n x 3) and ``F`` (int array, m x 3) and answers in the
-reference's conventions (README, "Conventions").  Adapters in ``oracles/``
+reference's conventions (docs/reference.md, "Conventions").  Adapters in ``oracles/``
 translate libraries into these conventions; properties call only these names,
 so they never mention a library.
 

@@ -52,13 +52,13 @@ def test_without_a_shrink_budget_the_same_failure_is_shrunk_further():
     assert len(full.failure.mesh[1]) <= len(cut.failure.mesh[1])
 
 
-def test_readme_and_the_help_state_the_budgets_in_force():
+def test_the_manual_and_the_help_state_the_budgets_in_force():
     import re
     from pathlib import Path
 
     from ddg_oracle.properties.budget import BUDGETS
     root = Path(__file__).resolve().parents[1]
-    readme = re.sub(r"\s+", " ", (root / "README.md").read_text(encoding="utf-8"))
+    readme = re.sub(r"\s+", " ", (root / "docs" / "check.md").read_text(encoding="utf-8"))
     cli = re.sub(r'"\s+"', "", (root / "ddg_oracle" / "cli.py").read_text(encoding="utf-8"))
     d, ci = BUDGETS["default"], BUDGETS["ci"]
     assert (f"{d.seconds:g} s of wall clock, at most {d.shrink:g} s of it shrinking" in readme
