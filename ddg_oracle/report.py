@@ -378,7 +378,8 @@ def _where(r, methods) -> str | None:
             worst = d.get("worst")
             units = "" if worst is None else (" (inf x the bound)" if worst == float("inf")
                                               else f" ({worst:.3g} x the bound)")
-            return (f"{d['quantity']} at {d['where'] or '?'}: expected {d['expected']}, observed "
+            at = f" at {d['where']}" if d["where"] else ""
+            return (f"{d['quantity']}{at}: expected {d['expected']}, observed "
                     f"{d['observed']}{units}" + (f" [{d['note']}]" if d.get("note") else ""))
     return None
 
@@ -679,7 +680,7 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
     from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
 
-    from .html_report import write_html
+    from .html_report import page_data, write_html
 
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
@@ -698,9 +699,11 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
     text = dumps(doc)
     (directory / "results.json").write_text(text, encoding="utf-8")
     findings = known_findings()
-    write_html(directory, text, {i: k for i, r in enumerate(results)
-                                 if r.status not in (PASSED, NOT_APPLICABLE)
-                                 and (k := known_finding(r, findings))})
+    known = {i: k for i, r in enumerate(results)
+             if r.status not in (PASSED, NOT_APPLICABLE) and (k := known_finding(r, findings))}
+    snippets = {i: snippet(r, spec_of.get(r.implementation, r.implementation))
+                for i, r in enumerate(results) if i in failure_files}
+    write_html(directory, text, known, page_data(results, known, command.get("argv"), snippets))
     (directory / "timings.json").write_text(json.dumps(timings, indent=1, sort_keys=True) + "\n",
                                             encoding="utf-8")
     c = counts(results)
