@@ -543,6 +543,11 @@ def _check(args, argv) -> int:
         stream = ResultStream(args.report, tasks, {"argv": given, "seed": seed,
                                                    "report": str(Path(args.report).resolve())})
         stream_done = stream.finished()                 # a resumed run's finished tasks
+        by_name = {m.name: m for m in meshes}
+        for results_of_task in stream_done.values():
+            for r in results_of_task:                   # a mesh file's mesh: read again
+                if r.source in by_name and r.mesh is None:
+                    r.mesh = (by_name[r.source].V, by_name[r.source].F)
     progress = Progress(len(tasks), already=len(stream_done))
 
     def on_done(k, task, results):

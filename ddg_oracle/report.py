@@ -28,7 +28,7 @@ results.json::
                                      "observed", "error", "bound", "error_in_bounds"},
                   "mesh": null | {"V", "F", "exact_V"?} | {"file", "vertices", "faces"},
                   "files": null | {"obj", "png", "snippet"},
-                  "replay": null | "ddg1:..." (the example, for counterexample.replay),
+                  "replay": null | "ddg2:..." (the example as JSON, for counterexample.replay),
                   "diagnosis": null | [{"quantity", "status", "where", "expected",
                                         "observed", "worst", "note"}] (how each method the
                                property called answers on the counterexample: compare's rows)}]}
@@ -211,8 +211,9 @@ class ResultStream:
     command line and seed, so ``--resume DIR`` runs the same tasks on the same examples.
 
     Each line: ``{"task": [spec, property_id, mesh], "results": [record, ...],
-    "pickled": base64}`` (the records as in results.json, for people and other tools;
-    the pickled Result objects, for ``--resume``)."""
+    "resume": [Result.to_json(), ...]}`` (the records as in results.json, for people and
+    other tools; every field of each Result, for ``--resume``: JSON read back without
+    running any code, so a crafted report directory is data, not a program)."""
 
     RUN, LINES = "run.json", "results.jsonl"
 
@@ -240,30 +241,39 @@ class ResultStream:
         return json.loads(path.read_text(encoding="utf-8"))
 
     def finished(self) -> dict:
-        """{task index: its results} of the lines already in results.jsonl."""
-        import base64
-        import pickle
+        """{task index: its results} of the lines already in results.jsonl; a line that is
+        not one this class wrote (damaged past its last line, or crafted) is a usage error
+        naming it, and nothing of it is run or built but plain values."""
+        from ddg_oracle.cli import UsageError
+        from ddg_oracle.properties.codec import BadEncoding
+        from ddg_oracle.properties.runner import Result
         index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}
         out = {}
         path = self.directory / self.LINES
-        for line in path.read_text(encoding="utf-8").splitlines():
+        lines = path.read_text(encoding="utf-8").splitlines()
+        for n, line in enumerate(lines, 1):
             try:
                 entry = json.loads(line)
             except json.JSONDecodeError:
-                continue                    # a line cut short by the interruption
-            k = index.get(tuple(entry["task"]))
-            if k is not None:
-                out[k] = pickle.loads(base64.b64decode(entry["pickled"]))
+                if n == len(lines):
+                    continue                # the last line, cut short by the interruption
+                raise UsageError(f"--resume {self.directory}: {self.LINES} line {n} is not "
+                                 "JSON (not a file ddg-oracle wrote)") from None
+            try:
+                k = index.get(tuple(entry["task"]))
+                if k is not None:
+                    out[k] = [Result.from_json(x) for x in entry["resume"]]
+            except (BadEncoding, KeyError, TypeError) as e:
+                raise UsageError(f"--resume {self.directory}: {self.LINES} line {n} is not a "
+                                 f"result ddg-oracle wrote ({e})") from None
         return out
 
     def add(self, k: int, results) -> None:
-        import base64
-        import pickle
         from ddg_oracle.properties import PROPERTIES
         records = [result_record(r, getattr(PROPERTIES.get(r.property_id), "statement", ""),
                                  self.tasks[k].spec) for r in results]
         line = {"task": self._key(self.tasks[k]), "results": records,
-                "pickled": base64.b64encode(pickle.dumps(results)).decode()}
+                "resume": [r.to_json() for r in results]}
         self._fh.write(json.dumps(line, sort_keys=True) + "\n")
         self._fh.flush()
 

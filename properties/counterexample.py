@@ -17,45 +17,50 @@ terminal, ``check_implementation``'s AssertionError, a pytest failure,
 
   :func:`replay` raises what the check raised (the PropertyFailure, or the
   implementation's own exception), or returns None if it now passes.  The last
-  argument is the example itself, pickled, compressed and base64-encoded
-  (:func:`encode_example`): examples hold exact surfaces that no short text
-  would rebuild.  It is decoded only by :func:`replay` in the user's own
-  process, from a snippet ddg-oracle wrote for them.
+  argument is the example itself as JSON, compressed and base64-encoded
+  (:func:`encode_example`, :mod:`.codec`): examples hold exact surfaces that no
+  short text would rebuild.  Decoding it runs no code (a replay string from a
+  downloaded report is data, not a program): only numbers, Fractions, tuples and
+  the example's own records are rebuilt, each through its validating constructor.
 """
 
 from __future__ import annotations
 
-import base64
 import importlib.machinery
 import importlib.util
 import os
-import pickle
 import sys
 import sysconfig
 import textwrap
-import zlib
 from fractions import Fraction
 from pathlib import Path
 
 #: vertices and faces shown inline; a longer mesh is elided (its file says the rest)
 INLINE_VERTICES = 24
-PREFIX = "ddg1:"                     # version of the encoding
+PREFIX = "ddg2:"                     # version of the encoding: JSON (ddg1: was a pickle)
 
 
 def encode_example(example) -> str:
-    """The example as text: ``ddg1:`` + base64 of the zlib-compressed pickle.
+    """The example as text: ``ddg2:`` + base64 of the zlib-compressed JSON of
+    :func:`.codec.encode`; :class:`.codec.UnsafeValue` for an example of a type the
+    codec does not write.
 
     >>> decode_example(encode_example((1, Fraction(1, 3))))
     (1, Fraction(1, 3))
     """
-    return PREFIX + base64.b64encode(zlib.compress(pickle.dumps(example, protocol=4), 9)).decode()
+    from .codec import to_text
+    return to_text(example, PREFIX)
 
 
 def decode_example(text: str):
-    """The example :func:`encode_example` encoded."""
-    if not text.startswith(PREFIX):
-        raise ValueError(f"not a ddg-oracle example (expected text starting {PREFIX!r})")
-    return pickle.loads(zlib.decompress(base64.b64decode(text[len(PREFIX):])))
+    """The example :func:`encode_example` encoded, rebuilt without running any code;
+    :class:`.codec.BadEncoding` (a ValueError) for any other text.  An old ``ddg1:``
+    string was a pickle, which could run code: it is refused, not decoded."""
+    from .codec import BadEncoding, from_text
+    if text.startswith("ddg1:"):
+        raise BadEncoding("a ddg1: replay string is a pickle, which could run code when "
+                          "decoded: it is not read; run the check again for a ddg2: string")
+    return from_text(text, PREFIX)
 
 
 def replay(property_id: str, impl, example):

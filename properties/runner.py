@@ -132,6 +132,35 @@ class Result:
         state["example"] = None       # examples hold exact surfaces: not worth sending
         return state
 
+    def to_json(self) -> dict:
+        """Every field but the example, as JSON that :meth:`from_json` reads back without
+        running code (:mod:`.codec`; ``--resume`` reads it from a report directory).  A
+        mesh file's mesh is left out: the resumed run reads the file again."""
+        from dataclasses import fields
+        from .codec import encode
+        state = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "example"}
+        if self.source != "generated":
+            state["mesh"] = None
+        return encode(state, lenient=True)
+
+    @classmethod
+    def from_json(cls, data) -> "Result":
+        """The result :meth:`to_json` wrote; :class:`.codec.BadEncoding` for anything else
+        (a field that is not one, a status that is not one)."""
+        from dataclasses import fields
+        from .codec import BadEncoding, decode
+        state = decode(data)
+        names = {f.name for f in fields(cls)} - {"example"}
+        if not isinstance(state, dict) or set(state) != names:
+            raise BadEncoding("not a result record")
+        if state["status"] not in STATUSES or not all(
+                isinstance(state[k], str) for k in ("property_id", "property_name",
+                                                     "implementation", "source")):
+            raise BadEncoding(f"not a result record: status {state['status']!r}")
+        if state["failure"] is not None and not isinstance(state["failure"], PropertyFailure):
+            raise BadEncoding("not a result record: its failure is not one")
+        return cls(**state)
+
 
 def example_mesh(example):
     """(V, F) as nested lists of floats of a property example (``.mesh``, ``.vertices`` and
@@ -513,7 +542,7 @@ def _attach_counterexample(r: Result, impl, example) -> None:
         return                                  # a mesh file's snippet checks the file again
     try:
         r.replay = encode_example(example)
-    except Exception:  # noqa: BLE001  (an example that does not pickle: no replay line)
+    except Exception:  # noqa: BLE001  (an example the codec does not write: no replay line)
         r.replay = None
 
 

@@ -187,7 +187,7 @@ def test_report_files_and_json_schema(tmp_path, capsys):
     V, F = read_mesh(d / f["files"]["obj"])
     assert V == f["mesh"]["V"] and F == f["mesh"]["F"]
     assert (d / f["files"]["png"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert f["replay"].startswith("ddg1:") and tie["replay"].startswith("ddg1:")
+    assert f["replay"].startswith("ddg2:") and tie["replay"].startswith("ddg2:")
     assert all(r["replay"] is None for r in doc["results"] if r["status"] == "passed")
     out = subprocess.run([sys.executable, str(d / f["files"]["snippet"])], cwd=ROOT,
                          capture_output=True, text=True, timeout=120)
