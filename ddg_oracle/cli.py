@@ -262,6 +262,14 @@ def main(argv=None) -> int:
         args = parser().parse_args(argv)
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)
         return e.code if isinstance(e.code, int) else EXIT_USAGE
+    from ddg_oracle.containment import contained
+    with contained(subreaper=argv is None):
+        return _main(args, argv)
+
+
+def _main(args, argv) -> int:
+    """The command of ``args``, with every expected failure a one-line error (exit 2) and
+    any other a bug report (exit 3); inside :func:`~ddg_oracle.containment.contained`."""
     from ddg_oracle.implementations import ImplementationNotFound
     from ddg_oracle.properties.protocol import NotAnImplementation
     try:
@@ -318,6 +326,9 @@ def _theorems(args) -> int:
         ref = ", ".join(r.split(":")[-1] for r in e.reference) or "-"
         prop = ", ".join(p.split(":")[-1] for p in e.property) or "-"
         print(f"{e.id.ljust(width)}  {e.status:9}  {ref} / {prop}")
+        for label, text in (("covers", e.covers), ("limits", e.limits)):
+            print(textwrap.fill(f"{label}: {text or '-'}", 100, initial_indent="    ",
+                                subsequent_indent="      ", break_on_hyphens=False))
     counts = {s: sum(e.status == s for e in entries) for s in traceability.STATUSES}
     print(f"\n{len(entries)} rows: " + ", ".join(f"{n} {s}" for s, n in counts.items())
           + f"; claimed chapters: {', '.join(map(str, claimed)) or 'none'}")
@@ -614,7 +625,8 @@ def _check(args, argv) -> int:
     elif files:
         print(f"counterexample files (mesh.obj, reproduce.py): {where}")
     if interrupted is not None:
-        name = "SIGINT" if interrupted.code == 130 else "SIGTERM"
+        import signal
+        name = signal.Signals(interrupted.signal).name
         print(f"ddg-oracle: interrupted by {name}: {len(results)} results of the finished tasks "
               + (f"kept in {args.report}; finish with: ddg-oracle check --resume {args.report}"
                  if args.report else "shown above (--report DIR keeps them for --resume)"),

@@ -170,69 +170,12 @@ def crashed(task: Task, why: str, status: str | None = None) -> list:
 
 
 class Interrupted(BaseException):
-    """SIGINT or SIGTERM stopped the run; ``signal`` is which, ``code`` the exit code
+    """SIGINT, SIGTERM or SIGHUP stopped the run; ``signal`` is which, ``code`` the exit code
     (130, 143); ``done`` the results of the tasks that had finished, in task order."""
 
     def __init__(self, signum: int, done: list | None = None):
         self.signal, self.code, self.done = signum, 128 + signum, done or []
         super().__init__(f"interrupted by signal {signum}")
-
-
-def descendants(pid: int | None = None) -> list[int]:
-    """Every process below ``pid`` (default: this one), children first, read from /proc
-    (Linux; elsewhere an empty list)."""
-    import os
-    pid = os.getpid() if pid is None else pid
-    children: dict[int, list[int]] = {}
-    try:
-        entries = os.listdir("/proc")
-    except OSError:
-        return []
-    for entry in entries:
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat", "rb") as fh:
-                fields = fh.read().rsplit(b")", 1)[1].split()
-        except OSError:
-            continue
-        children.setdefault(int(fields[1]), []).append(int(entry))
-    out, todo = [], list(children.get(pid, []))
-    while todo:
-        p = todo.pop(0)
-        out.append(p)
-        todo.extend(children.get(p, []))
-    return out
-
-
-def kill_descendants(grace: float = 1.0) -> None:
-    """SIGTERM every descendant process, then SIGKILL those still there after ``grace`` s:
-    no worker or library process outlives an interrupted run."""
-    import os
-    import signal
-    import time
-    procs = descendants()
-    for p in procs:
-        try:
-            os.kill(p, signal.SIGTERM)
-        except OSError:
-            pass
-    deadline = time.monotonic() + grace
-    while time.monotonic() < deadline and any(_alive(p) for p in procs):
-        time.sleep(0.05)
-    for p in procs + descendants():
-        try:
-            os.kill(p, signal.SIGKILL)
-        except OSError:
-            pass
-
-
-def _alive(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as fh:
-            return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"
-    except OSError:
-        return False
 
 
 def _worker_main(options: Options, meshes: list, conn) -> None:
@@ -275,7 +218,7 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     With ``workers > 1`` each task runs in one of ``workers`` spawned processes; a process
     that dies while running a task (killed, out of memory) is replaced and the task run
     once more (:data:`RETRIES`), then reported as ``crashed``; no other task's result is
-    lost.  SIGINT / SIGTERM raise :class:`Interrupted` carrying the finished results, after
+    lost.  SIGINT / SIGTERM / SIGHUP raise :class:`Interrupted` carrying the finished results, after
     every worker and library process is gone.  ``client``: a ``dask.distributed`` client
     whose cluster runs the tasks instead (:mod:`ddg_oracle.cluster`; ``workers`` unused)."""
     import signal
@@ -301,7 +244,9 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
         if caught:
             raise Interrupted(caught[0])
 
-    previous = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM)}
+    # SIGHUP too: a closed terminal or ssh session stops the run as Ctrl-C does (a report,
+    # a hint to resume), instead of leaving the workers computing
+    previous = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
     try:
         if serial:
             install(options, meshes)
@@ -315,6 +260,7 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
         else:
             _run_pool(tasks, todo, options, meshes, workers, finish, check)
     except (KeyboardInterrupt, Interrupted) as e:
+        from ddg_oracle.containment import kill_descendants
         kill_descendants()
         signum = e.signal if isinstance(e, Interrupted) else signal.SIGINT
         raise Interrupted(signum, [r for k in sorted(out) for r in out[k]]) from None

@@ -1,0 +1,116 @@
+"""Every process a run starts ends with it: checked libraries, their children, exec drivers.
+
+A checked library may start processes of its own (a worker pool, a helper binary), and an
+isolated worker killed on a hang leaves an exec driver it started behind; such strays
+would keep running (at 100% CPU for a hanging driver) after ``ddg-oracle`` has exited.
+:func:`contained` wraps a command: the command's process becomes a *child subreaper*
+(Linux ``prctl(PR_SET_CHILD_SUBREAPER)``, when it is ddg-oracle's own process), so an
+orphaned descendant is re-parented to it instead of to init, and at the end of the block,
+on every path (normal, error, signal), every descendant started inside it is stopped
+(SIGTERM, then SIGKILL after a grace period) and reaped.  Descendants that existed before
+the block (a test's browser, say) are left alone.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+from contextlib import contextmanager
+
+__all__ = ["contained", "descendants", "kill_descendants", "become_subreaper"]
+
+PR_SET_CHILD_SUBREAPER = 36
+
+
+def become_subreaper() -> bool:
+    """Make this process the reaper of its orphaned descendants (Linux); False elsewhere."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def descendants(pid: int | None = None) -> list[int]:
+    """Every process below ``pid`` (default: this one), children first, read from /proc
+    (Linux; elsewhere an empty list)."""
+    pid = os.getpid() if pid is None else pid
+    children: dict[int, list[int]] = {}
+    try:
+        entries = os.listdir("/proc")
+    except OSError:
+        return []
+    for entry in entries:
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as fh:
+                fields = fh.read().rsplit(b")", 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(entry))
+    out, todo = [], list(children.get(pid, []))
+    while todo:
+        p = todo.pop(0)
+        out.append(p)
+        todo.extend(children.get(p, []))
+    return out
+
+
+def _alive(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"
+    except OSError:
+        return False
+
+
+def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
+    """SIGTERM every descendant process but ``keep``, then SIGKILL those still there after
+    ``grace`` s, and reap those that are our children; returns how many were stopped."""
+    procs = [p for p in descendants() if p not in keep]
+    for p in procs:
+        try:
+            os.kill(p, signal.SIGTERM)
+        except OSError:
+            pass
+    deadline = time.monotonic() + grace
+    while time.monotonic() < deadline and any(_alive(p) for p in procs):
+        time.sleep(0.05)
+    for p in procs + [q for q in descendants() if q not in keep and q not in procs]:
+        try:
+            os.kill(p, signal.SIGKILL)
+        except OSError:
+            pass
+    _reap(procs)
+    return len(procs)
+
+
+def _reap(pids) -> None:
+    """Collect the exit status of those of ``pids`` that are our (adopted) children."""
+    deadline = time.monotonic() + 2.0
+    for p in pids:
+        while True:
+            try:
+                done, _ = os.waitpid(p, os.WNOHANG)
+            except ChildProcessError:
+                break                         # not our child, or already reaped
+            if done or time.monotonic() > deadline:
+                break
+            time.sleep(0.01)
+
+
+@contextmanager
+def contained(subreaper: bool = False):
+    """Run the block, then stop every descendant process it started (see the module doc);
+    ``subreaper``: adopt orphaned descendants first (ddg-oracle's own process only: it
+    changes how this process is treated by the kernel)."""
+    if subreaper:
+        become_subreaper()
+    before = frozenset(descendants())
+    try:
+        yield
+    finally:
+        kill_descendants(grace=0.5, keep=before)

@@ -1,0 +1,110 @@
+"""No process a run starts outlives it (issue 45, item 1): a checked library's children, an
+exec driver's children and the drivers themselves are stopped and reaped after a normal,
+a failing and an interrupted run; SIGHUP stops a run as SIGINT does."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+import uuid
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _strays(marker: str) -> list[int]:
+    out = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/cmdline", "rb") as fh:
+                if marker.encode() in fh.read():
+                    out.append(int(entry))
+        except OSError:
+            continue
+    return out
+
+
+@pytest.fixture
+def project(tmp_path):
+    marker = f"ddg-stray-{uuid.uuid4().hex[:12]}"
+    (tmp_path / "spawning.py").write_text(textwrap.dedent(f"""\
+        import subprocess, sys
+        from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+        SLEEP = [sys.executable, "-c", "import time; time.sleep(300)", "{marker}"]
+        class Spawns(ReferenceImplementation):
+            name = "spawns"
+            def euler_characteristic(self, V, F):
+                subprocess.Popen(SLEEP)                        # a helper process per call
+                return super().euler_characteristic(V, F)
+        class SpawnsAndFails(Spawns):
+            name = "spawns-and-fails"
+            def euler_characteristic(self, V, F):
+                return super().euler_characteristic(V, F) + 1
+        """))
+    (tmp_path / "driver.py").write_text(textwrap.dedent(f"""\
+        import json, subprocess, sys, time
+        child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(300)",
+                                  "{marker}"])
+        for line in sys.stdin:
+            r = json.loads(line)
+            if r["method"] == "hello":
+                print(json.dumps({{"methods": ["euler_characteristic"]}}), flush=True)
+            else:
+                time.sleep(300)                                 # hangs on the first request
+        """))
+    yield tmp_path, marker
+    for p in _strays(marker):
+        os.kill(p, signal.SIGKILL)
+
+
+def _ddg(cwd, *args, **kw):
+    exe = str(Path(sys.executable).with_name("ddg-oracle"))
+    return subprocess.Popen([exe, "check", *args], cwd=cwd, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, **kw)
+
+
+@pytest.mark.parametrize("impl, workers, rc", [("spawning:Spawns", "1", 0),
+                                                ("spawning:Spawns", "2", 0),
+                                                ("spawning:SpawnsAndFails", "1", 1)])
+def test_a_librarys_children_end_with_the_run(project, impl, workers, rc):
+    cwd, marker = project
+    p = _ddg(cwd, "--impl", impl, "--only", "D1.6", "X1.4", "--workers", workers)
+    out, err = p.communicate(timeout=300)
+    assert p.returncode == rc, out + err
+    time.sleep(0.3)
+    assert _strays(marker) == []
+
+
+def test_a_hanging_driver_and_its_children_end_with_the_run(project):
+    cwd, marker = project
+    spec = f"exec:{sys.executable} driver.py"
+    p = _ddg(cwd, "--impl", spec, "--only", "D1.6", "--budget", "3", "--workers", "1")
+    out, err = p.communicate(timeout=300)
+    assert p.returncode == 1 and "hang" in out, out + err
+    time.sleep(0.3)
+    assert _strays(marker) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGHUP])
+def test_an_interrupted_run_leaves_no_process_and_says_how_to_resume(project, sig):
+    cwd, marker = project
+    p = _ddg(cwd, "--impl", "spawning:Spawns", "--only", "D1.6", "R1.5", "CS", "--profile", "ci",
+             "--report", str(cwd / "report"))
+    deadline = time.monotonic() + 60
+    while not _strays(marker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert _strays(marker), "the implementation never started a helper"
+    p.send_signal(sig)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == 128 + sig, out + err
+    assert f"interrupted by {signal.Signals(sig).name}" in err and "--resume" in err
+    time.sleep(0.3)
+    assert _strays(marker) == []
