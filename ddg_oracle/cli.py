@@ -461,6 +461,24 @@ class Progress:
             print(file=self.stream)
 
 
+def _validate_check(args) -> None:
+    """Every option and environment value of ``check`` checked before any work starts: a
+    bad one is a one-line usage error (exit 2), never a result blamed on a library."""
+    from ddg_oracle.isolation import memory_limit
+    from ddg_oracle.meshfiles import size_limit
+    from ddg_oracle.properties.profiles import time_limit_seconds
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    if not args.timeout > 0 or args.timeout == float("inf"):
+        raise UsageError(f"--timeout must be a positive number of seconds per call, got "
+                         f"{args.timeout}")
+    if args.width < 40:
+        raise UsageError(f"--width must be at least 40 columns, got {args.width}")
+    time_limit_seconds()               # DDG_EXAMPLE_TIME_LIMIT
+    memory_limit()                     # DDG_MEMORY_LIMIT
+    size_limit()                       # DDG_MESH_SIZE_LIMIT
+
+
 def _check_arguments(argv) -> list[str]:
     """The arguments of the check command after its name (what --resume parses again)."""
     return list(argv if argv is not None else sys.argv[2:])
@@ -480,10 +498,12 @@ def _check(args, argv) -> int:
         # examples; only the tasks not in its results.jsonl run
         stored = ResultStream.command_of(args.resume)
         args = parser().parse_args(["check", *stored["argv"]])
-        args.report, args.resume, args.seed = stored["report"], stored["report"], stored["seed"]
+        seed = stored.get("seed")
+        if not (seed is None or (isinstance(seed, int) and not isinstance(seed, bool))):
+            raise UsageError(f"--resume {stored['report']}: its seed {seed!r} is not a number")
+        args.report, args.resume, args.seed = stored["report"], stored["report"], seed
         argv = stored["argv"]
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    _validate_check(args)
     workers = args.workers or _default_workers()
     try:
         props = select_properties(args.only)
@@ -551,8 +571,14 @@ def _check(args, argv) -> int:
     stream = None
     if args.report:
         given = _check_arguments(argv)
-        stream = ResultStream(args.report, tasks, {"argv": given, "seed": seed,
-                                                   "report": str(Path(args.report).resolve())})
+        try:
+            stream = ResultStream(args.report, tasks, {"argv": given, "seed": seed,
+                                                       "report": str(Path(args.report).resolve())})
+        except OSError as e:
+            for impl in started.values():
+                getattr(impl, "close", lambda: None)()
+            raise UsageError(f"--report {args.report}: cannot write there: "
+                             f"{e.strerror or e}") from None
         stream_done = stream.finished()                 # a resumed run's finished tasks
         by_name = {m.name: m for m in meshes}
         for results_of_task in stream_done.values():
@@ -561,9 +587,14 @@ def _check(args, argv) -> int:
                     r.mesh = (by_name[r.source].V, by_name[r.source].F)
     progress = Progress(len(tasks), already=len(stream_done))
 
+    lost = []                           # the report directory stopped taking writes
+
     def on_done(k, task, results):
-        if stream is not None:
-            stream.add(k, results)
+        if stream is not None and not lost:
+            try:
+                stream.add(k, results)
+            except OSError as e:        # full, read-only or gone: the run goes on
+                lost.append(e)
         progress(task, results)
 
     interrupted = None
@@ -601,8 +632,12 @@ def _check(args, argv) -> int:
                                 "source": r.source, "seconds": round(r.seconds, 4)}
                                for r in results]}
         where = Path(args.report)
-        files = write_report(where, results, command, spec_of, timings,
-                             interrupted=interrupted is not None)
+        try:
+            files = write_report(where, results, command, spec_of, timings,
+                                 interrupted=interrupted is not None)
+        except OSError as e:
+            lost.append(e)
+            files = {}
     else:
         # the whole mesh and the snippet of each counterexample, for those the terminal elides
         where = Path(tempfile.mkdtemp(prefix="ddg-oracle-counterexamples-"))
@@ -620,6 +655,11 @@ def _check(args, argv) -> int:
                               list_ties=args.ties))
     print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed,
                                   args.accept_incomplete), args.width))
+    if args.report and lost:
+        e = lost[0]
+        print(f"ddg-oracle: error: --report {args.report}: could not write ({e.strerror or e}); "
+              "the results above are complete, the report is not", file=sys.stderr)
+        return EXIT_USAGE
     if args.report:
         print(f"report: {where / 'summary.md'}")
     elif files:

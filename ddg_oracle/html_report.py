@@ -596,6 +596,6 @@ def write_html(directory, results_json: str, known: dict | None = None,
         doc["page"] = page
     data = json.dumps(doc, sort_keys=True).replace("</", "<\\/")     # safe inside <script>
     title = html.escape(", ".join(f"{n} {s}" for s, n in doc.get("counts", {}).items() if n))
-    path.write_text(_PAGE.replace("__TITLE__", title).replace("__DATA__", data),
-                    encoding="utf-8")
+    from .files import write_atomically
+    write_atomically(path, _PAGE.replace("__TITLE__", title).replace("__DATA__", data))
     return path

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import math
 import os
-import stat
 import struct
 from pathlib import Path
 
@@ -61,29 +60,11 @@ def read_mesh(path) -> tuple[list[list[float]], list[list[int]]]:
     directory is refused before it is opened: reading one may never end), and
     only up to :func:`size_limit` bytes; the readers then make progress on every
     line and check every count against the file's size before allocating."""
+    from .files import read_bytes
     path = Path(path)
-    try:
-        info = os.stat(path)
-    except OSError as e:
-        raise MeshFileError(f"{path}: cannot read: {e.strerror or e}") from None
-    if not stat.S_ISREG(info.st_mode):
-        kind = ("a directory" if stat.S_ISDIR(info.st_mode) else
-                "a FIFO (named pipe)" if stat.S_ISFIFO(info.st_mode) else
-                "a device" if stat.S_ISCHR(info.st_mode) or stat.S_ISBLK(info.st_mode) else
-                "a socket" if stat.S_ISSOCK(info.st_mode) else "not a regular file")
-        raise MeshFileError(f"{path}: cannot read: it is {kind}, not a regular mesh file")
     limit = size_limit()
-    if info.st_size > limit:
-        raise MeshFileError(f"{path}: {info.st_size:,} bytes, over the limit of {limit:,} "
-                            f"(raise it with {SIZE_ENV}=SIZE)")
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(limit + 1)          # a file that grew since stat is still bounded
-    except OSError as e:
-        raise MeshFileError(f"{path}: cannot read: {e.strerror or e}") from None
-    if len(data) > limit:
-        raise MeshFileError(f"{path}: over the size limit of {limit:,} bytes "
-                            f"(raise it with {SIZE_ENV}=SIZE)")
+    data = read_bytes(path, "a mesh file", limit, MeshFileError,
+                      limit_hint=f"raise it with {SIZE_ENV}=SIZE")
     readers = {".obj": _obj, ".off": _off, ".ply": _ply, ".stl": _stl}
     reader = readers.get(path.suffix.lower())
     if reader is None:

@@ -234,11 +234,21 @@ class ResultStream:
     def command_of(cls, directory) -> dict:
         """The run.json of an interrupted run (a usage error if there is none)."""
         from ddg_oracle.cli import UsageError
+        from .files import read_text
         path = Path(directory) / cls.RUN
         if not path.is_file():
             raise UsageError(f"--resume {directory}: no {cls.RUN} there (not the report "
                              "directory of an interrupted ddg-oracle check --report run)")
-        return json.loads(path.read_text(encoding="utf-8"))
+        try:
+            command = json.loads(read_text(path, "a run's command line", error=UsageError))
+        except ValueError as e:
+            raise UsageError(f"--resume {directory}: {cls.RUN} is not JSON ({e})") from None
+        if not (isinstance(command, dict) and isinstance(command.get("argv"), list)
+                and all(isinstance(a, str) for a in command["argv"])):
+            raise UsageError(f"--resume {directory}: {cls.RUN} is not one ddg-oracle wrote")
+        # the directory it was given, wherever it was moved since (not the path inside)
+        command["report"] = str(Path(directory).resolve())
+        return command
 
     def finished(self) -> dict:
         """{task index: its results} of the lines already in results.jsonl; a line that is
@@ -249,8 +259,9 @@ class ResultStream:
         from ddg_oracle.properties.runner import Result
         index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}
         out = {}
+        from .files import read_text
         path = self.directory / self.LINES
-        lines = path.read_text(encoding="utf-8").splitlines()
+        lines = read_text(path, "a run's results", error=UsageError).splitlines()
         for n, line in enumerate(lines, 1):
             try:
                 entry = json.loads(line)
@@ -690,6 +701,7 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
     from ddg_oracle.properties import PROPERTIES
     from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
 
+    from .files import write_atomically
     from .html_report import page_data, write_html
 
     directory = Path(directory)
@@ -707,15 +719,14 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
            "versions": versions(), "counts": counts(results), "results": records,
            "interrupted": interrupted}
     text = dumps(doc)
-    (directory / "results.json").write_text(text, encoding="utf-8")
+    write_atomically(directory / "results.json", text)
     findings = known_findings()
     known = {i: k for i, r in enumerate(results)
              if r.status not in (PASSED, NOT_APPLICABLE) and (k := known_finding(r, findings))}
     snippets = {i: snippet(r, spec_of.get(r.implementation, r.implementation))
                 for i, r in enumerate(results) if i in failure_files}
     write_html(directory, text, known, page_data(results, known, command.get("argv"), snippets))
-    (directory / "timings.json").write_text(json.dumps(timings, indent=1, sort_keys=True) + "\n",
-                                            encoding="utf-8")
+    write_atomically(directory / "timings.json", json.dumps(timings, indent=1, sort_keys=True) + "\n")
     c = counts(results)
     md = ["# ddg-oracle check" + (" (interrupted: partial)" if interrupted else ""), "",
           "Command: `ddg-oracle check " + " ".join(command.get("argv", [])) + "`", "",
@@ -731,5 +742,5 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
                 md += [f"![{r.property_id} {r.implementation}]({files['png']})", ""]
             md += [f"Mesh: [{files['obj']}]({files['obj']}); reproduce: "
                    f"`python {files['snippet']}`", ""]
-    (directory / "summary.md").write_text("\n".join(md), encoding="utf-8")
+    write_atomically(directory / "summary.md", "\n".join(md))
     return failure_files

@@ -34,6 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain, at_machine_epsilon
+
+from .files import read_text
 from ddg_oracle.reference.errors import InputError
 from ddg_oracle.reference.combinatorics import next_corner, prev_corner
 
@@ -612,7 +614,13 @@ def dumps(obj) -> str:
 def write(out: str | Path) -> list[Path]:
     """Write the corpus and its README into ``out`` (created; files overwritten)."""
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        raise VectorsError(f"--out {out}: is an existing file; name a directory (new, or one "
+                           "written by ddg-oracle vectors)")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise VectorsError(f"--out {out}: cannot create it: {e.strerror or e}") from None
     written = []
     for name, obj in build().items():
         p = out / name
@@ -717,17 +725,21 @@ def load(directory: str | Path) -> dict[str, dict]:
     """{method: method file} of a corpus directory (VectorsError if it is not one)."""
     d = Path(directory)
     try:
-        manifest = json.loads((d / "manifest.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError) as e:
+        manifest = json.loads(read_text(d / "manifest.json", "a corpus manifest",
+                                        error=VectorsError))
+    except ValueError as e:
         raise VectorsError(f"{d}: not a test-vector directory (manifest.json: {e})") from None
     if manifest.get("format") != FORMAT or manifest.get("version") != VERSION:
         raise VectorsError(f"{d}: manifest.json is format {manifest.get('format')!r} version "
                            f"{manifest.get('version')!r}; this ddg-oracle reads {FORMAT} {VERSION}")
     out = {}
     for method, name in manifest.get("methods", {}).items():
+        if not isinstance(name, str) or "/" in name or name.startswith("."):
+            raise VectorsError(f"{d}: manifest.json names {name!r} for {method}: not a file "
+                               "of the corpus directory")
         try:
-            out[method] = json.loads((d / name).read_text(encoding="utf-8"))
-        except (OSError, ValueError) as e:
+            out[method] = json.loads(read_text(d / name, "a corpus file", error=VectorsError))
+        except ValueError as e:
             raise VectorsError(f"{d / name}: {e}") from None
     return out
 
@@ -776,10 +788,7 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
 def read_answers(path: str | Path) -> list[dict]:
     """The lines of an answers file (JSON Lines; VectorsError naming a bad line)."""
     out = []
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as e:
-        raise VectorsError(f"{path}: {e}") from None
+    text = read_text(path, "an answers file", error=VectorsError)
     for k, line in enumerate(text.splitlines(), 1):
         if not line.strip():
             continue
@@ -792,6 +801,8 @@ def read_answers(path: str | Path) -> list[dict]:
             raise VectorsError(f'{path}:{k}: expected {{"id": ..., "value": ...}} or '
                                f'{{"id": ..., "error": {{"kind", "message"}}}}')
         out.append(obj)
+    if not out:
+        raise VectorsError(f"{path}: no answer in it (an empty answers file checks nothing)")
     return out
 
 

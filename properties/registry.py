@@ -303,6 +303,9 @@ def select_properties(only=None) -> list[Property]:
     if only is None:
         return props
     wanted = {w.strip() for entry in only for w in str(entry).split(",") if w.strip()}
+    if not wanted:
+        raise ValueError("no catalog ID given to select properties by (an empty selection "
+                         "would check nothing); e.g. D1.6 or L4.3")
     chosen = [p for p in props if p.id in wanted or _parts(p.id) & wanted]
     known = {part for p in props for part in _parts(p.id) | {p.id}}
     unknown = sorted(wanted - known)
