@@ -73,6 +73,44 @@ _quiet = [HealthCheck.too_slow, HealthCheck.data_too_large]
 _DEFAULT_DATABASE = object()      # "let Hypothesis choose" (its local directory)
 
 
+class TolerantDatabase(ExampleDatabase):
+    """An example database that never fails a check: an error of the database (a Redis
+    server that does not answer, a full disk) is one warning, and the run goes on as if
+    it had nothing saved.  A verdict is the implementation's, never the database's."""
+
+    def __init__(self, inner: ExampleDatabase, name: str):
+        super().__init__()
+        self.inner, self.name, self.failed = inner, name, None
+
+    def _guard(self, what, default=None):
+        if self.failed is not None:
+            return default
+        try:
+            return what()
+        except Exception as e:  # noqa: BLE001  (any trouble of the store: warn, go on)
+            import warnings
+            self.failed = e
+            warnings.warn(f"ddg-oracle: the example database {self.name} failed "
+                          f"({type(e).__name__}: {e}); the run goes on without it",
+                          RuntimeWarning, stacklevel=2)
+            return default
+
+    def save(self, key: bytes, value: bytes) -> None:
+        self._guard(lambda: self.inner.save(key, value))
+
+    def fetch(self, key: bytes):
+        return iter(self._guard(lambda: list(self.inner.fetch(key)), []))
+
+    def delete(self, key: bytes, value: bytes) -> None:
+        self._guard(lambda: self.inner.delete(key, value))
+
+    def move(self, src: bytes, dest: bytes, value: bytes) -> None:
+        self._guard(lambda: self.inner.move(src, dest, value))
+
+    def __repr__(self) -> str:
+        return f"TolerantDatabase({self.inner!r})"
+
+
 def database_from(spec: str | None):
     """The example database a ``DDG_HYPOTHESIS_DATABASE`` value names (see module doc).
 
@@ -102,8 +140,8 @@ def database_from(spec: str | None):
             spec, socket_connect_timeout=5, socket_timeout=30,
             retry=Retry(ExponentialBackoff(cap=1.0, base=0.05), 8),
             retry_on_error=[redis.ConnectionError, redis.TimeoutError])
-        return RedisExampleDatabase(client)
-    return DirectoryBasedExampleDatabase(spec)
+        return TolerantDatabase(RedisExampleDatabase(client), spec)
+    return TolerantDatabase(DirectoryBasedExampleDatabase(spec), spec)
 
 
 def _register(database) -> None:

@@ -437,6 +437,12 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
         seed = derandomized_seed(p.id)
     if seed is not None:
         run = hypothesis_seed(seed)(run)
+        if settings.database is not None and "database" not in changes:
+            # Hypothesis's @seed turns the example database off; a chosen database must
+            # still replay saved failures first and save new ones (the same key for every
+            # implementation of the property), seed or not
+            run._hypothesis_internal_use_settings = Settings(
+                run._hypothesis_internal_use_settings, database=settings.database)
     try:
         # the property's stream, whatever this process loaded; Hypothesis's own reports
         # ("You can reproduce this failure by adding @seed...", falsifying examples) are not

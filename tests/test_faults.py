@@ -99,3 +99,33 @@ def test_a_moved_report_directory_resumes_where_it_is(capsys, tmp_path):
     assert rc == 0, err
     assert f"report: {moved}" in out and not first.exists()
     assert len((moved / "results.jsonl").read_text().splitlines()) == 2
+
+
+def test_check_saves_failures_to_the_chosen_database_although_it_seeds(capsys, tmp_path,
+                                                                        monkeypatch):
+    # Hypothesis's @seed turned the database off: check always seeds (one seed per run, the
+    # same examples for every implementation), so DDG_HYPOTHESIS_DATABASE did nothing
+    from ddg_oracle.properties import profiles
+    db = tmp_path / "db"
+    monkeypatch.setattr(profiles, "_registered", False)
+    monkeypatch.setenv("DDG_HYPOTHESIS_DATABASE", str(db))
+    rc, _, _, _ = _run(capsys, "check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
+                       "--only", "D1.6", "--workers", "1", "--seed", "7")
+    monkeypatch.setattr(profiles, "_registered", False)
+    assert rc == 1
+    assert any(p.is_file() for p in db.rglob("*"))
+
+
+def test_an_unreachable_database_is_a_warning_and_the_run_goes_on(capsys, monkeypatch):
+    pytest.importorskip("redis")
+    from ddg_oracle.properties import profiles
+    from ddg_oracle.properties.runner import PASSED, check_implementation
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    monkeypatch.setattr(profiles, "_registered", False)
+    monkeypatch.setenv("DDG_HYPOTHESIS_DATABASE", "redis://127.0.0.1:1")
+    try:
+        with pytest.warns(RuntimeWarning, match="the example database .* failed"):
+            results = check_implementation(ReferenceImplementation(), only={"D1.6"})
+    finally:
+        monkeypatch.setattr(profiles, "_registered", False)
+    assert [r.status for r in results] == [PASSED]
