@@ -407,6 +407,9 @@ def _start(specs, timeout):
     if error is not None:
         for impl in started.values():
             getattr(impl, "close", lambda: None)()
+        from ddg_oracle.isolation import ImplementationCrashed
+        if isinstance(error, ImplementationCrashed):   # it died or hung while loading
+            raise UsageError(f"cannot load {error.implementation}: it {error.how}") from None
         raise error
     return started
 

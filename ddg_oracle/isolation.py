@@ -158,9 +158,12 @@ class Isolated:
         self._proc.start()
         child.close()
         self._conn = parent
-        if not parent.poll(120):
+        # loading (importing a library, building the object) gets the time of a call
+        wait = max(self.timeout, 30.0)
+        if not parent.poll(wait):
             self._kill()
-            raise ImplementationCrashed(self.spec, "load", "did not start within 120 s")
+            raise ImplementationCrashed(self.spec, "load", f"did not load within {wait:g} s "
+                                                           "(killed)")
         try:
             status, payload, name = parent.recv()
         except EOFError:

@@ -129,3 +129,12 @@ def test_an_unreachable_database_is_a_warning_and_the_run_goes_on(capsys, monkey
     finally:
         monkeypatch.setattr(profiles, "_registered", False)
     assert [r.status for r in results] == [PASSED]
+
+
+def test_an_implementation_that_aborts_while_loading_is_a_usage_error(capsys, tmp_path,
+                                                                       monkeypatch):
+    (tmp_path / "aborts_at_import.py").write_text("import os\nos.abort()\n")
+    monkeypatch.chdir(tmp_path)
+    rc, _, err, _ = _run(capsys, "check", "--impl", "aborts_at_import:Impl", "--only", "D1.6")
+    assert rc == 2 and "cannot load aborts_at_import:Impl: it crashed with signal SIGABRT" in \
+        _one_line(err)
