@@ -6,14 +6,15 @@ enclosure on float meshes up to 30,000 vertices, and exact elimination's limit),
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
 (``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
 to catch each planted bug under the default profile), sidebyside (this checkout's numbers
-against another version's, ``--base-python``)."""
+against another version's, ``--base-python``), mutation (mutmut on the core modules of
+reference/, the mutation score per module; long, docs/mutation.md)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from . import catch, cotan, dirichlet, flips, real, report, sidebyside, suite
+from . import catch, cotan, dirichlet, flips, mutation, real, report, sidebyside, suite
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -28,8 +29,9 @@ GROUPS = {
     "meshcheck": suite.run_mesh_checks,
     "catch": catch.run,
     "sidebyside": sidebyside.run,
+    "mutation": mutation.run,
 }
-ONLY_NAMED = ("sidebyside",)            # not part of --all
+ONLY_NAMED = ("sidebyside", "mutation")  # not part of --all
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 
