@@ -76,18 +76,45 @@ def connect(address: str):
                                            dashboard_address=":0", silence_logs=logging.ERROR)
         client = distributed.Client(cluster)
     else:
-        try:
-            # how long to try: dask's distributed.comm.timeouts.connect (default 30 s;
-            # e.g. DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT=5s)
-            client = distributed.Client(address)
-        except (OSError, TimeoutError) as e:
-            raise InputError(f"--scheduler {address}: cannot reach the scheduler ({e})") from None
+        client = _client(distributed, address)
     try:
         _require_usable(client, address)
     except BaseException:
         close(client, cluster)
         raise
     return client, cluster
+
+
+#: seconds to wait for a scheduler's answer before --scheduler is a usage error
+SCHEDULER_TIMEOUT = 30.0
+
+
+def _client(distributed, address: str):
+    """A client of the scheduler at ``address``, or an InputError in one line: an address
+    that is not one, nothing listening, or something listening that does not answer as a
+    dask scheduler within SCHEDULER_TIMEOUT (dask's own connect timeout covers only the
+    first of these, and a silent port would hang forever)."""
+    import threading
+    got: list = []
+
+    def connect():
+        try:
+            got.append(distributed.Client(address, timeout=SCHEDULER_TIMEOUT))
+        except BaseException as e:  # noqa: BLE001  (handed to the caller below)
+            got.append(e)
+    # a daemon thread: a scheduler that never answers must not keep the process alive
+    thread = threading.Thread(target=connect, daemon=True, name="ddg-oracle-scheduler")
+    thread.start()
+    thread.join(SCHEDULER_TIMEOUT + 5)
+    if not got:
+        raise InputError(f"--scheduler {address}: no dask scheduler answered within "
+                         f"{SCHEDULER_TIMEOUT:g} s")
+    if isinstance(got[0], (OSError, TimeoutError, ValueError, TypeError)):
+        raise InputError(f"--scheduler {address}: cannot reach a dask scheduler there "
+                         f"({got[0]})")
+    if isinstance(got[0], BaseException):
+        raise got[0]
+    return got[0]
 
 
 def _worker_facts():

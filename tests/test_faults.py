@@ -138,3 +138,28 @@ def test_an_implementation_that_aborts_while_loading_is_a_usage_error(capsys, tm
     rc, _, err, _ = _run(capsys, "check", "--impl", "aborts_at_import:Impl", "--only", "D1.6")
     assert rc == 2 and "cannot load aborts_at_import:Impl: it crashed with signal SIGABRT" in \
         _one_line(err)
+
+
+def test_a_scheduler_address_that_is_not_one_is_a_usage_error(capsys):
+    pytest.importorskip("distributed")
+    rc, _, err, _ = _run(capsys, "check", "--impl", "reference", "--only", "D1.6",
+                         "--scheduler", "nonsense")
+    assert rc == 2 and "--scheduler nonsense: cannot reach a dask scheduler" in _one_line(err)
+
+
+def test_a_port_that_never_answers_as_a_scheduler_is_a_usage_error(capsys, monkeypatch):
+    pytest.importorskip("distributed")
+    import socket
+    from ddg_oracle import cluster
+    monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", 2.0)
+    silent = socket.socket()
+    silent.bind(("127.0.0.1", 0))
+    silent.listen(5)                       # accepts, never speaks
+    try:
+        address = f"tcp://127.0.0.1:{silent.getsockname()[1]}"
+        rc, _, err, seconds = _run(capsys, "check", "--impl", "reference", "--only", "D1.6",
+                                   "--scheduler", address)
+    finally:
+        silent.close()
+    assert rc == 2 and "no dask scheduler answered within 2 s" in _one_line(err)
+    assert seconds < 20
