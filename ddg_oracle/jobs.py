@@ -15,6 +15,7 @@ does not depend on scheduling.
 from __future__ import annotations
 
 import multiprocessing as mp
+import time
 from dataclasses import dataclass
 
 from ddg_oracle.oracles.processes import exit_text
@@ -313,6 +314,26 @@ def needs_of(group) -> frozenset:
     return p.methods if p is not None else frozenset()
 
 
+def _stopped(pid: int) -> bool:
+    """Whether the process is stopped (state T: SIGSTOP) or traced, from /proc (Linux)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return fh.read().rsplit(b")", 1)[1].split()[0] in (b"T", b"t")
+    except OSError:
+        return False
+
+
+def _wedge_limit(options) -> float | None:
+    """Seconds after which a generated-example task still running is taken for a wedged
+    worker: four times the task's budget plus two call timeouts (a budget bounds the
+    task, shrinking and a cut-short call included); None without a budget (thorough)."""
+    from ddg_oracle.properties.profiles import profile_budget
+    budget = options.budget if options.budget is not None else profile_budget(options.profile)
+    if budget.seconds is None:
+        return None
+    return 4 * budget.seconds + 2 * options.timeout
+
+
 def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     from multiprocessing.connection import wait
 
@@ -328,6 +349,8 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     last: dict = {}                     # connection -> group of the last task it was sent
 
     done_needs: dict = {}               # connection -> the methods of the groups it ran
+    since: dict = {}                    # connection -> when its task was sent
+    wedged_after = _wedge_limit(options)
 
     def pick(conn) -> int | None:
         # the groups other workers are running a task of now (an idle worker's last group
@@ -378,6 +401,7 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                 return
             attempts[k] = attempts.get(k, 0) + 1
             running[conn] = (proc, k)
+            since[conn] = time.monotonic()
         else:
             conn.close()
             proc.join(5)
@@ -419,6 +443,15 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                 feed(conn)
             for idle in [c for c in running if running[c][1] is None]:
                 feed(idle)                  # a waiting worker: a task may be free for it now
+            # heartbeat: a worker stopped (SIGSTOP, a debugger) or wedged far past its task's
+            # budget is killed; its death is handled above (a fresh worker, the task again)
+            for conn, (proc, k) in list(running.items()):
+                if k is None or not proc.is_alive():
+                    continue
+                late = (wedged_after is not None and tasks[k].mesh is None
+                        and time.monotonic() - since.get(conn, time.monotonic()) > wedged_after)
+                if late or _stopped(proc.pid):
+                    proc.kill()
     finally:
         for conn, (proc, _) in list(running.items()):
             if proc.is_alive():

@@ -108,3 +108,31 @@ def test_an_interrupted_run_leaves_no_process_and_says_how_to_resume(project, si
     assert f"interrupted by {signal.Signals(sig).name}" in err and "--resume" in err
     time.sleep(0.3)
     assert _strays(marker) == []
+
+
+def test_a_stopped_pool_worker_is_replaced_and_the_run_completes(tmp_path):
+    # a SIGSTOPped worker stalled the run forever: the heartbeat kills it, its task runs again
+    from ddg_oracle.containment import descendants
+    p = _ddg(tmp_path, "--impl", "reference", "--only", "D2.2", "R2.4", "T2.6", "D2.6",
+             "--workers", "2")
+    deadline = time.monotonic() + 60
+    workers = []
+    while time.monotonic() < deadline and len(workers) < 2:
+        workers = [q for q in descendants(p.pid)
+                   if b"multiprocessing" in Path(f"/proc/{q}/cmdline").read_bytes()
+                   and _parent(q) == p.pid]
+        time.sleep(0.2)
+    assert workers, "no pool worker started"
+    time.sleep(1.0)
+    os.kill(workers[0], signal.SIGSTOP)
+    out, err = p.communicate(timeout=240)
+    assert p.returncode == 0, out + err
+    assert "4 checks in" in out and "4 passed" in out
+
+
+def _parent(pid: int) -> int:
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return int(fh.read().rsplit(b")", 1)[1].split()[1])
+    except OSError:
+        return -1
