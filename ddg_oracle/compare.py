@@ -269,6 +269,8 @@ class Comparison:
     over: int = 0                    # elements whose error exceeds the bound
     elements: int = 0
     note: str | None = None
+    # the conventions (properties.conventions) under which a differing answer agrees
+    explained_by: tuple = ()
 
 
 def _epsilon_of(impl):
@@ -305,7 +307,7 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
 
 
 def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
-                 methods=None) -> list[Comparison]:
+                 methods=None, explain: bool = True) -> list[Comparison]:
     """Every protocol method every implementation has, against the reference, on ``mesh``:
     how each answer compares is its declared quantity's
     (:data:`ddg_oracle.properties.registry.QUANTITIES`).
@@ -313,7 +315,11 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     ``workers > 1``: the exact values and their bounds are computed by that many spawned
     processes, one method at a time (the costly chapters first), while this process asks
     the implementations; the rows are the same as with one worker.  ``methods``: only
-    these protocol methods (default: every one)."""
+    these protocol methods (default: every one).  An implementation's answers are first
+    mapped from the conventions it declares (:mod:`ddg_oracle.properties.conventions`);
+    with ``explain``, a differing answer is tried under the conventions it did not
+    declare, and those under which it agrees are named (``explained_by``)."""
+    from ddg_oracle.properties.conventions import declared, to_reference
     from ddg_oracle.properties.protocol import (METHODS, OutsideDomain, capabilities,
                                                 implementation_name, machine_epsilon)
     from ddg_oracle.properties.registry import all_quantities, unmet
@@ -343,7 +349,7 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
             answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
             continue
         try:
-            got = getattr(impl, method)(V, F)
+            got = to_reference(declared(impl), method, getattr(impl, method)(V, F), V, F)
         except OutsideDomain as e:          # the implementation has no value on this mesh
             got = Comparison(method, name, "not applicable", note=str(e))
         except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
@@ -358,9 +364,25 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
             continue
         with _epsilon_of(impl):
             want, bound = expected(quantities[method], machine_epsilon(impl))
-            rows.append(_compare_one(quantities[method], implementation_name(impl), got, want,
-                                     ex, bound))
+            row = _compare_one(quantities[method], implementation_name(impl), got, want, ex,
+                               bound)
+            if explain and row.status == "DIFFERS":
+                row.explained_by = _explained(quantities[method], impl, got, want, ex, bound,
+                                              V, F)
+            rows.append(row)
     return rows
+
+
+def _explained(q, impl, got, want, ex, bound, V, F) -> tuple:
+    """The conventions under which ``got`` (already mapped from the declared ones)
+    agrees with the exact answer: what a failing implementation probably follows."""
+    from ddg_oracle.properties.conventions import declared, explaining
+    from ddg_oracle.properties.protocol import implementation_name
+
+    def agrees(mapped) -> bool:
+        return _compare_one(q, implementation_name(impl), mapped, want, ex,
+                            bound).status == "agrees"
+    return tuple(c.name for c in explaining(q.method, got, V, F, agrees, declared(impl)))
 
 
 class _ExpectedValues:
@@ -561,8 +583,10 @@ def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:
     from ddg_oracle.reference.polyhedral import PolyhedralSurface
     V, F = mesh
     methods = set(methods) & capabilities(impl)
-    if not methods or len(F) > faces_limit or len({v for f in F for v in f}) < len(V):
+    if not methods or len(F) > faces_limit:
         return []
+    if len({v for f in F for v in f}) < len(V):
+        return _diagnose_unused(V, F, impl, methods)
     try:
         PolyhedralSurface.from_arrays(V, F).metric()
     except (InputError, ValueError):
@@ -571,8 +595,37 @@ def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:
                         workers=1, methods=methods)
     return [{"quantity": c.quantity, "status": c.status, "where": c.where,
              "expected": _short(c.expected), "observed": _short(c.observed),
-             "worst": c.worst, "note": c.note}
+             "worst": c.worst, "note": c.note, "explained_by": list(c.explained_by)}
             for c in rows if c.status in ("agrees", "DIFFERS", "crashed")]
+
+
+def _diagnose_unused(V, F, impl, methods) -> list[dict]:
+    """The diagnosis on a mesh with vertices no face uses, which compare does not take: an
+    answer sized for the used vertices only, that agrees on the mesh without the others,
+    is the convention unused_vertices=dropped (LaPy's); anything else says nothing."""
+    from ddg_oracle.properties.conventions import declared, to_reference
+    from ddg_oracle.properties.protocol import METHODS
+    used = sorted({int(v) for f in F for v in f})
+    new = {v: k for k, v in enumerate(used)}
+    compact = ([list(V[v]) for v in used], [[new[int(v)] for v in f] for f in F])
+    out = []
+    for method in sorted(methods):
+        if METHODS[method].arguments != ("V", "F"):
+            continue
+        try:
+            got = to_reference(declared(impl), method, getattr(impl, method)(V, F), V, F)
+            rows = got.shape if hasattr(got, "shape") else (len(got),)
+        except Exception:  # noqa: BLE001  (nothing to say)
+            continue
+        if not rows or rows[0] != len(used):
+            continue
+        there = diagnose(compact, impl, {method})
+        if there and there[0]["status"] == "agrees":
+            out.append({"quantity": method, "status": "DIFFERS", "where": "its size",
+                        "expected": f"{len(V)} rows", "observed": f"{len(used)} rows",
+                        "worst": math.inf, "note": None,
+                        "explained_by": ["unused_vertices=dropped"]})
+    return out
 
 
 def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:
@@ -588,8 +641,10 @@ def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:
         ratio = "-" if c.worst is None else ("inf" if math.isinf(c.worst) else f"{c.worst:.3g}")
         if c.over and c.elements > 1:
             ratio += f" ({c.over}/{c.elements} over)"
+        note = "; ".join(filter(None, [c.note, ("agrees under " + ", ".join(c.explained_by))
+                                             if c.explained_by else None]))
         table.append((c.quantity, c.implementation, c.status, ratio, c.where or "-",
-                      _short(c.expected), _short(c.observed) + (f"  [{c.note}]" if c.note else "")))
+                      _short(c.expected), _short(c.observed) + (f"  [{note}]" if note else "")))
     widths = [max(len(r[k]) for r in table) for k in range(len(cols) - 1)]
     for r in table:
         lines.append("  ".join(x.ljust(w) for x, w in zip(r, widths)) + "  " + r[-1])

@@ -90,13 +90,16 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
     if memory_bytes:
         resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
     from ddg_oracle.implementations import ImplementationNotFound, load_implementation
+    from ddg_oracle.properties.conventions import declared
     try:
         impl = load_implementation(spec)
         methods = sorted(require_protocol(impl))
         declared_conventions(impl)               # a malformed declaration: refused here
+        declared(impl)
+        conventions = getattr(impl, "conventions", None) or {}
         conn.send(("ready", methods, (getattr(impl, "name", spec), machine_epsilon(impl),
-                                      dict(getattr(impl, "conventions", None) or {}),
-                                      near_misses(impl))))
+                                      conventions if isinstance(conventions, str)
+                                      else dict(conventions), near_misses(impl))))
     except NotAnImplementation as e:
         conn.send(("not-an-implementation", str(e), None))
         return

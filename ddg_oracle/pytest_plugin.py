@@ -68,11 +68,11 @@ class PropertyItem(pytest.Item):
             pytest.skip(f"undecided: {r.error}")
         if not r.ok:                         # FAILED, crashed (a hang too), incomplete
             from ddg_oracle.jobs import with_diagnosis
-            from ddg_oracle.report import wrong_answer
+            from ddg_oracle.report import convention_hint, wrong_answer
             text = describe(with_diagnosis(r, self.prop, self.impl))
-            where = wrong_answer(r)
-            if where:                        # the root cause first: the wrong answer
-                text = f"{where}\n{text}"
+            first = "\n".join(filter(None, [wrong_answer(r), convention_hint(r)]))
+            if first:                        # the root cause first: the wrong answer
+                text = f"{first}\n{text}"
             raise PropertyCheckFailed(text)
 
     def repr_failure(self, excinfo):

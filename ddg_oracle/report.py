@@ -405,6 +405,27 @@ def _where(r, methods) -> str | None:
     return None
 
 
+def convention_hint(r) -> str | None:
+    """When a failing result's wrong answer agrees with the exact one under a convention
+    of the vocabulary (``properties.conventions``; the diagnosis tried each), what to
+    declare: "cotan_laplacian agrees under laplacian=negative (the matrix is -L ...):
+    declare conventions = {'laplacian': 'negative'}"; else None."""
+    from ddg_oracle.properties.conventions import declaration_text, parse
+    for d in r.diagnosis or []:
+        names = d.get("explained_by") or []
+        if d["status"] == "DIFFERS" and names:
+            key, _, value = names[0].partition("=")
+            try:
+                value = float(value) if key == "regularization" else value
+                c = parse({key: value})
+            except ValueError:
+                continue
+            return (f"{d['quantity']} agrees with the exact answer under {names[0]} "
+                    f"({c[0].about}): if that is your convention, declare "
+                    f"{declaration_text(c)}")
+    return None
+
+
 def wrong_answer(r) -> str | None:
     """The wrong answer a failing result's diagnosis shows for the methods it blames
     ("cotan_laplacian at entry (0, 1): expected -0.5, observed 0.5 (...)"), or None."""
@@ -497,6 +518,9 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
                 first = results[c.first]
                 head += (f"; smallest counterexample {_faces(first)} face"
                          f"{'s' if _faces(first) != 1 else ''} ({first.property_id}): {c.where}")
+            hint = next((h for k in c.members if (h := convention_hint(results[k]))), None)
+            if hint:
+                head += f"; {hint}"
             lines.append(fit(head, width))
             lines.extend(row(results[k]) for k in c.members)
     if crashes:

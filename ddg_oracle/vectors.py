@@ -747,11 +747,15 @@ def load(directory: str | Path) -> dict[str, dict]:
 def _call(impl, method: str, req: dict):
     """``impl``'s answer to the request fields ``req`` of ``method`` (as a corpus case's
     ``input``: non-finite coordinates as strings)."""
+    from ddg_oracle.properties.conventions import declared, to_reference
     inp = _unportable(req)
     # integer arrays for faces and vertex sets, floats for points and values
     dtypes = {"F": np.int64, "boundary": np.int64}
-    return getattr(impl, method)(*(np.array(inp[a], dtype=dtypes.get(a, np.float64))
-                                   for a in METHODS[method].arguments))
+    args = [np.array(inp[a], dtype=dtypes.get(a, np.float64)) for a in METHODS[method].arguments]
+    answer = getattr(impl, method)(*args)
+    if METHODS[method].arguments[:2] == ("V", "F"):      # its declared conventions, mapped
+        answer = to_reference(declared(impl), method, answer, args[0], args[1])
+    return answer
 
 
 def answers(corpus: dict[str, dict], impl) -> list[dict]:

@@ -231,6 +231,16 @@ class Executable:
         """The handshake's ``{"follows": {id: what differs}, "counterpart_arguments":
         [...]}`` as the protocol's ``conventions`` attribute: the counterpart is this
         program with those arguments (docs/protocol.md)."""
+        if isinstance(declared, str) or (isinstance(declared, dict) and declared
+                                         and "follows" not in declared):
+            # a preset or a map of the vocabulary (properties.conventions): validated here
+            from ddg_oracle.properties.conventions import parse
+            try:
+                parse(declared)
+            except ValueError as e:
+                self.close()
+                raise DriverFailed(f"{self.spec}: {e}") from None
+            return declared
         if declared is not None and not isinstance(declared, dict):
             self.close()
             raise DriverFailed(f"{self.spec}: conventions must be an object, got "
@@ -472,6 +482,9 @@ def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
             answer = {"name": name or implementation_name(impl),
                       "methods": sorted(capabilities(impl), key=list(METHODS).index),
                       "machine_epsilon": machine_epsilon(impl)}
+            declared = getattr(impl, "conventions", None)
+            if declared and (isinstance(declared, str) or "follows" not in declared):
+                answer["conventions"] = declared     # the vocabulary's (properties.conventions)
         else:
             k = request.get("id")
             try:

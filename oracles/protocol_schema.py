@@ -51,6 +51,9 @@ _VALUE_OF_KIND = {
 _VALUE_OF_ELEMENT = {"corner": _array(_array(_NUMBER, 3)), "vertex": _array(_NUMBER),
                      "vertex coordinate": _array(_array(_NUMBER, 3)), "total": _NUMBER}
 
+#: a preset of the conventions vocabulary (properties.conventions.PRESETS), by name
+_PRESET = {"type": "string"}
+
 #: each argument of a request (the method's ``arguments``)
 _ARGUMENT = {"V": _array(_array(_NUMBER, 3)), "F": _array(_array(_INDEX, 3)),
              "P": _array(_array(_NUMBER, 2)), "boundary": _array(_INDEX),
@@ -81,11 +84,13 @@ def schema() -> dict:
                 "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
                             "items": {"enum": list(METHODS)}},
                 "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
-                "conventions": {
-                    "type": "object",
-                    "properties": {
-                        "follows": {"type": "object", "additionalProperties": {"type": "string"}},
-                        "counterpart_arguments": _array({"type": "string"})}}}},
+                "conventions": {"anyOf": [
+                    _PRESET,
+                    {"type": "object",
+                     "properties": {
+                         "follows": {"type": "object",
+                                     "additionalProperties": {"type": "string"}},
+                         "counterpart_arguments": _array({"type": "string"})}}]}}},
         "manifest": {
             "type": "object", "required": ["command", "methods"],
             "properties": {
@@ -94,11 +99,13 @@ def schema() -> dict:
                 "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
                             "items": {"enum": list(METHODS)}},
                 "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
-                "conventions": {
-                    "type": "object",
-                    "properties": {
-                        "follows": {"type": "object", "additionalProperties": {"type": "string"}},
-                        "counterpart": {"type": "string"}}}}},
+                "conventions": {"anyOf": [
+                    _PRESET,
+                    {"type": "object",
+                     "properties": {
+                         "follows": {"type": "object",
+                                     "additionalProperties": {"type": "string"}},
+                         "counterpart": {"type": "string"}}}]}}},
         "error.answer": {
             "type": "object", "required": ["id", "error"], "additionalProperties": False,
             "properties": {"id": {"type": "integer"},

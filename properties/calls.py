@@ -1,5 +1,7 @@
 """The checked implementation, watched: each protocol call marked as the implementation's
-time, each answer that must be a finite number screened for NaN and infinity.
+time, each answer mapped from the conventions it declares onto the reference's
+(:mod:`.conventions`) and, where it must be a finite number, screened for NaN and
+infinity.
 
 The runner hands every property the implementation wrapped in :class:`Watched`:
 
@@ -52,7 +54,9 @@ class Watched:
     protocol methods, each call marked and its answer screened (module docstring)."""
 
     def __init__(self, impl, property_id: str):
-        self.__dict__.update(_impl=impl, _pid=property_id, name=implementation_name(impl))
+        from .conventions import declared
+        self.__dict__.update(_impl=impl, _pid=property_id, name=implementation_name(impl),
+                             _conventions=declared(impl))
 
     def __getattr__(self, attr: str):
         value = getattr(self._impl, attr)
@@ -71,6 +75,10 @@ class Watched:
                 except AttributeError:         # an exception type without attributes
                     raise ImplementationRaised(f"{type(e).__name__}: {e}") from e
                 raise
+            if self._conventions and METHODS[attr].arguments[:2] == ("V", "F"):
+                # the conventions it declares, mapped onto the reference's (.conventions)
+                from .conventions import to_reference
+                answer = to_reference(self._conventions, attr, answer, args[0], args[1])
             found = first_non_finite(attr, answer)
             if found is not None:
                 where, x = found

@@ -186,6 +186,8 @@ def declared_conventions(impl) -> tuple[str, str] | None:
     True
     """
     declared = getattr(impl, "conventions", None) or {}
+    if isinstance(declared, str) or (isinstance(declared, dict) and "follows" not in declared):
+        return None                    # a map of the vocabulary (properties.conventions)
     follows = declared.get("follows") if isinstance(declared, dict) else None
     if isinstance(declared, dict) and not follows:
         return None

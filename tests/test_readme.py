@@ -49,3 +49,20 @@ def test_readme_first_example_runs_as_shown(tmp_path):
     assert out.stdout.startswith(shown[0].split(":")[0])                 # "FAILED (2)"
     assert "mygeom:MyGeometry: angle_defects is wrong" in out.stdout
     assert re.search(r"^  R2\.4 +mygeom:MyGeometry +total curvature != 2 pi chi", out.stdout, re.M)
+    # the convention its answer follows, named, and the one line that declares it
+    assert "declare conventions = {'boundary_defect': 'two_pi'}" in out.stdout.replace("\n  ", " ")
+
+
+def test_readme_example_passes_once_it_declares_its_convention(tmp_path):
+    """The one line README offers turns the example's failure into a pass: the failure
+    was the convention, not a bug."""
+    code = re.search(r"Put this in `mygeom.py`.*?```python\n(.*?)```", README, re.S)[1]
+    declared = code.replace('    """Corner angles and angle defects, written the plain numpy way."""\n',
+                            '    """Corner angles and angle defects, written the plain numpy way."""\n'
+                            '    conventions = {"boundary_defect": "two_pi"}\n')
+    assert declared != code
+    (tmp_path / "mygeom.py").write_text(declared, encoding="utf-8")
+    exe = str(Path(sys.executable).with_name("ddg-oracle"))
+    out = subprocess.run([exe, "check", "--impl", "mygeom:MyGeometry", "--profile", "ci"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stdout + out.stderr

@@ -1,0 +1,368 @@
+"""The conventions this field uses, as data: each one a name, the protocol methods it changes,
+and the exact map of an answer in that convention onto the reference's.
+
+Libraries and course code differ from the notes in a few well-known ways: libigl's
+``cotmatrix`` is -L; CGAL and OpenMesh weigh an edge cot a + cot b, twice the notes'
+1/2 (cot a + cot b); VTK's Gaussian curvature is the angle defect per a third of the
+incident area; libigl, trimesh and VTK give 2 pi - angle sum at boundary vertices where the
+notes' turning angle is pi - angle sum; trimesh's dihedral angles are unsigned; the DDG
+course adds 1e-8 to the Laplacian's diagonal and rescales its input to unit radius; LaPy
+answers for the referenced vertices only.  An implementation that follows such a
+convention declares it, in one line::
+
+    class Mine:
+        conventions = {"laplacian": "negative"}          # or a preset: conventions = "libigl"
+
+and every property, ``compare`` and the test vectors then map its answers onto the
+reference's convention (:func:`to_reference`, applied by
+:class:`~ddg_oracle.properties.calls.Watched` to every call) before comparing.  A map
+adds at most two roundings (a sign and a factor 2 none), far inside the derived bounds,
+whose constants leave a margin of about 2 over the counted roundings (:mod:`.bounds`).
+Where an implementation declares nothing and fails, :func:`explaining` names the
+conventions under which its answer agrees with the exact one: the report then says
+"your cotan_laplacian is -L: declare conventions = {'laplacian': 'negative'}".
+
+The older declaration ``{"follows": {...}, "counterpart": spec}``
+(:func:`~.protocol.declared_conventions`, for ``--expect-conventions``) is another thing:
+it names a finding and another implementation, not a map.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
+           "declaration_text"]
+
+
+@dataclass(frozen=True)
+class Convention:
+    """One value of one convention key: the methods it changes and the map of such an
+    answer onto the reference's convention (``to_reference(method, answer, V, F)``)."""
+
+    key: str
+    value: object
+    methods: tuple
+    about: str
+    to_reference: Callable = None
+
+    @property
+    def name(self) -> str:
+        return f"{self.key}={self.value}"
+
+    def applies(self, method: str) -> bool:
+        return method in self.methods
+
+
+# --- what the maps need from a mesh ------------------------------------------------------------
+
+
+def _arrays(V, F):
+    return np.asarray(V, dtype=np.float64), np.asarray(F, dtype=np.int64).reshape(-1, 3)
+
+
+def boundary_vertices(F, n: int) -> np.ndarray:
+    """(n,) bool: the vertices of edges of one face (whatever the faces' orientation)."""
+    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
+    e = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+    keys, counts = np.unique(e, axis=0, return_counts=True)
+    out = np.zeros(n, dtype=bool)
+    out[keys[counts == 1].ravel()] = True
+    return out
+
+
+def _face_areas(V, F):
+    X = V[F]
+    return 0.5 * np.linalg.norm(np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]), axis=1)
+
+
+def barycentric_areas(V, F) -> np.ndarray:
+    V, F = _arrays(V, F)
+    out = np.zeros(len(V))
+    np.add.at(out, F.ravel(), np.repeat(_face_areas(V, F) / 3, 3))
+    return out
+
+
+def mixed_areas(V, F) -> np.ndarray:
+    """Meyer et al.'s mixed Voronoi areas (the obtuse-triangle rule), in floats."""
+    V, F = _arrays(V, F)
+    out = np.zeros(len(V))
+    area = _face_areas(V, F)
+    X = V[F]
+    for c in range(3):
+        a, b = X[:, (c + 1) % 3] - X[:, c], X[:, (c + 2) % 3] - X[:, c]
+        dot = (a * b).sum(axis=1)
+        obtuse_here = dot < 0
+        # the other corners: obtuse when their own dot is negative
+        others = np.zeros(len(F), dtype=bool)
+        for d in ((c + 1) % 3, (c + 2) % 3):
+            p, q = X[:, (d + 1) % 3] - X[:, d], X[:, (d + 2) % 3] - X[:, d]
+            others |= (p * q).sum(axis=1) < 0
+        la2, lb2 = (a * a).sum(axis=1), (b * b).sum(axis=1)
+        # Voronoi part: (|a|^2 cot(at b's far corner) + |b|^2 cot(...)) / 8
+        cot_b = np.empty(len(F))
+        cot_a = np.empty(len(F))
+        for k, (d, w) in enumerate((((c + 2) % 3, a), ((c + 1) % 3, b))):
+            p, q = X[:, (d + 1) % 3] - X[:, d], X[:, (d + 2) % 3] - X[:, d]
+            cot = (p * q).sum(axis=1) / (2 * area)
+            (cot_a if k == 0 else cot_b)[:] = cot
+        voronoi = (la2 * cot_a + lb2 * cot_b) / 8
+        part = np.where(obtuse_here, area / 2, np.where(others, area / 4, voronoi))
+        np.add.at(out, F[:, c], part)
+    return out
+
+
+def _expand_used(answer, V, F, isolated_value):
+    """An answer indexed by the referenced vertices only (LaPy's), put back on every vertex
+    of V, with the protocol's value at the others."""
+    V, F = _arrays(V, F)
+    used = np.unique(F)
+    import scipy.sparse as sp
+    if sp.issparse(answer):
+        A = sp.coo_matrix(answer)
+        return sp.csr_matrix((A.data, (used[A.row], used[A.col])), shape=(len(V), len(V)))
+    a = np.asarray(answer, dtype=np.float64)
+    out = np.full((len(V),) + a.shape[1:], isolated_value, dtype=np.float64)
+    out[used] = a
+    return out
+
+
+def _scale(V) -> float:
+    """The factor the DDG course's loader scales a mesh by: centred at the mean of its
+    positions, its farthest vertex at distance 1."""
+    V = np.asarray(V, dtype=np.float64)
+    r = float(np.max(np.linalg.norm(V - V.mean(axis=0), axis=1))) if len(V) else 1.0
+    return 1.0 / r if r > 0 else 1.0
+
+
+def _by_method(**maps):
+    """A to_reference from {method: (answer, V, F) -> answer}."""
+    def to_reference(method, answer, V, F):
+        return maps[method](answer, V, F)
+    return to_reference
+
+
+_MATRICES = ("cotan_laplacian", "intrinsic_delaunay_laplacian")
+_PER_VERTEX = ("angle_defects", "vertex_areas_barycentric", "vertex_areas_voronoi",
+               "area_gradient", "solve_dirichlet")
+
+
+def _shift(eps):
+    import scipy.sparse as sp
+
+    def unshift(A, V, F):
+        A = sp.csr_matrix(A, dtype=np.float64)
+        return A - eps * sp.identity(A.shape[0], format="csr")
+    return unshift
+
+
+def _vocabulary() -> dict:
+    two = lambda a, V, F: a / 2                                  # noqa: E731  (exact)
+    neg = lambda a, V, F: -a                                     # noqa: E731  (exact)
+    from .protocol import ISOLATED_VERTEX, OutsideDomain
+
+    def unused(method):
+        return lambda a, V, F: _expand_used(a, V, F, ISOLATED_VERTEX.get(method, 0.0))
+
+    def at_boundary(delta):
+        def f(K, V, F):
+            K = np.asarray(K, dtype=np.float64).copy()
+            K[boundary_vertices(F, len(K))] += delta
+            return K
+        return f
+
+    def per(areas):
+        def f(K, V, F):
+            A = areas(V, F)
+            used = np.zeros(len(A), dtype=bool)
+            used[np.asarray(F, dtype=np.int64).ravel()] = True
+            flat = np.flatnonzero(used & (A == 0))
+            if len(flat):
+                # K / 0 carries no angle defect back: no value on this mesh, not a failure
+                raise OutsideDomain(f"pointwise curvature at vertex {int(flat[0])}, whose faces "
+                                    "have no area: the angle defect cannot be recovered")
+            with np.errstate(invalid="ignore"):    # inf * 0 at unused vertices: replaced
+                out = np.asarray(K, dtype=np.float64) * A
+            out[~used] = ISOLATED_VERTEX["angle_defects"]   # no faces: no pointwise value
+            return out
+        return f
+
+    def scaled(power):
+        return lambda a, V, F: np.asarray(a, dtype=np.float64) / _scale(V) ** power \
+            if not hasattr(a, "tocsr") else a / _scale(V) ** power
+    entries = [
+        Convention("laplacian", "negative", _MATRICES,
+                   "the matrix is -L, negative semidefinite (libigl's cotmatrix; gpytoolbox's "
+                   "cotangent_laplacian is positive, as the reference)",
+                   _by_method(cotan_laplacian=neg, intrinsic_delaunay_laplacian=neg)),
+        Convention("weights", "full", _MATRICES + ("area_gradient",),
+                   "an edge weighs cot a + cot b, twice the notes' 1/2 (cot a + cot b) "
+                   "(CGAL, OpenMesh)",
+                   _by_method(cotan_laplacian=two, intrinsic_delaunay_laplacian=two,
+                              area_gradient=two)),
+        Convention("boundary_defect", "two_pi", ("angle_defects",),
+                   "2 pi - angle sum at boundary vertices too, where the notes' turning angle "
+                   "is pi - angle sum (libigl, trimesh, VTK)",
+                   _by_method(angle_defects=at_boundary(-np.pi))),
+        Convention("curvature", "per_barycentric_area", ("angle_defects",),
+                   "pointwise: the angle defect divided by the vertex's barycentric area "
+                   "(a third of the incident faces' area; VTK's Gaussian curvature)",
+                   _by_method(angle_defects=per(barycentric_areas))),
+        Convention("curvature", "per_mixed_area", ("angle_defects",),
+                   "pointwise: the angle defect divided by the vertex's mixed Voronoi area "
+                   "(Meyer et al.; PyGEL3D's and many papers' Gaussian curvature)",
+                   _by_method(angle_defects=per(mixed_areas))),
+        Convention("dihedral", "negative", ("edge_mean_curvature",),
+                   "theta > 0 where concave (the normals compared the other way round)",
+                   lambda method, H, V, F: {e: -h for e, h in dict(H).items()}),
+        Convention("input_scale", "unit_radius", ("area", "vertex_areas_barycentric",
+                                                   "vertex_areas_voronoi", "area_gradient",
+                                                   "edge_mean_curvature"),
+                   "the input is first centred and scaled to unit radius (the DDG course's "
+                   "loader): areas come out times s^2, lengths times s",
+                   lambda method, a, V, F: (
+                       {e: h / _scale(V) for e, h in dict(a).items()}
+                       if method == "edge_mean_curvature" else
+                       scaled(1 if method == "area_gradient" else 2)(a, V, F))),
+        Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX,
+                   "answers only for the vertices some face uses, renumbered in order "
+                   "(LaPy's TriaMesh)",
+                   lambda method, a, V, F: unused(method)(a, V, F)),
+    ]
+    out: dict = {}
+    for c in entries:
+        out.setdefault(c.key, {})[c.value] = c
+    return out
+
+
+#: {key: {value: Convention}}: the vocabulary (the reference's own values are absent)
+VOCABULARY = _vocabulary()
+#: {key: what the reference does}, for messages
+REFERENCE = {"laplacian": "positive (L positive semidefinite)",
+             "weights": "half (1/2 (cot a + cot b))",
+             "boundary_defect": "turning (pi - angle sum at boundary vertices)",
+             "curvature": "integrated (the angle defect itself)",
+             "dihedral": "signed (theta > 0 where convex)",
+             "input_scale": "none (the input as given)",
+             "unused_vertices": "kept (a value for every row of V)",
+             "regularization": "none (no diagonal shift)"}
+
+#: the conventions of libraries and courses, by name (each documented in docs/conventions.md)
+PRESETS = {
+    "libigl": {"laplacian": "negative", "boundary_defect": "two_pi"},
+    "cgal": {"weights": "full"},
+    "openmesh": {"weights": "full"},
+    "trimesh": {"boundary_defect": "two_pi"},
+    "vtk": {"boundary_defect": "two_pi", "curvature": "per_barycentric_area"},
+    "lapy": {"unused_vertices": "dropped"},
+    "ddg-course": {"regularization": 1e-8},
+}
+
+
+def _regularization(eps) -> Convention:
+    return Convention("regularization", eps, _MATRICES,
+                      f"{eps:g} added to every diagonal entry (the DDG course's shift, which "
+                      "makes L invertible)",
+                      _by_method(cotan_laplacian=_shift(eps),
+                                 intrinsic_delaunay_laplacian=_shift(eps)))
+
+
+def parse(declaration) -> tuple[Convention, ...]:
+    """The conventions of a declaration: a preset's name, or {key: value} (``"preset"``:
+    a preset to start from); ValueError naming what is wrong.
+
+    >>> [c.name for c in parse("libigl")]
+    ['laplacian=negative', 'boundary_defect=two_pi']
+    >>> [c.name for c in parse({"preset": "ddg-course", "input_scale": "unit_radius"})]
+    ['regularization=1e-08', 'input_scale=unit_radius']
+    """
+    if isinstance(declaration, str):
+        if declaration not in PRESETS:
+            raise ValueError(f"conventions: no preset {declaration!r}; presets: "
+                             f"{', '.join(PRESETS)}")
+        declaration = dict(PRESETS[declaration])
+    if not isinstance(declaration, dict):
+        raise ValueError(f"conventions must be a preset name or {{key: value}}, got "
+                         f"{declaration!r}")
+    d = dict(declaration)
+    preset = d.pop("preset", None)
+    if preset is not None:
+        d = {**parse_dict(preset), **d}
+    out = []
+    for key, value in d.items():
+        if key == "regularization":
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or \
+                    not 0 < value < 1:
+                raise ValueError(f"conventions: regularization must be a small positive "
+                                 f"number (the diagonal shift), got {value!r}")
+            out.append(_regularization(float(value)))
+            continue
+        if key not in VOCABULARY:
+            raise ValueError(f"conventions: no convention {key!r}; the keys: "
+                             f"{', '.join(list(VOCABULARY) + ['regularization'])}")
+        if value not in VOCABULARY[key]:
+            raise ValueError(f"conventions: {key} is one of {', '.join(map(str, VOCABULARY[key]))} "
+                             f"(the reference's: {REFERENCE[key]}), got {value!r}")
+        out.append(VOCABULARY[key][value])
+    return tuple(out)
+
+
+def parse_dict(preset: str) -> dict:
+    if preset not in PRESETS:
+        raise ValueError(f"conventions: no preset {preset!r}; presets: {', '.join(PRESETS)}")
+    return dict(PRESETS[preset])
+
+
+def declared(impl) -> tuple[Convention, ...]:
+    """The conventions ``impl`` declares in its ``conventions`` attribute (none: ()); the
+    older ``{"follows", "counterpart"}`` form declares none of these."""
+    value = getattr(impl, "conventions", None)
+    if not value or (isinstance(value, dict) and "follows" in value):
+        return ()
+    return parse(value)
+
+
+def to_reference(conventions, method: str, answer, V, F):
+    """``answer`` of ``method`` mapped onto the reference's convention through every
+    declared convention that changes it (in the order declared)."""
+    for c in conventions:
+        if c.applies(method):
+            answer = c.to_reference(method, answer, V, F)
+    return answer
+
+
+def candidates(method: str, declared_ones=()) -> list[Convention]:
+    """The conventions of the vocabulary (and a 1e-8 shift) that change ``method`` and are
+    not declared already: what :func:`explaining` tries."""
+    keys = {c.key for c in declared_ones}
+    out = [c for values in VOCABULARY.values() for c in values.values()
+           if c.applies(method) and c.key not in keys]
+    if method in _MATRICES and "regularization" not in keys:
+        out.append(_regularization(1e-8))
+    return out
+
+
+def explaining(method: str, answer, V, F, agrees, declared_ones=()) -> list[Convention]:
+    """The conventions under which ``answer`` agrees with the exact one (``agrees(mapped)``
+    says whether a mapped answer does), one at a time."""
+    out = []
+    for c in candidates(method, declared_ones):
+        try:
+            mapped = to_reference((c,), method, answer, V, F)
+        except Exception:  # noqa: BLE001  (a map that does not fit this answer: not it)
+            continue
+        try:
+            if agrees(mapped):
+                out.append(c)
+        except Exception:  # noqa: BLE001
+            continue
+    return out
+
+
+def declaration_text(conventions) -> str:
+    """How to declare these conventions, as Python: always the explicit {key: value} (a
+    preset may declare more than the one convention seen at work)."""
+    return f"conventions = { {c.key: c.value for c in conventions}!r}"

@@ -1,0 +1,265 @@
+"""Conventions as data (issue 42): an implementation that follows a library's convention
+declares it in one line and passes; one that does not declare it fails, and the report
+names the convention under which its answer agrees.
+
+Each implementation here is examples/numpy_mesh.py's correct numpy code with one
+convention of the vocabulary applied to its answers, the way the library does it.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+from ddg_oracle.cli import main
+from ddg_oracle.compare import MeshInput, compare_mesh
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.conventions import (PRESETS, VOCABULARY, barycentric_areas,
+                                               declaration_text, mixed_areas, parse)
+from ddg_oracle.properties.profiles import profile
+from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
+from ddg_oracle.jobs import with_diagnosis
+from ddg_oracle.report import convention_hint
+from examples.numpy_mesh import NumpyMesh
+
+
+def _boundary(F, n):
+    from ddg_oracle.properties.conventions import boundary_vertices
+    return boundary_vertices(F, n)
+
+
+class NegativeL(NumpyMesh):
+    """libigl's cotmatrix: -L."""
+    name = "negative-L"
+
+    def cotan_laplacian(self, V, F):
+        return -super().cotan_laplacian(V, F)
+
+
+class FullWeights(NumpyMesh):
+    """CGAL's and OpenMesh's edge weight cot a + cot b: 2 L, and twice the gradient."""
+    name = "full-weights"
+
+    def cotan_laplacian(self, V, F):
+        return 2 * super().cotan_laplacian(V, F)
+
+    def area_gradient(self, V, F):
+        return 2 * super().area_gradient(V, F)
+
+
+class TwoPiAtBoundary(NumpyMesh):
+    """libigl's gaussian_curvature: 2 pi - angle sum at boundary vertices too."""
+    name = "two-pi-boundary"
+
+    def angle_defects(self, V, F):
+        K = np.array(super().angle_defects(V, F), dtype=float)
+        return K + np.pi * _boundary(F, len(K))
+
+
+class PointwiseBarycentric(NumpyMesh):
+    """VTK's Gaussian curvature: the defect per a third of the incident area."""
+    name = "pointwise-barycentric"
+
+    def angle_defects(self, V, F):
+        K = np.array(super().angle_defects(V, F), dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return K / barycentric_areas(V, F)
+
+
+class PointwiseMixed(NumpyMesh):
+    """Meyer et al.'s Gaussian curvature: the defect per mixed Voronoi area."""
+    name = "pointwise-mixed"
+
+    def angle_defects(self, V, F):
+        K = np.array(super().angle_defects(V, F), dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return K / mixed_areas(V, F)
+
+
+class Regularized(NumpyMesh):
+    """The DDG course's laplaceMatrix: L + 1e-8 I."""
+    name = "regularized"
+
+    def cotan_laplacian(self, V, F):
+        import scipy.sparse as sp
+        L = super().cotan_laplacian(V, F)
+        return L + 1e-8 * sp.identity(L.shape[0])
+
+
+class DropsUnused(NumpyMesh):
+    """LaPy's TriaMesh: the vertices no face uses are removed and the rest renumbered."""
+    name = "drops-unused"
+
+    def cotan_laplacian(self, V, F):
+        V, F = np.asarray(V, float), np.asarray(F, dtype=np.int64)
+        used, G = np.unique(F, return_inverse=True)
+        return super().cotan_laplacian(V[used], G.reshape(F.shape))
+
+
+DECLARED = [
+    (NegativeL, {"laplacian": "negative"}, ["D3.1", "T3.6"]),
+    (FullWeights, {"weights": "full"}, ["D3.1", "T3.6", "R3.3"]),
+    (TwoPiAtBoundary, {"boundary_defect": "two_pi"}, ["R2.4", "T2.5"]),
+    (PointwiseBarycentric, {"curvature": "per_barycentric_area"}, ["R2.4", "T2.5"]),
+    (PointwiseMixed, {"curvature": "per_mixed_area"}, ["R2.4", "T2.5"]),
+    (Regularized, {"regularization": 1e-8}, ["D3.1"]),
+    (DropsUnused, {"unused_vertices": "dropped"}, ["D3.1"]),
+]
+
+
+def _declaring(cls, declaration):
+    return type(cls.__name__ + "Declared", (cls,), {"conventions": declaration})
+
+
+def _run(impl, pid):
+    prop = PROPERTIES[pid]
+    return with_diagnosis(run_property(prop, impl, profile("default")), prop, impl)
+
+
+@pytest.mark.parametrize("cls, declaration, pids", DECLARED,
+                         ids=[c.__name__ for c, _, _ in DECLARED])
+def test_declared_convention_passes(cls, declaration, pids):
+    impl = _declaring(cls, declaration)()
+    for pid in pids:
+        r = _run(impl, pid)
+        assert r.status in (PASSED, TIE), (pid, r.status, r.error)
+
+
+@pytest.mark.parametrize("cls, declaration, pids", DECLARED,
+                         ids=[c.__name__ for c, _, _ in DECLARED])
+def test_undeclared_convention_fails_and_is_named(cls, declaration, pids):
+    r = _run(cls(), pids[0])
+    assert r.status == FAILED, (pids[0], r.status)
+    hint = convention_hint(r)
+    key, value = next(iter(declaration.items()))
+    assert hint is not None, r.diagnosis
+    assert f"{key}={value:g}" if key == "regularization" else f"{key}={value}" in hint
+    assert declaration_text(parse(declaration)) in hint
+
+
+def test_a_bug_is_not_explained_by_a_convention():
+    """A wrong corner is no convention: the report names none (no false hint)."""
+    from examples.numpy_cotan import WrongCorner
+
+    class Wrong(WrongCorner):
+        name = "wrong-corner"
+    r = _run(Wrong(), "D3.1")
+    assert r.status == FAILED
+    assert convention_hint(r) is None
+
+
+def test_a_declared_convention_the_answer_does_not_follow_fails():
+    """Declaring -L for a positive L is not a free pass: the mapped answer is wrong."""
+    impl = _declaring(NumpyMesh, {"laplacian": "negative"})()
+    assert _run(impl, "D3.1").status == FAILED
+
+
+def test_pointwise_curvature_without_area_is_declined_not_failed():
+    """A vertex whose faces have no area has no pointwise curvature: the map declines the
+    example (OutsideDomain) rather than failing on K / 0."""
+    from ddg_oracle.properties.conventions import to_reference
+    from ddg_oracle.properties.protocol import OutsideDomain
+    V = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], float)
+    F = np.array([[0, 1, 2]])
+    with pytest.raises(OutsideDomain, match="vertex 0"):
+        to_reference(parse({"curvature": "per_barycentric_area"}), "angle_defects",
+                     np.full(4, np.inf), V, F)
+
+
+def test_compare_maps_declared_conventions_and_explains_undeclared_ones():
+    V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.5]]
+    F = [[0, 1, 2], [1, 3, 2]]
+    mesh = MeshInput("two-triangles", V, F)
+    ref = ReferenceImplementation()
+    declared = type("Declared", (NegativeL,), {"conventions": {"laplacian": "negative"},
+                                                "name": "declared"})()
+    rows = {(c.implementation, c.quantity): c
+            for c in compare_mesh(mesh, [declared, NegativeL()], ref,
+                                  methods=["cotan_laplacian"])}
+    assert rows[("negative-L", "cotan_laplacian")].status == "DIFFERS"
+    assert rows[("negative-L", "cotan_laplacian")].explained_by == ("laplacian=negative",)
+    agreeing = [c for c in rows.values() if c.status == "agrees"]
+    assert len(agreeing) == 1
+
+
+def test_presets_parse_and_cover_only_the_vocabulary():
+    for name, d in PRESETS.items():
+        parsed = parse(name)
+        assert {c.key for c in parsed} == set(d), name
+    assert [c.name for c in parse({"preset": "libigl", "boundary_defect": "two_pi"})] == \
+        ["laplacian=negative", "boundary_defect=two_pi"]
+
+
+@pytest.mark.parametrize("bad, message", [
+    ("igl", "no preset 'igl'"),
+    ({"laplacian": "minus"}, "laplacian is one of negative"),
+    ({"sign": "negative"}, "no convention 'sign'"),
+    ({"regularization": 2}, "small positive number"),
+    (["laplacian"], "preset name or {key: value}"),
+])
+def test_a_malformed_declaration_is_named(bad, message):
+    with pytest.raises(ValueError, match=message.replace("{", r"\{").replace("}", r"\}")):
+        parse(bad)
+
+
+def test_the_command_refuses_a_malformed_declaration_in_one_line(tmp_path, capsys,
+                                                                   monkeypatch):
+    (tmp_path / "badconv.py").write_text(textwrap.dedent("""
+        from examples.numpy_mesh import NumpyMesh
+        class Bad(NumpyMesh):
+            conventions = {"laplacian": "minus"}
+    """))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    rc = main(["check", "--impl", "badconv:Bad", "--only", "D3.1"])
+    out, err = capsys.readouterr()
+    assert rc == 2
+    assert len(err.strip().splitlines()) == 1 and "laplacian is one of negative" in err
+
+
+def test_an_executable_declares_a_preset_in_its_handshake(tmp_path):
+    """A program of the executable protocol says {"conventions": "libigl"} and its -L is
+    mapped; a preset that does not exist stops the run with the program named."""
+    from ddg_oracle.oracles.executable import DriverFailed, Executable
+    driver = tmp_path / "neg.py"
+    driver.write_text(textwrap.dedent(f"""
+        import sys
+        sys.path.insert(0, {str(tmp_path.parent)!r})
+        from ddg_oracle.oracles.executable import serve
+        from examples.numpy_mesh import NumpyMesh
+        class Neg(NumpyMesh):
+            name = "neg"
+            conventions = sys.argv[1]
+            def cotan_laplacian(self, V, F):
+                return -super().cotan_laplacian(V, F)
+        serve(Neg())
+    """))
+    import examples
+    root = str(__import__("pathlib").Path(examples.__file__).resolve().parent.parent)
+    env_path = f"PYTHONPATH={root}"
+    impl = Executable(["env", env_path, sys.executable, str(driver), "libigl"], timeout=60)
+    try:
+        assert impl.conventions == "libigl"
+        r = run_property(PROPERTIES["D3.1"], impl, profile("default"))
+        assert r.status in (PASSED, TIE), r.error
+    finally:
+        impl.close()
+    with pytest.raises(DriverFailed, match="no preset 'igl'"):
+        bad = Executable(["env", env_path, sys.executable, str(driver), "igl"], timeout=60)
+        bad.close()
+
+
+def test_every_convention_is_documented():
+    """docs/conventions.md names every key, value and preset of the vocabulary."""
+    from pathlib import Path
+    text = (Path(__file__).resolve().parent.parent / "docs" / "conventions.md").read_text()
+    for key, values in VOCABULARY.items():
+        for value in values:
+            assert f'"{key}": "{value}"' in text, (key, value)
+    for name in PRESETS:
+        assert f'"{name}"' in text, name
+    assert '"regularization"' in text
