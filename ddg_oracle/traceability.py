@@ -4,8 +4,9 @@ The table is ``ddg_oracle/traceability.toml`` (package data, so an installed
 copy checks itself).  :func:`check` verifies that it is true: every named
 function and property exists, every row of a claimed chapter is verified (or
 an erratum listed in the errata, ``docs/errata.md``, installed as
-``ddg_oracle/data/errata.md``); where the repository is at hand (a checkout,
-or an editable install) also every named test exists and every row of the
+``ddg_oracle/data/errata.md``), every row says in words what its check covers
+(``covers``) and what it cannot (``limits``); where the repository is at hand (a
+checkout, or an editable install) also every named test exists and every row of the
 catalog ``../shared/THEOREMS.md`` is present.
 
 The notes table ``ddg_oracle/notes.toml`` lists every numbered item of chapters 1-4
@@ -18,6 +19,7 @@ item, every item's line holds its heading.
 from __future__ import annotations
 
 import ast
+import functools
 import importlib
 import os
 import re
@@ -50,6 +52,12 @@ class Entry:
     erratum: str = ""
     scope: str = ""
     source: str = "catalog"
+    covers: str = ""             # in words: what the row's check covers
+    limits: str = ""             # in words: what it cannot (examples only, a special case, ...)
+
+
+#: the least length of ``covers`` and ``limits``: a sentence, not a placeholder
+MIN_WORDS = 4
 
 
 def load(path: Path | None = None) -> tuple[list[int], list[Entry]]:
@@ -61,7 +69,8 @@ def load(path: Path | None = None) -> tuple[list[int], list[Entry]]:
                      reference=tuple(v.get("reference", ())), property=tuple(v.get("property", ())),
                      tests=tuple(v.get("tests", ())), status=v.get("status", "not yet"),
                      erratum=v.get("erratum", ""), scope=v.get("scope", ""),
-                     source=v.get("source", "catalog"))
+                     source=v.get("source", "catalog"), covers=v.get("covers", ""),
+                     limits=v.get("limits", ""))
                for k, v in data.items()]
     return claimed, entries
 
@@ -101,6 +110,13 @@ def _resolve(dotted: str) -> bool:
     return True
 
 
+@functools.lru_cache(maxsize=256)
+def _module_body(path: str, mtime_ns: int, size: int) -> list:
+    """The top-level statements of a test file, parsed once per version of the file (the
+    table names about 300 tests in some 30 files)."""
+    return ast.parse(Path(path).read_text(encoding="utf-8")).body
+
+
 def _test_exists(spec: str) -> bool | None:
     """'tests/test_x.py::test_name' (or ::Class::test_name) exists; None outside a checkout."""
     repo = repository()
@@ -112,7 +128,8 @@ def _test_exists(spec: str) -> bool | None:
         return False
     if not names:
         return True
-    scope = ast.parse(file.read_text(encoding="utf-8")).body
+    stat = file.stat()
+    scope = _module_body(str(file), stat.st_mtime_ns, stat.st_size)
     for name in names:
         found = [n for n in scope if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef,
                                                     ast.ClassDef)) and n.name == name]
@@ -186,6 +203,12 @@ def check(path: Path | None = None) -> list[str]:
             problems.append(f"{e.id}: erratum {e.erratum!r} is not in docs/errata.md")
         if e.scope and e.scope not in scope_ids():
             problems.append(f"{e.id}: scope note {e.scope!r} is not in docs/errata.md")
+        for field, what in (("covers", "what its check covers"), ("limits", "what it cannot")):
+            words = getattr(e, field).split()
+            if len(words) < MIN_WORDS:
+                problems.append(f"{e.id}: no {field} = \"...\" saying in words {what}")
+        if e.covers and e.covers.strip() == e.statement.strip():
+            problems.append(f"{e.id}: covers repeats the statement; say what the check covers")
         for name in e.reference + e.property:
             if not _resolve(name):
                 problems.append(f"{e.id}: {name} does not exist")
@@ -199,10 +222,28 @@ def check(path: Path | None = None) -> list[str]:
 
 NOTE_STATUSES = ("verified", "erratum", "definition", "not verifiable", "open")
 
-#: A numbered item's heading at the start of a line of the notes' text (Algorithms are
-#: the captions of Figures 3.6 and 4.23, which the text calls Algorithm 3.6 / 4.23).
-HEADING = re.compile(r"^ ?(Definition|Theorem|Lemma|Proposition|Corollary|Remark|Example|Claim)"
-                     r" ([1-4]\.\d+)\b|^Figure ([34]\.\d+)\. Simplicial minimal surface algorithm")
+#: The kinds of numbered items of the notes (besides the algorithms, which are figures).
+KINDS = ("Definition", "Theorem", "Lemma", "Proposition", "Corollary", "Remark", "Example",
+         "Claim")
+
+#: A numbered item's heading at the start of a line of the notes' text.
+HEADING = re.compile(r"^ ?(" + "|".join(KINDS) + r") ([1-4]\.\d+)\b")
+
+#: Any "<Word> <chapter>.<n>." at the start of a line: a numbered heading of some kind.  A
+#: kind that is neither in :data:`KINDS` nor "Figure" is reported (a new kind of item).
+ANY_HEADING = re.compile(r"^ ?([A-Z][a-z]+) ([1-4]\.\d+)\. ")
+
+#: A figure caption of chapters 1-4.  The algorithms of the notes are figures (the text
+#: calls Figure 4.13 "Algorithm 4.13"): a caption is an algorithm when its first sentence
+#: names an algorithm ("Edge-flip algorithm.", "Simplicial minimal surface algorithm (with
+#: ...)", not "... from Algorithm 4.23.") or when the figure is pseudo-code (a "Data:" line
+#: since the previous caption).
+FIGURE = re.compile(r"^ ?Figure ([1-4]\.\d+)\. ([^.]*(?:\.\d[^.]*)*)")
+_NAMES_AN_ALGORITHM = re.compile(r"\balgorithm\b(?! \d)", re.I)
+
+#: A reference to an algorithm anywhere in the text ("use Algorithm 4.13"): every one must be
+#: a figure found as an algorithm, else the algorithm rule above has missed one.
+ALGORITHM_REFERENCE = re.compile(r"\bAlgorithm ([1-4]\.\d+)\b")
 
 
 @dataclass(frozen=True)
@@ -238,15 +279,45 @@ def notes_path() -> Path | None:
 
 
 def note_headings(path: Path) -> dict[str, int]:
-    """{item name: line} of every numbered heading of chapters 1-4 in the notes' text (the
-    first occurrence at the start of a line)."""
+    """{item name: line} of every numbered item of chapters 1-4 in the notes' text (the
+    first occurrence at the start of a line): the headings of :data:`KINDS` and the
+    algorithm figures ("Algorithm 4.13" for the caption "Figure 4.13. Edge-flip
+    algorithm.")."""
     found: dict[str, int] = {}
+    pseudo_code = False                       # a "Data:" line since the last caption
     for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
         m = HEADING.match(line)
         if m:
-            name = f"{m.group(1)} {m.group(2)}" if m.group(1) else f"Algorithm {m.group(3)}"
-            found.setdefault(name, n)
+            found.setdefault(f"{m.group(1)} {m.group(2)}", n)
+            continue
+        f = FIGURE.match(line)
+        if f:
+            if pseudo_code or _NAMES_AN_ALGORITHM.search(f.group(2)):
+                found.setdefault(f"Algorithm {f.group(1)}", n)
+            pseudo_code = False
+        elif line.lstrip().startswith("Data:"):
+            pseudo_code = True
     return found
+
+
+def note_heading_problems(path: Path) -> list[str]:
+    """What :func:`note_headings` may have missed in the text at ``path``: a numbered
+    heading of a kind it does not know, and an algorithm the text refers to ("Algorithm
+    4.13") that is not one of its algorithm figures."""
+    text = path.read_text(encoding="utf-8")
+    found = note_headings(path)
+    problems = []
+    for n, line in enumerate(text.splitlines(), 1):
+        m = ANY_HEADING.match(line)
+        if m and m.group(1) not in KINDS + ("Figure",):
+            problems.append(f"line {n} of the notes: '{m.group(1)} {m.group(2)}' is a numbered "
+                            "heading of a kind ddg_oracle/traceability.py does not know (KINDS)")
+    refs = set(ALGORITHM_REFERENCE.findall(text))
+    for ref in sorted(refs, key=lambda x: tuple(map(int, x.split(".")))):
+        if f"Algorithm {ref}" not in found:
+            problems.append(f"Algorithm {ref} is referred to in the notes but no algorithm figure "
+                            f"{ref} was found (ddg_oracle/traceability.py, FIGURE)")
+    return problems
 
 
 def check_notes(path: Path | None = None, entries=None) -> list[str]:
@@ -274,6 +345,7 @@ def check_notes(path: Path | None = None, entries=None) -> list[str]:
     if text is not None:
         lines = text.read_text(encoding="utf-8").splitlines()
         headings = note_headings(text)
+        problems += note_heading_problems(text)
         named = {it.name for it in items}
         for name, n in headings.items():
             if name not in named:

@@ -129,7 +129,8 @@ class Libigl:
         n_components, _ = igl.facet_components(F)
         if int(n_components) > 1:
             raise ValueError(f"{int(n_components)} components: genus needs a connected surface")
-        chi = self.euler_characteristic(V, F)
+        # the surface's chi: a vertex used by no face is a point beside it, not part of it
+        chi = self.euler_characteristic(V, F) - (len(V) - len(np.unique(F)))
         k = len(self.boundary_loops(V, F))
         deficit = 2 - chi - k
         if not self.is_orientable(V, F):

@@ -277,7 +277,10 @@ class PyMeshLab:
             raise ValueError("PyMeshLab: genus undefined (mesh not two-manifold)")
         if self.genus_convention == "library" or self.is_orientable(V, F):
             return int(d["genus"])
-        chi = int(d["vertices_number"]) - int(d["edges_number"]) + int(d["faces_number"])
+        # the surface's chi: vertices_number counts the vertices no face uses too (points
+        # beside the surface, not part of it; MeshGenus itself counts the referenced ones)
+        referenced = len(np.unique(np.asarray(F, dtype=np.int64)))
+        chi = referenced - int(d["edges_number"]) + int(d["faces_number"])
         return 2 - chi - int(d["number_holes"])
 
     # --- chapter 2: curvature -----------------------------------------------------------

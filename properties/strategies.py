@@ -144,7 +144,9 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
     """
     if max_genus < 0 or max_holes < 0:
         raise ValueError("max_genus and max_holes must be >= 0")
-    o = draw(st.booleans()) if orientable is None else bool(orientable)
+    # drawn as "not False" so a failure shrinks to an orientable surface (a tetrahedron),
+    # not to the 10-face projective plane
+    o = (not draw(st.booleans())) if orientable is None else bool(orientable)
     lowest = 0 if o else 1
     g = draw(st.integers(lowest, max(lowest, max_genus))) if genus is None else int(genus)
     if g < lowest:
@@ -779,6 +781,10 @@ def any_meshes(isolated: bool = False, far: bool = True):
     slivers, components, scales, offsets); shrinks towards a single triangle."""
     small = st.one_of(single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
                       acute_meshes(), closed_meshes())
+    if isolated:
+        # the small families too: a vertex used by no face is a bug class of its own
+        # (dropped and renumbered, a row of NaN), not only of the wide surfaces
+        small = with_isolated(small, 1)
     return st.one_of(small, surface_meshes(isolated=isolated, far=far))
 
 
@@ -842,7 +848,7 @@ def with_isolated(meshes, max_isolated: int = 2):
         pos, faces, spots = list(c.positions), [list(f) for f in c.faces], []
         for _ in range(k):
             v = draw(st.integers(0, len(pos) - 1))
-            p = pos[v] if draw(st.booleans()) else tuple(3 * x + 1 for x in pos[v])
+            p = pos[v] if draw(st.booleans()) else floated_point(3 * x + 1 for x in pos[v])
             i = draw(st.integers(0, len(pos)))
             pos.insert(i, p)
             faces = [[w + (w >= i) for w in f] for f in faces]

@@ -23,11 +23,14 @@ ROOT = Path(__file__).resolve().parents[1]
 ARGS = ["--impl", "reference", "--impl", "tests.misbehaving:SlowChi",
         "--impl", "tests.planted_bugs:ChiIgnoresBoundary", "--only", "D1.6", "--only", "T1.1",
         "--only", "R1.6", "--seed", "0"]
+#: no example database: a failure the local run saved would be replayed first by the
+#: next run (by design), which then counts fewer examples and differs byte for byte
+ENV = {**os.environ, "DDG_HYPOTHESIS_DATABASE": "none"}
 
 
 def _check(report, *extra, wait=True):
     argv = [sys.executable, "-m", "ddg_oracle", "check", *ARGS, "--report", str(report), *extra]
-    p = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(argv, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if not wait:
         return p
     out, err = p.communicate(timeout=300)
@@ -59,7 +62,7 @@ def cluster(tmp_path):
         address = json.loads(sched_file.read_text())["address"]
         workers = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker",
                                      address, "--nthreads", "1", "--no-nanny", "--no-dashboard"],
-                                    cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                                    cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                    for _ in range(2)]
         procs += workers
         subprocess.run([sys.executable, "-c", "import sys; from distributed import Client; "
@@ -108,7 +111,7 @@ def test_resume_finishes_a_run_on_a_local_cluster(tmp_path, local_run):
     (part / "results.jsonl").write_text("\n".join(lines[:3]) + "\n")   # as if interrupted
     (part / "results.json").unlink()
     p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--resume", str(part)],
-                       cwd=ROOT, capture_output=True, text=True, timeout=300)
+                       cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300)
     assert p.returncode == local_run[0], p.stdout + p.stderr
     assert (part / "results.json").read_bytes() == local_run[1]
 
@@ -126,4 +129,4 @@ def test_an_unreachable_scheduler_is_a_usage_error():
                         "--only", "D1.6", "--scheduler", "tcp://127.0.0.1:9"],
                        cwd=ROOT, capture_output=True, text=True, timeout=120,
                        env={**os.environ, "DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT": "2s"})
-    assert p.returncode == 2 and "cannot reach the scheduler" in p.stderr, p.stderr
+    assert p.returncode == 2 and "cannot reach a dask scheduler" in p.stderr, p.stderr

@@ -118,7 +118,9 @@ def _declaring(cls, declaration):
 
 def _run(impl, pid):
     prop = PROPERTIES[pid]
-    return with_diagnosis(run_property(prop, impl, profile("default")), prop, impl)
+    # a fixed seed: a reproducible verdict (D3.1 draws a vertex used by no face in about
+    # 38 of 40 seeded runs, so an unseeded run would miss DropsUnused now and then)
+    return with_diagnosis(run_property(prop, impl, profile("default"), seed=0), prop, impl)
 
 
 @pytest.mark.parametrize("cls, declaration, pids", DECLARED,

@@ -5,6 +5,7 @@ another route, and mpmath at 50 digits for the derivatives of the angles of a tr
 respect to its side lengths."""
 
 from fractions import Fraction
+from math import isqrt
 
 import mpmath
 from hypothesis import assume, given
@@ -408,3 +409,276 @@ def test_ER_21_area_as_a_sum_over_corners(which, scale):
                       for f in range(t.n_faces) for c in range(3)), Surd(0)) / 4
     assert faces_sum == corner_sum == m.total_area()
     assert faces_sum / 4 != m.total_area()                       # the printed 1/4
+
+
+# --- ER-22 to ER-27 ---------------------------------------------------------------------
+
+
+def _planar_surface(points, faces):
+    return PolyhedralSurface.from_arrays([tuple(map(Fraction, p)) for p in points], faces)
+
+
+def test_ER_22_the_energy_of_theorem_3_6_has_a_square():
+    """Theorem 3.6 (line 1107) prints E(f) = 1/2 integral_S |grad f| A. = 1/2 sum nu (f(i) -
+    f(j))^2.  The left side needs the square, 1/2 integral |grad f|^2 dA (the proof's last
+    line, and section 3.1): on the right triangle (0,0), (1,0), (0,1) with f = 2 x, |grad f|
+    = 2 on an area 1/2, so the printed left side is 1/2 while the cotan sum is 1 = 1/2 * 4 *
+    1/2.  Scaling f by t scales the right side by t^2 and the printed left by |t|."""
+    s = _planar_surface([(0, 0), (1, 0), (0, 1)], [(0, 1, 2)])
+    from ddg_oracle.reference.laplacian import cotan_weighted_edges
+    for t in (1, 2, 3, Fraction(1, 2)):
+        f = [2 * t * x for x, _ in s.positions]
+        cotan = Fraction(1, 2) * sum((w * (f[i] - f[j]) ** 2
+                                      for i, j, w in cotan_weighted_edges(s)), Fraction(0))
+        grad_norm, area = 2 * t, Fraction(1, 2)            # |grad f| = 2 t, exactly
+        assert cotan == Fraction(1, 2) * grad_norm ** 2 * area == dirichlet_energy_pl(s, f)
+        printed = Fraction(1, 2) * grad_norm * area
+        assert (printed == cotan) == (t == Fraction(1, 2))   # equal only where 2t = (2t)^2
+
+
+@given(triangles, st.lists(st.integers(-6, 6), min_size=3, max_size=3))
+def test_ER_22_corrected_energy_on_random_triangles(tri, f):
+    """1/2 |grad f|^2 A(F) (the gradient of the affine interpolant solved from its values) is
+    the cotan energy of Theorem 3.6 on every triangle; with |grad f| (no square) it is not,
+    unless 1/2 |grad f| A = 1/2 |grad f|^2 A, i.e. |grad f| is 0 or 1."""
+    v = [tuple(map(Fraction, p)) for p in tri]
+    g = _affine_gradients(v)
+    gx, gy = (sum(fi * gi[k] for fi, gi in zip(f, g)) for k in range(2))
+    n2 = gx * gx + gy * gy                                   # |grad f|^2, rational
+    area = abs(_cross(*v)) / 2
+    s = _planar_surface(v, [(0, 1, 2)] if _cross(*v) > 0 else [(0, 2, 1)])
+    assert dirichlet_energy(cotan_laplacian(s), f) == n2 * area / 2
+    if n2 not in (0, 1):
+        assert sqrt(n2) * area / 2 != n2 * area / 2
+
+
+def _corner_cot(p, q, r):
+    """cot of the angle at p of the planar triangle p, q, r (exact, rational)."""
+    u, w = (q[0] - p[0], q[1] - p[1]), (r[0] - p[0], r[1] - p[1])
+    return Fraction(u[0] * w[0] + u[1] * w[1], abs(u[0] * w[1] - u[1] * w[0]))
+
+
+def _direct_area_gradients(points, faces):
+    """grad_{v_i} of the total area of a planar triangulation (faces counterclockwise): the
+    gradient of 1/2 cross(v_j - v_i, v_k - v_i) in v_i, summed over the faces at i."""
+    out = [[Fraction(0), Fraction(0)] for _ in points]
+    for f in faces:
+        for c in range(3):
+            i, j, k = f[c], f[(c + 1) % 3], f[(c + 2) % 3]
+            (xj, yj), (xk, yk) = points[j], points[k]
+            out[i][0] += Fraction(yj - yk, 2)
+            out[i][1] += Fraction(xk - xj, 2)
+    return [tuple(g) for g in out]
+
+
+def _printed_gradient_sum(points, faces, i):
+    """The proof of Theorem 3.9's last member at i: sum over the faces (i j k) at i, over
+    their two edges (i j) at i, of cot(angle opposite (i j)) (f(i) - f(j)) (line 1589)."""
+    total = [Fraction(0), Fraction(0)]
+    for f in faces:
+        if i not in f:
+            continue
+        c = f.index(i)
+        j, k = f[(c + 1) % 3], f[(c + 2) % 3]
+        for a, b in ((j, k), (k, j)):                      # edge (i a), angle at b
+            cot = _corner_cot(points[b], points[i], points[a])
+            total[0] += cot * (points[i][0] - points[a][0])
+            total[1] += cot * (points[i][1] - points[a][1])
+    return tuple(total)
+
+
+def test_ER_23_the_area_gradient_in_theorem_3_9s_proof_lost_a_half():
+    """Proof of Theorem 3.9 (line 1589): from (3.8) each face at i contributes 1/2 cot
+    alpha_j (v_i - v_k) + 1/2 cot alpha_k (v_i - v_j), so grad_{f(i)} A(S) = 1/2 sum over the
+    faces of cot(angle opposite (ij)) (f(i) - f(j)) = (Lap f)(i); the notes print the sum
+    without the 1/2.  Right triangle (0,0), (1,0), (0,1) at (0,0): the gradient is
+    (-1/2, -1/2), the printed sum (-1, -1)."""
+    pts, faces = [(0, 0), (1, 0), (0, 1)], [(0, 1, 2)]
+    assert _direct_area_gradients(pts, faces)[0] == (Fraction(-1, 2), Fraction(-1, 2))
+    assert _printed_gradient_sum(pts, faces, 0) == (-1, -1)
+
+
+@given(st.lists(st.tuples(st.integers(-1, 1), st.integers(-1, 1)), min_size=9, max_size=9))
+def test_ER_23_on_jittered_planar_grids(jitter):
+    """A 2 x 2 grid of squares split by diagonals, vertices moved by up to 1/4: at every
+    vertex the exact area gradient (no cotangent) is half the printed sum, and equals the
+    reference's cotan Laplacian of the positions (3.11, corrected as ER-2)."""
+    from ddg_oracle.reference.areas import laplacian_of_positions
+    pts = [(Fraction(4 * x + jitter[3 * x + y][0], 4), Fraction(4 * y + jitter[3 * x + y][1], 4))
+           for x in range(3) for y in range(3)]
+    faces = []
+    for x in range(2):
+        for y in range(2):
+            a, b, c, d = 3 * x + y, 3 * (x + 1) + y, 3 * (x + 1) + y + 1, 3 * x + y + 1
+            faces += [(a, b, c), (a, c, d)]
+    assume(all(_cross(*(pts[v] for v in f)) > 0 for f in faces))
+    direct = _direct_area_gradients(pts, faces)
+    lap = laplacian_of_positions(_planar_surface(pts, faces))
+    for i in range(9):
+        printed = _printed_gradient_sum(pts, faces, i)
+        assert printed == tuple(2 * x for x in direct[i])
+        assert tuple(lap[i][:2]) == direct[i]
+
+
+def _lattice_triangulations(bound):
+    """The geodesic triangulations of the square torus R^2 / Z^2 with one vertex, as
+    superbases {+-x, +-y, +-(x + y)} (det(x, y) = +-1), with |x|^2 + |y|^2 + |x + y|^2 <=
+    bound: each line by its representative with a positive first nonzero coordinate."""
+    def line(v):
+        return v if v > (0, 0) and v[0] >= 0 and (v[0] > 0 or v[1] > 0) else (-v[0], -v[1])
+    r = isqrt(bound)
+    out = set()
+    vecs = [(a, b) for a in range(-r, r + 1) for b in range(-r, r + 1) if a * a + b * b <= bound]
+    for x in vecs:
+        for y in vecs:
+            if abs(x[0] * y[1] - x[1] * y[0]) != 1:
+                continue
+            z = (x[0] + y[0], x[1] + y[1])
+            if sum(v[0] ** 2 + v[1] ** 2 for v in (x, y, z)) <= bound:
+                out.add(frozenset(line(v) for v in (x, y, z)))
+    return out
+
+
+def test_ER_24_lemma_4_20_bounds_l_by_an_inequality_not_an_equality():
+    """Proof of Lemma 4.20 (line 2887): 'h(T) <= c => l(T) <= sqrt(h(T) A) = sqrt(c A)'; the
+    last '=' holds only when h(T) = c, the argument needs l(T) <= sqrt(h(T) A) <= sqrt(c A).
+    On the square torus with one vertex (A = 1, h(T) = 4 (|x|^2 + |y|^2 + |x + y|^2)) every
+    triangulation with h(T) <= c = 64 satisfies l(T)^2 <= h(T) A <= c A, and all but those
+    with h(T) = 64 have h(T) A < c A."""
+    c = 64
+    below = _lattice_triangulations(c // 4)
+    hs = {T: 4 * sum(a * a + b * b for a, b in T) for T in below}
+    assert len(below) > 1 and all(h <= c for h in hs.values())
+    for T, h in hs.items():
+        l2 = max(a * a + b * b for a, b in T)
+        assert l2 <= h * 1 <= c * 1                            # the corrected chain
+    assert sum(h < c for h in hs.values()) >= 2                # the printed '=' fails there
+
+
+def test_ER_25_theorem_3_5s_estimate_covers_only_f_above_R():
+    """Proof of Theorem 3.5 (lines 1045-1069): with c0 = max c(i) and 'f(k) > R' the estimate
+    E(f) >= 1/2 nu0 (R - c0)^2 / |E| (ER-13's square) covers only values above R, while the
+    compact set {|f(i)| <= R} needs the values below -R too.  One edge of weight 1, V0 = {0},
+    c(0) = -10 (c0 = -10), R = 1 > c0 and f(1) = -2, |f(1)| > R: E(f) = 32 < 121/2.  With c0
+    = max |c(i)| the estimate holds for |f(k)| > R > c0 (checked on paths below)."""
+    edges, f, c0, R = [(0, 1, 1)], [-10, -2], -10, 1
+    E = dirichlet_energy(edges, f)
+    assert E == 32 and abs(f[1]) > R > c0
+    assert E < Fraction(1, 2) * (R - c0) ** 2 / len(edges)
+    c0_abs = 10
+    for value in (11, -11, 25, -40):
+        R = abs(value) - Fraction(1, 2)                  # |f(1)| > R > max |c|
+        E = dirichlet_energy(edges, [-10, value])
+        assert E >= Fraction(1, 2) * (R - c0_abs) ** 2 / len(edges)
+
+
+@given(st.lists(st.fractions(-4, 4, max_denominator=5), min_size=2, max_size=7),
+       st.lists(st.integers(1, 5), min_size=6, max_size=6),
+       st.fractions(0, 1, max_denominator=9))
+def test_ER_25_both_signs_with_c0_the_largest_absolute_value(values, weights, fraction_of_gap):
+    """A weighted path 0 - 1 - ... - k, V0 = {0}, c0 = |c(0)|: for every R between c0 and
+    |f(k)|, E(f) >= 1/2 nu0 (R - c0)^2 / |E|, whether f(k) is above R or below -R."""
+    n = len(values)
+    edges = [(i, i + 1, weights[i]) for i in range(n - 1)]
+    c0, top = abs(values[0]), abs(values[-1])
+    assume(top > c0)
+    R = c0 + fraction_of_gap * (top - c0)
+    nu0 = min(w for _, _, w in edges)
+    for sign in (1, -1):
+        f = values[:-1] + [sign * top]
+        assert dirichlet_energy(edges, f) >= Fraction(1, 2) * nu0 * (R - c0) ** 2 / len(edges)
+
+
+def _J(w):
+    """The rotation by +pi/2 (the triangles below are counterclockwise)."""
+    return (-w[1], w[0])
+
+
+def _direct_proof_of_3_8(v):
+    """The members of the direct proof of (3.8) (lines 1481-1517) for the counterclockwise
+    triangle v = (v1, v2, v3), exactly: w_i = v_(i-1) - v_(i+1); m_i from the midpoint of w_i
+    to the circumcentre O (the reading under which 1/2 J w1 = -J (m2 - m3)); the signed
+    coefficient c_i with -J m_i = c_i w_i, and cot alpha_i."""
+    o, _ = circumcircle(*v)
+    w = [tuple(v[(i - 1) % 3][k] - v[(i + 1) % 3][k] for k in range(2)) for i in range(3)]
+    mid = [tuple((v[(i - 1) % 3][k] + v[(i + 1) % 3][k]) / 2 for k in range(2)) for i in range(3)]
+    m = [tuple(o[k] - mid[i][k] for k in range(2)) for i in range(3)]
+    coeff = []
+    for i in range(3):
+        jm = _J(m[i])
+        c = -(jm[0] * w[i][0] + jm[1] * w[i][1]) / (w[i][0] ** 2 + w[i][1] ** 2)
+        assert (-jm[0], -jm[1]) == (c * w[i][0], c * w[i][1])      # -J m_i is parallel to w_i
+        coeff.append(c)
+    cots = [_corner_cot(v[i], v[(i + 1) % 3], v[(i + 2) % 3]) for i in range(3)]
+    return w, m, coeff, cots
+
+
+def test_ER_26_the_direct_proof_of_3_8_covers_acute_angles_only():
+    """Direct proof of (3.8) (line 1503): -J (m2 - m3) = |m2| / |w2| w2 - |m3| / |w3| w3 =
+    1/2 cot alpha2 w2 - 1/2 cot alpha3 w3.  -J m_i = (l_i / a_i) w_i with l_i the *signed*
+    height of the sub-triangle (negative past an obtuse angle, as the proof of Lemma 3.7 says),
+    l_i / a_i = 1/2 cot alpha_i, while |m_i| / |w_i| = 1/2 |cot alpha_i|: the printed middle
+    member is right only when alpha2, alpha3 <= pi/2.  Triangle (0,0), (2,0), (3,1), obtuse at
+    v2 (135 degrees): -J m2 = -1/2 w2 = 1/2 cot alpha2 w2, while |m2| / |w2| w2 = +1/2 w2."""
+    v = [(Fraction(0), Fraction(0)), (Fraction(2), Fraction(0)), (Fraction(3), Fraction(1))]
+    assert _cross(*v) > 0
+    w, m, coeff, cots = _direct_proof_of_3_8(v)
+    half_jw1 = tuple(x / 2 for x in _J(w[0]))
+    assert half_jw1 == tuple(-x / 2 for x in _J((w[1][0] + w[2][0], w[1][1] + w[2][1])))
+    assert half_jw1 == tuple(-x for x in _J((m[1][0] - m[2][0], m[1][1] - m[2][1])))
+    assert cots[1] == -1 and coeff[1] == Fraction(-1, 2) == cots[1] / 2       # obtuse at v2
+    assert [c == cot / 2 for c, cot in zip(coeff, cots)] == [True] * 3
+    # the printed |m_i| / |w_i| = |cot alpha_i| / 2 (squares compared exactly)
+    for i in range(3):
+        assert (m[i][0] ** 2 + m[i][1] ** 2) / (w[i][0] ** 2 + w[i][1] ** 2) == cots[i] ** 2 / 4
+    printed = tuple(abs(cots[1]) / 2 * w[1][k] - abs(cots[2]) / 2 * w[2][k] for k in range(2))
+    right = tuple(cots[1] / 2 * w[1][k] - cots[2] / 2 * w[2][k] for k in range(2))
+    assert right == half_jw1 != printed
+    # with m_i from O to the midpoint (the other reading) the second '=' fails instead
+    assert tuple(-x for x in _J((-m[1][0] + m[2][0], -m[1][1] + m[2][1]))) != half_jw1
+
+
+@given(triangles)
+def test_ER_26_signed_heights_on_random_triangles(tri):
+    """On every triangle the chain holds with the signed coefficient 1/2 cot alpha_i and
+    with |m_i| / |w_i| exactly when no angle at v2, v3 is obtuse."""
+    v = [tuple(map(Fraction, p)) for p in tri]
+    if _cross(*v) < 0:
+        v = [v[0], v[2], v[1]]
+    w, m, coeff, cots = _direct_proof_of_3_8(v)
+    assert coeff == [c / 2 for c in cots]
+    half_jw1 = tuple(x / 2 for x in _J(w[0]))
+    assert half_jw1 == tuple(cots[1] / 2 * w[1][k] - cots[2] / 2 * w[2][k] for k in range(2))
+    printed = tuple(abs(cots[1]) / 2 * w[1][k] - abs(cots[2]) / 2 * w[2][k] for k in range(2))
+    assert (printed == half_jw1) == (cots[1] >= 0 and cots[2] >= 0)
+
+
+def test_ER_27_the_voronoi_vertex_radius_is_measured_from_Q():
+    """Section 4.1.1 (line 1783): 'Let Q be a vertex of the Voronoi tessellation, i.e.
+    exists i, j, k for all m: r_Q := |P P_i| = |P P_j| = |P P_k| <= |P P_m|', then D_Q = {P :
+    |P Q| < r_Q} 'contains no points of V'.  The condition must be on Q: |Q P_i| = |Q P_j| =
+    |Q P_k| <= |Q P_m|.  As printed it does not involve Q: it holds for any Q once some point P
+    (a true Voronoi vertex) satisfies it, and then D_Q may hold points of V.  With Q: exactly
+    the Voronoi vertices (reference, T4.1) satisfy it, and their disks are empty."""
+    from ddg_oracle.reference.planar import delaunay_tessellation, voronoi_vertices
+    pts = [(0, 0), (4, 0), (0, 4), (5, 5), (6, 1)]
+    P = [tuple(map(Fraction, p)) for p in pts]
+
+    def d2(a, b):
+        return (a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2
+
+    def condition(X):                                  # exists i, j, k: 3 nearest tied, radius
+        ds = sorted(d2(X, p) for p in P)
+        return ds[0] == ds[1] == ds[2], ds[0]
+
+    centres = voronoi_vertices(pts, delaunay_tessellation(pts))
+    assert centres
+    for q in centres.values():
+        holds, r2 = condition(q)
+        assert holds and all(d2(q, p) >= r2 for p in P)           # D_Q is empty (corrected)
+    q_true = next(iter(centres.values()))
+    # printed: Q = P_0 passes (the condition is met at P = q_true), with r_Q = |P P_i|
+    holds, r2 = condition(q_true)
+    Q = P[0]
+    assert holds and d2(Q, P[0]) < r2                              # P_0 lies in D_Q
+    assert not condition(Q)[0]                                     # corrected: Q is no vertex

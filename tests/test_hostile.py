@@ -296,32 +296,43 @@ def test_reference_float_views_beyond_the_float_range_are_inf():
 
 # --- paths that must not hang or exhaust memory (issue: readers with bounds) ----------------------
 
+#: runs argv[1:] and prints the child's peak RSS (KiB).  The peak of a process started
+#: straight from the test process would include the test process's own size: Linux keeps
+#: the high-water mark of the memory a process had before exec (subprocess forks, or
+#: vforks, the pytest worker, some 500 MB late in a run).  A small wrapper's child
+#: starts from the wrapper's few MB instead.
+_PEAK = ("import os, subprocess, sys\n"
+         "p = subprocess.Popen(sys.argv[1:], stdout=subprocess.DEVNULL)\n"
+         "_, status, usage = os.wait4(p.pid, 0)\n"
+         "print(os.waitstatus_to_exitcode(status), usage.ru_maxrss)\n")
+
+
 def _ddg_oracle_bounded(args, seconds=5.0):
-    """Run ``ddg-oracle ARGS``: (exit code, stderr, wall seconds, peak RSS in MB); the child
-    is reaped with wait4 to read its own peak memory, and killed if it runs 6x too long."""
+    """Run ``ddg-oracle ARGS``: (exit code, stderr, wall seconds, peak RSS in MB) of the
+    ddg-oracle process alone (see _PEAK); killed if it runs 6x too long."""
     import os
+    import signal
     import subprocess
     import sys
     import tempfile
     import time
     with tempfile.TemporaryFile("w+") as err_file:
         t0 = time.monotonic()
-        p = subprocess.Popen([sys.executable, "-m", "ddg_oracle", *args],
-                             stdout=subprocess.DEVNULL, stderr=err_file)
-        while True:
-            pid, status, usage = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if time.monotonic() - t0 > 6 * seconds:
-                p.kill()
-                pid, status, usage = os.wait4(p.pid, 0)
-                break
-            time.sleep(0.02)
-        p.returncode = os.waitstatus_to_exitcode(status)     # so Popen does not wait again
+        p = subprocess.Popen([sys.executable, "-c", _PEAK, sys.executable, "-m", "ddg_oracle",
+                              *args], stdout=subprocess.PIPE, stderr=err_file, text=True,
+                             start_new_session=True)
+        try:
+            out, _ = p.communicate(timeout=6 * seconds)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            out, _ = p.communicate()
         wall = time.monotonic() - t0
         err_file.seek(0)
         err = err_file.read()
-    return p.returncode, err, wall, usage.ru_maxrss / 1024
+    if not out.strip():
+        return -9, err, wall, float("inf")       # killed: ran too long
+    rc, kib = map(int, out.split())
+    return rc, err, wall, kib / 1024
 
 
 @pytest.mark.parametrize("command", ["check", "compare"])

@@ -173,7 +173,14 @@ def test_every_applicable_property_passes_but_on_the_meshes_of_findings_G3_and_G
             assert small or _sliver(V, F), str(r.failure)
         else:
             assert r.ok, r.status
-    assert {r.property_id for r in results if r.status == "passed"} >= {"D2.3", "D3.1", "D1.6"}
+    status = {r.property_id: r.status for r in results}
+    assert status["D2.3"] == status["D1.6"] == "passed"
+    # D3.1 may meet a cap whose area from its lengths is below float resolution: gpytoolbox
+    # then returns NaN there, a tie disagreement (beyond float resolution), never a failure
+    assert status["D3.1"] in ("passed", "tie disagreement"), status["D3.1"]
+    for r in results:
+        if r.status == "tie disagreement" and r.property_id == "D3.1":
+            assert _sliver(*r.failure.mesh), str(r.failure)
 
 
 def test_runs_in_a_worker_process():

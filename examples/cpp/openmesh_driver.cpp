@@ -90,7 +90,11 @@ int main(int argc, char** argv) {
                 return ddg::list(loop, [](int v) { return std::to_string(v); });
             });
         if (method == "genus") {
-            long twice = 2 - chi - long(boundary_loops(tm).size());
+            // the surface's chi: a vertex used by no face is a point beside it
+            long surface_chi = chi;
+            for (auto v : tm.vertices())
+                if (tm.is_isolated(v)) --surface_chi;
+            long twice = 2 - surface_chi - long(boundary_loops(tm).size());
             if (twice % 2) throw std::runtime_error("2 - chi - k is odd: not one surface");
             return std::to_string(twice / 2);
         }
