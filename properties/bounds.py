@@ -7,20 +7,57 @@ float64 unless it declares float32, 2**-23); ``gamma_k = k eps / (1 - k eps)`` b
 relative error of k roundings (Higham: recursive summation of k terms adds at most
 ``gamma_k`` times the sum of their magnitudes).
 
-Angles (chapter 2).  An angle alpha computed from float points -- by atan2(|a x b|, a . b),
-by acos of a normalised dot product, or by the law of cosines -- comes from a cosine or a
-ratio with relative error at most about 7 eps, plus at most 2 sqrt(3) eps from the
-edge-vector subtractions; since d alpha = d cos(alpha) / sin(alpha) the error is at most
-``C_ANGLE eps (1 + 1/sin(alpha))`` with ``C_ANGLE = 16`` (a margin of about 2 over these
-counts) (:func:`corner_tolerances`).  An angle defect adds the rounding of 2 pi minus the
+Angles (chapter 2).  Counted in units of u = eps / 2 (one rounding), an angle alpha
+between the edge vectors a, b of a corner (opposite side a', sides b, c adjacent) is
+computed from float points by one of three routes, each within its own conditioning:
+
+- atan2(|a x b|, a . b): the edge vectors' subtractions turn each by <= u (2u), the cross
+  product and the dot product are off by <= 4u |a||b| and 3u |a||b|, |a x b|'s norm 3u
+  more, and atan2(y, x) moves by at most |(dx, dy)| / |(x, y)| = that over |a||b|, plus
+  its own rounding pi u: about 16u = 8 eps, whatever the shape;
+- acos of a normalised dot product: the cosine is off by delta <= 11u, and acos turns a
+  cosine error delta into at most 3.63 delta / sin(alpha) (for delta <= 3/8 sin^2 alpha
+  the slope of acos stays below 3.02 / sin alpha; beyond, |acos x - acos y| <=
+  acos(1 - |x - y|) <= 2.22 sqrt(delta) < 3.63 delta / sin alpha); clamping to [-1, 1]
+  only moves towards the true cosine: <= 10 eps / sin(alpha) + 3 eps;
+- through the side lengths (the law of cosines; Kahan's half-angle formula; any formula in
+  l = |side|^2): squared lengths from coordinates carry relative errors theta <= gamma_5
+  = 5u, 7u once a square root is squared again, and relative errors theta of the squared
+  sides move the angle by d alpha <= theta (S_f + |cot alpha|) to first order, S_f =
+  (a'^2 + b^2 + c^2) / (4 A) the sum of the face's cotangents (d cos = (theta_b l_b +
+  theta_c l_c - theta_a l_a) / (2 b c) - cos (theta_b + theta_c) / 2, and 2 b c sin =
+  4 A).  S_f >= 1 / sin of every corner of the face (b^2 + c^2 >= 2 b c) and S_f <=
+  3 kappa_f: on a needle every corner, the wide ones too, is conditioned like the face's
+  sharpest one.  The law of cosines (b^2 + c^2 - a'^2) / (2 b c) is off by <= 7u sum l /
+  (2 b c) + 9u |cos|, hence after acos (factor 3.63, as above, and pi u) by <= 12.7 eps
+  S_f + 16.3 eps / sin(alpha) + 1.6 eps; Kahan's formula adds <= 7u alpha to the lengths'
+  theta (S_f + |cot|): <= 3.5 eps (S_f + 1/sin(alpha)) + 11 eps.
+
+So the corner bound is ``C_ANGLE eps (1 + 1/sin(alpha)) + C_LENGTHS eps S_f`` with
+``C_ANGLE = 16``, ``C_LENGTHS = 20`` (the law of cosines' count: 12.7 S_f + 16.3 /
+sin(alpha) + 1.6 <= 16 (1 + 1/sin) + 20 S_f since 1/sin <= S_f) (:func:`corner_tolerances`;
+before issue 40 the bound had no S_f term, and a real library's law of cosines came to 2.07
+times it on a needle's wide corner).  An angle defect adds the rounding of 2 pi minus the
 sum of k angles (:func:`vertex_tolerances`).  When points were rounded to floats after an
 exact motion each edge vector carries a further relative error of up to 2 sqrt(3) eps
 |x| / |edge| ("input rounding").  A face normal from float points has direction error at
-most ``C_ANGLE eps kappa_f`` (kappa_f = max 1/sin of the face's angles); a dihedral angle
-recovered from the cosine and sine of two normals is off by ``2 delta / max(|sin theta|,
-sqrt(delta))``, ``delta = C_ANGLE eps (1 + kappa_f + kappa_g)``
-(:func:`edge_mean_curvature_tolerances`); a total area by ``C_ANGLE eps A_f (1 + kappa_f)``
-per face plus the sum (:func:`area_tolerance`).
+most ``C_ANGLE eps kappa_f`` (kappa_f = max 1/sin of the face's angles; the cross product
+is off by <= 6u |a||b| = 3 eps A kappa_f relative to 2 A); a dihedral angle recovered
+from the cosine and sine of two normals (atan2, acos, or Kahan's 2 atan2(|n1 - n2|, |n1 +
+n2|)) is off by ``2 delta / max(|sin theta|, sqrt(delta))``, ``delta = C_ANGLE eps (1 +
+kappa_f + kappa_g)`` (:func:`edge_mean_curvature_tolerances`).
+
+Areas.  A face area from float points (:func:`face_area_tolerances`; :func:`area_tolerance`
+sums them and the rounding of the sum) by |a x b| / 2 is off by <= 3u |a||b| + 3u A <=
+``C_ANGLE eps (A_f + A_f kappa_f)``; by Heron on the side lengths (Kahan's sorted formula:
+a few ulps for the lengths given) the lengths' errors theta move 16 A^2 by <= 32 theta
+P_f (:func:`heron_product`: P_f ~ sum_c l_c |n_c| / 16, n_c = 4 A cot_c) and so A by <=
+min(2 theta P_f / A, sqrt(2 theta P_f)): ``C_HERON eps min(P_f / A, ...)`` with ``C_HERON
+= 12``.  P_f / A_f ~ W_f = sum_c l_c |cot_c| / 4 equals A_f on a face without an obtuse
+angle; with an obtuse angle beta, W_f = A_f (1 + |cos beta| / (sin alpha sin gamma)):
+about A / (alpha gamma) on a cap of small angles alpha, gamma (A rho^2 / 4 when alpha =
+gamma).  Heron's route loses there what the cross product keeps (before issue 40 the bound
+was C_ANGLE eps A_f (1 + kappa_f) only, which Kahan's Heron exceeded on caps).
 
 Cotangents (chapters 3, 4).  A stable float cotangent of a corner is the exact cotangent
 of a triangle whose side lengths (or coordinates) are perturbed relatively by a few units
@@ -35,10 +72,19 @@ the corner bound is
 L sums k halves of cotangents: its bound ``B_ij`` is the sum of the ``beta_c / 2`` plus
 ``k eps sum |cot_c| / 2`` for the summation (:func:`entry_bounds`).  Every derived quantity
 (``f^T L f``, ``L x``, eigenvalues, solves) propagates ``B`` and its own rounding
-(``gamma_k`` times the sum of the magnitudes of the summed terms).  A naive Heron formula
-loses accuracy on needles faster than this model (``eps rho^2``) and is reported as a
-failure there: that is a real loss.  The conditioning factors themselves are float views
-within a few ulps of exact values (:func:`_conditioning`): a bound's constants dwarf them.
+(``gamma_k`` times the sum of the magnitudes of the summed terms).  The routes of the
+angles above all fit this model: a cotangent a . b / |a x b| is off by a few u (1 +
+|cot|) / sin = a few eps (1 + cot^2) at most kappa_f <= rho_T; one from the side lengths,
+(b^2 + c^2 - a'^2) / (4 A) with Kahan's Heron or (1/t - t) / 2 from Kahan's t =
+tan(alpha / 2), by (1 + cot^2) theta (S_f + |cot|) <= 2.5 theta (1 + cot^2) rho_T plus its
+roundings (S_f <= 1.5 rho_T, |cot| <= 1/sin <= rho_T).  The textbook Heron sqrt(s (s - a)
+(s - b) (s - c)) stays within the area bound as well: its cancellation s - a on a needle
+costs about u rho A, within the cross product's own C_ANGLE eps A kappa_f, and on a cap
+what the lengths' errors cost.  tests/test_bounds_vs_honest.py pits every bound here
+against these routes on needles, caps, offsets and scales.  The conditioning factors
+themselves are float views within a few ulps of exact values (:func:`_conditioning`): a
+bound's constants dwarf them; where a face's float area is 0 (beyond float resolution)
+its conditioning is infinite and its bounds accept anything.
 """
 
 from __future__ import annotations
@@ -58,8 +104,9 @@ from . import memo
 from .example import Example
 from .protocol import eps
 
-__all__ = ["gamma", "C_ANGLE", "K_COT", "corner_tolerances", "vertex_tolerances",
-           "face_condition", "edge_mean_curvature_tolerances", "area_tolerance",
+__all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
+           "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
+           "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
            "float_geometry", "EntryBounds", "entry_bounds", "total_area_view"]
 
 
@@ -72,6 +119,8 @@ def gamma(k: int) -> float:
 
 
 C_ANGLE = 16.0                               # see the module docstring
+C_LENGTHS = 20.0                             # angles through the side lengths (docstring)
+C_HERON = 12.0                               # areas through the side lengths (docstring)
 
 
 def float_geometry(case: Example):
@@ -88,12 +137,18 @@ def _float_geometry(case: Example) -> dict:
     twice_area = np.linalg.norm(cross, axis=1)
     angles = np.empty(F.shape)
     inv_sin = np.empty(F.shape)
+    sides = np.empty(F.shape)                         # column k: the sides' product at corner k
+    squared = np.empty(F.shape)                       # column k: the side opposite corner k
     for k in range(3):
         a, b = X[:, next_corner(k)] - X[:, k], X[:, prev_corner(k)] - X[:, k]
         la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
         angles[:, k] = np.arctan2(twice_area, (a * b).sum(axis=1))
-        inv_sin[:, k] = la * lb / twice_area
-    normal = cross / twice_area[:, None]
+        sides[:, k] = la * lb
+        squared[:, k] = ((b - a) ** 2).sum(axis=1)
+    # a face whose float cross product is 0 (beyond float resolution): 1/sin infinite
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv_sin[:] = sides / twice_area[:, None]
+        normal = cross / twice_area[:, None]
     face_of = {}
     for f, face in enumerate(F.tolist()):
         for k in range(3):
@@ -107,7 +162,10 @@ def _float_geometry(case: Example) -> dict:
             theta = math.atan2(float(np.cross(normal[f], normal[g]) @ e) / length,
                                float(normal[f] @ normal[g]))
             edges[(i, j)] = (length, theta, f, g)
-    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges)
+    with np.errstate(divide="ignore"):
+        cot_sum = squared.sum(axis=1) / (2 * twice_area)
+    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges,
+                cot_sum=cot_sum, sides=sides.max(axis=1) / 2, squared=squared)
 
 
 def _input_scale(case: Example) -> np.ndarray:
@@ -126,10 +184,13 @@ def _input_scale(case: Example) -> np.ndarray:
 def corner_tolerances(case: Example, input_rounding: bool = False) -> np.ndarray:
     """(m, 3) bounds on |computed angle - exact angle| (see the module docstring).
 
-    C_ANGLE eps (1 + 1/sin alpha); with ``input_rounding`` also
-    4 sqrt(3) eps (|x| / |edge|) (1 + 1/sin alpha) for points rounded to floats.
+    C_ANGLE eps (1 + 1/sin alpha) + C_LENGTHS eps S_f (S_f = (a^2 + b^2 + c^2) / (4 A),
+    the face's cotangent sum: the route through the side lengths); with
+    ``input_rounding`` also 4 sqrt(3) eps (|x| / |edge|) (1 + 1/sin alpha + S_f) for
+    points rounded to floats.
     """
-    cond = 1 + float_geometry(case)["inv_sin"]                  # 1 + 1/sin(alpha)
+    g = float_geometry(case)
+    cond = 1 + g["inv_sin"] + g["cot_sum"][:, None] * (C_LENGTHS / C_ANGLE)
     tol = C_ANGLE * eps() * cond
     if input_rounding:
         tol = tol + 4 * math.sqrt(3) * eps() * _input_scale(case) * cond
@@ -172,18 +233,74 @@ def edge_mean_curvature_tolerances(case: Example) -> dict:
     out = {}
     for key, (length, theta, f, g) in float_geometry(case)["edges"].items():
         delta = C_ANGLE * eps() * (1 + kappa[f] + kappa[g])
+        if not (math.isfinite(delta) and math.isfinite(theta)):
+            out[key] = math.inf         # a face whose float normal is 0: beyond resolution
+            continue
         tol_theta = 2 * delta / max(abs(math.sin(theta)), math.sqrt(delta))
         H = theta * length / 2
         out[key] = (tol_theta * length + abs(theta) * 2 * eps() * length) / 2 + eps() * abs(H)
     return out
 
 
+def heron_product(squared) -> np.ndarray:
+    """(m,) P_f >= sum_c l_c |n_c| / 16, n_c = l_a + l_b - l_c (= 4 A cot_c), from the
+    squared sides l_c opposite corner c ((m, 3)): Heron's 16 A^2 = P(l) has dP/dl_c = 2 n_c
+    and P is quadratic (Hessian entries +-2), so squared lengths with relative errors up to
+    theta move 16 A^2 by at most 32 theta sum l_c |n_c| / 16 + theta^2 (sum l)^2.  P_f is
+    that sum as floats plus eps (sum l)^2 / 2, which covers both the second-order term
+    (theta <= 3.5 eps: theta (sum l)^2 / 32 <= 0.11 eps (sum l)^2) and the cancellation in
+    n_c (a right angle: n_c = 0 while its float, from squared lengths within 8 u relative,
+    may be off by 8 u sum l; 8 u (sum l)^2 / 16 = 0.25 eps (sum l)^2).  P_f / A_f ~ W_f =
+    sum_c l_c |cot_c| / 4 (:func:`heron_condition`), the absolute conditioning of a face
+    area from its side lengths."""
+    l = np.asarray(squared, dtype=np.float64).reshape(-1, 3)
+    n = np.stack([l[:, next_corner(c)] + l[:, prev_corner(c)] - l[:, c] for c in range(3)], axis=1)
+    total = l.sum(axis=1)
+    return (l * np.abs(n)).sum(axis=1) / 16 + eps() * total * total / 2
+
+
+def heron_condition(squared, cot=None) -> np.ndarray:
+    """(m,) W_f = sum_c l_c |cot_c| / 4 from the squared sides and the cotangents (without
+    them, :func:`heron_product` over the area: an upper bound)."""
+    if cot is not None:
+        return (np.asarray(squared, dtype=np.float64)
+                * np.abs(np.asarray(cot, dtype=np.float64))).sum(axis=1) / 4
+    l = np.asarray(squared, dtype=np.float64).reshape(-1, 3)
+    H = 2 * (l[:, 0] * l[:, 1] + l[:, 1] * l[:, 2] + l[:, 2] * l[:, 0]) - (l * l).sum(axis=1)
+    return heron_product(l) / (np.sqrt(np.maximum(H, 0)) / 4)
+
+
+def face_area_tolerances(area, sides, heron) -> np.ndarray:
+    """(m,) bounds on |computed face area - exact area| from float points, by either route
+    (module docstring): ``area`` the faces' areas, ``sides`` A_f kappa_f = the largest
+    product of two sides / 2, ``heron`` P_f (:func:`heron_product`).
+
+    - the cross product |a x b| / 2: C_ANGLE eps (A_f + A_f kappa_f);
+    - Heron on the side lengths (Kahan's sorted formula): the lengths carry relative errors
+      theta <= 3.5 eps (squared: 2.5 eps; 3.5 eps when a square root is squared again),
+      which move 16 A^2 by at most D = 32 theta P_f (second order: theta^2 (sum l)^2, below
+      one rounding of D); then |A~ - A| = |A~^2 - A^2| / (A~ + A) <= min(D / (16 A),
+      sqrt(D / 16)); Kahan's formula adds 3.5 eps A~ (about 7 roundings) <= 3.5 eps W_f.
+      With D / 16 = 7 eps P_f: C_HERON eps min(P_f / A_low, sqrt(P_f / (C_HERON eps)))
+      with C_HERON = 12 >= 7 + 3.5 (A_low: the area minus the cross route's bound, a lower
+      bound on the exact area where the areas given are float views).  The square root
+      branch holds where the area is below its own resolution (a cap flatter than
+      sqrt(eps)): there a float Heron area may be 0."""
+    area, sides, heron = (np.asarray(x, dtype=np.float64) for x in (area, sides, heron))
+    cross = C_ANGLE * eps() * (area + sides)
+    low = np.maximum(area - cross, 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        first = np.where(low > 0, C_HERON * eps() * heron / np.where(low > 0, low, 1), np.inf)
+    return cross + np.minimum(first, np.sqrt(C_HERON * eps() * heron))
+
+
 def area_tolerance(case: Example) -> float:
     """Bound on |computed total area - exact area|: each face area from float points is off by
-    at most C_ANGLE eps A_f (1 + kappa_f), the sum adds gamma_m sum A_f."""
-    cond = 1 + face_condition(case)
-    areas = [float(a) for a in float_geometry(case)["area"]]
-    return sum(C_ANGLE * eps() * a * k for a, k in zip(areas, cond)) + gamma(len(areas)) * sum(areas)
+    at most :func:`face_area_tolerances`, the sum adds gamma_m sum A_f."""
+    g = float_geometry(case)
+    areas = np.asarray(g["area"], dtype=np.float64)
+    per_face = face_area_tolerances(areas, g["sides"], heron_product(g["squared"]))
+    return float(per_face.sum()) + gamma(len(areas)) * float(areas.sum())
 
 
 # --- cotangents and the entries of L (chapters 3 and 4) --------------------------------------------

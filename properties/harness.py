@@ -20,7 +20,7 @@ from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_floats
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import memo
-from .bounds import K_COT, entry_bounds, gamma
+from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
 from .protocol import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
@@ -167,15 +167,31 @@ class Exact:
         return kept[name]
 
     @cached_property
+    def face_area_bounds(self) -> np.ndarray:
+        """(k,) bound on the error of each face's area computed from the float points, by
+        either route (:func:`.bounds.face_area_tolerances`: the cross product, or Heron on
+        the side lengths), from the exact face (its area and squared sides as floats)."""
+        m, k = self.metric, self.triangulation.n_faces
+        area = np.array([float(m.area(f)) for f in range(k)])
+        # face_squared_lengths: opposite corners 2, 0, 1; columns here: corners 0, 1, 2
+        squared = np.array([[float(x) for x in m.face_squared_lengths(f)]
+                            for f in range(k)]).reshape(-1, 3)[:, [1, 2, 0]]
+        s = np.sqrt(squared)
+        sides = np.stack([s[:, 1] * s[:, 2], s[:, 2] * s[:, 0], s[:, 0] * s[:, 1]],
+                         axis=1).max(axis=1) / 2 if k else np.zeros(0)
+        return face_area_tolerances(area, sides, heron_product(squared))
+
+    @cached_property
     def vertex_area_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """(n,) bounds on the error of each vertex's mixed Voronoi area and of its
         barycentric area (L3.7): the corner cotangent bounds beta times the adjacent squared
-        sides / 8, their rounding, and K_COT eps rho_f A_f for the face area itself."""
+        sides / 8, their rounding, and the face area's own bound (:attr:`face_area_bounds`)
+        for the obtuse rule's A/2 and A/4 and the barycentric A/3."""
         t, m = self.triangulation, self.metric
         vb = np.zeros(self.n)      # bound of the Voronoi area of each vertex
         bb = np.zeros(self.n)      # of the barycentric one
+        fa = self.face_area_bounds
         for f, face in enumerate(t.faces):
-            a = float(m.area(f))
             l0, l1, l2 = (float(x) for x in m.face_squared_lengths(f))
             adj = ((l0, l2, 2, 1), (l0, l1, 2, 0), (l1, l2, 0, 1))   # sides at corner, opposite corners
             for c in range(3):
@@ -184,8 +200,8 @@ class Exact:
                 vor = (la * self.beta[f, ca] + lb * self.beta[f, cb]
                        + 8 * eps() * (la * abs(self.cot[f, ca]) + lb * abs(self.cot[f, cb]))) / 8
                 v = self.keep[face[c]]
-                vb[v] += vor + K_COT * eps() * self.rho[f] * a
-                bb[v] += K_COT * eps() * self.rho[f] * a / 3
+                vb[v] += vor + fa[f]
+                bb[v] += fa[f] / 3
         return vb, bb
 
     def embed(self, M):
@@ -283,8 +299,9 @@ def implementation_matrix(impl, case: Example, pid: str, method: str = "cotan_la
         pairs = set(zip(C.row[bad].tolist(), C.col[bad].tolist()))
         if pairs <= beyond:
             raise TieDisagreement(pid, impl, f"{method} has non-finite entries, all at faces "
-                                  "beyond float resolution (K_COT eps rho >= 1: the float area "
-                                  "from the coordinates may be 0)", mesh=case.mesh)
+                                  "beyond float resolution (K_COT eps rho >= 1, or an area "
+                                  "bound at least the area: a float area, from the coordinates "
+                                  "or from the side lengths, may be 0)", mesh=case.mesh)
         i, j = min(pairs - beyond)
         raise PropertyFailure(pid, impl, f"{method} has non-finite entries (first: {(i, j)})",
                               mesh=case.mesh, element=(i, j))
@@ -293,12 +310,17 @@ def implementation_matrix(impl, case: Example, pid: str, method: str = "cotan_la
 
 def beyond_float_resolution(case: Example) -> set:
     """Vertex pairs (i, j), i == j included, of the faces whose conditioning puts their
-    float area out of reach: K_COT eps rho >= 1 (rho = l_max^2 / (2 A), exact A).  There a
-    float cross product can be 0 although the exact face is not degenerate, and a cotangent
-    from it infinite: rounding decides, as at a tie."""
+    float area out of reach: K_COT eps rho >= 1 (rho = l_max^2 / (2 A), exact A), or the
+    face area's derived bound (:attr:`Exact.face_area_bounds`) at least the area (Heron on
+    the float side lengths of a cap, whose error grows as rho^2).  There a float cross product, or a
+    float Heron area, can be 0 although the exact face is not degenerate (the area's
+    derived bound is at least the area itself), and a cotangent from it infinite: rounding
+    decides, as at a tie."""
     X = Exact.of(case)
     out = set()
-    for f in np.flatnonzero(K_COT * eps() * np.asarray(X.rho) >= 1).tolist():
+    area = np.array([float(X.metric.area(f)) for f in range(X.triangulation.n_faces)])
+    lost = (K_COT * eps() * np.asarray(X.rho) >= 1) | (X.face_area_bounds >= area)
+    for f in np.flatnonzero(lost).tolist():
         face = [X.keep[v] for v in X.triangulation.faces[f]]
         out.update((a, b) for a in face for b in face)
     return out

@@ -157,3 +157,51 @@ def test_the_intrinsic_properties_draw_non_orientable_surfaces():
     run()
     assert seen == {"Moebius strip", "projective plane", "Klein bottle"}
     assert PROPERTIES["A4.13"].strategy.__name__ == "intrinsic_meshes"
+
+
+# --- planar Delaunay answers that are not triangulations (issue 40: verdicts) --------------------
+
+_SQUARE_AND_MIDPOINT = tuple((Fraction(x), Fraction(y)) for x, y in
+                             ((0, 0), (2, 0), (2, 2), (0, 2), (1, 0), (3, 1)))
+
+
+class _PlanarAnswer:
+    """A planar_delaunay returning fixed triangles: the reference's plus ``extra``, less
+    ``drop``; ``machine_epsilon`` as declared."""
+    name = "planar-answer"
+
+    def __init__(self, extra=(), drop=0, machine_epsilon=2.0 ** -52):
+        self.extra, self.drop, self.machine_epsilon = list(extra), drop, machine_epsilon
+
+    def planar_delaunay(self, P):
+        import numpy as np
+        T = ReferenceImplementation().planar_delaunay(P).tolist()
+        return np.array(T[self.drop:] + self.extra, dtype=np.int64)
+
+
+@pytest.mark.parametrize("pid", ["D4.1", "T4.1"])
+def test_a_triangle_of_exactly_collinear_points_is_a_tie_for_floats_and_never_an_internal_error(pid):
+    """Points 0, 4, 1 lie on one line: a float orientation test may call them a triangle.
+    Before, the empty-disk check raised CollinearPoints: an internal error of ours."""
+    from ddg_oracle.properties.runner import run_on_example
+    flat = [[0, 4, 1]]
+    r = run_on_example(PROPERTIES[pid], _PlanarAnswer(extra=flat), _SQUARE_AND_MIDPOINT, "test")
+    assert r.status == "tie disagreement", (r.status, r.failure, r.error)
+    # an exact implementation has no rounding to blame
+    r = run_on_example(PROPERTIES[pid], _PlanarAnswer(extra=flat, machine_epsilon=0.0),
+                       _SQUARE_AND_MIDPOINT, "test")
+    assert r.status == "FAILED" and "collinear" in str(r.failure), (r.status, r.error)
+    # a repeated point is never rounding
+    r = run_on_example(PROPERTIES[pid], _PlanarAnswer(extra=[[0, 0, 1]]), _SQUARE_AND_MIDPOINT,
+                       "test")
+    assert r.status == "FAILED" and "repeats a point" in str(r.failure), (r.status, r.error)
+
+
+def test_a_subset_of_the_delaunay_triangles_fails_T4_1_and_is_not_a_tie():
+    """Each kept triangle has an empty disk, so before, T4.1 called the difference a near
+    tie: a false pass (ties are not failures).  The triangles must tile the hull."""
+    from ddg_oracle.properties.runner import run_on_example
+    assert run_on_example(PROPERTIES["T4.1"], _PlanarAnswer(), _SQUARE_AND_MIDPOINT,
+                          "test").status == "passed"
+    r = run_on_example(PROPERTIES["T4.1"], _PlanarAnswer(drop=1), _SQUARE_AND_MIDPOINT, "test")
+    assert r.status == "FAILED" and "convex hull" in str(r.failure), (r.status, r.failure)
