@@ -227,7 +227,7 @@ def parser() -> argparse.ArgumentParser:
     w.add_argument("--timeout", type=float, default=60.0,
                    help="with --impl: seconds per call, per 10,000 faces (default 60)")
 
-    sub.add_parser(
+    m = sub.add_parser(
         "methods", formatter_class=fmt,
         help="list the protocol methods an implementation may define",
         description="Every protocol method: its arguments, what it answers in the reference's "
@@ -236,8 +236,13 @@ def parser() -> argparse.ArgumentParser:
                     "properties of the others are not applicable.",
         epilog=_epilog("""
             ddg-oracle methods
+            ddg-oracle methods --impl mymodule:MyImpl   which of them it defines
             ddg-oracle methods | grep cotan""", EXIT_CODES.replace(
             "  1  a property failed or a checked implementation crashed\n", "")))
+    m.add_argument("--impl", metavar="SPEC",
+                   help="an implementation (as for check): the methods it defines, its declared "
+                        "precision and conventions, and names that look like a method it lacks")
+    m.add_argument("--timeout", type=float, default=60.0, help=argparse.SUPPRESS)
 
     t = sub.add_parser(
         "theorems", formatter_class=fmt, help="print the traceability table and the notes' items",
@@ -305,6 +310,8 @@ def _methods(args) -> int:
     from ddg_oracle.properties.protocol import METHODS
     from ddg_oracle.properties.registry import all_properties
     props = all_properties()
+    if args.impl:
+        return _methods_of(args, METHODS, props)
     for name, m in METHODS.items():
         ids = [p.id for p in props if name in p.methods]
         print(f"{name}({', '.join(m.arguments)})")
@@ -314,6 +321,35 @@ def _methods(args) -> int:
                             subsequent_indent="      "))
     print(f"\n{len(METHODS)} methods; an implementation defines any of them "
           "(ddg_oracle.properties.protocol.METHODS, docs/protocol.md for other languages)")
+    return 0
+
+
+def _methods_of(args, METHODS, props) -> int:
+    """``ddg-oracle methods --impl SPEC``: what the properties would see of SPEC."""
+    from ddg_oracle.properties.protocol import (capabilities, declared_conventions,
+                                                implementation_name, machine_epsilon,
+                                                near_miss_warning)
+    from ddg_oracle.properties.conventions import declared
+    impl = _start([args.impl], args.timeout)[args.impl]
+    try:
+        has = capabilities(impl)
+        eps, follows = machine_epsilon(impl), declared_conventions(impl)
+        conventions = [c.name for c in declared(impl)] + ([f"follows {follows[1]}"] if follows
+                                                         else [])
+        said, name = near_miss_warning(impl), implementation_name(impl)
+    finally:
+        getattr(impl, "close", lambda: None)()
+    print(f"{name} ({args.impl}): machine_epsilon {eps!r}; "
+          + (f"conventions: {', '.join(conventions)}" if conventions else "no conventions declared"))
+    for method in METHODS:
+        mark = "defines" if method in has else "-      "
+        ids = [p.id for p in props if method in p.methods]
+        print(f"  {mark}  {method}" + (f"  ({', '.join(ids)})" if method in has and ids else ""))
+    applicable = [p.id for p in props if p.applies_to(has)]
+    print(f"\n{len(has & set(METHODS))} of {len(METHODS)} methods; {len(applicable)} of "
+          f"{len(props)} properties apply")
+    if said:
+        print(f"ddg-oracle: warning: {said}", file=sys.stderr)
     return 0
 
 

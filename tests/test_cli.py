@@ -596,3 +596,21 @@ def test_a_directory_is_a_corpus_of_its_mesh_files(capsys, tmp_path, tetra_obj, 
     empty.mkdir()
     rc, _, err = _run(capsys, "check", "--mesh", str(empty))
     assert rc == 2 and "no mesh file" in err and err.count("\n") == 1
+
+
+def test_methods_with_impl_lists_what_it_defines_and_warns_of_near_misses(capsys, tmp_path,
+                                                                         monkeypatch):
+    (tmp_path / "half_impl.py").write_text(
+        "class Half:\n    machine_epsilon = 2.0 ** -23\n    conventions = 'libigl'\n"
+        "    def angle_defects(self, V, F):\n        return None\n"
+        "    def cotmatrix(self, V, F):\n        return None\n")
+    monkeypatch.chdir(tmp_path)
+    rc, out, err = _run(capsys, "methods", "--impl", "half_impl:Half")
+    assert rc == 0, err
+    assert "machine_epsilon 1.1920928955078125e-07" in out and "laplacian=negative" in out
+    assert re.search(r"defines  angle_defects  \(D2\.2", out)
+    assert re.search(r"-        cotan_laplacian\n", out)
+    assert re.search(r"\n1 of \d+ methods", out)
+    assert "`cotmatrix` is not a protocol method (did you mean `cotan_laplacian`?)" in err
+    rc, _, err = _run(capsys, "methods", "--impl", "no_such_module_here:X")
+    assert rc == 2 and err.count("\n") == 1
