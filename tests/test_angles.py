@@ -243,3 +243,29 @@ def test_the_mean_curvature_zero_found_by_the_rotation_test():
     x = (AngleLength.of(corner_angle(-a / 579), Fraction(2097152, 193) * a)
          - AngleLength.of(pi, Fraction(4194304, 3) * sqrt(3)))
     assert x.is_zero() and x.sign() == 0 and x == 0
+
+
+# --- issue 46: the float of a tiny value keeps its sign; hash() is total -----------------------------
+
+def test_float_of_a_positive_value_below_the_smallest_subnormal_is_plus_zero():
+    """arccot(2^1100) - arccot(2^1100 + 2^k) is positive and far below 2^-1075: its
+    correctly rounded float is +0.0.  The enclosure straddled 0 and its lower end's
+    quotient was -0.0, which compares equal to +0.0 and was returned (the audit's
+    wrong answer, reached from corner angles of a needle)."""
+    import math
+    from ddg_oracle.reference.exact.measures import AngleLength
+    c = Surd(Fraction(2) ** 1100)
+    for k in (1, 7, 30):
+        d = Surd(Fraction(2) ** 1100 + 2 ** k)
+        for value in (AngleLength({c: Fraction(1), d: Fraction(-1)}), Angle({c: 1, d: -1})):
+            assert value.sign() == 1
+            assert float(value) == 0.0 and math.copysign(1.0, float(value)) == 1.0
+            assert math.copysign(1.0, float(-value)) == -1.0
+
+
+def test_hash_is_total_beyond_the_float_range():
+    from ddg_oracle.reference.exact.measures import AngleLength
+    huge = Angle({}, 2 ** 1100)
+    assert hash(huge) == hash(Angle({}, 2 ** 1100)) and hash(-huge) != hash(huge)
+    assert isinstance(hash(AngleLength({Surd(Fraction(1)): Fraction(2 ** 1100)})), int)
+    assert len({huge, Angle({}, 2 ** 1100)}) == 1

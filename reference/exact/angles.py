@@ -268,7 +268,9 @@ class Angle(ArccotSum):
                 lo, hi = self._scaled(bits)
             x = lo / (1 << bits)
             if x == hi / (1 << bits):
-                return x
+                # below 2^-1075 both ends round to a zero, maybe -0.0 from an end below 0:
+                # the correctly rounded float of theta has theta's own sign (exact)
+                return x if x else math.copysign(0.0, self.sign())
             # 53 bits relative to |theta| >= small / 2^bits, the terms' widths and a guard
             # (usually one more enclosure); near a rounding boundary, twice the bits
             need = bits - min(abs(lo), abs(hi)).bit_length() + 64 + terms

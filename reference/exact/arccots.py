@@ -122,7 +122,12 @@ class ArccotSum:
         # float() is correctly rounded, hence a function of the value alone: equal numbers
         # (also an equal number of the other kind, or 0) hash equal.
         if self._hash is None:
-            self._hash = hash(float(self))
+            try:
+                self._hash = hash(float(self))
+            except OverflowError:
+                # beyond the float range: a multiple of pi or a sum of arccots is never a
+                # rational there, so one hash per sign keeps equal values hashing equal
+                self._hash = hash(math.copysign(math.inf, self.sign()))
         return self._hash
 
     # -- enclosures, once ----------------------------------------------------------------

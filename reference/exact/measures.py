@@ -248,7 +248,9 @@ class AngleLength(ArccotSum):
             # two ends agree, every number between them rounds to that float
             x = lo / (1 << 2 * bits)
             if x == hi / (1 << 2 * bits):
-                return x
+                # both ends round to a zero (maybe -0.0 from an end below 0): the correctly
+                # rounded float has the value's own sign (exact)
+                return x if x else math.copysign(0.0, self.sign())
             bits *= 2
             if bits > 4 * arccots.PRECISION_LIMIT:
                 raise Undecidable(f"float({self!r}) did not converge")
