@@ -215,7 +215,20 @@ def check(path: Path | None = None) -> list[str]:
         for t in e.tests:
             if _test_exists(t) is False:
                 problems.append(f"{e.id}: test {t} does not exist")
+    problems += _untraced_properties(entries)
     return problems + errata_problems() + check_notes(entries=entries)
+
+
+def _untraced_properties(entries, properties=None) -> list[str]:
+    """A registered property that no row names (by its function or its catalog ID): a
+    made-up catalog ID would otherwise check something nobody can trace to the notes."""
+    if properties is None:
+        from ddg_oracle.properties.registry import all_properties
+        properties = all_properties()
+    named = {n.split(":")[-1].split(".")[-1] for e in entries for n in e.property}
+    ids = {e.id for e in entries}
+    return [f"{p.id}: property {p.name} is named by no row of the traceability table"
+            for p in properties if p.name not in named and p.id not in ids]
 
 
 # --- the notes' numbered items ----------------------------------------------------------------

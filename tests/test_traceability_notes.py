@@ -114,3 +114,16 @@ def test_theorems_prints_what_each_row_covers(capsys):
     claimed, entries = traceability.load()
     assert out.count("\n    covers: ") == out.count("\n    limits: ") == len(entries)
     assert "Algorithm 4.13" in out
+
+
+def test_a_property_with_a_made_up_catalog_id_and_no_row_fails_the_check():
+    """Issue 43: a property registered under an ID no row of the table names passed
+    `theorems --check`."""
+    from types import SimpleNamespace
+    from ddg_oracle.properties.registry import all_properties
+    _, entries = traceability.load()
+    assert traceability._untraced_properties(entries) == []
+    made_up = SimpleNamespace(id="X9.99", name="a_property_nobody_traced")
+    problems = traceability._untraced_properties(entries, all_properties() + [made_up])
+    assert problems == ["X9.99: property a_property_nobody_traced is named by no row of the "
+                        "traceability table"]
