@@ -18,6 +18,10 @@ reference's convention (:func:`to_reference`, applied by
 :class:`~ddg_oracle.properties.calls.Watched` to every call) before comparing.  A map
 adds at most two roundings (a sign and a factor 2 none), far inside the derived bounds,
 whose constants leave a margin of about 2 over the counted roundings (:mod:`.bounds`).
+A pointwise curvature is multiplied back by the reference's float area: the library's own
+area error (relative, a few eps times the faces' conditioning for an honest route) then
+reaches the angle defect times |K A|, which the defect bounds' per-corner terms cover on
+the meshes measured (PyGEL3D, VTK); they do not count it separately.
 Where an implementation declares nothing and fails, :func:`explaining` names the
 conventions under which its answer agrees with the exact one: the report then says
 "your cotan_laplacian is -L: declare conventions = {'laplacian': 'negative'}".

@@ -19,7 +19,9 @@ MODULES = sorted(({m.name for pkg in PACKAGES
 OPTIONAL = {"ddg_oracle.oracles.libigl": "igl", "ddg_oracle.oracles.pymeshlab": "pymeshlab",
             "ddg_oracle.oracles.gpytoolbox": "gpytoolbox",
             "ddg_oracle.oracles.robust_laplacian": "robust_laplacian",
-            "ddg_oracle.oracles.potpourri3d": "potpourri3d"}
+            "ddg_oracle.oracles.potpourri3d": "potpourri3d",
+            "ddg_oracle.oracles.lapy": "lapy", "ddg_oracle.oracles.mouette": "mouette",
+            "ddg_oracle.oracles.pygel3d": "pygel3d"}
 
 
 def test_every_package_is_walked():
