@@ -115,7 +115,9 @@ def test_a_search_the_budget_cut_short_is_incomplete():
     assert r.status == INCOMPLETE and not r.ok
     assert 0 < r.examples < r.wanted == 25
     assert r.summary() == f"incomplete ({r.examples} of 25 examples)"
-    assert "budget ran out" in r.note and r.mesh is None and r.replay is None
+    # where the budget ends (during an example, or between two: "used up") depends on the
+    # machine's load; either way the note says it was the time budget
+    assert "time budget" in r.note and r.mesh is None and r.replay is None
 
 
 def test_incomplete_fails_check_implementation_and_exits_1_unless_accepted(capsys, monkeypatch):
