@@ -7,14 +7,17 @@ check), main (``ddg-oracle check`` three times and with ci: the main job's time)
 (``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
 to catch each planted bug under the default profile), sidebyside (this checkout's numbers
 against another version's, ``--base-python``), mutation (mutmut on the core modules of
-reference/, the mutation score per module; long, docs/mutation.md)."""
+reference/, the mutation score per module; long, docs/mutation.md), faults (the fault suite:
+hostile cases per area, handled or badly; docs/faults.md), meshread (peak memory of reading a
+mesh file against its size; docs/faults.md)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from . import catch, cotan, dirichlet, flips, mutation, real, report, sidebyside, suite
+from . import (catch, cotan, dirichlet, faults, flips, meshread, mutation, real, report,
+               sidebyside, suite)
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -30,8 +33,10 @@ GROUPS = {
     "catch": catch.run,
     "sidebyside": sidebyside.run,
     "mutation": mutation.run,
+    "faults": faults.run,
+    "meshread": meshread.run,
 }
-ONLY_NAMED = ("sidebyside", "mutation")  # not part of --all
+ONLY_NAMED = ("sidebyside", "mutation", "faults", "meshread")  # not part of --all
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 

@@ -508,9 +508,7 @@ def _validate_check(args) -> None:
     from ddg_oracle.properties.profiles import time_limit_seconds
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
-    if not args.timeout > 0 or args.timeout == float("inf"):
-        raise UsageError(f"--timeout must be a positive number of seconds per call, got "
-                         f"{args.timeout}")
+    _check_timeout(args)
     if args.width < 40:
         raise UsageError(f"--width must be at least 40 columns, got {args.width}")
     time_limit_seconds()               # DDG_EXAMPLE_TIME_LIMIT
@@ -716,7 +714,16 @@ def _check(args, argv) -> int:
     return 1 if bad else 0
 
 
+def _check_timeout(args) -> None:
+    """--timeout of check, compare and verify: a bad value is a usage error, never a result
+    blamed on a library (-1: every call 'did not return'; 0: a worker restarted per call)."""
+    if not args.timeout > 0 or args.timeout == float("inf"):
+        raise UsageError(f"--timeout must be a positive number of seconds per call, got "
+                         f"{args.timeout}")
+
+
 def _compare(args) -> int:
+    _check_timeout(args)
     from ddg_oracle.compare import format_comparisons, load_all, compare_mesh
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     from ddg_oracle.implementations import available
@@ -750,6 +757,7 @@ def _vectors(args) -> int:
 
 
 def _verify(args) -> int:
+    _check_timeout(args)
     import json
     from ddg_oracle import vectors
     from ddg_oracle.properties.protocol import FLOAT64_EPSILON, implementation_name, machine_epsilon

@@ -50,7 +50,15 @@ def read_bytes(path, what: str, limit: int, error=InputError, limit_hint: str = 
                     f"{what}{hint}")
     try:
         with open(path, "rb") as fh:
-            data = fh.read(limit + 1)          # a file that grew since stat is still bounded
+            # the size stat saw, not the limit: read(limit + 1) reserves the whole limit (2
+            # GiB for a mesh) up front, a MemoryError under ulimit -v for a 20-face file; a
+            # file that grew since stat is still read only up to the limit
+            data = fh.read(info.st_size + 1)
+            while len(data) <= limit:
+                more = fh.read(min(1 << 20, limit + 1 - len(data)))
+                if not more:
+                    break
+                data += more
     except OSError as e:
         raise error(f"{path}: cannot read {what}: {e.strerror or e}") from None
     if len(data) > limit:

@@ -170,9 +170,12 @@ def crashed(task: Task, why: str, status: str | None = None) -> list:
                    error=why, source="generated" if task.mesh is None else f"mesh {task.mesh}")]
 
 
-class Interrupted(BaseException):
+class Interrupted(KeyboardInterrupt):
     """SIGINT, SIGTERM or SIGHUP stopped the run; ``signal`` is which, ``code`` the exit code
-    (130, 143); ``done`` the results of the tasks that had finished, in task order."""
+    (130, 143); ``done`` the results of the tasks that had finished, in task order.  A
+    KeyboardInterrupt, so that the property runner, which records every other exception of
+    a call as the implementation's crash, lets it through: a signal during a call of the
+    checked code is the user's stop, not the code's crash (and --resume reruns the task)."""
 
     def __init__(self, signum: int, done: list | None = None):
         self.signal, self.code, self.done = signum, 128 + signum, done or []

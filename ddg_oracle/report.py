@@ -289,7 +289,12 @@ class ResultStream:
         self._fh.flush()
 
     def close(self) -> None:
-        self._fh.close()
+        try:
+            self._fh.close()
+        except OSError:
+            # a full disk: the failed write was recorded by add() already; closing flushes
+            # the same buffer again, which must not turn into an internal error (exit 3)
+            pass
 
 
 # --- the terminal report -------------------------------------------------------------------

@@ -614,3 +614,39 @@ def test_methods_with_impl_lists_what_it_defines_and_warns_of_near_misses(capsys
     assert "`cotmatrix` is not a protocol method (did you mean `cotan_laplacian`?)" in err
     rc, _, err = _run(capsys, "methods", "--impl", "no_such_module_here:X")
     assert rc == 2 and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("command", ["compare", "verify"])
+@pytest.mark.parametrize("timeout", ["-1", "0"])
+def test_a_bad_timeout_of_compare_and_verify_is_a_usage_error(capsys, tmp_path, command, timeout):
+    """Fault suite (issue 45): compare --timeout -1 blamed every call on the library, verify
+    --timeout 0 restarted the worker per call."""
+    mesh = tmp_path / "t.obj"
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    target = str(mesh) if command == "compare" else str(Path(__file__).parents[1] / "vectors")
+    rc, _, err = _run(capsys, command, target, "--impl", "reference", "--timeout", timeout)
+    assert rc == 2 and "--timeout must be a positive number" in err and err.count("\n") == 1
+
+
+def test_read_bytes_reserves_the_file_not_the_limit(tmp_path, monkeypatch):
+    """Fault suite (issue 45): read(limit + 1) reserved the 2 GiB mesh limit up front, a
+    MemoryError under ulimit -v for a 20-face file.  The buffer follows the file's size."""
+    import io
+    from ddg_oracle import files
+    path = tmp_path / "small.bin"
+    path.write_bytes(b"x" * 100)
+    asked = []
+    real_open = open
+
+    class Recorder(io.BufferedReader):
+        def read(self, n=-1):
+            asked.append(n)
+            return super().read(n)
+
+    monkeypatch.setattr("builtins.open", lambda p, mode="r", *a, **k:
+                        Recorder(io.FileIO(p, "rb")) if mode == "rb" else real_open(p, mode, *a, **k))
+    assert files.read_bytes(path, "a test file", limit=2 ** 31) == b"x" * 100
+    assert max(asked) <= 1 << 20, asked
+    with pytest.raises(files.InputError if hasattr(files, "InputError") else Exception,
+                       match="over the limit"):
+        files.read_bytes(path, "a test file", limit=50)

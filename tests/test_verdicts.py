@@ -380,3 +380,20 @@ def test_a_failure_found_before_our_error_still_stands():
         raise KeyError("ours, while shrinking")
     r = run_property(replace(p, check=check), ReferenceImplementation(), QUICK)
     assert r.status == FAILED and "KeyError" in r.note and "bug of ddg-oracle" in r.note
+
+
+class StoppedBySignal(ReferenceImplementation):
+    """A call during which the run's SIGINT handler fires (jobs raises Interrupted there)."""
+    name = "stopped-by-signal"
+
+    def euler_characteristic(self, V, F):
+        from ddg_oracle.jobs import Interrupted
+        raise Interrupted(2)
+
+
+def test_a_signal_during_a_call_stops_the_run_and_is_not_the_implementations_crash():
+    """Fault suite (issue 45): with --workers 1, SIGINT during an exec driver's call was
+    recorded as that driver's crash, and --resume kept the crash."""
+    from ddg_oracle.jobs import Interrupted
+    with pytest.raises(Interrupted):
+        run_property(PROPERTIES["D1.6"], StoppedBySignal(), profile("default"))
