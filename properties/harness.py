@@ -364,9 +364,9 @@ def dirichlet_solve(A, V0, c):
     """The Dirichlet solution with the implementation's matrix (dense LU): ``c`` (values,
     or positions n x k) kept on V0, ``A u = 0`` solved at the others; returns (u, others)."""
     n = A.shape[0]
-    I = [v for v in range(n) if v not in set(V0)]
+    B0 = sorted(set(V0))            # a boundary vertex given twice is still one column
+    I = [v for v in range(n) if v not in set(B0)]
     u = np.array(c, dtype=float).copy()
     if I:
-        B0 = list(V0)
         u[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, B0)] @ u[B0])
     return u, I

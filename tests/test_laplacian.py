@@ -532,3 +532,15 @@ def test_the_conditioning_factors_of_the_bounds_are_the_exact_ones_within_two_ul
         want_cot = [float(m.corner_cot(f, c)) for c in range(3)]
         for got, want in zip([rho, *cot], [want_rho, *want_cot]):
             assert abs(got - want) <= 2 * np.spacing(abs(want)), (f, got, want)
+
+
+def test_the_dirichlet_harness_counts_a_repeated_boundary_vertex_once():
+    """Issue 40: with V0 = [0, 0, 2] the boundary column of vertex 0 was added twice, so the
+    correct solution of a correct matrix failed C3.4 and T3.2 (a false alarm)."""
+    import numpy as np
+    from ddg_oracle.properties.harness import dirichlet_solve
+    A = np.array([[1.0, -1, 0], [-1, 2, -1], [0, -1, 1]])     # a path 0 - 1 - 2
+    c = np.array([1.0, 0.0, 3.0])
+    u, others = dirichlet_solve(A, [0, 0, 2], c)
+    assert others == [1] and u[1] == 2.0                      # the mean of its neighbours
+    assert np.array_equal(u, dirichlet_solve(A, [2, 0], c)[0])
