@@ -47,6 +47,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from ddg_oracle.containment import alive
+
 from .common import ROOT, Mode, machine, say
 
 DOC = ROOT / "docs" / "faults.md"
@@ -185,13 +187,6 @@ def make_kit(directory) -> Path:
 
 # --- processes -------------------------------------------------------------------------------
 
-def _alive(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as fh:
-            return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"
-    except OSError:
-        return False
-
 
 def marked(marker: str) -> list[int]:
     """Live processes whose environment holds ``DDG_FAULT_MARKER=marker``."""
@@ -201,7 +196,7 @@ def marked(marker: str) -> list[int]:
         if entry.isdigit() and int(entry) != os.getpid():
             try:
                 with open(f"/proc/{entry}/environ", "rb") as fh:
-                    if needle in fh.read() + b"\0" and _alive(int(entry)):
+                    if needle in fh.read() + b"\0" and alive(int(entry)):
                         out.append(int(entry))
             except OSError:
                 continue
@@ -235,7 +230,7 @@ def _kill(pids) -> None:
             os.kill(pid, signal.SIGKILL)
         except OSError:
             pass
-    _wait_for(lambda: not any(_alive(p) for p in pids), None, 2.0)
+    _wait_for(lambda: not any(alive(p) for p in pids), None, 2.0)
 
 
 def _wait_for(what: Callable[[], object], proc, seconds: float):

@@ -59,7 +59,8 @@ def descendants(pid: int | None = None) -> list[int]:
     return out
 
 
-def _alive(pid: int) -> bool:
+def alive(pid: int) -> bool:
+    """The process ``pid`` exists and is not a zombie (its /proc stat)."""
     try:
         with open(f"/proc/{pid}/stat", "rb") as fh:
             return fh.read().rsplit(b")", 1)[1].split()[0] != b"Z"
@@ -77,7 +78,7 @@ def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
         except OSError:
             pass
     deadline = time.monotonic() + grace
-    while time.monotonic() < deadline and any(_alive(p) for p in procs):
+    while time.monotonic() < deadline and any(alive(p) for p in procs):
         time.sleep(0.05)
     for p in procs + [q for q in descendants() if q not in keep and q not in procs]:
         try:

@@ -801,7 +801,7 @@ def _planar_points():
 
 
 def _planar_result(impl, pts, pid):
-    """(the triangles of ``impl.planar_delaunay(pts)`` that are not flat, the mesh to show,
+    """D4.1, T4.1: (the triangles of ``impl.planar_delaunay(pts)`` that are not flat, the mesh to show,
     the indices of the flat ones).  A triangle repeating a point is a failure.  A triangle
     of three exactly collinear points is a failure of an exact implementation; for a float
     one it is an orientation tie (exactly 0) that rounding decided otherwise: its caller
@@ -810,7 +810,11 @@ def _planar_result(impl, pts, pid):
     P = np.array([[float(x), float(y)] for x, y in pts], dtype=np.float64)
     T = np.asarray(impl.planar_delaunay(P))
     mesh = ([[float(x), float(y), 0.0] for x, y in pts], T.tolist() if T.ndim == 2 else [])
-    if (T.ndim != 2 or T.shape[1:] != (3,) or T.size == 0 or not np.issubdtype(T.dtype, np.integer)
+    # indices as floats (JSON numbers of a driver, a library's float array) are indices
+    # when integral; 0.5 is not
+    if (T.ndim != 2 or T.shape[1:] != (3,) or T.size == 0
+            or not (np.issubdtype(T.dtype, np.integer)
+                    or (np.issubdtype(T.dtype, np.floating) and np.all(T == np.floor(T))))
             or T.min() < 0 or T.max() >= len(pts)):
         raise PropertyFailure(pid, impl, "planar_delaunay: not an (m, 3) array of point indices",
                               mesh=mesh, observed=getattr(T, "shape", None))
@@ -829,7 +833,7 @@ def _planar_result(impl, pts, pid):
 
 
 def _hull_problem(pts, tris) -> str | None:
-    """Why the triangles do not tile the convex hull of the points, or None: no edge in
+    """T4.1: why the triangles do not tile the convex hull of the points, or None: no edge in
     more than two triangles, and their areas (exact) sum to the hull's.  A tessellation
     that differs from the Delaunay one only across near-cocircular edges still tiles the
     hull; a subset of its triangles does not (it must not pass as a tie)."""
@@ -866,7 +870,7 @@ def _hull_problem(pts, tris) -> str | None:
 
 
 def _flat_tie(pid, impl, mesh, flat):
-    """The tie of :func:`_planar_result`'s flat triangles, once the others passed."""
+    """D4.1, T4.1: the tie of :func:`_planar_result`'s flat triangles, once the others passed."""
     _near_tie(pid, impl, mesh, f"{len(flat)} triangle(s) of exactly collinear points (faces "
               f"{flat[:5]}): their orientation is exactly 0, which float rounding decided "
               "otherwise; the other triangles are Delaunay")

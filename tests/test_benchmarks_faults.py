@@ -10,6 +10,8 @@ import sys
 
 import pytest
 
+from ddg_oracle.containment import alive
+
 from benchmarks import faults, meshread
 
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"),
@@ -52,7 +54,7 @@ def test_the_verdict_rule_sees_a_wrong_exit_and_a_stray(tmp_path):
     assert not wrong.handled and "exit 2, expected 0" in wrong.problems
     assert not stray.handled and stray.strays
     assert "1 stray process(es) left after the run" in stray.problems
-    assert all(not faults._alive(p) for p in stray.strays)          # killed by the suite
+    assert all(not alive(p) for p in stray.strays)          # killed by the suite
 
 
 def test_meshread_measures_a_finite_ratio_on_a_tiny_file(tmp_path):

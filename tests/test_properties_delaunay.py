@@ -205,3 +205,23 @@ def test_a_subset_of_the_delaunay_triangles_fails_T4_1_and_is_not_a_tie():
                           "test").status == "passed"
     r = run_on_example(PROPERTIES["T4.1"], _PlanarAnswer(drop=1), _SQUARE_AND_MIDPOINT, "test")
     assert r.status == "FAILED" and "convex hull" in str(r.failure), (r.status, r.failure)
+
+
+def test_integral_float_indices_are_indices_and_fractional_ones_are_not():
+    """A driver's JSON numbers or a library's float array of indices must not fail D4.1 (a
+    false alarm); 0.5 is no index."""
+    import numpy as np
+    from ddg_oracle.properties.runner import run_on_example
+
+    class FloatIndices(_PlanarAnswer):
+        def __init__(self, shift=0.0):
+            super().__init__()
+            self.shift = shift
+
+        def planar_delaunay(self, P):
+            return super().planar_delaunay(P).astype(np.float64) + self.shift
+
+    r = run_on_example(PROPERTIES["D4.1"], FloatIndices(), _SQUARE_AND_MIDPOINT, "test")
+    assert r.status == "passed", (r.status, r.failure, r.error)
+    r = run_on_example(PROPERTIES["D4.1"], FloatIndices(0.5), _SQUARE_AND_MIDPOINT, "test")
+    assert r.status == "FAILED" and "point indices" in str(r.failure), (r.status, r.error)
