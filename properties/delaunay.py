@@ -304,8 +304,21 @@ def delaunay_meshes():
     single triangle.  Not the wide surface meshes (random float jitter, valence 64,
     slivers): exact intrinsic flips on their float lengths are too slow to shrink a
     failure today (issue 18); and no isolated vertices: the chapter-4 checks compare
-    triangulations and matrices on the surface's vertices."""
-    return st.one_of(*_delaunay_kinds())
+    triangulations and matrices on the surface's vertices.  Scaled by 2**k and sometimes
+    moved far (:func:`~.strategies.scaled_meshes`: exact; what these properties check is
+    scale-invariant, and an absolute threshold on an edge or an area shows there)."""
+    from .strategies import scaled_meshes
+    return scaled_meshes(st.one_of(*_delaunay_kinds()))
+
+
+def delaunay_test_meshes():
+    """D4.4's examples: half :func:`delaunay_meshes`, half quads beside an exact tie
+    (:func:`~.strategies.near_cocircular_meshes`: a test with a tolerance decides them
+    wrongly); a third of either with faces reversed (:func:`~.strategies.with_reversed_faces`:
+    a test that finds the other face of an edge by the reversed directed edge calls the
+    edge a boundary edge, hence Delaunay)."""
+    from .strategies import grouped, near_cocircular_meshes, with_reversed_faces
+    return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds()), near_cocircular_meshes()))
 
 
 def _delaunay_kinds() -> list:
@@ -338,11 +351,21 @@ def non_orientable_meshes(draw):
 
 
 def intrinsic_meshes():
-    """:func:`delaunay_meshes`' kinds and non-orientable surfaces
-    (:func:`non_orientable_meshes`), one kind among eight: the examples of the properties
-    that ask for an intrinsic Delaunay triangulation (an implementation that declines
-    non-orientable input keeps most of its examples)."""
-    return st.one_of(*_delaunay_kinds(), non_orientable_meshes())
+    """The examples of the properties that ask for an intrinsic Delaunay triangulation, in
+    three equal parts: :func:`delaunay_meshes`' kinds and non-orientable surfaces
+    (:func:`non_orientable_meshes`, one kind among eight: an implementation that declines
+    non-orientable input keeps most of its examples); quads beside an exact tie
+    (:func:`~.strategies.near_cocircular_meshes`: a flip decided with a tolerance); and
+    planar triangulations far from Delaunay (:func:`~.strategies.sweep_meshes`: flip
+    cascades).  A third of them with faces reversed (:func:`~.strategies.with_reversed_faces`:
+    a flip algorithm that glues by reversed halfedge keys takes an interior edge for a
+    boundary edge and never flips it).  Half of the near ties and cascades closed by cones
+    (:func:`~.strategies.coned`): an implementation that declines boundary meets them too."""
+    from .strategies import (coned, grouped, near_cocircular_meshes, sweep_meshes,
+                             with_reversed_faces)
+    return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds(), non_orientable_meshes()),
+                                         coned(near_cocircular_meshes()),
+                                         coned(sweep_meshes())))
 
 
 @st.composite
@@ -389,7 +412,7 @@ def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
 
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
       "cot a + cot b >= 0 on every edge (boundary edges are Delaunay); exact ties accept both",
-      needs={"is_locally_delaunay"}, on_mesh=None, strategy=delaunay_meshes)
+      needs={"is_locally_delaunay"}, on_mesh=None, strategy=delaunay_test_meshes)
 def locally_delaunay_edges(impl, case: Example):
     pid = "D4.4 / T4.7 / P4.9"
     X = Exact.of(case)
@@ -794,10 +817,13 @@ def _near_tie(pid, impl, mesh, message, **kw):
 
 def _planar_points():
     from .planar_points import rational_point_sets
-    # rounded to the checked implementation's input format; distinct points after it
-    return rational_point_sets().map(lambda pts: tuple((representable(x), representable(y))
-                                                       for x, y in pts)).filter(
-        lambda pts: len(set(pts)) == len(pts))
+    from .strategies import near_cocircular_point_sets
+    # rounded to the checked implementation's input format; distinct points after it.  Half
+    # the draws points of one circle, one moved off it by 2**-k (k in 20..44): the
+    # nearly cocircular sets where a float32 rounding or a joggle picks the other diagonal
+    return st.one_of(rational_point_sets().map(lambda pts: tuple((representable(x), representable(y))
+                                                                 for x, y in pts)).filter(
+        lambda pts: len(set(pts)) == len(pts)), near_cocircular_point_sets())
 
 
 def _planar_result(impl, pts, pid):
@@ -955,7 +981,9 @@ def unique_planar_tessellation(impl, pts):
 
 def _planar_triangulations():
     from .planar_points import planar_triangulations
-    return planar_triangulations()
+    from .strategies import scaled_planar
+    # scaled by 2**k (exact): an absolute epsilon on the in-circle determinant shows
+    return scaled_planar(planar_triangulations())
 
 
 class NotPlanarDelaunay(Exception):

@@ -302,7 +302,11 @@ def maximum_principle(impl, case: Example):
       "the minimiser of the exact piecewise linear energy: its exact gradient vanishes off V0 "
       "and E(u + phi) >= E(u)", needs_any={"cotan_laplacian", "solve_dirichlet"},
       on_mesh=None,
-      strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids())))
+      # and planar grids of 4 x 4 and 5 x 5 squares (a dozen to thirty unknowns; planar:
+      # exact rational weights, fast): an iterative solver stopped early (CG at rtol 1e-5)
+      # shows there; on a few unknowns it converges to rounding
+      strategy=lambda: with_boundary(st.one_of(acute_meshes(), planar_meshes(), jittered_grids(),
+                                               planar_meshes(min_size=4, max_size=5))))
 def dirichlet_solution_minimises_the_energy(impl, case: Example):
     V0 = list(case.boundary)
     for route, X, u, I, _, res in _dirichlet_solutions(impl, case, "C3.4 / T3.5"):
@@ -444,7 +448,10 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
       "at interior vertices of a planar mesh: linear precision); the implementation's own "
       "area_gradient equals grad A too", needs_any={"cotan_laplacian", "area_gradient"},
       on_mesh=(),
-      strategy=lambda: st.one_of(planar_meshes(), jittered_grids(), closed_meshes(), obtuse_meshes(),
+      # the small families scaled by 2**k and moved far too (scaled_meshes): an absolute guard
+      # (a normal C / max(|C|, 1e-12)) shows only on a small mesh
+      strategy=lambda: st.one_of(scaled_meshes(st.one_of(planar_meshes(), jittered_grids(), closed_meshes(),
+                                                         obtuse_meshes())),
                                  surface_meshes(isolated=True)))
 def area_as_dirichlet_energy(impl, case: Example):
     caps = capabilities(impl)
@@ -511,7 +518,10 @@ def _face_areas(surface):
       "faces) and barycentric areas agree with the exact ones and sum to the total area",
       needs_any={"vertex_areas_voronoi", "vertex_areas_barycentric"},
       on_mesh=(),
-      strategy=lambda: st.one_of(obtuse_meshes(), planar_meshes(), jittered_grids(), closed_meshes(),
+      # the small families scaled (an absolute epsilon on the obtuse test shows on a small
+      # mesh) and with a vertex used by no face anywhere in V (scaled_meshes, with_isolated)
+      strategy=lambda: st.one_of(with_isolated(scaled_meshes(st.one_of(obtuse_meshes(), planar_meshes(),
+                                                                       jittered_grids(), closed_meshes())), 1),
                                  surface_meshes(isolated=True)))
 def vertex_areas_sum_to_the_area(impl, case: Example):
     X = Exact.of(case)

@@ -85,7 +85,8 @@ METHODS: dict[str, Method] = {
         "numbers", element="vertex coordinate"),
     "solve_dirichlet": Method(
         "solve_dirichlet(V, F, boundary, values): (n,) float array u with u[boundary] = "
-        "values ((k,) int and (k,) float arrays) and (L u)(i) = 0 at every other vertex, "
+        "values ((k,) int and (k,) float arrays; the indices distinct) and (L u)(i) = 0 at "
+        "every other vertex, "
         "L as cotan_laplacian: the discrete Dirichlet problem (C3.4 / T3.5); every "
         "component of the mesh meets the boundary set",
         "numbers", element="vertex", arguments=("V", "F", "boundary", "values")),

@@ -26,6 +26,22 @@ from .example import Example
 from .precision import input_format, representable
 
 
+def spread(values):
+    """One of ``values``, each about equally often, shrinking towards the first (list them
+    simplest first).  ``st.integers(a, b)`` draws ``a`` in about half of the examples (and
+    ``st.integers(0, 3) == 3`` holds in one of seven, not four); where a bug shows only
+    in part of a range (an exponent past a threshold), that part must be drawn."""
+    return st.sampled_from(tuple(values))
+
+
+def grouped(*strategies):
+    """``st.one_of(*strategies)`` as one branch of an enclosing ``one_of``: Hypothesis
+    flattens nested ``one_of`` (through ``map`` too), so ``one_of(one_of(a, b, c), d)``
+    draws d one time in four, not two."""
+    inner = st.one_of(*strategies)
+    return st.composite(lambda draw: draw(inner))()
+
+
 def expected_classification(orientable: bool, genus: int, holes: int) -> Classification:
     """Classification of the connected sum of ``genus`` tori (or crosscaps) minus ``holes`` disks."""
     chi = (2 - 2 * genus if orientable else 2 - genus) - holes
@@ -137,8 +153,9 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
       oriented: orientable stays orientable; what breaks is code that follows the
       faces' own direction);
     * ``components``: up to this many more components (a tetrahedron, a disk, a Möbius
-      strip, a projective plane, a torus), after the first; the expected class then
-      has chi, orientability and boundary loops of the union, and no genus (None);
+      strip, a projective plane, a torus), listed after the surface or before it; the
+      expected class then has chi, orientability and boundary loops of the union, and
+      no genus (None);
     * ``isolated``: up to this many vertices used by no face (each counts 1 in
       chi = V - E + F), at drawn indices of the arrays.
     """
@@ -151,6 +168,9 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
     g = draw(st.integers(lowest, max(lowest, max_genus))) if genus is None else int(genus)
     if g < lowest:
         raise ValueError(f"genus {g} impossible for a {'non-' if not o else ''}orientable surface")
+    # the count of other components before the holes: a failure that needs a boundary
+    # shrinks to one surface with a hole (a disk), not to a closed one beside an annulus
+    n_comp = draw(st.integers(0, components)) if components else 0
     k = draw(st.integers(0, max_holes)) if holes is None else int(holes)
     t = base_surface(o, g)
     recipe = (f"{'genus' if o else 'crosscaps'} {g}")
@@ -167,15 +187,18 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
     if reversed and draw(st.integers(0, 2)) == 2:
         t, n = variants.reversed_faces(t, draw(st.integers(0, 1 << 16)))
         recipe += f", {n} face(s) reversed"
-    for _ in range(draw(st.integers(0, components)) if components else 0):
+    for _ in range(n_comp):
         name = draw(st.sampled_from(sorted(_TOPOLOGY_COMPONENTS)))
         build, (o2, g2, k2) = _TOPOLOGY_COMPONENTS[name]
         other = expected_classification(o2, g2, k2)
-        t = variants.union_of(t, build())
+        # listed after the surface, or before it (its faces and vertices first: where code
+        # that looks at the first component only, face 0's, sees the other one)
+        first = draw(st.booleans())
+        t = variants.union_of(build(), t) if first else variants.union_of(t, build())
         expected = Classification(expected.orientable and other.orientable, None,
                                   expected.boundary_components + other.boundary_components,
                                   expected.euler_characteristic + other.euler_characteristic)
-        recipe += f", and a {name}"
+        recipe += f", and a {name}" + (" listed first" if first else "")
     positions = _placeholder_positions(t)
     if relabel:
         key = draw(st.integers(0, 1 << 16))
@@ -355,7 +378,7 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
     if orientation == 1 and closed is True:
         orientation = 2
     name = draw(st.sampled_from(names))      # drawn always: the choices stay aligned when
-    if draw(st.integers(0, 3)) == 3:          # orientation or valence shrinks to 0
+    if draw(spread((False, False, False, True))):   # orientation or valence shrinks to 0
         name = draw(st.sampled_from(high))
     if orientation == 1:
         name = "moebius strip"
@@ -374,9 +397,14 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
             s, chi = _built((name, n, lift), lambda: variants.fan(n, lift or None)), 1
             name = f"fan of valence {n}" + (f", centre lifted by 2^-{lift}" if lift else ", planar")
         else:
-            s = _built((name, n, a, b),
-                       lambda: variants.bipyramid(n, Fraction(1 + a, 2), Fraction(1 + b, 2)))
-            chi, name = 2, f"bipyramid of valence {n}"
+            # dented: the lower apex pushed up inside, to half the upper one's height (a
+            # closed embedded surface whose lower edges are reflex: a saddle's dihedral
+            # angles are negative, which an unsigned angle gets wrong)
+            dented = draw(st.booleans())
+            bottom = -Fraction(1 + a, 4) if dented else Fraction(1 + b, 2)
+            s = _built((name, n, a, b, dented),
+                       lambda: variants.bipyramid(n, Fraction(1 + a, 2), bottom))
+            chi, name = 2, f"{'dented ' if dented else ''}bipyramid of valence {n}"
     else:
         base = name.split(" ", 1)[1]
         s0 = _built((base, a, b), lambda: _CLOSED[base](a, b))
@@ -398,7 +426,8 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
 
     * the surface: a constructor's closed surface or disk, annulus, grid, a closed
       one minus a face, a fan of valence 3..64 (exactly planar or its centre
-      lifted by 2**-k) or a bipyramid of valence 3..64; maybe 1-to-4 subdivided
+      lifted by 2**-k) or a bipyramid of valence 3..64 (one in two dented: its lower
+      apex pushed up inside, reflex edges on a 6-face sphere); maybe 1-to-4 subdivided
       (exact midpoints), some interior edges flipped (``wide``: a random valence
       distribution) and jittered (2**-(4 + level), rational or float);
     * ``intrinsic=True`` (properties of the metric alone: angle defects, turning
@@ -454,7 +483,8 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     k_sliver, family = 0, None
     if sliver:
         kind = ("needle", "cap")[sliver - 1]
-        k_sliver = draw(st.integers(1, min(SLIVER_LIMIT, fmt.sliver)))
+        # every exponent about equally often (integers() would draw 2^-1 half the time)
+        k_sliver = draw(spread(range(1, min(SLIVER_LIMIT, fmt.sliver) + 1)))
         h = draw(st.integers(0, 1 << 16))
         if draw(st.booleans()):                               # a boundary edge, if any
             t = s.triangulation
@@ -496,7 +526,9 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         recipe += f", reordered (seed {order})"
     # scaling by 2**k is exact in floats, so a bug of the unit-size mesh shows scaled too:
     # scale most examples (a threshold bug shows only there)
-    k = draw(st.integers(-fmt.scale, fmt.scale)) if far and draw(st.integers(0, 3)) else 0
+    # (three draws of four; Hypothesis's integers() favour 0 and the ends of the range,
+    # where an absolute threshold of 1e-13 on an edge shows: k <= -44)
+    k = draw(st.integers(-fmt.scale, fmt.scale)) if far and draw(spread((False, True, True, True))) else 0
     e = draw(st.integers(0, fmt.offset)) if far and draw(st.integers(0, 3)) >= 2 else None
     if e is not None and sliver:
         # keep >= 12 bits of the sliver after rounding
@@ -704,32 +736,221 @@ def obtuse_quads(draw):
     return mesh_case(pts, [(0, 1, 2), (1, 0, 3)], f"quad L={L} apexes ({x1}/4,{h1}/16), ({x2}/4,-{h2}/16)")
 
 
-#: near-ties are drawn 2**-k off an exact tie, k in this range: 1e-6 .. 1e-12 relative
-NEAR_TIE_EXPONENTS = (20, 40)
+#: near ties are drawn 2**-k off an exact tie, k one of these (evenly): 1e-6 .. 6e-14
+#: relative, up to where float64's own tie bound begins (k about 45 on the circle of radius
+#: 5), denser towards that end: a tolerance of 1e-6 relative shows from k = 20 on, one of
+#: 1e-10 only from k = 35 or so, and one fine near tie shows every coarser tolerance.
+#: First (what a failure shrinks to, and what Hypothesis's simplest examples draw) 40: the
+#: finest that every quad drawn decides in float64, so it shows any tolerance of 1e-12
+#: relative or more.  (``integers(20, 40)`` would draw 20 in about half of the examples.)
+NEAR_TIE_EXPONENTS = (40, 20, 24, 28, 31, 34, 36, 38, 41, 42, 43, 44)
+
+
+def _near_tie_quad(draw, tie: bool = True):
+    """(exact points, recipe) of :func:`near_cocircular_quads` (``tie``: the exact tie is
+    drawn too, in one draw of three)."""
+    from .planar_points import CIRCLE5
+    picks = sorted(draw(st.lists(st.integers(0, len(CIRCLE5) - 1), min_size=4, max_size=4,
+                                 unique=True)))
+    a, b, c, d = (tuple(Fraction(x) for x in CIRCLE5[i]) for i in picks)   # counterclockwise
+    moved = draw(spread((False, True, True))) if tie else True
+    k = draw(spread(NEAR_TIE_EXPONENTS)) if moved else None
+    # in (the edge not Delaunay by a hair, what a tolerance "for robustness" calls
+    # Delaunay) two times of three, out (Delaunay by a hair) the third
+    inward = moved and draw(spread((True, True, False)))
+    if moved:
+        scale = 1 - Fraction(1, 2 ** k) if inward else 1 + Fraction(1, 2 ** k)
+        d = (d[0] * scale, d[1] * scale)
+    # tilted: rotated about the x axis by atan(4/3) and scaled by 5, (x, y) -> (5 x, 3 y,
+    # 4 y): still exact integers (dyadic after the move), still on one circle
+    tilt = draw(st.booleans())
+    pts = [(5 * x, 3 * y, 4 * y) if tilt else (x, y, Fraction(0)) for x, y in (a, b, c, d)]
+    recipe = ("cocircular quad" + (f", a corner moved {'in' if inward else 'out'} by 2^-{k}"
+                                   if moved else "") + (", tilted" if tilt else ""))
+    return pts, recipe
 
 
 @st.composite
 def near_cocircular_quads(draw):
     """Two triangles on four points of the circle of radius 5 (integer points: an exact
     tie, cot a + cot b = 0 on the diagonal) with the fourth point moved radially by a
-    relative 2**-k, k in :data:`NEAR_TIE_EXPONENTS` (in or out: Delaunay or not by a
-    margin of 1e-6 .. 1e-12), or not at all: every sign decision on the diagonal (a
-    Delaunay flag, a weight's sign) is made at the tie or just beside it, where an
-    absolute epsilon decides it wrongly.  In z = 0, or tilted (z = x / 4: still
-    cocircular in its plane).  Shrinks to the exact tie in the plane."""
+    relative 2**-k, k in :data:`NEAR_TIE_EXPONENTS` (in, not Delaunay, or out: Delaunay,
+    by a margin of 1e-6 .. 6e-14; in two times of three), in two draws of three, or not
+    at all: every sign decision on the diagonal (a Delaunay flag, a weight's sign, a flip)
+    is made at the tie or just beside it, where an absolute or relative tolerance decides
+    it wrongly.  In z = 0, or tilted (rotated out of it, exactly).  Shrinks to the exact
+    tie in the plane."""
+    pts, recipe = _near_tie_quad(draw)
+    return mesh_case(pts, [(0, 1, 2), (0, 2, 3)], recipe)
+
+
+@st.composite
+def near_cocircular_meshes(draw, max_quads: int = 4):
+    """1 .. ``max_quads`` :func:`near_cocircular_quads` side by side (64 apart in x, each a
+    component of its own), each moved in or out by its own 2**-k (never the exact tie:
+    :func:`near_cocircular_quads` in :func:`obtuse_meshes` draw it): several near ties per
+    example, since only a move in one direction, at a fine enough k, shows a given
+    tolerance (1e-10 relative: an inward move with k >= 35, about one quad in three).
+    Shrinks to one quad moved in by 2**-40 (a list: the shrinker deletes the quads that
+    do not fail, whichever is the one that does)."""
+    quads = draw(st.lists(st.composite(lambda d: _near_tie_quad(d, tie=False))(),
+                          min_size=1, max_size=max_quads))
+    count = len(quads)
+    pts, faces, recipes = [], [], []
+    for i, (quad, recipe) in enumerate(quads):
+        faces += [(len(pts), len(pts) + 1, len(pts) + 2), (len(pts), len(pts) + 2, len(pts) + 3)]
+        pts += [(x + 64 * i, y, z) for x, y, z in quad]
+        recipes.append(recipe)
+    return mesh_case(pts, faces, "; ".join(recipes) if count == 1 else
+                     f"{count} quads side by side: " + "; ".join(recipes))
+
+
+def with_reversed_faces(meshes):
+    """``meshes`` with, in about one draw of three, 1 to 3 drawn faces listed the other way:
+    the same surface inconsistently oriented (an orientable one stays orientable, as a mesh
+    file may list it), where code that finds the face across an edge i -> j as the face
+    listing j -> i takes an interior edge for a boundary edge (and a Delaunay test, a flip
+    or a weight is skipped there).  Shrinks to none, then to face 0 alone."""
+    from dataclasses import replace
+
+    @st.composite
+    def build(draw):
+        c = draw(meshes)
+        if not draw(spread((False, False, True))) or not c.faces:
+            return c
+        which = sorted(set(draw(st.lists(st.integers(0, len(c.faces) - 1), min_size=1,
+                                         max_size=3))))
+        faces = tuple((f[0], f[2], f[1]) if i in which else tuple(f)
+                      for i, f in enumerate(c.faces))
+        return replace(c, faces=faces, recipe=f"{c.recipe}, face(s) {which} reversed",
+                       _given=None, _cache={})
+    return build()
+
+
+def coned(meshes):
+    """``meshes`` with, in about one draw of two, every boundary loop closed by a cone to a
+    new apex above the loop's centroid (at the height of the loop's extent): a closed
+    surface with the drawn triangulation inside it, every edge decision of which is
+    unchanged (the cone's faces only touch former boundary edges).  Implementations that
+    decline boundary (a tufted cover, a closed-surface solver) are given the same near
+    ties and flip cascades.  Shrinks to the open mesh."""
+    from dataclasses import replace
+
+    @st.composite
+    def build(draw):
+        c = draw(meshes)
+        if not draw(st.booleans()):
+            return c
+        t = c.triangulation
+        loops = t.boundary_loops()
+        if not loops:
+            return c
+        pts, faces = list(c.positions), [tuple(f) for f in c.faces]
+        apex_of = {}
+        for loop in loops:
+            xs = [c.positions[v] for v in loop]
+            centre = [sum(p[i] for p in xs) / len(xs) for i in range(3)]
+            extent = max(max(p[i] for p in xs) - min(p[i] for p in xs) for i in range(3))
+            apex = (centre[0], centre[1], centre[2] + extent)
+            for v in loop:
+                apex_of[v] = len(pts)
+            pts.append(tuple(_dyadic(x) for x in apex))
+        # the faces' own direction of each boundary edge, reversed: the cone is oriented
+        # with the surface wherever the surface is
+        uses = {}
+        for f in c.faces:
+            for i in range(3):
+                a, b = f[i], f[(i + 1) % 3]
+                uses.setdefault(frozenset((a, b)), []).append((a, b))
+        for pairs in uses.values():
+            if len(pairs) == 1:
+                a, b = pairs[0]
+                faces.append((b, a, apex_of[a]))
+        for a, b, x in faces[len(c.faces):]:
+            p, q, r = pts[a], pts[b], pts[x]
+            u = [q[i] - p[i] for i in range(3)]
+            w = [r[i] - p[i] for i in range(3)]
+            if all(u[(i + 1) % 3] * w[(i + 2) % 3] == u[(i + 2) % 3] * w[(i + 1) % 3]
+                   for i in range(3)):
+                return c        # an apex on a boundary edge's line (no closed surface here)
+        return replace(c, positions=tuple(pts), faces=tuple(faces),
+                       recipe=f"{c.recipe}, {len(loops)} boundary loop(s) coned off",
+                       _given=None, _cache={}, boundary=(), expected=None, chi=None)
+    return build()
+
+
+@st.composite
+def near_cocircular_point_sets(draw):
+    """4 to 6 of the integer points of the circle of radius 5 (an exact cocircular set)
+    around a drawn integer centre, one of them moved radially by a relative 2**-k, k in
+    :data:`NEAR_TIE_EXPONENTS`, in or out (the exact ties come with
+    :func:`.planar_points.rational_point_sets`' cocircular subsets): planar Delaunay
+    decided beside a tie, where a float32 rounding of the points (k > 24), a joggle or an
+    epsilon picks the other diagonal.  Rounded to the input format (a float32
+    implementation gets the rounded points: its ties are exact).  Shrinks to four points,
+    the last moved in by 2**-40."""
     from .planar_points import CIRCLE5
-    picks = sorted(draw(st.lists(st.integers(0, len(CIRCLE5) - 1), min_size=4, max_size=4,
-                                 unique=True)))
-    a, b, c, d = (tuple(Fraction(x) for x in CIRCLE5[i]) for i in picks)   # counterclockwise
-    k = draw(st.one_of(st.none(), st.integers(*NEAR_TIE_EXPONENTS)))
-    if k is not None:
-        scale = 1 + (1 if draw(st.booleans()) else -1) * Fraction(1, 2 ** k)
-        d = (d[0] * scale, d[1] * scale)
-    tilt = draw(st.booleans())
-    pts = [(x, y, x / 4 if tilt else Fraction(0)) for x, y in (a, b, c, d)]
-    return mesh_case(pts, [(0, 1, 2), (0, 2, 3)],
-                     "cocircular quad" + (f", a corner moved by 2^-{k}" if k else "")
-                     + (", tilted" if tilt else ""))
+    count = draw(spread((4, 5, 6)))
+    picks = sorted(draw(st.lists(st.integers(0, len(CIRCLE5) - 1), min_size=count,
+                                 max_size=count, unique=True)))
+    pts = [(Fraction(x), Fraction(y)) for x, y in (CIRCLE5[i] for i in picks)]
+    i = count - 1 - draw(st.integers(0, count - 1))
+    k = draw(spread(NEAR_TIE_EXPONENTS))
+    scale = 1 - Fraction(1, 2 ** k) if draw(spread((True, False))) else 1 + Fraction(1, 2 ** k)
+    pts[i] = (pts[i][0] * scale, pts[i][1] * scale)
+    cx, cy = draw(st.integers(-3, 3)), draw(st.integers(-3, 3))
+    pts = tuple((representable(x + cx), representable(y + cy)) for x, y in pts)
+    assume(len(set(pts)) == len(pts))
+    return pts
+
+
+def sweep_meshes(max_points: int = 10):
+    """Straight-line triangulations of planar point sets (:func:`.planar_points.planar_triangulations`:
+    the sweep triangulation's long fans, flipped at random, sometimes a boundary face
+    removed) as flat meshes in z = 0: far from Delaunay, so that an intrinsic flip algorithm
+    meets cascades (a flip makes a neighbouring edge non-Delaunay, which must be flipped
+    in turn; one pass over the edges stops early).  Shrinks to a triangle."""
+    from .planar_points import planar_triangulations
+
+    def mesh(example):
+        pts, faces, _ = example
+        return mesh_case([(x, y, 0) for x, y in pts], faces,
+                         f"planar triangulation of {len(pts)} points, {len(faces)} faces")
+    return planar_triangulations(max_points).map(mesh)
+
+
+def scaled_planar(triangulations):
+    """``(points, faces, on_hull)`` of ``triangulations`` with the points multiplied by 2**k,
+    k from :data:`SCALES` (exact powers of two; an in-circle determinant, of degree 4 in
+    the coordinates, stays a normal number): an absolute epsilon on it (``det > 1e-9``)
+    decides nothing on a small point set.  Shrinks to scale 1."""
+    @st.composite
+    def build(draw):
+        pts, faces, on_hull = draw(triangulations)
+        k = draw(st.sampled_from(SCALES[input_format().name]))
+        if k:
+            s = Fraction(2) ** k
+            pts = tuple((x * s, y * s) for x, y in pts)
+        return pts, faces, on_hull
+    return build()
+
+
+#: valences of :func:`valence_fans`, simplest first: small stars, and just past the fixed
+#: one-ring widths of C and GPU codes (16, 32 neighbours)
+FAN_VALENCES = (3, 4, 5, 6, 8, 12, 16, 17, 20, 24, 32, 33)
+
+
+@st.composite
+def valence_fans(draw):
+    """The star of one vertex with n neighbours on the unit circle (n faces: a disk), n
+    drawn evenly from :data:`FAN_VALENCES`, exactly planar or with the centre lifted by
+    2**-k: a vertex of high valence in a small mesh (a one-ring table of fixed width
+    drops the weights past its last column).  Shrinks to the planar fan of valence 3."""
+    n = draw(spread(FAN_VALENCES))
+    lift = draw(spread((0, 1, 4, 10, FAN_LIFT_LIMIT)))      # 0: exactly planar
+    s = _built(("fan", n, lift), lambda: variants.fan(n, lift or None))
+    return mesh_case(s.positions, s.triangulation.faces, f"fan of valence {n}" + (
+        f", centre lifted by 2^-{lift}" if lift else ", planar"))
 
 
 def obtuse_meshes():
@@ -776,11 +997,16 @@ def surface_meshes(draw, closed: bool | None = None, isolated: bool = False, far
 
 def any_meshes(isolated: bool = False, far: bool = True):
     """Every kind above (``isolated=True``: also vertices used by no face; ``far``: as
-    :func:`surface_meshes`): half the draws one of the small families, half
-    :func:`surface_meshes`, where the wide classes are (reversed faces, Möbius strips,
-    slivers, components, scales, offsets); shrinks towards a single triangle."""
-    small = st.one_of(single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
-                      acute_meshes(), closed_meshes())
+    :func:`surface_meshes`): half the draws one of the small families (and fans of high
+    valence, :func:`valence_fans`; a third of them with faces reversed,
+    :func:`with_reversed_faces`), half :func:`surface_meshes`, where the wide classes are
+    (reversed faces, Möbius strips, slivers, components, scales, offsets); shrinks
+    towards a single triangle.  (The small families are one strategy, not flattened into
+    the outer ``one_of``: seven families beside one :func:`surface_meshes` would leave it
+    one draw in eight.)"""
+    small = with_reversed_faces(st.one_of(
+        single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
+        acute_meshes(), closed_meshes(), valence_fans()))
     if isolated:
         # the small families too: a vertex used by no face is a bug class of its own
         # (dropped and renumbered, a row of NaN), not only of the wide surfaces
@@ -789,11 +1015,13 @@ def any_meshes(isolated: bool = False, far: bool = True):
 
 
 #: binary exponents of the scales drawn by :func:`scaled_meshes`, per input format: 0
-#: (shrinks there), and scales far from 1 at which products of four coordinates
-#: (|cross|^2, l^2 l^2) still stay normal numbers of the format (float64: 2**-800 ..
-#: 2**800; float32: 2**-96 .. 2**96), so only absolute thresholds fail
-SCALES = {"float64": (0, 0, 0, 0, -64, 64, -200, 200),
-          "float32": (0, 0, 0, 0, -12, 12, -24, 24),
+#: (shrinks there; a quarter of the draws), and scales far from 1 at which products of
+#: four coordinates (|cross|^2, l^2 l^2) still stay normal numbers of the format
+#: (float64: 2**-800 .. 2**800; float32: 2**-96 .. 2**96), so only absolute thresholds
+#: fail; below 1 in three draws of eight (an absolute epsilon of 1e-12 on a dot product
+#: or a cross product bites from about 2**-20 down)
+SCALES = {"float64": (0, 0, -24, 24, -64, 64, -200, 200),
+          "float32": (0, 0, -8, 8, -12, 12, -24, 24),
           "float16": (0, 0, 0, 0, -1, 1, -2, 2)}
 
 
@@ -877,7 +1105,9 @@ def with_boundary(meshes, mesh_boundary: bool = False):
     """A mesh with a nonempty drawn boundary set V0 (or its boundary vertices) and
     values on all vertices (only those on V0 are used).  V0 is listed sorted, reversed
     or shuffled (the order an implementation receives it in): a solver that assumes
-    sorted indices fails on the others."""
+    sorted indices fails on the others.  Never a vertex listed twice: the protocol's
+    boundary indices are distinct, as in the libraries (gpytoolbox asserts it, LaPy raises,
+    libigl's min_quad_with_fixed crashes on a repeat)."""
     @st.composite
     def build(draw):
         c = draw(meshes)

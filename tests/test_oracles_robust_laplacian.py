@@ -23,9 +23,10 @@ from ddg_oracle.properties.bounds import entry_bounds  # noqa: E402
 from ddg_oracle.properties.harness import Exact  # noqa: E402
 from ddg_oracle.properties.profiles import profile  # noqa: E402
 from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
-from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, run_on_example, run_property  # noqa: E402
+from ddg_oracle.properties.runner import (FAILED, NOT_APPLICABLE, PASSED, run_on_example,  # noqa: E402
+                                         run_properties, run_property)
 from ddg_oracle.reference import PolyhedralSurface, Triangulation  # noqa: E402
-from ddg_oracle.reference.delaunay import flip_to_delaunay  # noqa: E402
+from ddg_oracle.reference.delaunay import flip_to_delaunay, laplace_beltrami  # noqa: E402
 from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_barycentric  # noqa: E402
 from tests import peer_checks as pc  # noqa: E402
 
@@ -241,6 +242,23 @@ def test_outside_domain_crosses_the_worker_process():
         assert impl.intrinsic_delaunay_laplacian(W, G).shape == (8, 8)
 
 
-def test_every_applicable_property_passes():
-    results = check_implementation(RL, profile="default", seed=0)     # reproducible
-    assert {r.property_id for r in results if r.status == PASSED} >= {"D4.8 / R4.9", "X4.2"}
+def test_every_applicable_property_passes_but_D48_on_the_flip_threshold_RL2():
+    """X4.2 passes; D4.8 fails on its closed near ties (a quad moved in by 2^-20, coned
+    off) and on nothing else: the 1e-6 flip threshold of F-robust-laplacian-2, which the
+    report names."""
+    from ddg_oracle.report import known_finding, known_findings
+    results = {r.property_id: r for r in run_properties(RL, "default", seed=0)}
+    assert results["X4.2"].status == PASSED
+    d48 = results["D4.8 / R4.9"]
+    assert d48.status == FAILED, d48.status
+    assert known_finding(d48, known_findings()) == "F-robust-laplacian-2"
+    V, F = (np.asarray(x) for x in d48.mesh)
+    assert len(F) <= 12 and not len(boundary_edges(F)), d48.mesh     # shrunk, closed
+    L = rl.mesh_laplacian(V.astype(float), F, mollify_factor=0)[0].toarray()
+    s = PolyhedralSurface.from_arrays(V, F)
+    exact = laplace_beltrami(s).to_scipy().toarray()
+    kept = (exact == 0) & (L != 0)           # an edge the exact flips remove, the library keeps
+    i, j = np.argwhere(kept)[0]
+    w = -cotan_laplacian(s)[int(i), int(j)]   # its exact weight in the input triangulation
+    assert -1e-6 < w < 0                     # inside the threshold (-1e-6, 0)
+    assert all(r.ok for r in results.values() if r.property_id != "D4.8 / R4.9")

@@ -313,3 +313,97 @@ def test_float32_implementations_get_float32_inputs():
                  settings=settings(SEARCH, max_examples=150))
     # and float64 ones get float64 numbers that float32 cannot hold
     find(jittered_surfaces(), lambda c: not in_float32(c), settings=SEARCH)
+
+
+# --- where the planted variants hide (issue 40, items 4-5): near ties across their range,
+# reversed faces and high valence in small meshes, small families scaled, flip cascades -----
+
+
+def _ks_in(case):
+    import re
+    return [int(k) for k in re.findall(r"moved in by 2\^-(\d+)", case.recipe)]
+
+
+def test_near_ties_are_drawn_across_the_range_and_shrink_to_one_quad():
+    from ddg_oracle.properties.strategies import NEAR_TIE_EXPONENTS, near_cocircular_meshes
+    case = find(near_cocircular_meshes(), lambda c: any(k >= 40 for k in _ks_in(c)),
+                settings=SEARCH)
+    assert len(case.faces) == 2 and case.recipe.startswith("cocircular quad, a corner moved in by 2^-40")
+    # not integers(20, 44), which draws 20 in half the examples: every exponent is drawn
+    from hypothesis import given
+    seen = []
+
+    @settings(max_examples=200, database=None, deadline=None, derandomize=True,
+              suppress_health_check=list(HealthCheck), phases=[Phase.generate])
+    @given(near_cocircular_meshes())
+    def draw(c):
+        seen.extend(_ks_in(c))
+    draw()
+    assert set(seen) == set(NEAR_TIE_EXPONENTS)
+    assert sum(k >= 36 for k in seen) >= len(seen) / 3
+    # the fourth point really is off the circle of the other three, inside it
+    V, _ = case.arrays()
+    assert 1 - np.hypot(V[3, 0], V[3, 1]) / 5 == 2.0 ** -40
+
+
+def test_reversed_faces_are_drawn_in_small_meshes_and_shrink_small():
+    from ddg_oracle.properties.delaunay import delaunay_test_meshes, intrinsic_meshes
+    for strategy in (delaunay_test_meshes(), intrinsic_meshes(), any_meshes()):
+        case = find(strategy, lambda c: "reversed" in c.recipe and _reversed(c), settings=SEARCH)
+        assert len(case.faces) <= 4 and "reversed" in case.recipe
+
+
+def test_a_vertex_of_valence_17_is_drawn_in_a_small_mesh():
+    def valence(c):
+        return int(np.bincount(np.asarray(c.faces).ravel()).max())
+    from ddg_oracle.properties.strategies import valence_fans
+    case = find(any_meshes(), lambda c: valence(c) >= 17, settings=SEARCH)
+    assert valence(case) == 17 and len(case.faces) <= 34     # a fan, or a bipyramid
+    case = find(valence_fans(), lambda c: valence(c) >= 17, settings=SEARCH)
+    assert valence(case) == 17 and len(case.faces) == 17
+
+
+def test_sweep_triangulations_and_near_ties_are_a_third_of_the_intrinsic_examples_each():
+    from hypothesis import given
+    from ddg_oracle.properties.delaunay import intrinsic_meshes
+    kinds = []
+
+    @settings(max_examples=60, database=None, deadline=None, derandomize=True,
+              suppress_health_check=list(HealthCheck), phases=[Phase.generate])
+    @given(intrinsic_meshes())
+    def draw(c):
+        kinds.append("sweep" if c.recipe.startswith("planar triangulation") else
+                     "tie" if "cocircular quad" in c.recipe else "other")
+    draw()
+    assert all(kinds.count(k) >= len(kinds) // 6 for k in ("sweep", "tie", "other")), kinds
+
+
+from benchmarks.planted import variants as planted  # noqa: E402
+
+
+@pytest.mark.parametrize("bug, pids, max_faces", [
+    (planted.DelaunayTolerance1e10, ("D4.4 / T4.7 / P4.9",), 2),   # a quad moved in by 2^-40
+    (planted.DelaunayTolerance1e6, ("D4.4 / T4.7 / P4.9",), 2),
+    (planted.DelaunayTwinByReversedKey, ("D4.4 / T4.7 / P4.9",), 6),
+    (planted.IntrinsicFlipTolerance1e6, ("A4.13", "D4.8 / R4.9"), 2),
+    (planted.IntrinsicAssumesOrientation, ("A4.13", "D4.8 / R4.9"), 12),
+    (planted.IntrinsicSinglePass, ("A4.13", "D4.8 / R4.9"), 12),     # a flip cascade
+    (planted.PlanarDelaunayFloat32, ("T4.1", "D4.1"), 4),            # nearly cocircular points
+    (planted.PlanarFlipAbsoluteEpsilon, ("L4.3 / P4.4",), 6),        # a point set scaled down
+    (planted.AreaGradientAbsoluteGuard, ("T3.9",), 6),
+    (planted.VoronoiObtuseAbsoluteEpsilon, ("L3.7",), 6),
+    (planted.BarycentricCompacted, ("L3.7",), 6),                    # an isolated vertex first
+    (planted.CornerAnglesUnitizeThreshold, ("D4.7 / L4.17", "D2.6"), 6),
+    (planted.MeanCurvatureUnsigned, ("D2.3", "R2.5"), 18),   # a reflex edge: a dented bipyramid (6), a torus
+    (planted.DirichletInaccurateSolve, ("C3.4 / T3.5",), 72),        # a dozen unknowns or more
+], ids=lambda x: x.__name__ if isinstance(x, type) else None)
+def test_planted_variants_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
+    # each under ci by the first of its properties that catches it (the catch benchmark
+    # measures every property and seed: python -m benchmarks catch)
+    for p in pids:
+        r = run_property(PROPERTIES[p], bug(), profile("ci"))
+        if r.status == FAILED:
+            break
+    assert r.status == FAILED, f"{bug.__name__} passed {pids}"
+    assert_element_on_mesh(r.failure)
+    assert len(r.failure.mesh[1]) <= max_faces, f"{bug.__name__}: shrunk to {len(r.failure.mesh[1])} faces"
