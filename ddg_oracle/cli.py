@@ -23,6 +23,7 @@ import tempfile
 import textwrap
 import time
 import traceback
+from contextlib import contextmanager
 from pathlib import Path
 
 from ddg_oracle import __version__
@@ -268,8 +269,32 @@ def main(argv=None) -> int:
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)
         return e.code if isinstance(e.code, int) else EXIT_USAGE
     from ddg_oracle.containment import contained
-    with contained(subreaper=argv is None):
+    with contained(subreaper=argv is None), _stopped_by_signals():
         return _main(args, argv)
+
+
+@contextmanager
+def _stopped_by_signals():
+    """SIGTERM and SIGHUP stop every command as Ctrl-C does (:class:`jobs.Interrupted`, a
+    KeyboardInterrupt): the command unwinds, its pools and library processes are closed
+    and reaped (:func:`~ddg_oracle.containment.contained`), and it exits 128 + N with one
+    line, instead of dying at once and leaving them running.  ``check`` installs its own
+    handlers around the run (a report and a hint to resume); these are restored after."""
+    import signal
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield                               # only the main thread may install handlers
+        return
+
+    def stop(signum, frame):
+        from ddg_oracle.jobs import Interrupted
+        raise Interrupted(signum)
+    previous = {s: signal.signal(s, stop) for s in (signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
 
 
 def _main(args, argv) -> int:
@@ -293,9 +318,11 @@ def _main(args, argv) -> int:
     except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)
         return EXIT_USAGE
-    except KeyboardInterrupt:                # before or after the run itself: no traceback
-        print("ddg-oracle: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as e:           # before or after the run itself: no traceback
+        import signal
+        signum = getattr(e, "signal", signal.SIGINT)
+        print(f"ddg-oracle: interrupted by {signal.Signals(signum).name}", file=sys.stderr)
+        return 128 + signum
     except BrokenPipeError:                  # e.g. piped into head: stop quietly
         sys.stdout = open(os.devnull, "w")
         return EXIT_FINDINGS

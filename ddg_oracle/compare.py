@@ -319,9 +319,8 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     mapped from the conventions it declares (:mod:`ddg_oracle.properties.conventions`);
     with ``explain``, a differing answer is tried under the conventions it did not
     declare, and those under which it agrees are named (``explained_by``)."""
-    from ddg_oracle.properties.conventions import declared, to_reference
-    from ddg_oracle.properties.protocol import (METHODS, OutsideDomain, capabilities,
-                                                implementation_name, machine_epsilon)
+    from ddg_oracle.properties.protocol import (METHODS, capabilities, implementation_name,
+                                                machine_epsilon)
     from ddg_oracle.properties.registry import all_quantities, unmet
 
     quantities = all_quantities()
@@ -342,21 +341,17 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
             if not why:
                 asked.setdefault(method, set()).add(machine_epsilon(impl))
     pending = _expected_in_workers(mesh, asked, workers) if workers > 1 and asked else None
-    answers = []
-    for impl, method, why in todo:
-        name = implementation_name(impl)
-        if why:
-            answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
-            continue
-        try:
-            got = to_reference(declared(impl), method, getattr(impl, method)(V, F), V, F)
-        except OutsideDomain as e:          # the implementation has no value on this mesh
-            got = Comparison(method, name, "not applicable", note=str(e))
-        except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
-            got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
-        answers.append((impl, method, got))
-    expected = pending() if pending is not None else \
-        _ExpectedValues(ex, lambda method: getattr(reference, method)(V, F))
+    try:
+        answers = _answers(todo, V, F)
+        expected = pending() if pending is not None else \
+            _ExpectedValues(ex, lambda method: getattr(reference, method)(V, F))
+    except BaseException:
+        # a signal or an error while the library answers: the pool is stopped here, not
+        # left to the interpreter's exit (whose Pool.__del__ then writes to pipes of killed
+        # workers, and multiprocessing's resource tracker prints tracebacks)
+        if pending is not None:
+            pending.close()
+        raise
     rows = []
     for impl, method, got in answers:
         if isinstance(got, Comparison):
@@ -371,6 +366,27 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
                                               V, F)
             rows.append(row)
     return rows
+
+
+def _answers(todo, V, F) -> list:
+    """(impl, method, answer on the reference's conventions, or a Comparison saying why
+    there is none) for each of ``todo``'s (impl, method, why not applicable)."""
+    from ddg_oracle.properties.conventions import declared, to_reference
+    from ddg_oracle.properties.protocol import OutsideDomain, implementation_name
+    answers = []
+    for impl, method, why in todo:
+        name = implementation_name(impl)
+        if why:
+            answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
+            continue
+        try:
+            got = to_reference(declared(impl), method, getattr(impl, method)(V, F), V, F)
+        except OutsideDomain as e:          # the implementation has no value on this mesh
+            got = Comparison(method, name, "not applicable", note=str(e))
+        except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
+            got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
+        answers.append((impl, method, got))
+    return answers
 
 
 def _explained(q, impl, got, want, ex, bound, V, F) -> tuple:
@@ -450,12 +466,15 @@ def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
     pool = mp.get_context("spawn").Pool(min(workers, len(jobs)), _start_worker, (mesh,))
     running = pool.imap_unordered(_expected_in_worker, jobs)
 
+    def close():
+        pool.terminate()
+        pool.join()
+
     def wait():
         try:
             done = dict(running)
         finally:
-            pool.terminate()
-            pool.join()
+            close()
         for method, got in done.items():
             if isinstance(got, BaseException):
                 raise got
@@ -463,6 +482,7 @@ def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
         def expected(q, epsilon):
             return done[q.method][epsilon]
         return expected
+    wait.close = close
     return wait
 
 

@@ -70,7 +70,14 @@ def alive(pid: int) -> bool:
 
 def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
     """SIGTERM every descendant process but ``keep``, then SIGKILL those still there after
-    ``grace`` s, and reap those that are our children; returns how many were stopped."""
+    ``grace`` s, and reap those that are our children; returns how many were stopped.
+    multiprocessing's resource tracker is kept: it ends by itself when this process
+    exits, and killed before, this process's exit handlers would start a new one that
+    prints a traceback for every semaphore they release."""
+    keep = set(keep)
+    tracker = _resource_tracker()
+    if tracker is not None:
+        keep.add(tracker)
     procs = [p for p in descendants() if p not in keep]
     for p in procs:
         try:
@@ -87,6 +94,13 @@ def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
             pass
     _reap(procs)
     return len(procs)
+
+
+def _resource_tracker() -> int | None:
+    """The pid of multiprocessing's resource tracker process, if this process started one."""
+    import sys
+    module = sys.modules.get("multiprocessing.resource_tracker")
+    return getattr(getattr(module, "_resource_tracker", None), "_pid", None)
 
 
 def _reap(pids) -> None:

@@ -224,7 +224,14 @@ class ResultStream:
         run = self.directory / self.RUN
         if not run.exists():
             run.write_text(json.dumps(command, indent=1, sort_keys=True) + "\n", encoding="utf-8")
-        self._fh = open(self.directory / self.LINES, "a", encoding="utf-8")
+        lines = self.directory / self.LINES
+        # opening a FIFO (or a device) to append blocks, or writes nowhere: refuse it first
+        if lines.exists() and not lines.is_file():
+            from ddg_oracle.cli import UsageError
+            from .files import kind_of
+            raise UsageError(f"{lines}: cannot keep a run's results there: it is "
+                             f"{kind_of(lines.stat().st_mode)}, not a regular file")
+        self._fh = open(lines, "a", encoding="utf-8")
 
     @staticmethod
     def _key(task) -> list:

@@ -141,6 +141,13 @@ def database_from(spec: str | None):
             retry=Retry(ExponentialBackoff(cap=1.0, base=0.05), 8),
             retry_on_error=[redis.ConnectionError, redis.TimeoutError])
         return TolerantDatabase(RedisExampleDatabase(client), spec)
+    if os.path.exists(spec) and not os.path.isdir(spec):
+        # Hypothesis's directory database ignores its own write errors: a failure would
+        # go unsaved without a word
+        import warnings
+        warnings.warn(f"ddg-oracle: the example database {spec} is not a directory; the run "
+                      "goes on without it", RuntimeWarning, stacklevel=2)
+        return None
     return TolerantDatabase(DirectoryBasedExampleDatabase(spec), spec)
 
 

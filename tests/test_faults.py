@@ -101,6 +101,33 @@ def test_a_moved_report_directory_resumes_where_it_is(capsys, tmp_path):
     assert len((moved / "results.jsonl").read_text().splitlines()) == 2
 
 
+def test_resume_of_a_fifo_results_file_is_a_usage_error_not_a_hang(capsys, tmp_path):
+    report = tmp_path / "report"
+    rc, _, _, _ = _run(capsys, "check", "--impl", "reference", "--only", "D1.6",
+                       "--workers", "1", "--report", str(report))
+    assert rc == 0
+    (report / "results.jsonl").unlink()
+    os.mkfifo(report / "results.jsonl")        # opening it to append would block forever
+    rc, _, err, seconds = _run(capsys, "check", "--resume", str(report))
+    assert rc == 2 and "FIFO" in _one_line(err) and seconds < 30
+
+
+def test_a_database_path_that_is_a_file_is_a_warning_not_silence(capsys, tmp_path,
+                                                                 monkeypatch):
+    from ddg_oracle.properties import profiles
+    dbfile = tmp_path / "dbfile"
+    dbfile.write_text("not a directory\n")
+    monkeypatch.setattr(profiles, "_registered", False)
+    monkeypatch.setenv("DDG_HYPOTHESIS_DATABASE", str(dbfile))
+    try:
+        with pytest.warns(RuntimeWarning, match="example database .* is not a directory"):
+            rc, _, _, _ = _run(capsys, "check", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
+                               "--only", "D1.6", "--workers", "1", "--seed", "7")
+    finally:
+        monkeypatch.setattr(profiles, "_registered", False)
+    assert rc == 1 and dbfile.read_text() == "not a directory\n"
+
+
 def test_check_saves_failures_to_the_chosen_database_although_it_seeds(capsys, tmp_path,
                                                                         monkeypatch):
     # Hypothesis's @seed turned the database off: check always seeds (one seed per run, the

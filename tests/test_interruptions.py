@@ -124,3 +124,57 @@ def test_a_killed_pool_worker_is_replaced_and_nothing_is_lost(tmp_path, undistur
     out, err = proc.communicate(timeout=600)
     assert proc.returncode == 0, out + err
     assert (report / "results.json").read_bytes() == undisturbed
+
+
+SPAWNING = '''
+import subprocess, sys, time
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+
+
+class SpawnsSlowly(ReferenceImplementation):
+    """A library that starts a helper process per Laplacian and takes a second."""
+    name = "spawns-slowly"
+
+    def cotan_laplacian(self, V, F):
+        subprocess.Popen([sys.executable, "-c", "import time; time.sleep(300)"])
+        time.sleep(1.0)
+        return super().cotan_laplacian(V, F)
+'''
+
+
+def _children_started(pid: int) -> bool:
+    from ddg_oracle.containment import descendants
+    return len(descendants(pid)) >= 2
+
+
+@pytest.mark.parametrize("command", ["compare", "verify"])
+@pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143),
+                                          (signal.SIGHUP, 129)])
+def test_a_signal_to_compare_or_verify_is_one_line_and_leaves_no_process(tmp_path, command,
+                                                                         signum, code):
+    # compare and verify had no handler: SIGTERM killed them at once (exit -15) and left
+    # the library's helpers and the exact values' pool running; SIGINT printed
+    # multiprocessing's tracebacks (its resource tracker had been killed first)
+    from ddg_oracle.reference import surfaces
+    (tmp_path / "spawning.py").write_text(SPAWNING)
+    s = surfaces.icosahedron()
+    obj = tmp_path / "ico.obj"
+    obj.write_text("".join("v %r %r %r\n" % tuple(float(x) for x in p) for p in s.positions)
+                   + "".join("f %d %d %d\n" % tuple(v + 1 for v in f)
+                             for f in s.triangulation.faces))
+    target = str(obj) if command == "compare" else str(ROOT / "vectors")
+    env = dict(os.environ, PYTHONPATH=str(tmp_path) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.Popen([sys.executable, "-m", "ddg_oracle", command, target, "--impl",
+                             "spawning:SpawnsSlowly"], cwd=tmp_path, env=env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    deadline = time.monotonic() + 60
+    while not _children_started(proc.pid):
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.05)
+    time.sleep(0.3)
+    proc.send_signal(signum)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == code, out + err
+    assert err.strip() == f"ddg-oracle: interrupted by {signal.Signals(signum).name}", err
+    time.sleep(0.5)
+    assert _group(proc.pid) == []                   # no helper, pool or library process left
