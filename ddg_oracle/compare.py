@@ -637,6 +637,13 @@ def _diagnose_unused(V, F, impl, methods) -> list[dict]:
             rows = got.shape if hasattr(got, "shape") else (len(got),)
         except Exception:  # noqa: BLE001  (nothing to say)
             continue
+        if rows and rows[0] == len(V) and len(used) < len(V):
+            # a value for every vertex: its rows (and columns) of the used vertices, on the
+            # mesh without the others, say what the answer is where it is determined
+            for row in diagnose(compact, _on_used(impl, method, got, used), {method}):
+                row["where"] = _renumbered(row["where"], used)
+                out.append(row)
+            continue
         if not rows or rows[0] != len(used):
             continue
         there = diagnose(compact, impl, {method})
@@ -646,6 +653,40 @@ def _diagnose_unused(V, F, impl, methods) -> list[dict]:
                         "worst": math.inf, "note": None,
                         "explained_by": ["unused_vertices=dropped"]})
     return out
+
+
+def _renumbered(where, used: list):
+    """A row's place ("entry (0, 1)", "vertex 2, coordinate 0") on the mesh without its
+    unused vertices, in the vertex numbers of the mesh with them."""
+    import re
+    if not where:
+        return where
+    m = re.fullmatch(r"entry \((\d+), (\d+)\)", where)
+    if m:
+        return f"entry ({used[int(m[1])]}, {used[int(m[2])]})"
+    return re.sub(r"^vertex (\d+)", lambda v: f"vertex {used[int(v[1])]}", where)
+
+
+def _on_used(impl, method: str, got, used: list):
+    """An implementation of ``method`` alone whose answer is ``got`` (``impl``'s, already on
+    the reference's conventions, for every vertex) restricted to the ``used`` vertices:
+    per-vertex rows, or the rows and columns of a matrix."""
+    import scipy.sparse as sp
+    from ddg_oracle.properties.protocol import implementation_name, machine_epsilon
+    idx = np.asarray(used, dtype=np.int64)
+    if sp.issparse(got):
+        part = sp.csr_matrix(got)[idx][:, idx]
+    else:
+        a = np.asarray(got)
+        part = a[np.ix_(idx, idx)] if a.ndim == 2 and a.shape[0] == a.shape[1] == len(a) \
+            and method in ("cotan_laplacian", "intrinsic_delaunay_laplacian") else a[idx]
+
+    class OnUsed:
+        name = implementation_name(impl)
+    w = OnUsed()
+    w.machine_epsilon = machine_epsilon(impl)
+    setattr(w, method, lambda V, F: part)
+    return w
 
 
 def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:

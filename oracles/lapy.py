@@ -17,10 +17,9 @@ Laplace matrices", ``tria_mesh.py``), which renumbers the used vertices in order
 adapter calls it before every per-vertex method and declares the vocabulary's
 ``unused_vertices=dropped``; ddg-oracle puts the answers back on every row of V.
 
-Not covered by the vocabulary (mapped here by hand): ``TriaMesh.euler()`` counts only
-vertices some triangle uses ("v can contain unused vertices so we get vnum from
-trias"); the protocol counts an unused vertex as a point, so the adapter adds their
-number.
+The same declaration covers ``TriaMesh.euler()``, which counts only the vertices some
+triangle uses ("v can contain unused vertices so we get vnum from trias"); the protocol
+counts an unused vertex as a point, and ddg-oracle adds their number.
 
 * ``cotan_laplacian``: ``Solver(mesh).stiffness``, positive semidefinite, off-diagonal
   ``dot / (4 A)`` = -1/2 cot per corner (``a12 = sum(v3mv2 * v1mv3) / vol`` with
@@ -83,10 +82,8 @@ class Lapy:
     # --- chapter 1: topology ------------------------------------------------------------
 
     def euler_characteristic(self, V, F) -> int:
-        """``TriaMesh.euler()`` (#used V - #E + #T) plus the number of unused vertices."""
-        m = _mesh(V, F)
-        unused = len(m.v) - len(np.unique(m.t))
-        return int(m.euler()) + int(unused)
+        """``TriaMesh.euler()``: #used V - #E + #T (declared: ``unused_vertices=dropped``)."""
+        return int(_mesh(V, F).euler())
 
     def boundary_loops(self, V, F) -> list[list[int]]:
         """``TriaMesh.boundary_loops()``, after ``orient_()`` if the mesh is not oriented."""

@@ -24,10 +24,12 @@ mouette's conventions are the notes' where it has the quantity:
 * ``boundary_loops``: ``M.processing.border.extract_border_cycle_all`` (F-mouette-2).
 * ``area``: ``M.attributes.total_area`` (cross products, summed in order).
 
-Option ``Mouette(mass="reference")``: ``M.operators.area_weight_matrix(mesh)`` ("diagonal
-matrix of vertex areas") adds the *whole* area of every incident face to each of its
-vertices (``operators/mass.py`` l. 21-27): three times the barycentric area
-(F-mouette-1).  The adapter divides its diagonal by 3; ``mass="library"`` keeps it.
+``M.operators.area_weight_matrix(mesh)`` ("diagonal matrix of vertex areas") adds the
+*whole* area of every incident face to each of its vertices (``operators/mass.py``
+l. 21-27): three times the barycentric area (F-mouette-1).  ``Mouette(mass="reference")``
+(the default) declares it, ``conventions = "mouette"`` (``mass=whole_area``), and
+ddg-oracle divides by 3; ``mass="library"`` declares nothing of it (the finding, for
+``--expect-conventions``).
 
 >>> import numpy as np
 >>> V = np.array([[0., 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
@@ -76,6 +78,8 @@ class Mouette:
 
     def __init__(self, mass: str = "reference"):
         self.name, self.conventions = declare("mouette", LIBRARY_CONVENTIONS, mass=mass)
+        if mass == "reference":
+            self.conventions = "mouette"          # the vocabulary's mass=whole_area
         self.mass = mass
 
     def __repr__(self) -> str:
@@ -126,10 +130,10 @@ class Mouette:
         return np.asarray(self.cotan_laplacian(V, F) @ V, dtype=np.float64)
 
     def vertex_areas_barycentric(self, V, F) -> np.ndarray:
-        """Diagonal of ``M.operators.area_weight_matrix(mesh)``, divided by 3 with
-        mass="reference" (F-mouette-1)."""
+        """Diagonal of ``M.operators.area_weight_matrix(mesh)``: the whole incident area
+        (declared with mass="reference"; F-mouette-1)."""
         m, n, _ = _mesh(V, F)
         A = np.zeros(n)
         d = np.asarray(M.operators.area_weight_matrix(m).diagonal(), dtype=np.float64)
         A[:len(d)] = d
-        return A / 3 if self.mass == "reference" else A
+        return A

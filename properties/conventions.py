@@ -7,7 +7,7 @@ Libraries and course code differ from the notes in a few well-known ways: libigl
 incident area; libigl, trimesh and VTK give 2 pi - angle sum at boundary vertices where the
 notes' turning angle is pi - angle sum; trimesh's dihedral angles are unsigned; the DDG
 course adds 1e-8 to the Laplacian's diagonal and rescales its input to unit radius; LaPy
-answers for the referenced vertices only.  An implementation that follows such a
+answers for the referenced vertices only; mouette's vertex mass is the whole incident area.  An implementation that follows such a
 convention declares it, in one line::
 
     class Mine:
@@ -231,10 +231,17 @@ def _vocabulary() -> dict:
                        {e: h / _scale(V) for e, h in dict(a).items()}
                        if method == "edge_mean_curvature" else
                        scaled(1 if method == "area_gradient" else 2)(a, V, F))),
-        Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX,
-                   "answers only for the vertices some face uses, renumbered in order "
-                   "(LaPy's TriaMesh)",
-                   lambda method, a, V, F: unused(method)(a, V, F)),
+        Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX
+                   + ("euler_characteristic",),
+                   "answers only for the vertices some face uses, renumbered in order; "
+                   "chi counts those only (LaPy's TriaMesh)",
+                   lambda method, a, V, F: (
+                       int(a) + len(_arrays(V, F)[0]) - len(np.unique(_arrays(V, F)[1]))
+                       if method == "euler_characteristic" else unused(method)(a, V, F))),
+        Convention("mass", "whole_area", ("vertex_areas_barycentric",),
+                   "a vertex gets the whole area of each incident face, three times the "
+                   "barycentric area (mouette's area_weight_matrix)",
+                   lambda method, a, V, F: np.asarray(a, dtype=np.float64) / 3),
     ]
     out: dict = {}
     for c in entries:
@@ -251,7 +258,8 @@ REFERENCE = {"laplacian": "positive (L positive semidefinite)",
              "curvature": "integrated (the angle defect itself)",
              "dihedral": "signed (theta > 0 where convex)",
              "input_scale": "none (the input as given)",
-             "unused_vertices": "kept (a value for every row of V)",
+             "unused_vertices": "kept (a value for every row of V; chi counts every vertex)",
+             "mass": "barycentric (a third of each incident face's area)",
              "regularization": "none (no diagonal shift)"}
 
 #: the conventions of libraries and courses, by name (each documented in docs/conventions.md)
@@ -262,6 +270,8 @@ PRESETS = {
     "trimesh": {"boundary_defect": "two_pi"},
     "vtk": {"boundary_defect": "two_pi", "curvature": "per_barycentric_area"},
     "lapy": {"unused_vertices": "dropped"},
+    "mouette": {"mass": "whole_area"},
+    "meshlib": {"weights": "full", "boundary_defect": "two_pi"},
     "ddg-course": {"regularization": 1e-8},
 }
 

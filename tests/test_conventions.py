@@ -265,3 +265,17 @@ def test_every_convention_is_documented():
     for name in PRESETS:
         assert f'"{name}"' in text, name
     assert '"regularization"' in text
+
+
+def test_the_diagnosis_names_the_convention_on_a_mesh_with_an_unused_vertex():
+    """A counterexample with a vertex of no face (D3.1 draws them) was diagnosed only for
+    unused_vertices=dropped: -L there got no hint.  The rows and columns of the used
+    vertices are compared on the mesh without the others, in the mesh's own numbers."""
+    from ddg_oracle.compare import diagnose
+    V = [[5.0, 5, 5], [0.0, 0, 0], [1.0, 0, 0], [0.0, 1, 0]]
+    rows = diagnose((V, [[1, 2, 3]]), NegativeL(), ["cotan_laplacian"])
+    assert [(r["status"], r["explained_by"]) for r in rows] == [("DIFFERS", ["laplacian=negative"])]
+    assert rows[0]["where"] in ("entry (1, 2)", "entry (1, 3)", "entry (2, 3)",
+                                "entry (1, 1)", "entry (2, 2)", "entry (3, 3)")
+    assert diagnose((V, [[1, 2, 3]]), _declaring(NegativeL, {"laplacian": "negative"})(),
+                    ["cotan_laplacian"])[0]["status"] == "agrees"

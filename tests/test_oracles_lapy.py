@@ -6,7 +6,6 @@ Needs ``pip install -e '.[lapy]'``."""
 
 from __future__ import annotations
 
-import math
 import sys
 
 import numpy as np
@@ -16,7 +15,7 @@ lapy = pytest.importorskip("lapy")
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.lapy import Lapy  # noqa: E402
-from ddg_oracle.properties.conventions import declared  # noqa: E402
+from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
 from ddg_oracle.properties.protocol import OutsideDomain, capabilities  # noqa: E402
 from ddg_oracle.properties.runner import run_properties  # noqa: E402
 
@@ -65,8 +64,9 @@ def test_cotan_factor_sign_and_lumped_mass_on_a_unit_right_triangle():
 def test_unused_vertices_are_dropped_and_counted_as_points_by_euler():
     W = np.vstack([[9.0, 9, 9], V, [7.0, 7, 7]])        # unused vertices 0 and 5
     G = F + 1
-    assert Lapy().euler_characteristic(W, G) == 4       # LaPy's euler() says 2 (used only)
-    assert lapy.TriaMesh(W, G).euler() == 2
+    assert Lapy().euler_characteristic(W, G) == lapy.TriaMesh(W, G).euler() == 2   # used only
+    # declared unused_vertices=dropped: ddg-oracle counts the two unused vertices as points
+    assert to_reference(declared(Lapy()), "euler_characteristic", 2, W, G) == 4
     L = Lapy().cotan_laplacian(W, G)
     assert L.shape == (4, 4)                            # the used vertices, renumbered
     np.testing.assert_allclose(L.toarray(), REF.cotan_laplacian(V, F).toarray(), atol=1e-15)
@@ -121,4 +121,5 @@ def test_finding_F_lapy_3_solver_matrices_stop_at_the_largest_used_index():
     s = lapy.Solver(lapy.TriaMesh(W, G), lump=True)
     assert s.stiffness.shape == s.mass.shape == (5, 5)  # 6 vertices
     assert s.stiffness[3].nnz == 0 and s.mass.diagonal()[3] == 0
-    assert math.isclose(Lapy().euler_characteristic(W, G), 4)
+    assert to_reference(declared(Lapy()), "euler_characteristic",
+                        Lapy().euler_characteristic(W, G), W, G) == 4

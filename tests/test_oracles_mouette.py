@@ -16,6 +16,7 @@ M = pytest.importorskip("mouette")
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.mouette import Mouette  # noqa: E402
+from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
 from ddg_oracle.properties.runner import run_properties  # noqa: E402
 
 V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
@@ -61,8 +62,10 @@ def test_the_laplacian_is_padded_to_every_vertex():
 def test_finding_F_mouette_1_area_weight_matrix_is_three_times_the_barycentric_area():
     """mass.py l. 21-27: ``A[u] += area[iT]`` for every vertex u of face T (no / 3)."""
     raw = Mouette(mass="library").vertex_areas_barycentric(V, F)
-    ours = Mouette().vertex_areas_barycentric(V, F)
-    np.testing.assert_allclose(raw, 3 * ours, rtol=1e-15)
+    np.testing.assert_array_equal(raw, Mouette().vertex_areas_barycentric(V, F))
+    # the default declares it (mass=whole_area): ddg-oracle divides by 3
+    assert Mouette().conventions == "mouette"
+    ours = to_reference(declared(Mouette()), "vertex_areas_barycentric", raw, V, F)
     np.testing.assert_allclose(ours, REF.vertex_areas_barycentric(V, F), rtol=1e-15)
     assert raw.sum() == pytest.approx(3 * REF.area(V, F), rel=1e-15)
     assert Mouette(mass="library").conventions["follows"] == {
