@@ -35,8 +35,9 @@ GROUPS = {
     "mutation": mutation.run,
     "faults": faults.run,
     "meshread": meshread.run,
+    "survey": __import__("benchmarks.survey", fromlist=["run"]).run,
 }
-ONLY_NAMED = ("sidebyside", "mutation", "faults", "meshread")  # not part of --all
+ONLY_NAMED = ("sidebyside", "mutation", "faults", "meshread", "survey")  # not part of --all
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 

@@ -23,7 +23,6 @@ import tempfile
 import textwrap
 import time
 import traceback
-from contextlib import contextmanager
 from pathlib import Path
 
 from ddg_oracle import __version__
@@ -136,7 +135,9 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--mesh", action="extend", nargs="+", metavar="FILE",
                    help="check on these mesh files (OBJ, OFF, PLY, STL) instead of generated "
                         "meshes; 'pymeshlab:' = every sample mesh PyMeshLab ships, "
-                        "'pymeshlab:NAME' one of them")
+                        "'pymeshlab:NAME' one of them; 'cgal:' = every mesh of the CGAL "
+                        "corpus, 'cgal:NAME' one of them (fetched once by: python -m "
+                        "ddg_oracle.corpus fetch)")
     c.add_argument("--report", metavar="DIR",
                    help="write results.json, summary.md, timings.json and, per failure, the "
                         "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
@@ -184,12 +185,53 @@ def parser() -> argparse.ArgumentParser:
                                           "crashed", "an implementation differs or crashed"),
                        specs=True))
     m.add_argument("mesh", nargs="+", metavar="MESH",
-                   help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes)")
+                   help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes), "
+                        "'cgal:' / 'cgal:NAME' (the CGAL corpus: python -m ddg_oracle.corpus "
+                        "fetch)")
     m.add_argument("--impl", action="append", metavar="SPEC",
                    help="implementation to compare (repeatable; default: every installed one): "
                         "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
     m.add_argument("--timeout", type=float, default=60.0,
                    help="seconds per call, per 10,000 faces of the input (never less; default 60)")
+
+    s = sub.add_parser(
+        "survey", formatter_class=fmt,
+        help="every implementation x every quantity x a mesh corpus: a scoreboard",
+        description="Compare every implementation with the exact reference on every mesh of "
+                    "a corpus (one mesh at a time, all implementations on it) and print a "
+                    "scoreboard per implementation and quantity: meshes checked, agrees, "
+                    "DIFFERS, crashed, not applicable, the worst error in units of the derived "
+                    "bound (and on which mesh) and the median.  With --report DIR, each "
+                    "finished mesh is kept in DIR/results.jsonl as it finishes (an interrupted "
+                    "survey resumes with --resume DIR), and the scoreboard is written to "
+                    "DIR/survey.md, DIR/survey.html (a heatmap) and DIR/results.json.",
+        epilog=_epilog("""
+            ddg-oracle survey pymeshlab:
+            ddg-oracle survey meshes/ --impl libigl --impl trimesh --report out/
+            ddg-oracle survey --resume out/""",
+                       EXIT_CODES.replace("a property failed or a checked implementation "
+                                          "crashed", "an implementation differs or crashed")
+                       + "\n  130, 143  interrupted by SIGINT, SIGTERM (--resume DIR finishes it)",
+                       specs=True))
+    s.add_argument("mesh", nargs="*", metavar="MESH",
+                   help="mesh files, directories of them, or mesh sets ('pymeshlab:', any set "
+                        "compare takes)")
+    s.add_argument("--impl", action="append", metavar="SPEC",
+                   help="implementation to survey (repeatable; default: every installed one): "
+                        "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
+    s.add_argument("--timeout", type=float, default=60.0,
+                   help="seconds per call, per 10,000 faces of the input (never less; default 60)")
+    s.add_argument("--workers", type=int, default=None, metavar="N",
+                   help=f"processes computing the exact values of each mesh (default "
+                        f"{_default_workers()}); 1 computes them in this process")
+    s.add_argument("--report", metavar="DIR",
+                   help="keep each finished mesh in DIR/results.jsonl and write the scoreboard "
+                        "to DIR/survey.md, DIR/survey.html and DIR/results.json (a new or "
+                        "empty directory)")
+    s.add_argument("--resume", metavar="DIR",
+                   help="finish an interrupted survey from its report directory (its command "
+                        "line is read from DIR/run.json; the meshes already in "
+                        "DIR/results.jsonl are not run again)")
 
     v = sub.add_parser(
         "vectors", formatter_class=fmt, help="write the portable test vectors (JSON)",
@@ -269,32 +311,9 @@ def main(argv=None) -> int:
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)
         return e.code if isinstance(e.code, int) else EXIT_USAGE
     from ddg_oracle.containment import contained
-    with contained(subreaper=argv is None), _stopped_by_signals():
+    from ddg_oracle.jobs import stopped_by_signals
+    with contained(subreaper=argv is None), stopped_by_signals():
         return _main(args, argv)
-
-
-@contextmanager
-def _stopped_by_signals():
-    """SIGTERM and SIGHUP stop every command as Ctrl-C does (:class:`jobs.Interrupted`, a
-    KeyboardInterrupt): the command unwinds, its pools and library processes are closed
-    and reaped (:func:`~ddg_oracle.containment.contained`), and it exits 128 + N with one
-    line, instead of dying at once and leaving them running.  ``check`` installs its own
-    handlers around the run (a report and a hint to resume); these are restored after."""
-    import signal
-    import threading
-    if threading.current_thread() is not threading.main_thread():
-        yield                               # only the main thread may install handlers
-        return
-
-    def stop(signum, frame):
-        from ddg_oracle.jobs import Interrupted
-        raise Interrupted(signum)
-    previous = {s: signal.signal(s, stop) for s in (signal.SIGTERM, signal.SIGHUP)}
-    try:
-        yield
-    finally:
-        for s, handler in previous.items():
-            signal.signal(s, handler)
 
 
 def _main(args, argv) -> int:
@@ -308,6 +327,8 @@ def _main(args, argv) -> int:
             return _check(args, None if argv is None else list(argv)[1:])
         if args.command == "compare":
             return _compare(args)
+        if args.command == "survey":
+            return _survey(args)
         if args.command == "vectors":
             return _vectors(args)
         if args.command == "verify":
@@ -771,6 +792,16 @@ def _compare(args) -> int:
         for impl in started.values():
             getattr(impl, "close", lambda: None)()
     return 1 if worse else 0
+
+
+def _survey(args) -> int:
+    """``ddg-oracle survey``: compare over a corpus, aggregated (:mod:`ddg_oracle.survey`)."""
+    if args.resume and (args.mesh or args.impl or args.report):
+        raise UsageError("survey --resume DIR takes no mesh, --impl or --report: the "
+                         "interrupted run's are read from DIR/run.json")
+    _check_timeout(args)
+    from ddg_oracle import survey
+    return survey.run(args)
 
 
 def _vectors(args) -> int:

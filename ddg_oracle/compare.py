@@ -12,13 +12,18 @@ derived bound, and where.  Both take the same mesh arguments:
 * a directory: every such file below it (a corpus; one that cannot be read is
   skipped with a note);
 * ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
-  package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them.
+  package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them;
+* ``cgal:`` -- every mesh of the CGAL corpus (CGAL's ``data/meshes`` from Debian's
+  ``libcgal-demo``, fetched once by ``python -m ddg_oracle.corpus fetch``, see
+  :mod:`ddg_oracle.corpus`), or ``cgal:NAME`` one of them (its file name or its path in
+  the corpus).  Their polygon faces are fan-triangulated, with a note.
 
 The reference needs every vertex to lie in a face: unreferenced vertices are
 removed (the remaining ones renumbered in order) with a note.  A mesh the
 reference cannot take (non-manifold, a zero-area face, ...) raises the
-reference's typed error; named files are then a usage error (exit 2), sample
-meshes are skipped with a note.
+reference's typed error; named files (and ``pymeshlab:NAME``, ``cgal:NAME``) are then a
+usage error (exit 2), the meshes of a set (a directory, ``pymeshlab:``, ``cgal:``) are
+skipped with a note.
 
 The matrix checks (cotan Laplacian, intrinsic Delaunay Laplacian) are sparse:
 they run on meshes of any size.
@@ -34,6 +39,7 @@ import numpy as np
 
 from ddg_oracle.reference.errors import InputError
 
+from . import corpus
 from .meshfiles import MeshFileError, read_mesh
 
 SAMPLE_PREFIX = "pymeshlab:"
@@ -77,6 +83,8 @@ def resolve(args: list[str]) -> list[tuple[str, Path, bool]]:
                 names = ", ".join(str(q.relative_to(d)) for q in sample_meshes())
                 raise MeshFileError(f"{a}: no such sample mesh (PyMeshLab ships {names})")
             out.append((a, p, True))
+        elif a.startswith(corpus.PREFIX):
+            out += corpus.resolve(a)                # cgal: every corpus mesh, cgal:NAME one
         elif Path(a).is_dir():
             # a corpus: every mesh file below it, sorted; one that cannot be read is
             # skipped with a note, as a sample mesh is
@@ -102,8 +110,12 @@ class MeshInput:
 
 
 def load(name: str, path: Path) -> MeshInput:
-    """Read and validate for the reference (typed InputError naming the problem)."""
-    V, F = read_mesh(path)
+    """Read and validate for the reference (typed InputError naming the problem).  A corpus
+    mesh (``cgal:``) has its polygons fan-triangulated, with a note."""
+    if name.startswith(corpus.PREFIX):
+        V, F, polygons = corpus.read_triangulated(path)
+    else:
+        (V, F), polygons = read_mesh(path), None
     first: dict = {}
     for k, f in enumerate(F):
         key = frozenset(f)
@@ -120,13 +132,16 @@ def load(name: str, path: Path) -> MeshInput:
                 f"{next(v for v in range(len(V)) if v not in new)}); the rest renumbered in order")
         V = [V[v] for v in used]
         F = [[new[i] for i in f] for f in F]
+    if polygons:
+        note = polygons if note is None else f"{polygons}; {note}"
     try:
         from ddg_oracle.reference.polyhedral import PolyhedralSurface
         s = PolyhedralSurface.from_arrays(V, F)           # a manifold triangulation
         if not nondegenerate(V, F):
             s.metric()                  # names the zero-area face (exactly), or passes
     except InputError as e:
-        raise type(e)(f"{name}: {e}") from None
+        after = " (faces numbered after the fan triangulation)" if polygons else ""
+        raise type(e)(f"{name}: {e}{after}") from None
     return MeshInput(name, V, F, note)
 
 
@@ -203,8 +218,10 @@ class MeshExamples:
         """What the requirements of a file check (properties.registry.REQUIREMENTS) read."""
         def build():
             t = self.surface.triangulation
+            glued = [t.edge_halfedges(e) for e in range(t.n_edges)]
             return dict(n=t.n_vertices, faces=t.n_faces, chi=t.euler_characteristic(),
                         boundary=len(t.boundary_loops()), orientable=t.is_orientable(),
+                        oriented=not any(h2 >= 0 and t.reversed_gluing(h) for h, h2 in glued),
                         components=len(t.components()))
         return self._get("facts", build)
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 from ddg_oracle.oracles.processes import exit_text
@@ -180,6 +181,49 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, signum: int, done: list | None = None):
         self.signal, self.code, self.done = signum, 128 + signum, done or []
         super().__init__(f"interrupted by signal {signum}")
+
+
+def _starting_a_pool(frame) -> bool:
+    """Whether ``frame`` (where a signal arrived) is inside the construction of a
+    multiprocessing pool (its workers being spawned)."""
+    import multiprocessing.pool
+    pool_file = multiprocessing.pool.__file__
+    while frame is not None:
+        if frame.f_code.co_filename == pool_file and frame.f_code.co_name in (
+                "__init__", "_repopulate_pool", "_repopulate_pool_static"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+@contextmanager
+def stopped_by_signals():
+    """SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted` in the block (the command
+    unwinds, its pools and library processes are closed, it exits 128 + N with one line),
+    instead of SIGTERM and SIGHUP killing it at once and leaving them running.
+    :func:`run_tasks` installs its own handlers around a check's run; these are restored
+    after.  Only in the main thread (the only one that may install handlers)."""
+    import os
+    import signal
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):
+        if _starting_a_pool(frame):
+            # raised inside multiprocessing's Pool(), the pool is never returned (so never
+            # closed), and a worker spawned a moment before reads a cut pipe and prints a
+            # traceback: the signal is taken again once the pool exists
+            threading.Timer(0.05, os.kill, (os.getpid(), signum)).start()
+            return
+        raise Interrupted(signum)
+    previous = {s: signal.signal(s, stop) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
 
 
 def _worker_main(options: Options, meshes: list, conn) -> None:

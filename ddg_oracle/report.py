@@ -337,8 +337,12 @@ def known_findings() -> list[dict]:
 
 
 def known_finding(r, findings) -> str | None:
-    """The id of the documented finding a non-passing result is, if any."""
-    from ddg_oracle.properties.runner import TIE
+    """The id of the documented finding a non-passing result is, if any: never for a result
+    that is not the implementation's (undecided: the exact reference gave up; internal
+    error; incomplete)."""
+    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED
+    if r.status in (UNDECIDED, INTERNAL, INCOMPLETE):
+        return None
 
     parts = {x.strip() for x in r.property_id.split("/")}
     hits = [f for f in findings

@@ -492,7 +492,7 @@ def _edge_dict(impl, case, pid):
 
 @prop("D2.3", "edge_mean_curvature: H(e) = 1/2 theta(e) l(e) on every interior edge, theta > 0 "
       "where convex, as the exact reference within the derived bound",
-      needs={"edge_mean_curvature"}, on_mesh=("orientable",), strategy=jittered_surfaces)
+      needs={"edge_mean_curvature"}, on_mesh=("oriented",), strategy=jittered_surfaces)
 def edge_mean_curvature_matches_reference(impl, case: Example):
     H = _edge_dict(impl, case, "D2.3")
     expected = _reference_mean_curvature(case)
@@ -645,7 +645,7 @@ def total_mean_curvature_is_support_integral(impl, case: Example):
 
 @prop("R2.5", "Steiner coefficients of a closed surface: area, 2 H(S) and K(S) = 2 pi chi agree "
       "with the exact (A, 2 H(S), 2 pi chi)", needs={"area", "edge_mean_curvature", "angle_defects"},
-      on_mesh=("closed", "orientable"),
+      on_mesh=("closed", "oriented"),
       strategy=lambda: jittered_surfaces(closed=True))
 def steiner_coefficients_match(impl, case: Example):
     A_ref, err_A, twoH_ref, err_H = _steiner_views(case)
@@ -696,6 +696,6 @@ def _area_bound(example: Example, want) -> float:
 quantity("corner_angles", bound=lambda example, want: corner_tolerances(example))
 quantity("angle_defects",
          bound=lambda example, want: vertex_tolerances(example, corner_tolerances(example)))
-quantity("edge_mean_curvature", requires=("orientable",),
+quantity("edge_mean_curvature", requires=("oriented",),
          bound=lambda example, want: edge_mean_curvature_tolerances(example))
 quantity("area", bound=_area_bound)

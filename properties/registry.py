@@ -183,12 +183,17 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
 # --- what a mesh file must be for a check (check --mesh, compare) ------------------------------
 
 #: A file check's requirements: name -> (the facts of the mesh -> why it is not met, or None).
-#: Facts: n, faces, chi, boundary (loops), orientable, components (MeshExamples.facts).
+#: Facts: n, faces, chi, boundary (loops), orientable, oriented (consistently: no reversed
+#: gluing), components (MeshExamples.facts).
 REQUIREMENTS: dict[str, Callable[[dict], str | None]] = {
     "closed": lambda f: None if f["boundary"] == 0 else "the mesh has a boundary",
     "bordered": lambda f: None if f["boundary"] else "the mesh is closed",
     "connected": lambda f: None if f["components"] == 1 else f"{f['components']} components",
     "orientable": lambda f: None if f["orientable"] else "the mesh is not orientable",
+    # the sign of a dihedral angle (convex > 0) is read from the faces' own orientation
+    "oriented": lambda f: None if f["oriented"] else (
+        "the faces are not consistently oriented (the sign of a dihedral angle depends on "
+        "it)" if f["orientable"] else "the mesh is not orientable"),
 }
 
 #: largest face count for R2.5's exact sums (one square root per face of a float mesh):

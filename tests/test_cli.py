@@ -650,3 +650,36 @@ def test_read_bytes_reserves_the_file_not_the_limit(tmp_path, monkeypatch):
     from ddg_oracle.reference.errors import InputError
     with pytest.raises(InputError, match="over the limit"):
         files.read_bytes(path, "a test file", limit=50)
+
+
+def test_an_undecided_result_is_never_attributed_to_a_library_finding():
+    """The exact reference giving up (time or precision limit) on a mesh says nothing about
+    the library: "(known: F-libigl-6)" beside an undecided D4.8 blamed libigl."""
+    from ddg_oracle.properties.runner import INTERNAL, UNDECIDED, Result
+    from ddg_oracle.report import known_finding, known_findings
+    findings = known_findings()
+    failed = Result("D4.8 / R4.9", "laplace_beltrami_operator", "libigl", FAILED)
+    assert known_finding(failed, findings) is not None            # libigl has D4.8 findings
+    for status in (UNDECIDED, INTERNAL):
+        r = Result("D4.8 / R4.9", "laplace_beltrami_operator", "libigl", status)
+        assert known_finding(r, findings) is None
+
+
+def test_a_mesh_file_with_inconsistently_oriented_faces_is_not_a_dihedral_sign_check(
+        tmp_path, capsys):
+    """CGAL's tet-shuffled.off: an orientable tetrahedron listed with faces both ways.  The
+    sign of a dihedral angle reads the faces' orientation: R2.5 was an internal error
+    (exit 3) and D2.3 blamed the reference's own answer; both are not applicable there."""
+    path = tmp_path / "tet-shuffled.obj"
+    write_obj(path, [[0.0, 0, 0], [0, 1, 0], [1, 1, 0], [0, 0, 1]],
+              [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
+    rc = main(["check", "--mesh", str(path), "--impl", "reference", "--workers", "1",
+               "--only", "D2.3", "R2.5", "D2.2", "--report", str(tmp_path / "r")])
+    out, err = capsys.readouterr()
+    assert rc == 0, out + err
+    results = json.loads((tmp_path / "r" / "results.json").read_text())["results"]
+    status = {r["property_id"].split(" ")[0]: r for r in results}
+    assert status["D2.2"]["status"] == "passed"
+    for pid in ("D2.3", "R2.5"):
+        assert status[pid]["status"] == "not applicable", status[pid]
+        assert "not consistently oriented" in json.dumps(status[pid])

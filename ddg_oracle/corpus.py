@@ -1,0 +1,354 @@
+"""The CGAL mesh corpus: the meshes of CGAL's ``data/meshes``, from Debian's ``libcgal-demo``.
+
+``python -m ddg_oracle.corpus fetch`` runs ``apt-get download libcgal-demo`` in a
+temporary directory, unpacks the package (``dpkg -x``) and its inner tarballs, and
+copies every mesh file (.off, .obj, .ply, .stl) below a ``meshes`` directory into the
+cache directory :func:`corpus_dir` (``$DDG_ORACLE_CORPUS``, else
+``${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal``), with ``manifest.json`` (each mesh's
+path, size and sha256; the package's version, size and sha256).  CGAL's point sets
+(``data/points_3``) are not meshes and are left out.  A second run finds the manifest's
+files intact and downloads nothing.  Nothing of it is in git.
+
+``cgal:`` then names every mesh of the corpus, ``cgal:NAME`` one of them (its file name,
+``elephant.off``, or its path in the corpus, ``meshes/elephant.off``); see
+:mod:`ddg_oracle.compare`.  Polygon faces of OFF and OBJ corpus meshes are
+fan-triangulated (:func:`read_triangulated`, with a note): the readers of
+:mod:`ddg_oracle.meshfiles` reject polygons, a user's file is never triangulated.
+
+``python -m ddg_oracle.corpus list`` prints the corpus's meshes, ``path`` its directory.
+Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the package cannot be
+downloaded, the directory is not a corpus).
+"""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+from pathlib import Path, PurePosixPath
+
+from ddg_oracle.reference.errors import InputError
+
+PREFIX = "cgal:"
+ENV = "DDG_ORACLE_CORPUS"
+PACKAGE = "libcgal-demo"
+MANIFEST = "manifest.json"
+SUFFIXES = (".obj", ".off", ".ply", ".stl")
+FETCH_COMMAND = "python -m ddg_oracle.corpus fetch"
+
+
+class CorpusError(InputError):
+    """The corpus cannot be fetched or is not there (a one-line message; exit 2)."""
+
+
+def corpus_dir() -> Path:
+    """``$DDG_ORACLE_CORPUS``, else ``${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal``."""
+    if os.environ.get(ENV):
+        return Path(os.environ[ENV]).expanduser()
+    cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(cache) / "ddg-oracle" / "cgal"
+
+
+def _sha256(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def read_manifest(d: Path | None = None) -> dict:
+    """The manifest of the corpus in ``d`` (CorpusError saying how to fetch it if absent)."""
+    d = corpus_dir() if d is None else d
+    m = d / MANIFEST
+    if not m.is_file():
+        raise CorpusError(f"{PREFIX} the CGAL mesh corpus is not fetched (no {m}); "
+                          f"fetch it with: {FETCH_COMMAND}")
+    try:
+        manifest = json.loads(m.read_text())
+        manifest["meshes"] = [dict(name=e["name"], size=int(e["size"]), sha256=e["sha256"])
+                              for e in manifest["meshes"]]
+    except (ValueError, KeyError, TypeError) as e:
+        raise CorpusError(f"{m}: not a corpus manifest ({e}); fetch it again with: "
+                          f"{FETCH_COMMAND} --force") from None
+    return manifest
+
+
+def intact(d: Path) -> bool:
+    """True when ``d`` holds a manifest and every file it lists, of that size and sha256."""
+    try:
+        manifest = read_manifest(d)
+    except CorpusError:
+        return False
+    for e in manifest["meshes"]:
+        p = d / e["name"]
+        if not p.is_file() or p.stat().st_size != e["size"] or _sha256(p) != e["sha256"]:
+            return False
+    return bool(manifest["meshes"])
+
+
+# --- the fetch ------------------------------------------------------------------------------------
+
+
+def _mesh_member(name: str) -> PurePosixPath | None:
+    """The path in the corpus of a tarball member (below a ``meshes`` directory, with a mesh
+    suffix, nothing absolute or ``..``), else None."""
+    p = PurePosixPath(name)
+    if p.is_absolute() or ".." in p.parts or p.suffix.lower() not in SUFFIXES:
+        return None
+    if "meshes" not in p.parts[:-1]:
+        return None
+    return PurePosixPath(*p.parts[p.parts.index("meshes"):])
+
+
+def _run(cmd: list[str], cwd: Path, what: str) -> None:
+    try:
+        r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=600)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        raise CorpusError(f"{what} failed: {e}") from None
+    if r.returncode != 0:
+        lines = [x for x in (r.stderr + r.stdout).splitlines() if x.strip()]
+        last = next((x for x in lines if x.startswith("E:")), lines[-1] if lines else "")
+        hint = " (run apt-get update first?)" if "Unable to locate" in last else ""
+        raise CorpusError(f"{what} failed (exit {r.returncode}): {last.strip()}{hint}")
+
+
+def fetch(d: Path | None = None, force: bool = False, log=print) -> dict:
+    """Fetch the corpus into ``d`` (default :func:`corpus_dir`) unless it is there intact;
+    returns the manifest plus ``downloaded`` (False: nothing was fetched)."""
+    d = corpus_dir() if d is None else d
+    if not force and intact(d):
+        manifest = read_manifest(d)
+        log(f"the CGAL mesh corpus is already in {d}: {len(manifest['meshes'])} meshes "
+            f"({PACKAGE} {manifest.get('version', '?')}); nothing downloaded")
+        return {**manifest, "downloaded": False}
+    if d.exists() and not (d / MANIFEST).is_file() and any(d.iterdir()):
+        raise CorpusError(f"{d}: not empty and not a corpus (no {MANIFEST}); set {ENV} to a "
+                          f"new or empty directory")
+    for tool in ("apt-get", "dpkg"):
+        if shutil.which(tool) is None:
+            raise CorpusError(f"{tool} not found: the CGAL corpus comes from Debian's {PACKAGE} "
+                              f"package (fetch it on Debian/Ubuntu, or copy a fetched corpus "
+                              f"and set {ENV})")
+    t0 = time.perf_counter()
+    d.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="ddg-oracle-corpus-") as tmp:
+        tmp = Path(tmp)
+        os.chmod(tmp, 0o755)                  # apt-get's _apt user may write the .deb
+        _run(["apt-get", "download", PACKAGE], tmp, f"apt-get download {PACKAGE}")
+        debs = sorted(tmp.glob(f"{PACKAGE}_*.deb"))
+        if not debs:
+            raise CorpusError(f"apt-get download {PACKAGE} left no .deb in {tmp}")
+        deb = debs[0]
+        version = deb.name[len(PACKAGE) + 1:].split("_")[0]
+        _run(["dpkg", "-x", str(deb), "x"], tmp, f"dpkg -x {deb.name}")
+        stage = Path(tempfile.mkdtemp(prefix=f".{d.name}.", dir=d.parent))
+        try:
+            entries = _copy_meshes(tmp / "x", stage)
+            if not entries:
+                raise CorpusError(f"{deb.name}: no mesh file below a 'meshes' directory")
+            manifest = dict(source=f"Debian package {PACKAGE} (CGAL's data/meshes)",
+                            package=PACKAGE, version=version, deb=deb.name,
+                            deb_size=deb.stat().st_size, deb_sha256=_sha256(deb),
+                            fetched=time.strftime("%Y-%m-%d"),
+                            meshes=sorted(entries, key=lambda e: e["name"]))
+            (stage / MANIFEST).write_text(json.dumps(manifest, indent=1) + "\n")
+            if d.exists():
+                shutil.rmtree(d)              # a corpus (it has a manifest) or empty
+            stage.rename(d)
+        finally:
+            if stage.exists():
+                shutil.rmtree(stage)
+    size = sum(e["size"] for e in manifest["meshes"])
+    log(f"fetched {PACKAGE} {version} ({manifest['deb_size'] / 1e6:.1f} MB): "
+        f"{len(manifest['meshes'])} meshes ({size / 1e6:.1f} MB) into {d} in "
+        f"{time.perf_counter() - t0:.1f} s")
+    return {**manifest, "downloaded": True}
+
+
+def _copy_meshes(root: Path, dest: Path) -> list[dict]:
+    """Every mesh of the unpacked package ``root`` (loose, or in a tarball) into ``dest``."""
+    entries: dict[str, dict] = {}
+
+    def add(rel: PurePosixPath, data: bytes):
+        if str(rel) in entries:
+            return
+        out = dest / rel
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_bytes(data)
+        entries[str(rel)] = dict(name=str(rel), size=len(data),
+                                 sha256=hashlib.sha256(data).hexdigest())
+
+    for p in sorted(root.rglob("*")):
+        if not p.is_file() or p.is_symlink():
+            continue
+        rel = _mesh_member(p.relative_to(root).as_posix())
+        if rel is not None:
+            add(rel, p.read_bytes())
+        elif p.name.endswith((".tar", ".tar.gz", ".tgz", ".tar.xz", ".tar.bz2")):
+            with tarfile.open(p) as tar:
+                for m in tar:
+                    rel = _mesh_member(m.name)
+                    if rel is not None and m.isfile():
+                        add(rel, tar.extractfile(m).read())
+    return list(entries.values())
+
+
+# --- the meshes -----------------------------------------------------------------------------------
+
+
+def meshes(d: Path | None = None) -> list[tuple[str, Path]]:
+    """(display name ``cgal:FILE``, path) of every mesh of the corpus, sorted by path (the
+    path in the corpus names a mesh whose file name is not unique)."""
+    d = corpus_dir() if d is None else d
+    names = sorted(e["name"] for e in read_manifest(d)["meshes"])
+    base = [PurePosixPath(n).name for n in names]
+    return [(PREFIX + (b if base.count(b) == 1 else n), d / n) for n, b in zip(names, base)]
+
+
+def resolve(arg: str) -> list[tuple[str, Path, bool]]:
+    """``cgal:`` (every mesh, skipped with a note when unusable) or ``cgal:NAME`` (one, whose
+    problems are errors), as :func:`ddg_oracle.compare.resolve` returns them."""
+    name = arg[len(PREFIX):]
+    d = corpus_dir()
+    every = meshes(d)
+    if not name:
+        return [(n, p, False) for n, p in every]
+    rel = {str(p.relative_to(d)): (n, p) for n, p in every}
+    by_name = {n[len(PREFIX):]: (n, p) for n, p in every}
+    hit = by_name.get(name) or rel.get(name)
+    if hit is None:
+        known = list(by_name)
+        stems = {}
+        for k in known:                        # elefant -> elephant.off, elephant.ply
+            stems.setdefault(PurePosixPath(k).stem, []).append(k)
+        close = [k for s in difflib.get_close_matches(PurePosixPath(name).stem, stems, n=5,
+                                                      cutoff=0.6) for k in stems[s]][:5]
+        hint = f"close names: {', '.join(close)}" if close else \
+            f"e.g. {', '.join(known[:5])}; {PREFIX} for all {len(known)}"
+        raise CorpusError(f"{arg}: no such mesh in the CGAL corpus ({hint})")
+    return [(hit[0], hit[1], True)]
+
+
+def read_triangulated(path) -> tuple[list, list, str | None]:
+    """(V, F, note) of a corpus mesh: :func:`~ddg_oracle.meshfiles.read_mesh`, except that the
+    polygons of an OFF or OBJ file are split into a fan from their first corner (the
+    note says how many); every other problem is the reader's error."""
+    from . import meshfiles
+    from .files import read_bytes
+    from .meshfiles import MeshFileError, read_mesh
+    path = Path(path)
+    try:
+        return (*read_mesh(path), None)
+    except MeshFileError as e:
+        if "only triangles are accepted" not in str(e) or \
+                path.suffix.lower() not in (".off", ".obj"):
+            raise
+    data = read_bytes(path, "a mesh file", meshfiles.size_limit(), MeshFileError)
+    off = path.suffix.lower() == ".off"
+    text, polygons, corners, triangles = (_fan_off if off else _fan_obj)(
+        data.decode("utf-8-sig", errors="replace"))
+    V, F = (meshfiles._off if off else meshfiles._obj)(text.encode(), str(path))
+    meshfiles._check(V, F, str(path))
+    lo, hi = min(corners), max(corners)
+    sides = f"{lo}" if lo == hi else f"{lo} to {hi}"
+    faces = "1 polygon face" if polygons == 1 else f"{polygons} polygon faces"
+    whose = "its" if polygons == 1 else "their"
+    return V, F, (f"{faces} ({sides} corners) fan-triangulated from {whose} first corner "
+                  f"into {triangles} triangles")
+
+
+def _fan(corners: list[str]) -> list[list[str]]:
+    return [[corners[0], corners[j], corners[j + 1]] for j in range(1, len(corners) - 1)]
+
+
+def _fan_off(text: str):
+    """The OFF ``text`` with each polygon face line replaced by its fan's triangles (and the
+    face count updated); a line it cannot read is kept, for the reader to report."""
+    rows = [(line, line.split("#", 1)[0].split()) for line in text.splitlines()]
+    rows = [(line, p) for line, p in rows if p]
+    corners, out, triangles = [], [], 0
+    if not rows or not rows[0][1][0].endswith("OFF"):
+        return text, 0, [0], 0
+    head = rows[0][1]
+    counts, body = (head[1:], rows[1:]) if len(head) > 1 else \
+        ((rows[1][1] if len(rows) > 1 else []), rows[2:])
+    try:
+        nv, nf = int(counts[0]), int(counts[1])
+    except (IndexError, ValueError):
+        return text, 0, [0], 0
+    out += [line for line, _ in body[:nv]]
+    faces = 0
+    for line, p in body[nv:nv + nf]:
+        try:
+            k = int(p[0])
+        except ValueError:
+            k = -1
+        if k > 3 and len(p) >= k + 1:
+            corners.append(k)
+            for t in _fan(p[1:k + 1]):
+                out.append("3 " + " ".join(t))
+                faces += 1
+                triangles += 1
+        else:
+            out.append(line)
+            faces += 1
+    text = "\n".join([head[0], f"{nv} {faces} 0", *out]) + "\n"
+    return text, len(corners), corners or [0], triangles
+
+
+def _fan_obj(text: str):
+    """The OBJ ``text`` with each polygon ``f`` line replaced by its fan's triangles."""
+    out, corners, triangles = [], [], 0
+    for line in text.splitlines():
+        p = line.split("#", 1)[0].split()
+        if p and p[0] == "f" and len(p) > 4:
+            corners.append(len(p) - 1)
+            for t in _fan(p[1:]):
+                out.append("f " + " ".join(t))
+                triangles += 1
+        else:
+            out.append(line)
+    return "\n".join(out) + "\n", len(corners), corners or [0], triangles
+
+
+# --- the command line -----------------------------------------------------------------------------
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(
+        prog="python -m ddg_oracle.corpus",
+        description=f"The CGAL mesh corpus (Debian's {PACKAGE}) in ${ENV}, else "
+                    "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal; used as 'cgal:' and "
+                    "'cgal:NAME' by ddg-oracle check --mesh and ddg-oracle compare.")
+    sub = ap.add_subparsers(dest="command", required=True)
+    f = sub.add_parser("fetch", help=f"apt-get download {PACKAGE} and keep its meshes "
+                                     "(nothing downloaded when already there)")
+    f.add_argument("--force", action="store_true", help="fetch again even when intact")
+    sub.add_parser("list", help="the meshes of the corpus (name, bytes)")
+    sub.add_parser("path", help="the corpus directory")
+    args = ap.parse_args(argv)
+    try:
+        if args.command == "fetch":
+            fetch(force=args.force)
+        elif args.command == "list":
+            for name, path in meshes():
+                print(f"{name}\t{path.stat().st_size if path.is_file() else 'missing'}")
+        else:
+            print(corpus_dir())
+    except (InputError, OSError) as e:
+        print(f"ddg-oracle corpus: error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
