@@ -91,3 +91,45 @@ def write_atomically(path, text: str) -> None:
         except OSError:
             pass
         raise
+
+
+def available_memory() -> int | None:
+    """Bytes this process may still allocate: the kernel's MemAvailable (Linux), or less
+    under an address-space limit (``ulimit -v``); None where neither is known."""
+    have = None
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    have = int(line.split()[1]) * 1024
+                    break
+    except (OSError, ValueError):
+        pass
+    try:
+        import resource
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+        if soft != resource.RLIM_INFINITY:
+            with open("/proc/self/statm", encoding="ascii") as fh:
+                used = int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+            room = max(soft - used, 0)
+            have = room if have is None else min(have, room)
+    except (ImportError, OSError, ValueError):
+        pass
+    return have
+
+
+def require_memory(path, factor: float, what: str, error=InputError) -> None:
+    """``error`` in one line, before any parsing, if ``what`` (whose peak is about
+    ``factor`` times the file's size, as measured by ``python -m benchmarks meshread``)
+    would need more memory than this process has: a file well under the size limit must
+    not exhaust the machine (or be killed by the kernel midway)."""
+    path = Path(path)
+    try:
+        need = int(factor * os.stat(path).st_size)
+    except OSError:
+        return                              # the reader names the problem
+    have = available_memory()
+    if have is not None and need > have:
+        raise error(f"{path}: {what} needs about {need / 2 ** 30:.2f} GiB of memory ({factor:g} "
+                    f"x its {os.stat(path).st_size:,} bytes), {have / 2 ** 30:.2f} GiB available")
+

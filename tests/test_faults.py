@@ -190,3 +190,21 @@ def test_a_port_that_never_answers_as_a_scheduler_is_a_usage_error(capsys, monke
         silent.close()
     assert rc == 2 and "no dask scheduler answered within 2 s" in _one_line(err)
     assert seconds < 20
+
+
+def test_a_mesh_that_would_not_fit_in_memory_is_refused_before_reading(capsys, tmp_path,
+                                                                       monkeypatch):
+    """compare's load peaks near 40x the file (docs/faults.md): a file well under the 2 GiB
+    size limit could exhaust the machine, or be killed by the kernel midway.  The memory
+    left is compared first, and the error says how much was needed."""
+    from ddg_oracle import files
+    from ddg_oracle.meshfiles import write_obj
+    path = tmp_path / "tet.obj"
+    write_obj(path, [[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+              [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    monkeypatch.setattr(files, "available_memory", lambda: 1000)
+    rc, _, err, _ = _run(capsys, "compare", str(path), "--impl", "reference")
+    assert rc == 2 and "GiB of memory" in _one_line(err) and "available" in err
+    monkeypatch.setattr(files, "available_memory", lambda: 1 << 30)
+    rc, _, err, _ = _run(capsys, "compare", str(path), "--impl", "reference")
+    assert rc == 0, err
