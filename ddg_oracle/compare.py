@@ -695,14 +695,13 @@ def _on_used(impl, method: str, got, used: list):
     the reference's conventions, for every vertex) restricted to the ``used`` vertices:
     per-vertex rows, or the rows and columns of a matrix."""
     import scipy.sparse as sp
-    from ddg_oracle.properties.protocol import implementation_name, machine_epsilon
+    from ddg_oracle.properties.protocol import METHODS, implementation_name, machine_epsilon
     idx = np.asarray(used, dtype=np.int64)
     if sp.issparse(got):
         part = sp.csr_matrix(got)[idx][:, idx]
     else:
         a = np.asarray(got)
-        part = a[np.ix_(idx, idx)] if a.ndim == 2 and a.shape[0] == a.shape[1] == len(a) \
-            and method in ("cotan_laplacian", "intrinsic_delaunay_laplacian") else a[idx]
+        part = a[np.ix_(idx, idx)] if METHODS[method].kind == "matrix" else a[idx]
 
     class OnUsed:
         name = implementation_name(impl)

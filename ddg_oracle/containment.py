@@ -18,7 +18,7 @@ import signal
 import time
 from contextlib import contextmanager
 
-__all__ = ["contained", "descendants", "kill_descendants", "become_subreaper"]
+__all__ = ["contained", "descendants", "kill_descendants", "become_subreaper", "stopped"]
 
 PR_SET_CHILD_SUBREAPER = 36
 
@@ -68,6 +68,15 @@ def alive(pid: int) -> bool:
         return False
 
 
+def stopped(pid: int) -> bool:
+    """Whether the process is stopped (state T: SIGSTOP) or traced, from /proc (Linux)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return fh.read().rsplit(b")", 1)[1].split()[0] in (b"T", b"t")
+    except OSError:
+        return False
+
+
 def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
     """SIGTERM every descendant process but ``keep``, then SIGKILL those still there after
     ``grace`` s, and reap those that are our children; returns how many were stopped.
@@ -76,7 +85,8 @@ def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
     prints a traceback for every semaphore they release."""
     keep = set(keep)
     tracker = _resource_tracker()
-    if tracker is not None:
+    if tracker is not None and not stopped(tracker):
+        # (a stopped tracker would never end: this process's exit waits for it)
         keep.add(tracker)
     procs = [p for p in descendants() if p not in keep]
     for p in procs:

@@ -19,6 +19,7 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
+from ddg_oracle.containment import stopped
 from ddg_oracle.oracles.processes import exit_text
 
 IN_PROCESS = ("reference",)      # specs run in the checking process itself
@@ -361,15 +362,6 @@ def needs_of(group) -> frozenset:
     return p.methods if p is not None else frozenset()
 
 
-def _stopped(pid: int) -> bool:
-    """Whether the process is stopped (state T: SIGSTOP) or traced, from /proc (Linux)."""
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as fh:
-            return fh.read().rsplit(b")", 1)[1].split()[0] in (b"T", b"t")
-    except OSError:
-        return False
-
-
 def _wedge_limit(options) -> float | None:
     """Seconds after which a generated-example task still running is taken for a wedged
     worker: four times the task's budget plus two call timeouts (a budget bounds the
@@ -497,7 +489,7 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
                     continue
                 late = (wedged_after is not None and tasks[k].mesh is None
                         and time.monotonic() - since.get(conn, time.monotonic()) > wedged_after)
-                if late or _stopped(proc.pid):
+                if late or stopped(proc.pid):
                     proc.kill()
     finally:
         for conn, (proc, _) in list(running.items()):
