@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ddg_oracle.reference.errors import InputError
+from ddg_oracle.reference.errors import ExactArithmeticLimit, InputError
 
 from . import corpus
 from .meshfiles import MeshFileError, read_mesh
@@ -282,7 +282,7 @@ class Comparison:
 
     quantity: str
     implementation: str
-    status: str                      # "agrees", "DIFFERS", "crashed", "not applicable", "skipped"
+    status: str        # "agrees", "DIFFERS", "crashed", "undecided", "not applicable", "skipped"
     worst: float | None = None       # largest error / bound (None: exact quantity or none)
     error: float | None = None       # the error there
     bound: float | None = None
@@ -381,7 +381,14 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
             rows.append(got)
             continue
         with _epsilon_of(impl):
-            want, bound = expected(quantities[method], machine_epsilon(impl))
+            try:
+                want, bound = expected(quantities[method], machine_epsilon(impl))
+            except ExactArithmeticLimit as e:
+                # the exact reference gave up (time or precision): nothing is said of the
+                # implementation's answer here
+                rows.append(Comparison(method, implementation_name(impl), "undecided",
+                                       note=f"the exact reference gave up: {e}"))
+                continue
             row = _compare_one(quantities[method], implementation_name(impl), got, want, ex,
                                bound)
             if explain and row.status == "DIFFERS":
@@ -430,8 +437,24 @@ class _ExpectedValues:
 
     def __init__(self, ex: "MeshExamples", answer):
         self.ex, self.answer, self.wanted, self.bounds = ex, answer, {}, {}
+        self.gave_up: dict = {}
 
     def __call__(self, q, epsilon: float):
+        """(want, bound); the exact reference's giving up (its time limit per example,
+        ``DDG_EXAMPLE_TIME_LIMIT``, or its precision limit) raised as
+        :class:`~ddg_oracle.reference.errors.ExactArithmeticLimit`, once per method."""
+        from ddg_oracle.properties.profiles import example_time_limit
+        from ddg_oracle.reference.errors import ExactArithmeticLimit
+        if q.method in self.gave_up:
+            raise self.gave_up[q.method]
+        try:
+            with example_time_limit(f"[{q.method}] the exact reference on this mesh"):
+                return self._values(q, epsilon)
+        except ExactArithmeticLimit as e:
+            self.gave_up[q.method] = e
+            raise
+
+    def _values(self, q, epsilon: float):
         from ddg_oracle.properties.protocol import at_machine_epsilon
         if q.method not in self.wanted:
             answer = lambda: self.answer(q.method)       # noqa: E731
@@ -475,7 +498,7 @@ def _expected_in_worker(job):
     q = all_quantities()[method]
     try:
         return method, {e: values(q, e) for e in sorted(epsilons)}
-    except Exception as e:  # noqa: BLE001  (raised again in the parent, as in one process)
+    except Exception as e:  # noqa: BLE001  (raised again in the parent, where it is asked for)
         return method, e
 
 
@@ -498,12 +521,12 @@ def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
             done = dict(running)
         finally:
             close()
-        for method, got in done.items():
-            if isinstance(got, BaseException):
-                raise got
 
         def expected(q, epsilon):
-            return done[q.method][epsilon]
+            got = done[q.method]
+            if isinstance(got, BaseException):
+                raise got           # for this method's rows only: the others stand
+            return got[epsilon]
         return expected
     wait.close = close
     return wait

@@ -25,8 +25,9 @@ from pathlib import Path
 
 from ddg_oracle.report import ResultStream
 
-#: the statuses a scoreboard counts, in its order ("skipped" counts as not applicable)
-STATUSES = ("agrees", "DIFFERS", "crashed", "not applicable")
+#: the statuses a scoreboard counts, in its order ("skipped" counts as not applicable;
+#: "undecided": the exact reference gave up on the mesh, which says nothing of the library)
+STATUSES = ("agrees", "DIFFERS", "crashed", "undecided", "not applicable")
 NOT_PROVIDED = "not provided"          # compare's note for a method an implementation lacks
 FORMAT = "ddg-oracle survey"
 
@@ -195,7 +196,7 @@ class Score:
 
     @property
     def applicable(self) -> int:
-        return self.meshes - self.counts["not applicable"]
+        return self.meshes - self.counts["not applicable"] - self.counts["undecided"]
 
     @property
     def median(self) -> float | None:
@@ -250,7 +251,7 @@ def _ratio(x) -> str:
 
 
 COLUMNS = ("implementation", "quantity", "meshes", "agrees", "DIFFERS", "crashed",
-           "not applicable", "worst err/bound", "worst on", "median err/bound")
+           "undecided", "not applicable", "worst err/bound", "worst on", "median err/bound")
 
 
 def _cells(s: Score) -> tuple:
