@@ -26,9 +26,11 @@ import traceback
 from pathlib import Path
 
 from ddg_oracle import __version__
+from ddg_oracle.commands import (DEFAULT_WORKERS, UsageError, check_timeout, default_workers,
+                                 refuse_used_report_dir, start_implementations, warn,
+                                 warn_near_misses)
 from ddg_oracle.reference.errors import InputError
 
-DEFAULT_WORKERS = 2
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE, EXIT_TOOL = 0, 1, 2, 3
 BUG_REPORT = ("ddg-oracle: internal error (exit 3): this is a bug in ddg-oracle, not in the "
               "checked code; please report it with the command line and the traceback above")
@@ -41,19 +43,11 @@ exit codes:
   3  ddg-oracle itself failed (traceback; please report it)"""
 
 
-class UsageError(InputError):
-    """A command line that cannot be run as given (exit 2)."""
-
-
 class _Parser(argparse.ArgumentParser):
     """Usage errors in one line, as every other error of ours (no usage block)."""
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"ddg-oracle: error: {message} (see: {self.prog} --help)\n")
-
-
-def _default_workers() -> int:
-    return max(1, min(DEFAULT_WORKERS, os.cpu_count() or 1))
 
 
 def _epilog(examples: str, codes: str = EXIT_CODES, specs: bool = False) -> str:
@@ -147,7 +141,7 @@ def parser() -> argparse.ArgumentParser:
                         "already in DIR/results.jsonl are not run again; the same command "
                         "line and seed)")
     c.add_argument("--workers", type=int, default=None, metavar="N",
-                   help=f"worker processes (default {_default_workers()}: "
+                   help=f"worker processes (default {default_workers()}: "
                         f"min({DEFAULT_WORKERS}, number of CPUs)); 1 runs in this process")
     c.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the tasks on a dask.distributed cluster: a scheduler's address "
@@ -223,7 +217,7 @@ def parser() -> argparse.ArgumentParser:
                    help="seconds per call, per 10,000 faces of the input (never less; default 60)")
     s.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"processes computing the exact values of each mesh (default "
-                        f"{_default_workers()}); 1 computes them in this process")
+                        f"{default_workers()}); 1 computes them in this process")
     s.add_argument("--report", metavar="DIR",
                    help="keep each finished mesh in DIR/results.jsonl and write the scoreboard "
                         "to DIR/survey.md, DIR/survey.html and DIR/results.json (a new or "
@@ -378,7 +372,7 @@ def _methods_of(args, METHODS, props) -> int:
                                                 implementation_name, machine_epsilon,
                                                 near_miss_warning)
     from ddg_oracle.properties.conventions import declared
-    impl = _start([args.impl], args.timeout)[args.impl]
+    impl = start_implementations([args.impl], args.timeout)[args.impl]
     try:
         has = capabilities(impl)
         eps, follows = machine_epsilon(impl), declared_conventions(impl)
@@ -450,54 +444,6 @@ def _budget(args):
     return Budget(args.budget or None, budget.crashes if args.budget else None)
 
 
-def _refuse_used_report_dir(path: str) -> None:
-    """--report DIR must be a new or empty directory: refused before any work is done."""
-    if os.path.lexists(path) and not (os.path.isdir(path) and not os.listdir(path)):
-        what = "a directory that is not empty" if os.path.isdir(path) else "an existing file"
-        raise UsageError(f"--report {path}: is {what}; name a new or empty directory")
-
-
-def _warn(message: str) -> None:
-    print(f"ddg-oracle: note: {message}", file=sys.stderr)
-
-
-def _warn_near_misses(impls) -> None:
-    """A warning per implementation with a method that looks like a protocol method it
-    lacks (a misnamed ``cotmatrix``): its properties would be silently not applicable."""
-    from ddg_oracle.properties.protocol import near_miss_warning
-    for impl in impls:
-        said = near_miss_warning(impl)
-        if said:
-            print(f"ddg-oracle: warning: {said}", file=sys.stderr)
-
-
-def _start(specs, timeout):
-    """{spec: implementation}: the reference in this process, the others isolated, started
-    in parallel; an unloadable spec raises ImplementationNotFound (exit 2)."""
-    from ddg_oracle.implementations import load_implementation
-    from ddg_oracle.isolation import Isolated
-
-    def one(spec):
-        return load_implementation(spec) if spec == "reference" else Isolated(spec, timeout=timeout)
-
-    with cf.ThreadPoolExecutor(max_workers=max(1, len(specs))) as pool:
-        futures = {s: pool.submit(one, s) for s in specs}
-    started, error = {}, None
-    for s, f in futures.items():
-        try:
-            started[s] = f.result()
-        except Exception as e:  # noqa: BLE001  (re-raised below after closing the others)
-            error = error or e
-    if error is not None:
-        for impl in started.values():
-            getattr(impl, "close", lambda: None)()
-        from ddg_oracle.isolation import ImplementationCrashed
-        if isinstance(error, ImplementationCrashed):   # it died or hung while loading
-            raise UsageError(f"cannot load {error.implementation}: it {error.how}") from None
-        raise error
-    return started
-
-
 class Progress:
     """Signs of life on stderr.  On a terminal, a one-line bar.  Otherwise (a CI log, a
     pipe) one line per finished task that was applicable, and every ``every`` seconds a
@@ -556,7 +502,7 @@ def _validate_check(args) -> None:
     from ddg_oracle.properties.profiles import time_limit_seconds
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
-    _check_timeout(args)
+    check_timeout(args)
     if args.width < 40:
         raise UsageError(f"--width must be at least 40 columns, got {args.width}")
     time_limit_seconds()               # DDG_EXAMPLE_TIME_LIMIT
@@ -589,7 +535,7 @@ def _check(args, argv) -> int:
         args.report, args.resume, args.seed = stored["report"], stored["report"], seed
         argv = stored["argv"]
     _validate_check(args)
-    workers = args.workers or _default_workers()
+    workers = args.workers or default_workers()
     try:
         props = select_properties(args.only)
     except ValueError as e:
@@ -601,11 +547,11 @@ def _check(args, argv) -> int:
         # one seed for the run: every implementation of a property sees the same examples
         seed = random.SystemRandom().getrandbits(32)
     if args.report and not args.resume:
-        _refuse_used_report_dir(args.report)             # before the run, not after it
+        refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
         from ddg_oracle.compare import file_properties, load_all
-        meshes = load_all(args.mesh, warn=_warn)
+        meshes = load_all(args.mesh, warn=warn)
         if not meshes:
             raise InputError("no usable mesh among " + ", ".join(args.mesh))
         on_files = [p.id for p in file_properties()]
@@ -614,11 +560,11 @@ def _check(args, argv) -> int:
                              f"those that do: {', '.join(on_files)}")
     if not args.impl:
         for name, why in missing().items():
-            _warn(f"not checked: {why}")
+            warn(f"not checked: {why}")
     drivers = [] if args.impl else built_drivers(args.drivers)
     if not args.impl and not drivers and os.path.exists(os.path.join("examples", "cpp",
                                                                      "CMakeLists.txt")):
-        _warn("not checked: the C++ drivers (CGAL, OpenMesh) are not built; "
+        warn("not checked: the C++ drivers (CGAL, OpenMesh) are not built; "
               "bash examples/cpp/build.sh builds them")
     specs = list(dict.fromkeys(args.impl or available() + drivers))
     t0 = time.perf_counter()
@@ -643,8 +589,8 @@ def _check(args, argv) -> int:
     from ddg_oracle.implementations import BUILTIN
     plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
     pool = workers > 1 or client is not None
-    started = _start([s for s in specs if not pool or s not in plain], args.timeout)
-    _warn_near_misses(started.values())
+    started = start_implementations([s for s in specs if not pool or s not in plain], args.timeout)
+    warn_near_misses(started.values())
     names = {s: getattr(i, "name", s) for s, i in started.items()}
     names.update({s: s for s in plain if s not in names})   # their display name is the name
     if not pool:
@@ -762,30 +708,22 @@ def _check(args, argv) -> int:
     return 1 if bad else 0
 
 
-def _check_timeout(args) -> None:
-    """--timeout of check, compare and verify: a bad value is a usage error, never a result
-    blamed on a library (-1: every call 'did not return'; 0: a worker restarted per call)."""
-    if not args.timeout > 0 or args.timeout == float("inf"):
-        raise UsageError(f"--timeout must be a positive number of seconds per call, got "
-                         f"{args.timeout}")
-
-
 def _compare(args) -> int:
-    _check_timeout(args)
+    check_timeout(args)
     from ddg_oracle.compare import format_comparisons, load_all, compare_mesh
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     from ddg_oracle.implementations import available
 
-    meshes = load_all(args.mesh, warn=_warn)
+    meshes = load_all(args.mesh, warn=warn)
     if not meshes:
         raise InputError("no usable mesh among " + ", ".join(args.mesh))
     specs = list(dict.fromkeys(args.impl or [s for s in available() if s != "reference"]))
-    started = _start(specs, args.timeout)
+    started = start_implementations(specs, args.timeout)
     worse = 0
     try:
         for k, mesh in enumerate(meshes):
             rows = compare_mesh(mesh, [started[s] for s in specs], ReferenceImplementation(),
-                                workers=_default_workers())
+                                workers=default_workers())
             print(("\n" if k else "") + format_comparisons(mesh, rows))
             worse += sum(r.status in ("DIFFERS", "crashed") for r in rows)
     finally:
@@ -799,8 +737,14 @@ def _survey(args) -> int:
     if args.resume and (args.mesh or args.impl or args.report):
         raise UsageError("survey --resume DIR takes no mesh, --impl or --report: the "
                          "interrupted run's are read from DIR/run.json")
-    _check_timeout(args)
     from ddg_oracle import survey
+    if args.resume:
+        # the interrupted run's own options (its run.json), in the directory as it is now
+        stored = survey.command_of(args.resume)
+        workers, report = args.workers, stored["report"]
+        args = parser().parse_args(["survey", *stored["argv"]])
+        args.report, args.resume, args.workers = report, report, workers
+    check_timeout(args)
     return survey.run(args)
 
 
@@ -815,7 +759,7 @@ def _vectors(args) -> int:
 
 
 def _verify(args) -> int:
-    _check_timeout(args)
+    check_timeout(args)
     import json
     from ddg_oracle import vectors
     from ddg_oracle.properties.protocol import FLOAT64_EPSILON, implementation_name, machine_epsilon
@@ -827,9 +771,9 @@ def _verify(args) -> int:
         raise UsageError("verify: --write-answers needs --impl")
     float32 = args.float32
     if args.impl:
-        started = _start([args.impl], args.timeout)
+        started = start_implementations([args.impl], args.timeout)
         impl = started[args.impl]
-        _warn_near_misses([impl])
+        warn_near_misses([impl])
         try:
             lines = vectors.answers(corpus, impl)
             float32 = float32 or machine_epsilon(impl) > FLOAT64_EPSILON

@@ -227,7 +227,7 @@ class ResultStream:
         lines = self.directory / self.LINES
         # opening a FIFO (or a device) to append blocks, or writes nowhere: refuse it first
         if lines.exists() and not lines.is_file():
-            from ddg_oracle.cli import UsageError
+            from ddg_oracle.commands import UsageError
             from .files import kind_of
             raise UsageError(f"{lines}: cannot keep a run's results there: it is "
                              f"{kind_of(lines.stat().st_mode)}, not a regular file")
@@ -240,7 +240,7 @@ class ResultStream:
     @classmethod
     def command_of(cls, directory) -> dict:
         """The run.json of an interrupted run (a usage error if there is none)."""
-        from ddg_oracle.cli import UsageError
+        from ddg_oracle.commands import UsageError
         from .files import read_text
         path = Path(directory) / cls.RUN
         if not path.is_file():
@@ -261,7 +261,7 @@ class ResultStream:
         """{task index: its results} of the lines already in results.jsonl; a line that is
         not one this class wrote (damaged past its last line, or crafted) is a usage error
         naming it, and nothing of it is run or built but plain values."""
-        from ddg_oracle.cli import UsageError
+        from ddg_oracle.commands import UsageError
         from ddg_oracle.properties.codec import BadEncoding
         from ddg_oracle.properties.runner import Result
         index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}

@@ -133,7 +133,7 @@ class SurveyStream(ResultStream):
     def finished(self) -> dict:
         """{mesh name: MeshResult} of the lines already there (the meshes of this run
         only); a damaged line, other than a last one cut short, is a usage error."""
-        from ddg_oracle.cli import UsageError
+        from ddg_oracle.commands import UsageError
         from .files import read_text
         wanted = set(self.tasks)
         out = {}
@@ -163,7 +163,7 @@ class SurveyStream(ResultStream):
 
 def command_of(directory) -> dict:
     """The run.json of a survey's report directory (a usage error if it is not one)."""
-    from ddg_oracle.cli import UsageError
+    from ddg_oracle.commands import UsageError
     if not (Path(directory) / ResultStream.RUN).is_file():
         raise UsageError(f"--resume {directory}: no {ResultStream.RUN} there (not the report "
                          "directory of an interrupted ddg-oracle survey --report run)")
@@ -395,7 +395,7 @@ def run(args) -> int:
     import signal
     import sys
     import time
-    from ddg_oracle import cli
+    from ddg_oracle import commands
     from ddg_oracle.compare import compare_mesh, load_all
     from ddg_oracle.implementations import available
     from ddg_oracle.jobs import stopped_by_signals
@@ -403,22 +403,16 @@ def run(args) -> int:
     from ddg_oracle.properties.protocol import implementation_name
 
     workers = args.workers
-    if args.resume:
-        stored = command_of(args.resume)
-        report = stored["report"]
-        args = cli.parser().parse_args(["survey", *stored["argv"]])
-        args.report, args.resume = report, report
-        args.workers = workers
     if workers is not None and workers < 1:
-        raise cli.UsageError(f"--workers must be >= 1, got {workers}")
-    workers = workers or cli._default_workers()
-    cli._check_timeout(args)
+        raise commands.UsageError(f"--workers must be >= 1, got {workers}")
+    workers = workers or commands.default_workers()
+    commands.check_timeout(args)
     if not args.mesh:
-        raise cli.UsageError("survey: name the meshes (files, directories, 'pymeshlab:'), "
+        raise commands.UsageError("survey: name the meshes (files, directories, 'pymeshlab:'), "
                              "or --resume DIR")
     if args.report and not args.resume:
-        cli._refuse_used_report_dir(args.report)
-    meshes = load_all(args.mesh, warn=cli._warn)
+        commands.refuse_used_report_dir(args.report)
+    meshes = load_all(args.mesh, warn=commands.warn)
     seen: set = set()
     meshes = [m for m in meshes if not (m.name in seen or seen.add(m.name))]   # each name once
     if not meshes:
@@ -434,7 +428,7 @@ def run(args) -> int:
         try:
             stream = SurveyStream(args.report, names, command)
         except OSError as e:
-            raise cli.UsageError(f"--report {args.report}: cannot write there: "
+            raise commands.UsageError(f"--report {args.report}: cannot write there: "
                                  f"{e.strerror or e}") from None
         done = stream.finished()
     todo = [m for m in meshes if m.name not in done]
@@ -445,8 +439,8 @@ def run(args) -> int:
     try:
         with stopped_by_signals():
             if todo:
-                started = cli._start(specs, args.timeout)
-                cli._warn_near_misses(started.values())
+                started = commands.start_implementations(specs, args.timeout)
+                commands.warn_near_misses(started.values())
             display = {s: implementation_name(i) for s, i in started.items()}
             reference = ReferenceImplementation()
             for k, mesh in enumerate(todo, len(done) + 1):
@@ -486,7 +480,7 @@ def run(args) -> int:
             files = write(args.report, finished, scores, {"argv": argv, "workers": workers},
                           len(meshes), seconds, interrupted is not None)
         except OSError as e:
-            raise cli.UsageError(f"--report {args.report}: could not write ({e.strerror or e})"
+            raise commands.UsageError(f"--report {args.report}: could not write ({e.strerror or e})"
                                  ) from None
         print(f"scoreboard: {files['md']}, heatmap: {files['html']}")
         if lost:

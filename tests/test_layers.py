@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parent.parent
 LAYERS = {"reference": 0, "properties": 1, "oracles": 2, "application": 3}
 APPLICATION = {"cli", "jobs", "isolation", "report", "render", "meshfiles", "compare", "corpus",
                "survey", "implementations", "pytest_plugin", "traceability", "html_report",
-               "__main__", "cluster", "vectors", "containment", "files"}
+               "__main__", "cluster", "vectors", "containment", "files", "commands"}
 
 
 def _layer_of_module(name: str) -> str | None:
