@@ -257,6 +257,22 @@ class ResultStream:
         command["report"] = str(Path(directory).resolve())
         return command
 
+    def entries(self):
+        """(line number, the JSON value) of each line already in results.jsonl; a line that
+        is not JSON, other than a last one cut short by an interruption, is a usage error."""
+        from ddg_oracle.commands import UsageError
+        from .files import read_text
+        lines = read_text(self.directory / self.LINES, "a run's results",
+                          error=UsageError).splitlines()
+        for n, line in enumerate(lines, 1):
+            try:
+                yield n, json.loads(line)
+            except json.JSONDecodeError:
+                if n == len(lines):
+                    continue                # the last line, cut short by the interruption
+                raise UsageError(f"--resume {self.directory}: {self.LINES} line {n} is not "
+                                 "JSON (not a file ddg-oracle wrote)") from None
+
     def finished(self) -> dict:
         """{task index: its results} of the lines already in results.jsonl; a line that is
         not one this class wrote (damaged past its last line, or crafted) is a usage error
@@ -266,17 +282,7 @@ class ResultStream:
         from ddg_oracle.properties.runner import Result
         index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}
         out = {}
-        from .files import read_text
-        path = self.directory / self.LINES
-        lines = read_text(path, "a run's results", error=UsageError).splitlines()
-        for n, line in enumerate(lines, 1):
-            try:
-                entry = json.loads(line)
-            except json.JSONDecodeError:
-                if n == len(lines):
-                    continue                # the last line, cut short by the interruption
-                raise UsageError(f"--resume {self.directory}: {self.LINES} line {n} is not "
-                                 "JSON (not a file ddg-oracle wrote)") from None
+        for n, entry in self.entries():
             try:
                 k = index.get(tuple(entry["task"]))
                 if k is not None:

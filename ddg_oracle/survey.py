@@ -134,19 +134,9 @@ class SurveyStream(ResultStream):
         """{mesh name: MeshResult} of the lines already there (the meshes of this run
         only); a damaged line, other than a last one cut short, is a usage error."""
         from ddg_oracle.commands import UsageError
-        from .files import read_text
         wanted = set(self.tasks)
         out = {}
-        lines = read_text(self.directory / self.LINES, "a run's results",
-                          error=UsageError).splitlines()
-        for n, line in enumerate(lines, 1):
-            try:
-                entry = json.loads(line)
-            except json.JSONDecodeError:
-                if n == len(lines):
-                    continue                # the last line, cut short by the interruption
-                raise UsageError(f"--resume {self.directory}: {self.LINES} line {n} is not "
-                                 "JSON (not a file ddg-oracle wrote)") from None
+        for n, entry in self.entries():
             try:
                 done = MeshResult.from_json(entry)
             except (ValueError, TypeError) as e:
