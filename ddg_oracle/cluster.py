@@ -95,6 +95,7 @@ def _client(distributed, address: str):
     dask scheduler within SCHEDULER_TIMEOUT (dask's own connect timeout covers only the
     first of these, and a silent port would hang forever)."""
     import threading
+    _refuse_a_closed_port(address)
     got: list = []
 
     def connect():
@@ -115,6 +116,27 @@ def _client(distributed, address: str):
     if isinstance(got[0], BaseException):
         raise got[0]
     return got[0]
+
+
+def _refuse_a_closed_port(address: str) -> None:
+    """A tcp address where nothing listens is an InputError at once: dask's client retries
+    a refused connection for its whole timeout (30 s for a typo in a port number)."""
+    import socket
+    from urllib.parse import urlsplit
+    try:
+        parts = urlsplit(address if "://" in address else "tcp://" + address)
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        return                          # not an address we can read: dask says what it is
+    if parts.scheme != "tcp" or not host or port is None:
+        return
+    try:
+        socket.create_connection((host, port), timeout=5).close()
+    except ConnectionRefusedError as e:
+        raise InputError(f"--scheduler {address}: cannot reach a dask scheduler there "
+                         f"(nothing listens: {e.strerror})") from None
+    except OSError:
+        return                          # unresolvable, filtered, slow: dask's timeout decides
 
 
 def _worker_facts():

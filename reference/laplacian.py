@@ -48,7 +48,7 @@ from .combinatorics import face_of, opposite_corner
 
 __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weights_from_corners", "cotan_weighted_edges",
            "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
-           "dirichlet_inner_product_pl",
+           "dirichlet_inner_product_pl", "dirichlet_energy_gradient_pl",
            "gradient_pl", "vertex_areas_barycentric", "vertex_areas_voronoi",
            "opposite_angle_sum", "weight_sign_by_angles", "weight_signs_by_angles",
            "cotan_weight_by_sines",
@@ -310,6 +310,38 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
         if dot:
             terms.append(area * dot)
     return exact_sum(terms)
+
+
+def dirichlet_energy_gradient_pl(surface, f: Sequence) -> list:
+    """C3.4 / T3.6: the gradient of ``E(f)``, ``dE/df(i) = integral <grad f, grad phi_i> dA``
+    (``phi_i`` the hat function of vertex i), for every vertex in one pass, exact Surds.
+
+    Face by face from the Gram matrix G of the edge vectors u = p1 - p0, v = p2 - p0
+    (or of the edge lengths), as in :func:`dirichlet_inner_product_pl`: with
+    ``(d1, d2) = (f1 - f0, f2 - f0)``, the hats of corners 1 and 2 give
+    ``(vv d1 - uv d2) / det G`` and ``(uu d2 - uv d1) / det G``, the hat of corner 0 minus
+    their sum (the three hats sum to 1), each times the area ``sqrt(det G) / 2``.  Equals
+    ``dirichlet_inner_product_pl(surface, f, e_i)`` for every i, without touching the faces
+    away from i n times.
+    """
+    t = _triangulation(surface)
+    if len(f) != t.n_vertices:
+        raise BadShape(f"a function of length {len(f)} on {t.n_vertices} vertices")
+    terms: list = [[] for _ in range(t.n_vertices)]
+    for face, (a, b, c) in enumerate(t.faces):
+        _, _, (uu, uv, vv) = _face_gram(surface, face)
+        det = uu * vv - uv * uv
+        if not det:
+            raise InputError(f"face {face} is degenerate (zero area)")
+        d1, d2 = f[b] - f[a], f[c] - f[a]
+        if not (d1 or d2):
+            continue
+        area = sqrt(det) / 2
+        hat_b, hat_c = (vv * d1 - uv * d2) / det, (uu * d2 - uv * d1) / det
+        for v, x in ((a, -(hat_b + hat_c)), (b, hat_b), (c, hat_c)):
+            if x:
+                terms[v].append(area * x)
+    return [exact_sum(ts) for ts in terms]
 
 
 def dirichlet_energy_pl(surface, f: Sequence):

@@ -30,7 +30,8 @@ from ddg_oracle.reference.errors import InputError
 from ddg_oracle.reference.exact import Surd, corner_angle, pi, sqrt
 from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_weight_by_sines, cotan_weighted_edges,
                                  cotan_weights, dirichlet_energy, dirichlet_energy_pl,
-                                 dirichlet_inner_product_pl, graph_laplacian, gradient_pl,
+                                 dirichlet_inner_product_pl, dirichlet_energy_gradient_pl,
+                                 graph_laplacian, gradient_pl,
                                  opposite_angle_sum, vertex_areas_barycentric,
                                  vertex_areas_voronoi, weight_sign_by_angles,
                                  weight_signs_by_angles)
@@ -222,6 +223,19 @@ def test_T3_6_energy_of_interpolant_equals_cotan_energy_exactly(case):
     assert dirichlet_energy_pl(s.metric(), f) == e              # intrinsic (Gram of lengths)
     assert dirichlet_inner_product_pl(s, f, g) == L.quadratic_form(f, g)   # polarisation
     assert e >= 0
+
+
+@given(with_functions(any_meshes()))
+def test_C3_4_energy_gradient_is_the_inner_product_with_each_hat_and_L_f(case):
+    """dE/df(i) in one pass = <grad f, grad phi_i> face by face = (L f)_i (T3.6, the
+    notes' sign: L positive semidefinite), extrinsic and intrinsic."""
+    s, f = case.surface, list(case.values)
+    n = s.triangulation.n_vertices
+    grad = dirichlet_energy_gradient_pl(s, f)
+    assert grad == dirichlet_energy_gradient_pl(s.metric(), f)
+    assert grad == cotan_laplacian(s).matvec(f)
+    for i in range(n):
+        assert grad[i] == dirichlet_inner_product_pl(s, f, [Fraction(int(v == i)) for v in range(n)])
 
 
 def test_T3_6_gradient_of_a_linear_function_is_its_coefficient_vector():
