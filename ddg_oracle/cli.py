@@ -23,6 +23,7 @@ import tempfile
 import textwrap
 import time
 import traceback
+from functools import partial
 from pathlib import Path
 
 from ddg_oracle import __version__
@@ -631,7 +632,9 @@ def _check(args, argv) -> int:
     interrupted = None
     try:
         results = jobs.run_tasks(tasks, options, meshes, workers, on_done=on_done,
-                                 done=stream_done, client=client)
+                                 done=stream_done,
+                                 remote=None if client is None
+                                 else partial(dask_cluster.run_on_cluster, client))
     except jobs.Interrupted as e:
         interrupted, results = e, e.done
     finally:

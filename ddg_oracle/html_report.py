@@ -7,7 +7,7 @@ mesh file's failing element) and every script and style are inlined.  The page:
 
 - a header naming the run: profile, seed, implementations, meshes, the command line,
   the counts;
-- the root causes first (:func:`ddg_oracle.report.root_causes`: the failures of one
+- the root causes first (:func:`ddg_oracle.causes.root_causes`: the failures of one
   implementation that one protocol method explains, with its wrong answer; crashes
   with one message), each a link to its smallest counterexample;
 - a heatmap, property x implementation, one coloured cell per result;
@@ -545,7 +545,7 @@ def page_data(results, known: dict, argv=None, snippets: dict | None = None) -> 
     the command line, the root causes, the notes' statements and errata of each catalog
     ID, the documented findings' text, the replay snippets and, for mesh-file failures,
     the neighbourhood of the failing element (a mesh file's result carries its mesh)."""
-    from .report import convention_hint, element_ids, root_causes
+    from .causes import convention_hint, element_ids, root_causes
     causes, crashes = root_causes(results)
     by_id, errata = _statements()
     cause_text, cause_of = [], {}

@@ -260,7 +260,7 @@ RETRIES = 1
 
 
 def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 1,
-              on_done=None, done: dict | None = None, client=None) -> list:
+              on_done=None, done: dict | None = None, remote=None) -> list:
     """Every task's results, in task order; ``on_done(k, task, results)`` as each finishes.
 
     ``done``: {task index: results} already known (a resumed run): not run again.
@@ -268,13 +268,16 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     that dies while running a task (killed, out of memory) is replaced and the task run
     once more (:data:`RETRIES`), then reported as ``crashed``; no other task's result is
     lost.  SIGINT / SIGTERM / SIGHUP raise :class:`Interrupted` carrying the finished results, after
-    every worker and library process is gone.  ``client``: a ``dask.distributed`` client
-    whose cluster runs the tasks instead (:mod:`ddg_oracle.cluster`; ``workers`` unused)."""
+    every worker and library process is gone.  ``remote``: runs the tasks elsewhere instead
+    (``workers`` unused), called as ``remote(tasks, todo, options, meshes, finish, check)``:
+    ``finish(k, results)`` as each task ends, ``check()`` at least twice a second (it raises
+    on a signal); the command line passes a dask cluster's (:func:`ddg_oracle.cluster.
+    run_on_cluster`), so this module knows nothing of dask."""
     import signal
 
     out: dict = dict(done or {})
     todo = [k for k in range(len(tasks)) if k not in out]
-    serial = client is None and (workers <= 1 or len(todo) <= 1)
+    serial = remote is None and (workers <= 1 or len(todo) <= 1)
     caught: list[int] = []
 
     def finish(k, results):
@@ -303,9 +306,8 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
                 check()
                 finish(k, run_task(tasks[k]))
                 check()
-        elif client is not None:
-            from ddg_oracle.cluster import run_on_cluster
-            run_on_cluster(client, tasks, todo, options, meshes, finish, check)
+        elif remote is not None:
+            remote(tasks, todo, options, meshes, finish, check)
         else:
             _run_pool(tasks, todo, options, meshes, workers, finish, check)
     except (KeyboardInterrupt, Interrupted) as e:

@@ -68,7 +68,7 @@ class PropertyItem(pytest.Item):
             pytest.skip(f"undecided: {r.error}")
         if not r.ok:                         # FAILED, crashed (a hang too), incomplete
             from ddg_oracle.jobs import with_diagnosis
-            from ddg_oracle.report import convention_hint, wrong_answer
+            from ddg_oracle.causes import convention_hint, wrong_answer
             text = describe(with_diagnosis(r, self.prop, self.impl))
             first = "\n".join(filter(None, [wrong_answer(r), convention_hint(r)]))
             if first:                        # the root cause first: the wrong answer

@@ -28,11 +28,11 @@ from typing import Sequence
 
 from .errors import BadShape, DegenerateFace, InputError
 from .exact import Surd, sqrt
-from .exact.rationals import on_common_denominator, rounded_root_sum
+from .exact.rationals import on_common_denominator
 from .laplacian import cotan_laplacian, cotan_weighted_edges
 from .metric import heron16
 from .polyhedral import PolyhedralSurface
-from .exact.surds import exact_sum, simplest
+from .exact.surds import exact_sum, rounded_root_sum, simplest
 from .combinatorics import next_corner, prev_corner
 
 __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",

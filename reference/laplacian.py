@@ -39,10 +39,10 @@ from . import cotan_fast, cotangents
 from .curvature import corner_angles
 from .errors import BadShape, InputError
 from .exact import Angle, Surd, corner_angle, pi, sqrt
-from .exact.rationals import on_common_denominator, rounded_root_sum
+from .exact.rationals import on_common_denominator
 from .metric import PiecewiseFlatSurface, as_metric, heron16
 from .polyhedral import PolyhedralSurface
-from .exact.surds import exact_sum, simplest
+from .exact.surds import exact_sum, rounded_root_sum, simplest
 from .sparse import SparseMatrix, exact_number
 from .combinatorics import face_of, opposite_corner
 
@@ -425,7 +425,7 @@ def vertex_areas_floats(surface, kind: str = "voronoi") -> list[float]:
     ``N / (D sqrt(G))`` with integers N, D: a Voronoi part ``(L_a n_a + L_b n_b) / (8 d
     sqrt(G))``, ``A / 2 = G / (8 d sqrt(G))``, ``A / 4``, ``A / 3``; the same obtuse test
     on the same squared lengths.  Sums of such terms are rounded by
-    :func:`~ddg_oracle.reference.exact.rationals.rounded_root_sum`.
+    :func:`~ddg_oracle.reference.exact.surds.rounded_root_sum`.
     """
     if kind not in ("voronoi", "barycentric"):
         raise InputError(f"vertex areas: kind must be 'voronoi' or 'barycentric', got {kind!r}")

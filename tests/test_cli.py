@@ -13,7 +13,8 @@ import pytest
 from ddg_oracle.cli import Progress, main
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.meshfiles import read_mesh, write_obj
-from ddg_oracle.report import element_ids, jsonable
+from ddg_oracle.causes import element_ids
+from ddg_oracle.report import jsonable
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.runner import CONVENTION, FAILED, PASSED, TIE, run_on_example, run_property
 from ddg_oracle.reference import surfaces

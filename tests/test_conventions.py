@@ -24,7 +24,7 @@ from ddg_oracle.properties.conventions import (PRESETS, VOCABULARY, barycentric_
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
 from ddg_oracle.jobs import with_diagnosis
-from ddg_oracle.report import convention_hint
+from ddg_oracle.causes import convention_hint
 from examples.numpy_mesh import NumpyMesh
 
 

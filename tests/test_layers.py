@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parent.parent
 LAYERS = {"reference": 0, "properties": 1, "oracles": 2, "application": 3}
 APPLICATION = {"cli", "jobs", "isolation", "report", "render", "meshfiles", "compare", "corpus",
                "survey", "implementations", "pytest_plugin", "traceability", "html_report",
-               "__main__", "cluster", "vectors", "containment", "files", "commands"}
+               "__main__", "cluster", "vectors", "containment", "files", "commands", "causes"}
 
 
 def _layer_of_module(name: str) -> str | None:
@@ -95,3 +95,75 @@ def test_a_library_worker_does_not_import_hypothesis_or_the_properties():
     assert out.stdout.strip() == "[]"
     import ddg_oracle.properties as p
     assert p.PROPERTIES["D1.6"].id == "D1.6" and len(p.PROPERTIES) == len(p.all_properties())
+
+
+def test_the_application_list_is_the_application_folder():
+    """The hand list above is every module of ddg_oracle/ (a new module left out would
+    escape the layer checks)."""
+    on_disk = {p.stem for p in (ROOT / "ddg_oracle").glob("*.py")} - {"__init__"}
+    assert on_disk == APPLICATION, (on_disk - APPLICATION, APPLICATION - on_disk)
+
+
+def _module_graph() -> dict[str, set[str]]:
+    """{module: the modules of ours it imports} over the four folders, lazy imports inside
+    functions included (a cycle through them still ties two modules into one)."""
+    modules = {}
+    for path, _, package in _files():
+        modules[package if path.stem == "__init__" else f"{package}.{path.stem}"] = path
+    graph = {}
+    for name, path in modules.items():
+        package = name if path.stem == "__init__" else name.rpartition(".")[0]
+        out = set()
+        for _, imported in _imports(path, package):
+            while imported and imported not in modules:
+                imported = imported.rpartition(".")[0]
+            # its own packages' __init__ modules run first anyway (``from . import x``
+            # names the package too): not an arrow of the data flow
+            if imported and imported != name and not name.startswith(imported + "."):
+                out.add(imported)
+        graph[name] = out
+    return graph
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def test_no_two_modules_import_each_other():
+    """Issue 43: data flows one way; the cycles cli <-> report, report <-> html_report,
+    jobs <-> cluster and rationals <-> surds were cut, and none comes back."""
+    assert _cycles(_module_graph()) == []
+
+
+def test_the_cycle_check_sees_a_lazy_cycle():
+    assert _cycles({"a": {"b"}, "b": {"a"}, "c": {"a"}}) == [["a", "b"]]
+    graph = _module_graph()
+    assert "ddg_oracle.reference.exact.rationals" in graph["ddg_oracle.reference.exact.surds"]
+    assert "ddg_oracle.causes" in graph["ddg_oracle.html_report"]

@@ -16,7 +16,7 @@ from ddg_oracle.reference.intrinsic import flip
 from ddg_oracle.reference.laplacian import cotan_weights
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from ddg_oracle.report import element_ids
+from ddg_oracle.causes import element_ids
 from tests.planted_bugs import (LaplaceBeltramiWithoutHalf, NoFlips, OneFlipTooMany,
                                 OneSidedDelaunayTest)
 

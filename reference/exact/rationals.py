@@ -7,7 +7,6 @@ not a finite real number is rejected with an error naming the value and where.
 from __future__ import annotations
 
 import math
-from math import isqrt
 import numbers
 from decimal import Decimal
 from fractions import Fraction
@@ -122,50 +121,3 @@ def points_on_common_denominator(*points) -> tuple[list[list[int]], int]:
     flat, D = on_common_denominator([x for p in points for x in p])
     n = len(points[0])
     return [flat[k:k + n] for k in range(0, len(flat), n)], D
-
-
-def rounded_root_sum(terms, den: int = 1) -> float:
-    """``float(sum n / sqrt(G) / den)`` over ``terms`` [(n, G)] (ints, G > 0), correctly
-    rounded, from integers: each term times 2^p lies in [s, s + 1) for
-    ``s = isqrt(n^2 4^p // G)`` (signed), so the sum lies in an interval of width
-    (number of terms) 2^-p; when both ends round to one float, so does the sum (rounding is
-    monotonic), else p doubles up to 2048 bits, and then the exact Surd sum decides (a sum
-    that is exactly 0).  The float views of the area gradient and of the vertex areas.
-
-    >>> rounded_root_sum([(1, 2), (1, 2)]) == math.sqrt(2)      # 2 / sqrt(2)
-    True
-    >>> rounded_root_sum([(1, 8), (-2, 32)])                    # exactly 0
-    0.0
-    """
-    if not terms:
-        return 0.0
-    k = len(terms)
-    p = 64 + k.bit_length()
-    while p <= 2048:
-        four = 1 << (2 * p)
-        lo = 0
-        for n, G in terms:
-            r = isqrt(n * n * four // G)
-            lo += r if n > 0 else -r - 1
-        scale = den << p
-        a, b = _rounded(Fraction(lo, scale)), _rounded(Fraction(lo + k, scale))
-        if a == b and (a != 0.0 or lo > 0 or lo + k < 0):
-            return a
-        p *= 2
-    from .surds import sqrt
-    exact = Fraction(0)
-    for n, G in terms:
-        exact = exact + Fraction(n, den) / sqrt(G)
-    try:
-        return float(exact)
-    except OverflowError:
-        return math.inf if exact > 0 else -math.inf
-
-
-def _rounded(x: Fraction) -> float:
-    """float(x), or +-inf beyond the float range (IEEE round to nearest), where float() of
-    a Fraction raises OverflowError."""
-    try:
-        return float(x)
-    except OverflowError:
-        return math.inf if x > 0 else -math.inf
