@@ -109,6 +109,14 @@ def load_implementation(spec: str):
     try:
         obj = importlib.import_module(module)
     except Exception as e:  # noqa: BLE001  (a user module may fail in any way: say which)
+        if builtin and "undefined symbol" in str(e):
+            # installed, but a shared library another package bundles (pymeshlab's
+            # libtbb before lagrange's) was loaded first in this process
+            raise ImplementationNotFound(
+                f"{base} is installed but cannot load in this process ({type(e).__name__}: "
+                f"{e}): a library imported before it loaded another version of a shared "
+                f"library it needs; check it in a process of its own (ddg-oracle check "
+                f"does) or import it first") from None
         if builtin:
             raise ImplementationNotFound(
                 f"{base} is not installed ({type(e).__name__}: {e}); "

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from ddg_oracle.reference.combinatorics import connected_sum
 
+from .protocol import capabilities
 from .registry import PropertyFailure, prop, quantity
 from .strategies import (Example, apply_moves, closed_surfaces, extend_positions,
                          mobius_strips, named_surfaces, surface_moves, triangulated_surfaces)
@@ -108,8 +109,9 @@ def classification_of_closed_surfaces(impl, case: Example):
 
 
 @prop("R1.6", "with k boundary loops, orientable: chi = 2 - 2g - k, k and g as built (and its "
-      "non-orientable twin chi = 2 - h - k, h crosscaps)",
-      needs={"euler_characteristic", "boundary_loops", "genus"},
+      "non-orientable twin chi = 2 - h - k, h crosscaps); the loops run along the boundary "
+      "edges (an implementation without genus: g as built)",
+      needs={"euler_characteristic", "boundary_loops"},
       on_mesh=("orientable", "connected"),
       strategy=lambda: st.one_of(mobius_strips(), triangulated_surfaces(max_holes=3, reversed=True,
                                                                         isolated=1)))
@@ -128,7 +130,9 @@ def boundary_loops_and_genus(impl, case: Example):
                               mesh=_mesh(case), expected=sorted(truth), observed=sorted(boundary))
     # chi counts a vertex used by no face as a point (D1.6); the surface's is without it
     chi = int(_call(impl, "euler_characteristic", case)) - len(case.isolated or ())
-    g = int(_call(impl, "genus", case))
+    # the genus as built when the implementation has none: its loops and chi are still
+    # checked (Lagrange's boundary_loops bug, F-lagrange-1, was out of reach otherwise)
+    g = int(_call(impl, "genus", case)) if "genus" in capabilities(impl) else case.expected.genus
     handles = 2 if case.expected.orientable else 1      # a handle counts 2, a crosscap 1
     if chi != 2 - handles * g - k or g != case.expected.genus:
         formula = "2 - 2g - k" if handles == 2 else "2 - h - k"

@@ -13,3 +13,12 @@ from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
 register_profiles()
 settings.load_profile(PREFIX + ("ci" if os.environ.get("CI") else "default"))
+
+# lagrange first: pymeshlab bundles an older libtbb, and once it is loaded in a process
+# lagrange's module fails with an undefined symbol (tests/test_oracles_lagrange.py would
+# then be skipped by importorskip, depending on which test file an xdist worker imported
+# first).  ddg-oracle itself runs each library in a process of its own.
+try:
+    import lagrange  # noqa: F401
+except ImportError:
+    pass
