@@ -163,14 +163,22 @@ class Isolated:
         self._conn = parent
         # loading (importing a library, building the object) gets the time of a call
         wait = max(self.timeout, 30.0)
-        if not parent.poll(wait):
+        try:
+            loaded = parent.poll(wait)
+            message = parent.recv() if loaded else None
+        except EOFError:
+            raise ImplementationCrashed(self.spec, "load", self._how_it_died()) from None
+        except BaseException:
+            # interrupted while the worker loads (the task budget's alarm, Ctrl-C, after a
+            # worker was replaced mid-task): its "ready" would be read as the next call's
+            # answer, and every answer after it as the call before's (a false FAILED)
+            self._abandon()
+            raise
+        if not loaded:
             self._kill()
             raise ImplementationCrashed(self.spec, "load", f"did not load within {wait:g} s "
                                                            "(killed)")
-        try:
-            status, payload, name = parent.recv()
-        except EOFError:
-            raise ImplementationCrashed(self.spec, "load", self._how_it_died()) from None
+        status, payload, name = message
         if status == "not-an-implementation":
             self._kill()
             raise NotAnImplementation(payload)
@@ -265,6 +273,10 @@ class Isolated:
             raise NotSent(payload)
         if status == "raised":
             raise ImplementationError(f"{self.name}.{method} raised {payload}")
+        if status != "ok":                  # never an answer out of turn, whatever happened
+            self._abandon()
+            raise RuntimeError(f"isolation: {self.name}.{method} got a {status!r} message "
+                               "as its answer")
         return payload
 
     def __getattr__(self, method: str):

@@ -6,6 +6,7 @@ from hypothesis import settings
 
 from ddg_oracle.isolation import ImplementationCrashed, Isolated, memory_limit
 from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.budget import BUDGETS
 from ddg_oracle.properties.runner import CRASHED, PASSED, run_property
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.errors import InputError
@@ -67,7 +68,9 @@ def test_the_time_limit_grows_with_the_mesh():
 
 def test_property_run_reports_the_crash_with_a_shrunk_input_and_goes_on():
     with Isolated("tests.misbehaving:SegfaultsOnBoundary", timeout=30) as impl:
-        r = run_property(PROPERTIES["D1.6"], impl, QUICK)
+        # the default profile's budget: a crash restarts the worker, so shrinking stops
+        # after 6 crash outcomes (unbounded, it took 17 s for the same bound below)
+        r = run_property(PROPERTIES["D1.6"], impl, QUICK, budget=BUDGETS["default"])
         assert r.status == CRASHED and "SIGSEGV" in r.error
         faces = r.example.triangulation.n_faces
         assert r.example.expected.boundary_components >= 1
@@ -90,7 +93,7 @@ def test_memory_limit_is_reported_and_the_worker_restarts():
 
 def test_property_run_reports_memory_exhaustion_with_its_input_and_goes_on():
     with Isolated("tests.misbehaving:AllocatesOnBoundary", timeout=30, memory=1 << 30) as impl:
-        r = run_property(PROPERTIES["D1.6"], impl, QUICK)
+        r = run_property(PROPERTIES["D1.6"], impl, QUICK, budget=BUDGETS["default"])
         assert r.status == CRASHED and "ran out of memory" in r.error
         assert r.example.expected.boundary_components >= 1            # the input that did it
         assert run_property(PROPERTIES["T1.1 / C1.2"], impl, QUICK).status == PASSED
@@ -134,3 +137,32 @@ def test_an_answer_interrupted_mid_read_is_never_read_as_the_next_calls():
             impl.angle_defects(*tet)
         assert len(impl.angle_defects(*octa)) == 6
         assert len(impl.angle_defects(*tet)) == 4
+
+
+def test_a_worker_start_interrupted_never_answers_the_next_call():
+    """The false alarm: a worker replaced (after a crash) while the task budget's alarm
+    rang left its "ready" message in the pipe; the next call read it as its answer and
+    every later call the answer of the call before (a tetrahedron's genus 1,
+    non-orientable: FAILED on a correct implementation).  Now the half-started worker is
+    killed and the next call starts a fresh one."""
+    import signal
+
+    class Alarm(Exception):
+        pass
+
+    def ring(signum, frame):
+        raise Alarm
+
+    with Isolated("ddg_oracle.oracles.exact_reference:ReferenceImplementation",
+                  timeout=30) as impl:
+        previous = signal.signal(signal.SIGALRM, ring)
+        try:
+            signal.setitimer(signal.ITIMER_REAL, 0.05)      # loading takes longer than that
+            with pytest.raises(Alarm):
+                impl._start()
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
+        V, F = _arrays(CLOSED)
+        assert impl.euler_characteristic(V, F) == 2
+        assert impl.genus(V, F) == 0 and impl.is_orientable(V, F) is True
