@@ -660,7 +660,7 @@ def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:
     rows = compare_mesh(MeshInput("counterexample", V, F), [impl], ReferenceImplementation(),
                         workers=1, methods=methods)
     return [{"quantity": c.quantity, "status": c.status, "where": c.where,
-             "expected": _short(c.expected), "observed": _short(c.observed),
+             "expected": value_text(c.expected), "observed": value_text(c.observed),
              "worst": c.worst, "note": c.note, "explained_by": list(c.explained_by)}
             for c in rows if c.status in ("agrees", "DIFFERS", "crashed")]
 
@@ -750,14 +750,15 @@ def format_comparisons(mesh: MeshInput, rows: list[Comparison]) -> str:
         note = "; ".join(filter(None, [c.note, ("agrees under " + ", ".join(c.explained_by))
                                              if c.explained_by else None]))
         table.append((c.quantity, c.implementation, c.status, ratio, c.where or "-",
-                      _short(c.expected), _short(c.observed) + (f"  [{note}]" if note else "")))
+                      value_text(c.expected), value_text(c.observed) + (f"  [{note}]" if note else "")))
     widths = [max(len(r[k]) for r in table) for k in range(len(cols) - 1)]
     for r in table:
         lines.append("  ".join(x.ljust(w) for x, w in zip(r, widths)) + "  " + r[-1])
     return "\n".join(lines)
 
 
-def _short(x) -> str:
+def value_text(x) -> str:
+    """A value as the comparison table prints it: a float to 17 digits, None as -."""
     if x is None:
         return "-"
     if isinstance(x, float):

@@ -57,12 +57,12 @@ def _float(x):
 
 def record(row, spec: str) -> dict:
     """One compare row (:class:`~ddg_oracle.compare.Comparison`) as plain JSON values."""
-    from ddg_oracle.compare import _short
+    from ddg_oracle.compare import value_text
     return {"quantity": row.quantity, "implementation": row.implementation, "spec": spec,
             "status": row.status, "worst": _number(row.worst), "error": _number(row.error),
             "bound": _number(row.bound), "where": row.where,
-            "expected": None if row.expected is None else _short(row.expected),
-            "observed": None if row.observed is None else _short(row.observed),
+            "expected": None if row.expected is None else value_text(row.expected),
+            "observed": None if row.observed is None else value_text(row.observed),
             "over": int(row.over), "elements": int(row.elements), "note": row.note,
             "explained_by": list(row.explained_by)}
 

@@ -206,14 +206,14 @@ def named_cases() -> list[Case]:
 def seeded_cases(count: int = 4, seed: int = 2026) -> list[Case]:
     """Generated cases: closed and bounded surfaces with every coordinate moved by a seeded
     random float (no exact structure left), deterministic in ``seed``."""
-    from ddg_oracle.properties.strategies import _jittered
+    from ddg_oracle.properties.strategies import jittered
     from ddg_oracle.reference import surfaces
     bases = [("octahedron", surfaces.octahedron), ("cube", surfaces.cube),
              ("grid", lambda: surfaces.grid(3, 3)), ("disk", lambda: surfaces.disk(6))]
     out = []
     for k in range(count):
         name, build = bases[k % len(bases)]
-        s = _jittered(build(), 1, seed + k, floats=True)
+        s = jittered(build(), 1, seed + k, floats=True)
         flags = ["seeded"] + (["boundary"] if name in ("grid", "disk") else ["closed"])
         out.append(_case(f"seeded-{name}-{seed + k}", flags, f"the {name}, every coordinate "
                          f"moved by a random float (seed {seed + k})", s))
@@ -260,8 +260,8 @@ def exact_text(x) -> str:
     return str(x)
 
 
-def _view(x) -> float:
-    from ddg_oracle.oracles.exact_reference import _view as view
+def float_view(x) -> float:
+    from ddg_oracle.oracles.exact_reference import float_view as view
     return view(x)
 
 
@@ -504,7 +504,7 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
                            _embedded(_bounds("intrinsic_delaunay_laplacian", ex), r),
                            len(req["V"]), r.keep)
     total = exact_sum(ex.surface.metric().areas)
-    area = _numbers(exact_text(total), _view(total),
+    area = _numbers(exact_text(total), float_view(total),
                     {k: _intrinsic_area_bound(l2, amp, e) for k, e in EPSILONS.items()})
     return {"faces": len(req["F"]), "laplacian": lap, "area": area,
             "one_answer": {"F": np.asarray(F2).tolist(), "l2": np.asarray(l2).tolist()}}
@@ -513,8 +513,8 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
 def _intrinsic_area_bound(l2, amp: float, e: float) -> float:
     """A4.13's bound (:func:`ddg_oracle.properties.delaunay.total_area_bound`) on the total
     area recomputed from the squared lengths ``l2`` of a triangulation after flips."""
-    from ddg_oracle.properties.delaunay import _angles_from_squared_lengths, total_area_bound
-    _, area = _angles_from_squared_lengths(np.asarray(l2, dtype=np.float64))
+    from ddg_oracle.properties.delaunay import angles_from_squared_lengths, total_area_bound
+    _, area = angles_from_squared_lengths(np.asarray(l2, dtype=np.float64))
     rho = np.asarray(l2).max(axis=1) / (2 * area)
     with at_machine_epsilon(e):
         return total_area_bound(area, rho, amp)
@@ -764,7 +764,7 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
     :class:`OutsideDomain`, else ``failed`` with the exception's type and message).  A case
     the implementation never received (a program of the executable protocol cannot be sent
     a NaN coordinate) is a ``{"id", "not_run": why}`` line: no answer, and no pass."""
-    from ddg_oracle.oracles.executable import _encode
+    from ddg_oracle.oracles.executable import encode_value
     from ddg_oracle.oracles.processes import NotSent
     from ddg_oracle.properties.protocol import capabilities
     caps = capabilities(impl)
@@ -774,7 +774,7 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
             continue
         for c in file["cases"]:
             try:
-                value = _encode(method, _call(impl, method, c["input"]))
+                value = encode_value(method, _call(impl, method, c["input"]))
             except NotSent as e:
                 out.append({"id": c["id"], "not_run": str(e)})
                 continue
@@ -870,8 +870,8 @@ def _cotan_from_lengths(F2, l2, n: int):
     """The cotan Laplacian (protocol sign) of faces F2 with squared lengths l2 (column c:
     the edge opposite corner c): float64, Kahan's stable Heron as in A4.13."""
     import scipy.sparse as sp
-    from ddg_oracle.properties.delaunay import _angles_from_squared_lengths
-    ang, area = _angles_from_squared_lengths(l2)
+    from ddg_oracle.properties.delaunay import angles_from_squared_lengths
+    ang, area = angles_from_squared_lengths(l2)
     rows, cols, vals = [], [], []
     for c in range(3):
         i, j = F2[:, next_corner(c)], F2[:, prev_corner(c)]
@@ -912,13 +912,13 @@ def _planar_check(F, pts, want: dict, e: float) -> None:
 
 
 def _check_value(method: str, c: dict, value, bits: str) -> None:
-    from ddg_oracle.oracles.executable import DriverFailed, _decode
+    from ddg_oracle.oracles.executable import DriverFailed, decode_value
     inp = _unportable(c["input"])
     want = c["expected"]
     n = len(inp["P"]) if method == "planar_delaunay" else len(inp["V"])
     m = 0 if method == "planar_delaunay" else len(inp["F"])
     try:
-        got = _decode(method, _unportable(value), n, m)
+        got = decode_value(method, _unportable(value), n, m)
     except (DriverFailed, ValueError, TypeError) as e:
         raise _Wrong(f"malformed answer: {e}") from None
     kind = kind_of(method)

@@ -25,7 +25,7 @@ from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
 from .arrays import Referenced
 
 
-def _view(x) -> float:
+def float_view(x) -> float:
     """The correctly rounded float of an exact value; beyond the float range that is +-inf
     (IEEE round to nearest), where Python's float() of a Fraction raises OverflowError."""
     try:
@@ -162,7 +162,7 @@ class ReferenceImplementation:
         u = solve_dirichlet(self._s(V, F), {compact[v]: Fraction(c) for v, c in fixed.items()
                                             if v in compact})
         out = np.array([fixed.get(v, 0.0) for v in range(r.n)], dtype=np.float64)
-        out[r.keep] = [_view(x) for x in u]
+        out[r.keep] = [float_view(x) for x in u]
         return out
 
     def vertex_areas_barycentric(self, V, F):
@@ -190,7 +190,7 @@ class ReferenceImplementation:
     def intrinsic_delaunay_triangulation(self, V, F):
         d, _ = delaunay_of(self._s(V, F).metric())
         t = d.triangulation
-        l2 = [[_view(d.face_squared_lengths(f)[next_corner(c)]) for c in range(3)]
+        l2 = [[float_view(d.face_squared_lengths(f)[next_corner(c)]) for c in range(3)]
               for f in range(t.n_faces)]
         keep = Referenced(V, F).keep
         return keep[np.array(t.faces, dtype=np.int64)], np.array(l2, dtype=float)

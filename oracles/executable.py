@@ -92,7 +92,7 @@ _NUMBERS_SHAPE = {"corner": lambda n, m: (m, 3), "vertex": lambda n, m: (n,),
                   "vertex coordinate": lambda n, m: (n, 3)}
 
 
-def _decode(method: str, value, n: int, m: int):
+def decode_value(method: str, value, n: int, m: int):
     """The protocol value of ``method`` from its JSON answer (docs/protocol.md), read by the
     method's kind and element (:class:`~ddg_oracle.properties.protocol.Method`)."""
     spec = METHODS.get(method)
@@ -410,7 +410,7 @@ class Executable:
             raise DriverFailed(f"{self.name}.{method} failed: {message}")
         if "value" not in answer:
             raise self._fail(method, f"answered without a value: {_short(answer)}")
-        return _decode(method, answer["value"], n, m)
+        return decode_value(method, answer["value"], n, m)
 
     def __getattr__(self, method: str):
         if method in METHODS and method in self.__dict__.get("methods", ()):
@@ -434,8 +434,8 @@ class Executable:
 # --- the other side: a program serving an implementation object ------------------------------
 
 
-def _encode(method: str, value):
-    """The JSON answer of a protocol value (the inverse of :func:`_decode`)."""
+def encode_value(method: str, value):
+    """The JSON answer of a protocol value (the inverse of :func:`decode_value`)."""
     if scipy.sparse.issparse(value):
         c = scipy.sparse.coo_matrix(value)
         return {"shape": list(c.shape), "rows": c.row.tolist(), "cols": c.col.tolist(),
@@ -491,7 +491,7 @@ def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
                 args = [np.asarray(request[a], dtype=_ARGUMENTS[a][0])
                         for a in METHODS[method].arguments]
                 value = getattr(impl, method)(*args)
-                answer = {"id": k, "value": _encode(method, value)}
+                answer = {"id": k, "value": encode_value(method, value)}
             except OutsideDomain as e:
                 answer = {"id": k, "error": {"kind": "outside_domain", "message": str(e)}}
             except Exception as e:  # noqa: BLE001  (the implementation's failure, reported)

@@ -600,7 +600,7 @@ def _triangulation_result(impl, case: Example, pid: str):
     return F2.astype(int), l2.astype(float)
 
 
-def _angles_from_squared_lengths(l2):
+def angles_from_squared_lengths(l2):
     """Corner angles (law of cosines in atan2 form, stable) and doubled areas per face."""
     # Kahan's stable Heron (lengths sorted a >= b >= c, parentheses as written): the
     # textbook s(s-a)(s-b)(s-c) loses about rho digits on a cap, more than the bound allows
@@ -664,7 +664,7 @@ def flip_algorithm_result(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, pid)
     D = DelaunayExact.of(case)
     amp = max(D.amplification)
-    ang, area = _angles_from_squared_lengths(l2)
+    ang, area = angles_from_squared_lengths(l2)
     rho = l2.max(axis=1) / (2 * np.maximum(area, np.finfo(float).tiny))
     cot = 1 / np.tan(ang)
     beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
@@ -708,7 +708,7 @@ def flip_algorithm_result(impl, case: Example):
 def harmonic_index_decreases(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "C4.19")
     D = DelaunayExact.of(case)
-    ang, _ = _angles_from_squared_lengths(l2)
+    ang, _ = angles_from_squared_lengths(l2)
     h = float(4 * np.sum(1 / np.tan(ang)))
     before = float(harmonic_index(D.X.metric))
     after = float(D.log[-1].h_after) if D.log else before
@@ -728,7 +728,7 @@ def harmonic_index_decreases(impl, case: Example):
       strategy=intrinsic_meshes)
 def harmonic_index_bounds_the_longest_edge(impl, case: Example):
     F2, l2 = _triangulation_result(impl, case, "L4.20 / C4.13")
-    ang, area = _angles_from_squared_lengths(l2)
+    ang, area = angles_from_squared_lengths(l2)
     h = float(4 * np.sum(1 / np.tan(ang)))
     lhs, A = float(l2.max()), float(area.sum())
     D = DelaunayExact.of(case)

@@ -282,7 +282,7 @@ def _subdivided(s: PolyhedralSurface) -> PolyhedralSurface:
                                            for i, j in mids])
 
 
-def _jittered(s: PolyhedralSurface, level: int, seed: int, floats: bool) -> PolyhedralSurface:
+def jittered(s: PolyhedralSurface, level: int, seed: int, floats: bool) -> PolyhedralSurface:
     """Every coordinate moved by at most 2**-(4 + level): k/2**(6+level) or a random float."""
     if level == 0:
         return s
@@ -476,7 +476,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
     if level:
         seed, floats = draw(st.integers(0, 1 << 16)), draw(st.booleans())
         key += ("jitter", level, seed, floats)
-        s = _built(key, lambda s=s: _jittered(s, level, seed, floats))
+        s = _built(key, lambda s=s: jittered(s, level, seed, floats))
         recipe += f", jitter {level} ({'floats' if floats else 'rationals'}, seed {seed})"
     fmt = input_format()              # the checked implementation's floats (precision)
     sliver = draw(st.integers(0, 2)) if wide and fmt.sliver else 0   # 0 none, 1 needle, 2 cap

@@ -465,7 +465,7 @@ def test_total_area_bound_covers_the_reference_on_flips_into_caps():
     :func:`~ddg_oracle.properties.delaunay.total_area_bound`, which the bound of before
     (K_COT eps rho A amp per face) misses by orders of magnitude."""
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    from ddg_oracle.properties.delaunay import (DelaunayExact, _angles_from_squared_lengths,
+    from ddg_oracle.properties.delaunay import (DelaunayExact, angles_from_squared_lengths,
                                                 total_area_bound)
     from ddg_oracle.properties.strategies import mesh_case
     ref = ReferenceImplementation()
@@ -482,7 +482,7 @@ def test_total_area_bound_covers_the_reference_on_flips_into_caps():
             continue
         F2, l2 = ref.intrinsic_delaunay_triangulation(*case.arrays())
         l2 = np.asarray(l2, dtype=np.float64)
-        _, area = _angles_from_squared_lengths(l2)
+        _, area = angles_from_squared_lengths(l2)
         if not np.all(area > 0):                 # a float Heron area of 0: no rho to compare
             continue
         rho = l2.max(axis=1) / (2 * area)

@@ -74,7 +74,7 @@ def test_fast_cotan_on_named_surfaces(build):
     assert_same_cotan(build())
 
 
-def _jittered(case, draw, exponents):
+def jittered(case, draw, exponents):
     """The mesh's points moved by floats of drawn magnitudes (dyadic rationals with
     denominators from 2**-exponent): per-face denominators when they differ wildly."""
     pts = []
@@ -89,7 +89,7 @@ def _jittered(case, draw, exponents):
 @given(closed_meshes(), st.data())
 def test_fast_cotan_equals_definition_on_float_meshes(case, data):
     # tiny and ordinary perturbations: one common denominator, or one per face
-    s = _jittered(case, data.draw, [8, 20, 60, 200])
+    s = jittered(case, data.draw, [8, 20, 60, 200])
     assert_same_cotan(s)
 
 
@@ -99,7 +99,7 @@ def test_mixed_route_equals_definition_after_intrinsic_flips(case, data):
     # float points: after flips to Delaunay some squared lengths are irrational; the faces
     # with rational ones go the integer route, the others the Surd formula
     from ddg_oracle.reference.cotan_fast import cotan_laplacian_mixed
-    s = _jittered(case, data.draw, [4, 8, 20])
+    s = jittered(case, data.draw, [4, 8, 20])
     d, log = flip_to_delaunay(s.metric())
     expected = cotan_laplacian_from_weights(d)
     assert cotan_laplacian_mixed(d) == expected
@@ -136,7 +136,7 @@ def test_vertex_area_floats_are_the_exact_areas_correctly_rounded(case, data):
     # obtuse, right and acute faces; exact and jittered points; both kinds
     from ddg_oracle.reference.laplacian import (vertex_areas_barycentric, vertex_areas_floats,
                                                 vertex_areas_voronoi)
-    for s in (case.surface, _jittered(case, data.draw, [4, 20, 60])):
+    for s in (case.surface, jittered(case, data.draw, [4, 20, 60])):
         assert vertex_areas_floats(s) == [float(a) for a in vertex_areas_voronoi(s)]
         assert vertex_areas_floats(s, "barycentric") == \
             [float(a) for a in vertex_areas_barycentric(s)]
@@ -155,7 +155,7 @@ def test_area_gradient_floats_are_the_exact_gradient_correctly_rounded(case, dat
     from ddg_oracle.reference.areas import area_gradient_floats
     s = case.surface
     assert area_gradient_floats(s) == _float_area_gradient(s)
-    j = _jittered(case, data.draw, [8, 20, 60, 200])
+    j = jittered(case, data.draw, [8, 20, 60, 200])
     assert area_gradient_floats(j) == _float_area_gradient(j)
     dim = data.draw(st.sampled_from([2, 4]))
     pts = [tuple(p[:2]) if dim == 2 else tuple(p) + (p[0] * p[1],) for p in case.positions]
