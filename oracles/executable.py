@@ -272,9 +272,17 @@ class Executable:
         self._buffer = bytearray()
         if self.manifest:
             return self.manifest
-        self._send({"protocol": "ddg-oracle", "version": PROTOCOL_VERSION, "method": "hello"},
-                   "hello")
-        hello = self._receive("hello", START_TIMEOUT)
+        try:
+            self._send({"protocol": "ddg-oracle", "version": PROTOCOL_VERSION,
+                        "method": "hello"}, "hello")
+            hello = self._receive("hello", START_TIMEOUT)
+        except DriverFailed:
+            raise
+        except BaseException:
+            # interrupted mid-handshake (a restart inside a task whose budget's alarm rang):
+            # its hello answer would be read as the next request's, a false crash
+            self._stop()
+            raise
         if not isinstance(hello, dict):
             raise DriverFailed(f"{self.spec}: the handshake answer is not an object: "
                                f"{_short(hello)}")
