@@ -227,7 +227,7 @@ class Isolated:
             self._conn.send((method, args))
         except (BrokenPipeError, OSError):
             how = self._how_it_died()
-            self._start()
+            self._abandon()                 # the next call starts a fresh worker
             raise ImplementationCrashed(self.name, method, how) from None
         except BaseException:
             self._abandon()                 # interrupted mid-request: see _abandon
@@ -250,8 +250,11 @@ class Isolated:
         try:
             status, payload, _ = self._conn.recv()
         except EOFError:
+            # the crash is this call's result now; the fresh worker is the next call's to
+            # start (inside this task's budget, an alarm during its start would replace the
+            # crash by "budget ran out")
             how = self._how_it_died()
-            self._start()
+            self._abandon()
             raise ImplementationCrashed(self.name, method, how) from None
         except BaseException:
             # a signal between poll and the end of the answer (the task budget's alarm):
@@ -259,9 +262,9 @@ class Isolated:
             self._abandon()
             raise
         if status == "memory":
-            # a failed allocation may leave a library's state half-built: fresh worker
-            self._kill()
-            self._start()
+            # a failed allocation may leave a library's state half-built: a fresh worker
+            # for the next call
+            self._abandon()
             raise ImplementationCrashed(
                 self.name, method,
                 f"ran out of memory under the limit of {_size(self.memory)} address space "
