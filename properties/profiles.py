@@ -153,20 +153,31 @@ def database_from(spec: str | None):
 
 def _register(database) -> None:
     global _registered
-    _registered = True
     db = {} if database is _DEFAULT_DATABASE else {"database": database}
-    settings.register_profile(
-        PREFIX + "default", max_examples=25, deadline=None, suppress_health_check=_quiet, **db)
     if db and database is not None:
         # derandomize excludes a database: reproducible through a fixed seed instead
         ci = {"derandomize": False, "database": database}
     else:
         ci = {"derandomize": True, "database": None}
-    settings.register_profile(
-        PREFIX + "ci", max_examples=60, deadline=None, suppress_health_check=_quiet, print_blob=True,
-        **ci)
-    settings.register_profile(
-        PREFIX + "thorough", max_examples=1000, deadline=None, suppress_health_check=_quiet, **db)
+    ours = {"default": settings(max_examples=25, deadline=None, suppress_health_check=_quiet,
+                                **db),
+            "ci": settings(max_examples=60, deadline=None, suppress_health_check=_quiet,
+                           print_blob=True, **ci),
+            "thorough": settings(max_examples=1000, deadline=None, suppress_health_check=_quiet,
+                                 **db)}
+    _registered = _with_hypothesis(ours)
+
+
+def _with_hypothesis(ours: dict) -> dict:
+    """``ours`` (short name -> settings) registered with Hypothesis under :data:`PREFIX`
+    (for ``settings.load_profile`` and ``--hypothesis-profile``), as the very objects
+    Hypothesis keeps, so that :func:`profile` can tell whether its registry still holds
+    them."""
+    kept = {}
+    for short, s in ours.items():
+        settings.register_profile(PREFIX + short, s)
+        kept[short] = settings.get_profile(PREFIX + short)
+    return kept
 
 
 def use_database(spec: str | None) -> ExampleDatabase | None:
@@ -180,7 +191,15 @@ def use_database(spec: str | None) -> ExampleDatabase | None:
     return None if db is _DEFAULT_DATABASE else db
 
 
-_registered = False
+#: our profiles (short name -> the settings registered with Hypothesis), None until the
+#: first :func:`profile` or :func:`register_profiles` (or :func:`use_database`).  The one
+#: place they live: :func:`profile` reads them here, not from Hypothesis's registry, so that
+#: whoever saves and restores this variable (a test choosing a database for one check)
+#: restores the profiles, the ci profile's ``derandomize`` included.  (A flag here and
+#: the settings in Hypothesis's registry did not: a test that set the flag back left ci
+#: with its database and no ``derandomize`` for the rest of the process, and every later
+#: ci run in it drew a random stream.)
+_registered: dict | None = None
 
 
 def register_profiles() -> None:
@@ -213,9 +232,22 @@ def profile(name: str) -> settings:
     >>> profile("ci").derandomize or profile("ci").database is not None
     True
     """
+    global _registered
     short = _short(name)
     register_profiles()
-    return settings.get_profile(PREFIX + short)
+    if any(_hypothesis_profile(PREFIX + k) is not v for k, v in _registered.items()):
+        # Hypothesis's registry holds other settings under our names (registered since,
+        # e.g. by a test that chose a database): ours again, so that loading one by name
+        # gives these too
+        _registered = _with_hypothesis(_registered)
+    return _registered[short]
+
+
+def _hypothesis_profile(name: str):
+    try:
+        return settings.get_profile(name)
+    except Exception:  # noqa: BLE001  (InvalidArgument: not registered there)
+        return None
 
 
 # --- time limit per property example ------------------------------------------
