@@ -7,7 +7,9 @@ check), main (``ddg-oracle check`` three times and with ci: the main job's time)
 (``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
 to catch each planted bug under the default profile), sidebyside (this checkout's numbers
 against another version's, ``--base-python``), mutation (mutmut on the core modules of
-reference/, the mutation score per module; long, docs/mutation.md), faults (the fault suite:
+reference/, the mutation score per module; long, docs/mutation.md), knockout (every public
+reference function replaced by generic wrong versions of its result, killed or not by the
+reference's tests; long, docs/knockout.md), faults (the fault suite:
 hostile cases per area, handled or badly; docs/faults.md), meshread (peak memory of reading a
 mesh file against its size; docs/faults.md)."""
 
@@ -16,8 +18,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from . import (catch, cotan, dirichlet, faults, flips, meshread, mutation, real, report,
-               sidebyside, suite)
+from . import (catch, cotan, dirichlet, faults, flips, knockout, meshread, mutation, real,
+               report, sidebyside, suite)
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -33,11 +35,13 @@ GROUPS = {
     "catch": catch.run,
     "sidebyside": sidebyside.run,
     "mutation": mutation.run,
+    "knockout": knockout.run_group,
     "faults": faults.run,
     "meshread": meshread.run,
     "survey": __import__("benchmarks.survey", fromlist=["run"]).run,
 }
-ONLY_NAMED = ("sidebyside", "mutation", "faults", "meshread", "survey")  # not part of --all
+# not part of --all
+ONLY_NAMED = ("sidebyside", "mutation", "knockout", "faults", "meshread", "survey")
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 

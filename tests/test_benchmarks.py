@@ -54,3 +54,42 @@ def test_the_side_by_side_summary_counts_lines_as_the_bar_reads_them():
     assert "x / y" not in text and "slow / code | 0.1000 | 0.1200 | 1.20" in text
     text = "\n".join(_sidebyside(dict(res, rows=rows[:2])))
     assert "1 of 2 lines within 10%, 1 faster, none slower;" in text
+
+
+def test_a_knockout_patches_the_function_object_and_undo_restores_it():
+    """benchmarks/knockout_plugin.py switches a wrong version on in the function object
+    itself (a name imported elsewhere sees it too); undo() gives the original back."""
+    from fractions import Fraction
+
+    from benchmarks.knockout_plugin import knock_out, wrong_drop, wrong_last
+    from ddg_oracle.reference import surfaces
+    from ddg_oracle.reference.combinatorics import Triangulation
+    from ddg_oracle.reference.curvature import total_curvature
+    from ddg_oracle.reference.exact import pi
+
+    s = surfaces.octahedron()
+    right, chi = total_curvature(s), s.triangulation.euler_characteristic()
+    assert right == 4 * pi and chi == 2
+    p = knock_out("ddg_oracle.reference.curvature:total_curvature:value")
+    q = knock_out("ddg_oracle.reference.combinatorics:Triangulation.euler_characteristic:value")
+    try:
+        assert total_curvature(s) == 4 * pi + pi * Fraction(1, 3)
+        assert s.triangulation.euler_characteristic() == 3
+    finally:
+        p.undo()
+        q.undo()
+    assert total_curvature(s) == right and Triangulation.euler_characteristic(s.triangulation) == 2
+    assert wrong_last((1, [Fraction(1), True])) == (1, [Fraction(1), False])
+    assert wrong_last({"a": 1, "b": 2.0}) == {"a": 1, "b": 2.0 * (1 + 2**-10) + 2**-10}
+    assert wrong_drop([1, 2, 3]) == [1, 2] and len(wrong_drop({1, 2, 3})) == 2
+
+
+def test_a_knockout_that_must_be_killed_is_killed_in_a_child():
+    """One child pytest run with the plugin: euler_characteristic off by one fails
+    tests/test_surfaces.py; with no knockout it passes."""
+    from benchmarks.knockout import run_knockout
+
+    spec = "ddg_oracle.reference.combinatorics:Triangulation.euler_characteristic:value"
+    res = run_knockout(spec, ["tests/test_surfaces.py"], timeout=120)
+    assert res["status"] == "killed", res
+    assert res["by"].startswith("FAILED tests/test_surfaces.py")

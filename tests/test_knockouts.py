@@ -1,0 +1,167 @@
+"""Public reference functions that a generic wrong version of their result survived in the
+reference's tests (benchmarks/knockout.py, docs/knockout.md: the result negated, off by one,
+shifted by 1/3, an element dropped, the body skipped), or that no reference test called;
+each test here fails on that wrong version.  Exact, and on generic inputs (unequal areas,
+boundary, points in general position) wherever the function allows."""
+
+import random
+from fractions import Fraction
+from itertools import combinations
+
+import pytest
+
+from ddg_oracle.reference import planar, rigidity, surfaces
+from ddg_oracle.reference.combinatorics import Triangulation
+from ddg_oracle.reference.errors import InputError, NonManifoldVertex
+from ddg_oracle.reference.exact import sqrt
+from ddg_oracle.reference.geodesics import root_sum_at_least
+from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.sparse import SparseMatrix
+
+# --- never called by a reference test -------------------------------------------------------------
+
+
+def test_root_sum_at_least_against_surds():
+    """sqrt(b) + sqrt(c) >= sqrt(a), against the exact Surd comparison, equality included
+    (9 = (2 + 1)^2, 8 = (sqrt 2 + sqrt 2)^2) and on both sides of it."""
+    cases = [(9, 4, 1), (8, 2, 2), (Fraction(9, 4), 1, Fraction(1, 4)), (10, 4, 1),
+             (Fraction(801, 100), 2, 2), (0, 0, 0), (1, 0, 0), (3, 1, 1), (4, 1, 1)]
+    rng = random.Random(44)
+    cases += [tuple(Fraction(rng.randint(0, 60), rng.randint(1, 7)) for _ in range(3))
+              for _ in range(60)]
+    got = [root_sum_at_least(a, b, c) for a, b, c in cases]
+    want = [sqrt(b) + sqrt(c) >= sqrt(a) for a, b, c in cases]
+    assert got == want
+    assert True in got and False in got
+
+
+def _points(seed, n=8):
+    rng = random.Random(seed)
+    pts = set()
+    while len(pts) < n:
+        pts.add((Fraction(rng.randint(-20, 20), rng.randint(1, 5)),
+                 Fraction(rng.randint(-20, 20), rng.randint(1, 5))))
+    return sorted(pts)
+
+
+def test_lifted_hull_facets_are_the_empty_circle_triangles():
+    """R4.2: the lifted triangle spans a supporting plane of the lifted hull iff no other
+    point lies strictly inside the planar triangle's circumcircle (in_circle times the
+    orientation), on random rational points and on four cocircular points."""
+    seen = set()
+    for pts in [_points(1), _points(2), _points(3),
+                [(0, 0), (2, 0), (2, 2), (0, 2), (1, Fraction(1, 2))],
+                [(1, 0), (0, 1), (-1, 0), (0, -1), (Fraction(3, 5), Fraction(4, 5))]]:
+        for i, j, k in combinations(range(len(pts)), 3):
+            o = planar.orientation(pts[i], pts[j], pts[k])
+            if o == 0:
+                continue
+            empty = all(o * planar.in_circle(pts[i], pts[j], pts[k], d) <= 0
+                        for n, d in enumerate(pts) if n not in (i, j, k))
+            assert planar.is_lifted_hull_facet(pts, i, j, k) == empty, (pts, i, j, k)
+            seen.add(empty)
+    assert seen == {True, False}
+
+
+def test_sparse_diagonal_holds_its_values_on_the_diagonal():
+    values = [Fraction(1, 3), 0, -2, Fraction(7, 5)]
+    m = SparseMatrix.diagonal(values)
+    assert m.shape == (4, 4)
+    assert m.entries() == [(i, i, v) for i, v in enumerate(values) if v]
+    assert m.to_dense_floats() == [[float(values[i]) if i == j else 0.0 for j in range(4)]
+                                   for i in range(4)]
+
+
+def test_from_lengths_squares_each_edge_length():
+    """A 3-4-5 triangle and a 5-5-6 one glued along an edge (unequal areas, boundary): the
+    squared lengths are the squares of the given ones, edge by edge, and the areas those
+    of the two triangles."""
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3)])
+    lengths = [Fraction(0)] * t.n_edges
+    want = {}
+    for (u, v), x in {(0, 1): 3, (1, 2): 4, (0, 2): 5, (2, 3): 5, (0, 3): 6}.items():
+        e = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {u, v})
+        lengths[e] = x
+        want[e] = Fraction(x * x)
+    s = PiecewiseFlatSurface.from_lengths(t, lengths)
+    for h in range(3 * t.n_faces):
+        assert s.squared_length(h) == want[t.edge_of(h)]
+    assert s.area(0) == 6 and s.area(1) == 12      # 3-4-5 right; 5-5-6 isosceles, height 4
+
+
+# --- combinatorics ---------------------------------------------------------------------------
+
+
+def _gluings(t):
+    """(faces, n_vertices, gluings) of ``t``: its pickled defining data."""
+    return t.__reduce__()[1]
+
+
+def test_validate_raises_on_each_broken_invariant():
+    """Triangulation.validate re-checks the tables: built unchecked (``_trusted``, what the
+    operations use) from a valid triangulation's data with one thing broken, each raises an
+    InputError naming it; the valid data passes."""
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3), (0, 3, 4), (3, 2, 5)])  # a disk
+    faces, n, gl = _gluings(t)
+    assert Triangulation._trusted(faces, n, gl).validate() is None
+    e = next(k for k, (a, b, r) in enumerate(gl) if b >= 0)
+    a, b, r = gl[e]
+    broken = {
+        "endpoints": gl[:e] + ((a, b, not r),) + gl[e + 1:],         # reversed flag flipped
+        "twice": gl + ((a, -1, False),),                              # a halfedge in 2 edges
+        "missing": gl[:e] + gl[e + 1:],                               # two halfedges in none
+    }
+    for what, g in broken.items():
+        with pytest.raises(InputError, match=r"halfedge|edge"):
+            Triangulation._trusted(faces, n, g).validate()
+    # a bowtie: vertex 0 in two fans
+    bow = Triangulation._trusted(((0, 1, 2), (0, 3, 4)), 5,
+                                 tuple((h, -1, False) for h in range(6)))
+    with pytest.raises(NonManifoldVertex):
+        bow.validate()
+
+
+# --- planar and rigidity -----------------------------------------------------------------------
+
+
+def test_quad_tessellation_faces_are_orthogonal_kites_crossing_iff_acute():
+    """R4.1 on random rational points: every face's Voronoi segment q r is orthogonal to
+    its Delaunay edge and equidistant from both ends (recomputed from q, r and the points),
+    and ``crossing == acute`` for every face (the notes' identity), both values seen."""
+    seen = set()
+    for seed in (5, 6, 7):
+        pts = _points(seed, 9)
+        faces = planar.quad_tessellation_faces(pts)
+        assert faces
+        for f in faces:
+            (i, j), (q, r) = f["edge"], f["voronoi"]
+            pi, pj = pts[i], pts[j]
+            d = (pj[0] - pi[0], pj[1] - pi[1])
+            assert (q[0] - r[0]) * d[0] + (q[1] - r[1]) * d[1] == 0
+            for c in (q, r):
+                assert (c[0] - pi[0]) ** 2 + (c[1] - pi[1]) ** 2 == \
+                    (c[0] - pj[0]) ** 2 + (c[1] - pj[1]) ** 2
+            assert f["orthogonal"] and f["kite"] and f["bisected"]
+            assert f["crossing"] == f["acute"], f
+            seen.add(f["acute"])
+    assert seen == {True, False}
+
+
+def test_rigidity_matrix_rows_are_the_edge_vectors():
+    """Row ij of the rigidity matrix holds p_i - p_j at vertex i and p_j - p_i at vertex j
+    (nothing else), on a jittered octahedron (no two edges alike)."""
+    s0 = surfaces.octahedron()
+    rng = random.Random(3)
+    s = s0.with_positions([[Fraction(c) + Fraction(rng.randint(-9, 9), 97) for c in p]
+                           for p in s0.positions])
+    t = s.triangulation
+    m = rigidity.rigidity_matrix(s)
+    assert sorted(m) == list(range(t.n_edges))
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        want = {}
+        for k in range(3):
+            d = s.positions[i][k] - s.positions[j][k]
+            if d:
+                want[3 * i + k], want[3 * j + k] = d, -d
+        assert m[e] == want, e
