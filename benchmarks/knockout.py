@@ -408,7 +408,7 @@ def page(data: dict) -> str:
     modules = [full(m) for m in data["modules"]]
     valid = {(short(m), q) for m in modules for q, _ in targets_of(m)}
     data = {**data, "idle": [t for t in data["idle"] if (t["module"], t["target"]) in valid]}
-    rows = summary(data["runs"], data["idle"], modules)
+    rows = [r for r in summary(data["runs"], data["idle"], modules) if r["targets"]]
     after = data.get("after")
     fixed = {}
     if after:
@@ -654,6 +654,8 @@ def main(argv=None) -> int:
             res["modules"] = [r["module"] for r in res["rows"]]
             res.setdefault("parts", stored.get("parts", [stored.get("meta")]))
             res["parts"].append(meta)
+        if args.resume is not None and stored.get("after"):
+            res["after"] = stored["after"]      # the survivors' re-run still stands
         _save(res)
     return 0
 

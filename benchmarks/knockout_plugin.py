@@ -85,7 +85,16 @@ def kind(x) -> str:
         return "dict"
     if isinstance(x, (set, frozenset)) and type(x) in (set, frozenset):
         return type(x).__name__
+    SparseMatrix, PolyhedralSurface = _object_types()
+    if type(x) in (SparseMatrix, PolyhedralSurface):
+        return type(x).__name__
     return f"other:{type(x).__name__}"
+
+
+def _object_types():
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ddg_oracle.reference.sparse import SparseMatrix
+    return SparseMatrix, PolyhedralSurface
 
 
 VARIANTS_OF_KIND = {
@@ -93,6 +102,7 @@ VARIANTS_OF_KIND = {
     "Surd": ("value",), "Angle": ("value",), "AngleLength": ("value",), "Interval": ("value",),
     "tuple": ("last", "drop"), "list": ("last", "drop"), "dict": ("last",),
     "set": ("drop",), "frozenset": ("drop",),
+    "SparseMatrix": ("value",), "PolyhedralSurface": ("value",),
 }
 
 
@@ -117,6 +127,21 @@ def wrong_value(x):
         return x + Angle(pi_coefficient=Fraction(1, 3))       # + pi/3
     if isinstance(x, Interval):
         return x + Fraction(1, 3)
+    SparseMatrix, PolyhedralSurface = _object_types()
+    if type(x) is SparseMatrix:                   # its last stored entry + 1/3
+        n = x.shape[0]
+        rows = {i: dict(x.row(i)) for i in range(n)}
+        full = [i for i in range(n) if rows[i]]
+        if not full:
+            raise NotApplicable("no entry")
+        i = full[-1]
+        j = max(rows[i])
+        rows[i][j] = rows[i][j] + Fraction(1, 3)
+        return SparseMatrix(x.shape, rows)
+    if type(x) is PolyhedralSurface:              # its last vertex moved by 1/3 along x
+        p = list(x.positions)
+        p[-1] = (p[-1][0] + Fraction(1, 3), *p[-1][1:])
+        return x.with_positions(p)
     raise NotApplicable(type(x).__name__)
 
 

@@ -93,3 +93,22 @@ def test_a_knockout_that_must_be_killed_is_killed_in_a_child():
     res = run_knockout(spec, ["tests/test_surfaces.py"], timeout=120)
     assert res["status"] == "killed", res
     assert res["by"].startswith("FAILED tests/test_surfaces.py")
+
+
+def test_knockout_variants_change_sparse_matrices_and_surfaces():
+    """The wrong versions of the objects most reference functions return: a SparseMatrix
+    with its last stored entry + 1/3, a PolyhedralSurface with its last vertex moved."""
+    from fractions import Fraction
+
+    from benchmarks.knockout_plugin import kind, wrong_value
+    from ddg_oracle.reference import surfaces
+    from ddg_oracle.reference.laplacian import cotan_laplacian
+    s = surfaces.tetrahedron()
+    L = cotan_laplacian(s)
+    W = wrong_value(L)
+    changed = [(i, j) for i in range(4) for j in range(4) if W.row(i).get(j) != L.row(i).get(j)]
+    assert kind(L) == "SparseMatrix" and changed == [(3, 3)]
+    assert W.row(3)[3] - L.row(3)[3] == Fraction(1, 3)
+    t = wrong_value(s)
+    assert kind(s) == "PolyhedralSurface" and t.positions[:-1] == s.positions[:-1]
+    assert t.positions[-1][0] - s.positions[-1][0] == Fraction(1, 3)
