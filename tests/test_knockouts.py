@@ -165,3 +165,20 @@ def test_rigidity_matrix_rows_are_the_edge_vectors():
             if d:
                 want[3 * i + k], want[3 * j + k] = d, -d
         assert m[e] == want, e
+
+
+def test_convex_hull_keeps_the_given_points_as_its_vertices():
+    """surfaces.convex_hull with its last vertex moved by 1/3 survived: the tests read its
+    faces and orientations from the input points, never the surface's positions.  The
+    hull's vertices are the given points, in their order, exactly, and every face has all
+    other vertices strictly on its inner side (X1.1 / X1.2)."""
+    from ddg_oracle.reference.polyhedral import orientation3d
+    rng = random.Random(11)
+    pts = [(0, 0, 0), (4, 0, 1), (1, 5, 0), (1, 1, 4), (2, 2, -3)]
+    pts += [(Fraction(rng.randint(-9, 9), 7), 6, Fraction(rng.randint(1, 9), 5))]
+    hull = surfaces.convex_hull(pts)
+    assert hull.positions == tuple(tuple(Fraction(x) for x in p) for p in pts)
+    for f in hull.triangulation.faces:
+        a, b, c = (hull.positions[v] for v in f)
+        assert all(orientation3d(a, b, c, x) < 0
+                   for v, x in enumerate(hull.positions) if v not in f)
