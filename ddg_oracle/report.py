@@ -293,6 +293,7 @@ def known_findings() -> list[dict]:
         if not m:
             continue
         ident, library, kind, found_by = m.groups()
+        detail = line.split("|")[3].strip()            # "bug (never returns)"
         # "with `libigl(boundary=library)`": the finding is that option's, not the default's
         options = re.findall(r"with `?[\w-]+\(([^)`]*)\)", found_by)
         ids = set()
@@ -302,7 +303,8 @@ def known_findings() -> list[dict]:
                 if part:
                     ids.add(part.strip())
         rows.append({"id": ident, "library": _base(re.sub(r"('s|[^\w-])+$", "", library)),
-                     "kind": kind.strip(), "properties": ids, "options": options})
+                     "kind": kind.strip(), "detail": detail, "properties": ids,
+                     "options": options})
     return rows
 
 
@@ -310,7 +312,7 @@ def known_finding(r, findings) -> str | None:
     """The id of the documented finding a non-passing result is, if any: never for a result
     that is not the implementation's (undecided: the exact reference gave up; internal
     error; incomplete)."""
-    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED
+    from ddg_oracle.properties.runner import CRASHED, INCOMPLETE, INTERNAL, TIE, UNDECIDED
     if r.status in (UNDECIDED, INTERNAL, INCOMPLETE):
         return None
 
@@ -322,7 +324,15 @@ def known_finding(r, findings) -> str | None:
                     for o in f["options"])]
     # a tie is a precision limit; a failure or crash a bug or convention
     tie_kind = [f for f in hits if (f["kind"] == "precision limit") == (r.status == TIE)]
-    return (tie_kind or hits or [{"id": None}])[0]["id"]
+    hits = tie_kind or hits
+    # a crash or hang is first the finding of a crash or hang ("never returns"), a wrong
+    # answer first one of a wrong answer: one library can have both for one property
+    crash_kind = [f for f in hits
+                  if bool(_CRASH_WORDS.search(f.get("detail", ""))) == (r.status == CRASHED)]
+    return (crash_kind or hits or [{"id": None}])[0]["id"]
+
+
+_CRASH_WORDS = re.compile(r"never returns|crash|segfault|hang|abort|out of memory", re.I)
 
 
 def fit(text: str, width: int) -> str:

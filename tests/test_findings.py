@@ -50,3 +50,20 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
     assert built.returncode == 0, built.stderr
     exe = command[command.index("-o") + 1]
     return subprocess.run([str(where / exe)], capture_output=True, text=True, timeout=300)
+
+
+def test_a_crash_is_the_finding_of_a_crash_and_a_wrong_answer_the_other():
+    """libigl has two findings for D4.8 / R4.9: F-libigl-4 (its intrinsic flips never return:
+    a hang, or memory exhausted) and F-libigl-6 (a wrong metric on non-orientable meshes).
+    A crashed result is the first, a failed one the second (a main job called a
+    std::bad_alloc on 7 faces F-libigl-6)."""
+    from types import SimpleNamespace
+
+    from ddg_oracle.report import known_finding, known_findings
+    findings = known_findings()
+
+    def result(status):
+        return SimpleNamespace(status=status, implementation="libigl",
+                               property_id="D4.8 / R4.9")
+    assert known_finding(result("crashed"), findings) == "F-libigl-4"
+    assert known_finding(result("FAILED"), findings) == "F-libigl-6"
