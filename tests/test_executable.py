@@ -186,24 +186,11 @@ def test_a_handshake_interrupted_never_answers_the_next_request():
     answer stayed in the pipe and the next request read it (no id: "answered ... to request
     id 1", a false crash).  Now the half-started program is stopped; the next call starts a
     fresh one and gets its own answer."""
-    import signal
-
-    class Alarm(Exception):
-        pass
-
-    def ring(signum, frame):
-        raise Alarm
+    from tests.alarms import interrupted
 
     impl = _misbehaving("ok")
     impl._stop()
-    previous = signal.signal(signal.SIGALRM, ring)
-    try:
-        signal.setitimer(signal.ITIMER_REAL, 0.02)    # python and numpy start slower
-        with pytest.raises(Alarm):
-            impl._start()
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+    interrupted(impl._start, 0.02)      # python and numpy start slower
     V, F = TET
     assert impl.euler_characteristic(np.array(V, float), np.array(F)) == 2
     impl.close()

@@ -145,24 +145,11 @@ def test_a_worker_start_interrupted_never_answers_the_next_call():
     every later call the answer of the call before (a tetrahedron's genus 1,
     non-orientable: FAILED on a correct implementation).  Now the half-started worker is
     killed and the next call starts a fresh one."""
-    import signal
-
-    class Alarm(Exception):
-        pass
-
-    def ring(signum, frame):
-        raise Alarm
+    from tests.alarms import interrupted
 
     with Isolated("ddg_oracle.oracles.exact_reference:ReferenceImplementation",
                   timeout=30) as impl:
-        previous = signal.signal(signal.SIGALRM, ring)
-        try:
-            signal.setitimer(signal.ITIMER_REAL, 0.05)      # loading takes longer than that
-            with pytest.raises(Alarm):
-                impl._start()
-        finally:
-            signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, previous)
+        interrupted(impl._start, 0.05)      # loading takes longer than that
         V, F = _arrays(CLOSED)
         assert impl.euler_characteristic(V, F) == 2
         assert impl.genus(V, F) == 0 and impl.is_orientable(V, F) is True
