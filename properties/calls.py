@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .arithmetic import implementations_arithmetic
 from .budget import BudgetExceeded, calling
 from .protocol import METHODS, OutsideDomain, implementation_name
 from .registry import PropertyFailure
@@ -65,7 +66,7 @@ class Watched:
 
         def call(*args):
             try:
-                with calling(f"{self.name}.{attr}"):
+                with calling(f"{self.name}.{attr}"), implementations_arithmetic():
                     answer = value(*args)
             except _NOT_THE_IMPLEMENTATIONS:
                 raise

@@ -65,7 +65,10 @@ def decode_example(text: str):
 
 def replay(property_id: str, impl, example):
     """Run property ``property_id`` once on ``impl`` with ``example`` (an example, or the
-    text of :func:`encode_example`); raises what the check raises, None if it passes."""
+    text of :func:`encode_example`); raises what the check raises, None if it passes.
+    ``impl`` is called as the runner calls it (:class:`~.calls.Watched`: its declared
+    conventions mapped, its answers screened, its own numpy error state)."""
+    from .calls import Watched
     from .registry import PROPERTIES, all_properties
 
     all_properties()
@@ -73,6 +76,8 @@ def replay(property_id: str, impl, example):
         raise KeyError(f"no property {property_id!r}")
     if isinstance(example, str):
         example = decode_example(example)
+    if not isinstance(impl, Watched):
+        impl = Watched(impl, property_id)
     PROPERTIES[property_id].check(impl, example)
 
 

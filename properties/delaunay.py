@@ -360,12 +360,14 @@ def intrinsic_meshes():
     cascades).  A third of them with faces reversed (:func:`~.strategies.with_reversed_faces`:
     a flip algorithm that glues by reversed halfedge keys takes an interior edge for a
     boundary edge and never flips it).  Half of the near ties and cascades closed by cones
-    (:func:`~.strategies.coned`): an implementation that declines boundary meets them too."""
+    (:func:`~.strategies.coned`): an implementation that declines boundary meets them too.
+    Every kind maybe with a near-tie quad and a convex fan beside it
+    (:func:`~.strategies.with_traps_beside`)."""
     from .strategies import (coned, grouped, near_cocircular_meshes, sweep_meshes,
-                             with_reversed_faces)
-    return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds(), non_orientable_meshes()),
-                                         coned(near_cocircular_meshes()),
-                                         coned(sweep_meshes())))
+                             with_reversed_faces, with_traps_beside)
+    return with_reversed_faces(with_traps_beside(st.one_of(
+        grouped(*_delaunay_kinds(), non_orientable_meshes()),
+        coned(near_cocircular_meshes()), coned(sweep_meshes()))))
 
 
 @st.composite
@@ -1101,7 +1103,22 @@ def rippa_energy_difference(impl, quad_u):
 
 # --- how the chapter-4 methods' answers compare on a given mesh (compare, vectors) ------------
 
-quantity("is_locally_delaunay")
+def delaunay_ties(example: Example, want=None) -> np.ndarray:
+    """(m, 3) bool, per face and corner: whether the edge opposite it is an (exact or near)
+    tie, its float cot sum within :func:`cot_sum_with_bound`'s bound of 0 at the current
+    machine epsilon, where rounding decides and either answer agrees (D4.4's ties; the
+    flat rectangles of CAD meshes are exact ties).  ``want`` unused (a quantity's bound)."""
+    X = Exact.of(example)
+    t = X.triangulation
+    tie = np.zeros(t.n_edges, dtype=bool)
+    for e in range(t.n_edges):
+        s, bound = cot_sum_with_bound(X, e)
+        tie[e] = abs(s) <= bound
+    return np.array([[tie[t.edge_of(3 * f + next_corner(c))] for c in range(3)]
+                     for f in range(t.n_faces)], dtype=bool).reshape(t.n_faces, 3)
+
+
+quantity("is_locally_delaunay", bound=delaunay_ties)
 quantity("intrinsic_delaunay_laplacian",
          bound=lambda example, want: DelaunayExact.of(example).Bs,
          expected=lambda example, reference: DelaunayExact.of(example).Ls)

@@ -20,6 +20,7 @@ import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from .arithmetic import own_arithmetic
 from .profiles import example_time_limit
 from .protocol import at_machine_epsilon, implementation_name, machine_epsilon
 
@@ -168,7 +169,7 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
         @functools.wraps(check)
         def checked(impl, example):
             # tolerances inside the check read the implementation's own epsilon
-            with at_machine_epsilon(machine_epsilon(impl)), \
+            with at_machine_epsilon(machine_epsilon(impl)), own_arithmetic(), \
                     example_time_limit(f"[{catalog_id}] {implementation_name(impl)}"):
                 check(impl, example)
 

@@ -218,6 +218,37 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
                           recipe=recipe + f", isolated vertices at {list(spots)}")
 
 
+@st.composite
+def orientation_traps(draw):
+    """Where a test of orientability that follows the faces' own direction, or looks at
+    one component only, goes wrong: one of three kinds, each drawn a third of the time
+    (so that a default run meets each a few times),
+
+    * an orientable surface (tetrahedron, disk, torus) with some faces reversed:
+      orientable, but the faces' own directions disagree (4 faces at the least);
+    * an orientable component then a non-orientable one (Möbius strip, projective
+      plane): an orientation propagated from face 0 alone never reaches the second
+      (10 faces at the least);
+    * the same two the other way round (code that looks at the last component)."""
+    kind = draw(st.integers(0, 2))
+    yes = [n for n, (_, c) in _TOPOLOGY_COMPONENTS.items() if c[0]]
+    no = [n for n, (_, c) in _TOPOLOGY_COMPONENTS.items() if not c[0]]
+    names = [draw(st.sampled_from(yes))] + ([draw(st.sampled_from(no))] if kind else [])
+    if kind == 2:
+        names.reverse()
+    built = [_TOPOLOGY_COMPONENTS[n][0]() for n in names]
+    if kind == 0:
+        built[0], n = variants.reversed_faces(built[0], draw(st.integers(0, 1 << 16)))
+        names[0] += f" ({n} face(s) reversed)"
+    t = built[0] if len(built) == 1 else variants.union_of(*built)
+    parts = [expected_classification(*_TOPOLOGY_COMPONENTS[n.split(" (")[0]][1]) for n in names]
+    expected = parts[0] if len(parts) == 1 else Classification(
+        False, None, sum(c.boundary_components for c in parts),
+        sum(c.euler_characteristic for c in parts))
+    return Example.of_triangulation(t, _placeholder_positions(t), expected,
+                                    ", then a ".join(f"a {n}" for n in names))
+
+
 def closed_surfaces(**kw):
     """Closed surfaces of any (or the given) orientability and genus."""
     return triangulated_surfaces(holes=0, **kw)
@@ -266,6 +297,19 @@ def mobius_strips(max_size: int = 6):
     return st.integers(3, max_size).map(build)
 
 
+def annuli(max_size: int = 6):
+    """Annuli of 2n faces, n = 3..max_size (``surfaces.annulus``): the smallest orientable
+    surfaces with two boundary loops (where code that finds one loop, or counts loops by
+    their vertices, breaks; punched surfaces need 22 faces for two holes)."""
+    truth = expected_classification(True, 0, 2)
+
+    def build(n):
+        s = surfaces.annulus(n)
+        return Example.of_triangulation(s.triangulation, s.positions, truth, f"annulus, {2 * n} faces")
+
+    return st.integers(3, max_size).map(build)
+
+
 # --- polyhedral surfaces with float coordinates (curvature, Laplacian, mass matrices) ---------
 
 
@@ -297,13 +341,17 @@ def jittered(s: PolyhedralSurface, level: int, seed: int, floats: bool) -> Polyh
 
 _CLOSED = {
     "tetrahedron": lambda a, b: surfaces.tetrahedron(),
+    # the smallest closed surface with reflex edges (a saddle's dihedral angles are
+    # negative, which an unsigned angle gets wrong): listed second, so that a failure on
+    # a larger closed surface can shrink to these 6 faces
+    "dented bipyramid": lambda a, b: variants.bipyramid(3, Fraction(1 + a, 2), -Fraction(1 + a, 4)),
     "octahedron": lambda a, b: surfaces.octahedron(),
     "cube": lambda a, b: surfaces.cube(),
     "icosahedron": lambda a, b: surfaces.icosahedron(),
     "torus": lambda a, b: surfaces.torus(3 + a % 3, 3 + b % 2),      # sizes, not corners
     "double torus": lambda a, b: surfaces.genus_surface(2),
 }
-_CHI = {"tetrahedron": 2, "octahedron": 2, "cube": 2, "icosahedron": 2, "torus": 0,
+_CHI = {"tetrahedron": 2, "dented bipyramid": 2, "octahedron": 2, "cube": 2, "icosahedron": 2, "torus": 0,
         "double torus": -2}
 _WITH_BOUNDARY = {
     "disk": (lambda a, b: surfaces.disk(3 + a % 6), 1),
@@ -805,6 +853,36 @@ def near_cocircular_meshes(draw, max_quads: int = 4):
                      f"{count} quads side by side: " + "; ".join(recipes))
 
 
+def with_traps_beside(meshes):
+    """``meshes`` with, each in one draw of two, a near-tie quad (as in
+    :func:`near_cocircular_meshes`) and a :func:`convex_fans` beside them, each a component
+    of its own 64 to the left: every example meets a near tie and a flip cascade besides
+    its own kind (a default run's 25 examples are too few to count on drawing each kind
+    often).  Shrinks to the mesh alone."""
+    @st.composite
+    def build(draw):
+        c = draw(meshes)
+        extra = []
+        if draw(st.booleans()):
+            quad, recipe = _near_tie_quad(draw, tie=False)
+            extra.append((quad, ((0, 1, 2), (0, 2, 3)), recipe))
+        if draw(st.booleans()):
+            fan = draw(convex_fans())
+            extra.append((fan.positions, fan.faces, fan.recipe))
+        if not extra:
+            return c
+        pts, faces, recipes = list(c.positions), [tuple(f) for f in c.faces], [c.recipe]
+        left = min(p[0] for p in pts)
+        for q, fs, recipe in extra:
+            shift = left - 64 - max(p[0] for p in q)
+            faces += [tuple(len(pts) + v for v in f) for f in fs]
+            pts += [(x + shift, y, z) for x, y, z in q]
+            left = shift + min(p[0] for p in q)
+            recipes.append(f"beside it {recipe}")
+        return mesh_case(pts, faces, "; ".join(recipes))
+    return build()
+
+
 def with_reversed_faces(meshes):
     """``meshes`` with, in about one draw of three, 1 to 3 drawn faces listed the other way:
     the same surface inconsistently oriented (an orientable one stays orientable, as a mesh
@@ -904,19 +982,35 @@ def near_cocircular_point_sets(draw):
     return pts
 
 
-def sweep_meshes(max_points: int = 10):
+@st.composite
+def convex_fans(draw, max_points: int = 10):
+    """A convex polygon of 4 .. ``max_points`` points on the parabola y = x^2 (exact
+    integers, x = 0, 1, ...), triangulated as the fan from a drawn corner (the long fans
+    of CAD caps and of sweep triangulations), as a flat mesh in z = 0: its Delaunay
+    triangulation is reached by a cascade of flips (a flip makes an edge met earlier
+    non-Delaunay; one pass over the edges stops early from 6 points on)."""
+    n = draw(st.integers(4, max_points))
+    apex = draw(st.integers(0, n - 1))
+    pts = [(Fraction(i), Fraction(i * i), Fraction(0)) for i in range(n)]   # counterclockwise
+    order = [(apex + k) % n for k in range(n)]
+    faces = [(order[0], order[k], order[k + 1]) for k in range(1, n - 1)]
+    return mesh_case(pts, faces, f"fan of {n} points on a parabola from corner {apex}")
+
+
+def sweep_meshes(max_points: int = 12):
     """Straight-line triangulations of planar point sets (:func:`.planar_points.planar_triangulations`:
     the sweep triangulation's long fans, flipped at random, sometimes a boundary face
     removed) as flat meshes in z = 0: far from Delaunay, so that an intrinsic flip algorithm
     meets cascades (a flip makes a neighbouring edge non-Delaunay, which must be flipped
-    in turn; one pass over the edges stops early).  Shrinks to a triangle."""
+    in turn; one pass over the edges stops early); or, in one draw of two, a
+    :func:`convex_fans` (a cascade in 4 faces).  Shrinks to a triangle."""
     from .planar_points import planar_triangulations
 
     def mesh(example):
         pts, faces, _ = example
         return mesh_case([(x, y, 0) for x, y in pts], faces,
                          f"planar triangulation of {len(pts)} points, {len(faces)} faces")
-    return planar_triangulations(max_points).map(mesh)
+    return st.one_of(planar_triangulations(max_points).map(mesh), convex_fans())
 
 
 def scaled_planar(triangulations):

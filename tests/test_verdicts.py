@@ -397,3 +397,133 @@ def test_a_signal_during_a_call_stops_the_run_and_is_not_the_implementations_cra
     from ddg_oracle.jobs import Interrupted
     with pytest.raises(Interrupted):
         run_property(PROPERTIES["D1.6"], StoppedBySignal(), profile("default"))
+
+
+# --- a project's warnings filters neither hide a failure nor change the implementation's run ---
+
+
+class DegenerateFlips(ReferenceImplementation):
+    """An intrinsic triangulation whose face 0 has squared lengths 1, 1, 4: positive and
+    finite (past the answer's screening), but a zero-area triangle, where the property's
+    own float angles divide by zero."""
+    name = "degenerate-flips"
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        F2, l2 = super().intrinsic_delaunay_triangulation(V, F)
+        l2 = np.array(l2, dtype=float)
+        l2[0] = (1.0, 1.0, 4.0)
+        return F2, l2
+
+
+class DividesByZero(ReferenceImplementation):
+    """Angle defects computed through a division by zero of its own (inf, then finite)."""
+    name = "divides-by-zero"
+
+    def angle_defects(self, V, F):
+        K = np.asarray(super().angle_defects(V, F), dtype=float)
+        return K + np.minimum(np.float64(1) / np.zeros(len(K)), 0)
+
+
+def test_under_warnings_as_errors_a_failure_is_still_a_failure():
+    """A project's ``filterwarnings = error`` turned numpy's RuntimeWarning in A4.13's own
+    float angles (a zero-area face of the implementation's answer) into an exception of
+    ddg-oracle's: an internal error in place of the implementation's FAILED."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = run_property(PROPERTIES["A4.13"], DegenerateFlips(), QUICK)
+    assert r.status == FAILED, (r.status, r.error)
+
+
+def test_the_implementations_own_numpy_warnings_follow_the_projects_filters():
+    """Its own arithmetic keeps the error state it was called with: a division by zero is
+    its crash where the project makes warnings errors, a finite answer where it does not."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = run_property(PROPERTIES["R2.4"], DividesByZero(), QUICK)
+    assert r.status == CRASHED and "divide by zero" in r.error
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_property(PROPERTIES["R2.4"], DividesByZero(), QUICK).status == PASSED
+
+
+class NegatedWithConvention(ReferenceImplementation):
+    """libigl's sign of the Laplacian, declared."""
+    name = "negated-declared"
+    conventions = {"laplacian": "negative"}
+
+    def cotan_laplacian(self, V, F):
+        return -super().cotan_laplacian(V, F)
+
+
+def test_a_replay_calls_the_implementation_as_the_run_does():
+    """replay() called the bare implementation: its declared conventions were not mapped,
+    so the snippet of a convention-declaring implementation raised a failure the run never
+    had (L3.8 on -L)."""
+    from ddg_oracle.properties.counterexample import encode_example, replay
+    impl = NegatedWithConvention()
+    assert run_property(PROPERTIES["L3.8"], impl, QUICK).status == PASSED
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # Hypothesis: .example() outside a test
+        example = PROPERTIES["L3.8"].strategy().example()
+    assert replay("L3.8", impl, encode_example(example)) is None
+
+
+class TiesTheOtherWay(ReferenceImplementation):
+    """Locally Delaunay flags with every exact tie answered False (a float test that rounds
+    cot a + cot b = 0 to a tiny negative number), and, with ``wrong``, face 0's corner 0
+    (a clear case on the grid below: its edge is a boundary edge) flipped too."""
+    name = "ties-the-other-way"
+    wrong = False
+
+    def is_locally_delaunay(self, V, F):
+        from ddg_oracle.properties.delaunay import delaunay_ties
+        from ddg_oracle.properties.example import Example
+        got = np.array(super().is_locally_delaunay(V, F), dtype=bool)
+        ties = delaunay_ties(Example.of_mesh(
+            [tuple(map(float, p)) for p in V], [tuple(map(int, f)) for f in F], "grid"))
+        got[ties] = False
+        if self.wrong:
+            got[0, 0] = not got[0, 0]
+        return got
+
+
+def test_compare_accepts_either_answer_on_an_exact_tie():
+    """compare (hence survey and check --mesh's scoreboard) called a Delaunay flag that
+    differs on an exact tie DIFFERS: thousands per CAD mesh of the CGAL corpus (squares
+    split by a diagonal) for libigl and MeshLib, which decide ties in float.  The property
+    D4.4 and the test vectors always accepted either answer there."""
+    from ddg_oracle.compare import MeshInput, compare_mesh
+    from ddg_oracle.reference import surfaces
+    g = surfaces.grid(3, 2)                        # every diagonal an exact tie
+    V = [[float(x) for x in p] for p in g.positions]
+    mesh = MeshInput("grid", V, [list(f) for f in g.triangulation.faces])
+    wrong = type("Wrong", (TiesTheOtherWay,), {"wrong": True, "name": "wrong-on-a-clear-edge"})
+    rows = {c.implementation: c for c in compare_mesh(
+        mesh, [TiesTheOtherWay(), wrong()], ReferenceImplementation(),
+        methods=["is_locally_delaunay"])}
+    ties = rows["ties-the-other-way"]
+    assert ties.status == "agrees" and "12 ties" in ties.note, ties    # 6 diagonals
+    assert rows["wrong-on-a-clear-edge"].status == "DIFFERS"
+    assert "face 0, corner 0" in rows["wrong-on-a-clear-edge"].note
+
+
+class ZeroMeanCurvature(ReferenceImplementation):
+    name = "zero-mean-curvature"
+
+    def edge_mean_curvature(self, V, F):
+        return {(0, 1): 0.0}
+
+
+def test_a_quantity_without_an_exact_value_on_a_mesh_is_not_applicable_and_the_rest_stand():
+    """survey stopped with exit 2 at cgal:corner_poly.off (a folded edge: no dihedral angle,
+    no mean curvature), dropping every mesh after it: compare now says the quantity has
+    no value there and compares the others."""
+    from ddg_oracle.compare import MeshInput, compare_mesh
+    V = [[0, 0, 0], [1, 0, 0], [0.25, 1, 0], [0.5, 0.5, 0]]     # face 1 folded onto face 0
+    mesh = MeshInput("folded", V, [[0, 1, 2], [1, 0, 3]])
+    rows = {c.quantity: c for c in compare_mesh(mesh, [ZeroMeanCurvature()],
+                                                 ReferenceImplementation(),
+                                                 methods=["edge_mean_curvature", "area"])}
+    h = rows["edge_mean_curvature"]
+    assert h.status == "not applicable" and "folded" in h.note, h
+    assert rows["area"].status == "agrees"
