@@ -33,6 +33,7 @@ import sys
 import tarfile
 import tempfile
 import time
+from fractions import Fraction
 from pathlib import Path, PurePosixPath
 
 from ddg_oracle.reference.errors import InputError
@@ -240,8 +241,9 @@ def resolve(arg: str) -> list[tuple[str, Path, bool]]:
 
 def read_triangulated(path) -> tuple[list, list, str | None]:
     """(V, F, note) of a corpus mesh: :func:`~ddg_oracle.meshfiles.read_mesh`, except that the
-    polygons of an OFF or OBJ file are split into a fan from their first corner (the
-    note says how many); every other problem is the reader's error."""
+    polygons of an OFF or OBJ file are triangulated (:func:`triangulate_polygon`: a convex
+    one as the fan from its first corner, a non-convex one by ear clipping; the note says
+    how many); every other problem is the reader's error."""
     from . import meshfiles
     from .files import read_bytes
     from .meshfiles import MeshFileError, read_mesh
@@ -254,38 +256,94 @@ def read_triangulated(path) -> tuple[list, list, str | None]:
             raise
     data = read_bytes(path, "a mesh file", meshfiles.size_limit(), MeshFileError)
     off = path.suffix.lower() == ".off"
-    text, polygons, corners, triangles = (_fan_off if off else _fan_obj)(
+    text, corners, clipped, triangles = (_split_off if off else _split_obj)(
         data.decode("utf-8-sig", errors="replace"))
     V, F = (meshfiles._off if off else meshfiles._obj)(text.encode(), str(path))
     meshfiles._check(V, F, str(path))
-    lo, hi = min(corners), max(corners)
+    polygons = len(corners)
+    lo, hi = min(corners or [0]), max(corners or [0])
     sides = f"{lo}" if lo == hi else f"{lo} to {hi}"
     faces = "1 polygon face" if polygons == 1 else f"{polygons} polygon faces"
     whose = "its" if polygons == 1 else "their"
-    return V, F, (f"{faces} ({sides} corners) fan-triangulated from {whose} first corner "
-                  f"into {triangles} triangles")
+    how = f"fan-triangulated from {whose} first corner"
+    if clipped:
+        how = (f"triangulated (the convex ones as a fan from their first corner, {clipped} "
+               "non-convex one(s) by ear clipping)")
+    return V, F, f"{faces} ({sides} corners) {how} into {triangles} triangles"
 
 
-def _fan(corners: list[str]) -> list[list[str]]:
-    return [[corners[0], corners[j], corners[j + 1]] for j in range(1, len(corners) - 1)]
+def _point(tokens) -> tuple | None:
+    """The exact (x, y, z) of a vertex line's numbers as the reader's float64 reads them."""
+    try:
+        return tuple(Fraction(float(x)) for x in tokens[:3])
+    except (ValueError, OverflowError, IndexError):
+        return None
 
 
-def _fan_off(text: str):
-    """The OFF ``text`` with each polygon face line replaced by its fan's triangles (and the
-    face count updated); a line it cannot read is kept, for the reader to report."""
+def triangulate_polygon(points: list) -> tuple[list, bool]:
+    """(triangles as corner positions 0..k-1, whether ear clipping was needed) of a
+    polygon given by its k >= 3 exact 3-D corners, in their order.
+
+    Projected along the dominant axis of its (Newell) normal: a strictly convex polygon
+    gives the fan from corner 0; otherwise ears are clipped, each the first corner (from
+    corner 1 on) that turns the polygon's way and whose triangle holds no other corner,
+    decided exactly.  A polygon with no ear (self-intersecting, collinear corners) gives
+    the fan, for the mesh checks to report."""
+    k = len(points)
+    fan = [(0, j, j + 1) for j in range(1, k - 1)]
+    normal = [sum((points[i][a] - points[(i + 1) % k][a])
+                  * (points[i][b] + points[(i + 1) % k][b]) for i in range(k))
+              for a, b in ((1, 2), (2, 0), (0, 1))]
+    drop = max(range(3), key=lambda a: abs(normal[a]))
+    if normal[drop] == 0:
+        return fan, False
+    u, v = [a for a in range(3) if a != drop]
+    xy = [(p[u], p[v]) for p in points]
+    sign = 1 if normal[drop] > 0 else -1        # counterclockwise in (u, v) when positive
+
+    def turn(a, b, c):
+        (ax, ay), (bx, by), (cx, cy) = xy[a], xy[b], xy[c]
+        return sign * ((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
+
+    if all(turn(i, (i + 1) % k, (i + 2) % k) > 0 for i in range(k)):
+        return fan, False
+    left, out = list(range(k)), []
+    while len(left) > 3:
+        n = len(left)
+        for j in list(range(1, n)) + [0]:
+            a, b, c = left[j - 1], left[j], left[(j + 1) % n]
+            if turn(a, b, c) <= 0:
+                continue
+            if any(turn(a, b, p) >= 0 and turn(b, c, p) >= 0 and turn(c, a, p) >= 0
+                   for p in left if p not in (a, b, c)):
+                continue
+            out.append((a, b, c))
+            del left[j]
+            break
+        else:
+            return fan, False
+    out.append(tuple(left))
+    return out, True
+
+
+def _split_off(text: str):
+    """The OFF ``text`` with each polygon face line replaced by its triangles (and the
+    face count updated): (text, corners per polygon, polygons ear-clipped, triangles);
+    a line it cannot read is kept, for the reader to report."""
     rows = [(line, line.split("#", 1)[0].split()) for line in text.splitlines()]
     rows = [(line, p) for line, p in rows if p]
-    corners, out, triangles = [], [], 0
+    corners, out, triangles, clipped = [], [], 0, 0
     if not rows or not rows[0][1][0].endswith("OFF"):
-        return text, 0, [0], 0
+        return text, [], 0, 0
     head = rows[0][1]
     counts, body = (head[1:], rows[1:]) if len(head) > 1 else \
         ((rows[1][1] if len(rows) > 1 else []), rows[2:])
     try:
         nv, nf = int(counts[0]), int(counts[1])
     except (IndexError, ValueError):
-        return text, 0, [0], 0
+        return text, [], 0, 0
     out += [line for line, _ in body[:nv]]
+    points = [_point(p) for _, p in body[:nv]]
     faces = 0
     for line, p in body[nv:nv + nf]:
         try:
@@ -294,7 +352,9 @@ def _fan_off(text: str):
             k = -1
         if k > 3 and len(p) >= k + 1:
             corners.append(k)
-            for t in _fan(p[1:k + 1]):
+            tris, ear = _triangles(p[1:k + 1], lambda x: int(x), points)
+            clipped += ear
+            for t in tris:
                 out.append("3 " + " ".join(t))
                 faces += 1
                 triangles += 1
@@ -302,22 +362,43 @@ def _fan_off(text: str):
             out.append(line)
             faces += 1
     text = "\n".join([head[0], f"{nv} {faces} 0", *out]) + "\n"
-    return text, len(corners), corners or [0], triangles
+    return text, corners, clipped, triangles
 
 
-def _fan_obj(text: str):
-    """The OBJ ``text`` with each polygon ``f`` line replaced by its fan's triangles."""
-    out, corners, triangles = [], [], 0
+def _triangles(tokens: list[str], index, points: list) -> tuple[list, bool]:
+    """A polygon's triangles as its own tokens (:func:`triangulate_polygon` on the corner
+    positions; the fan when a corner cannot be read, for the reader to report)."""
+    try:
+        at = [points[index(t)] for t in tokens]
+    except (ValueError, IndexError):
+        at = [None]
+    if any(x is None for x in at):
+        return [[tokens[0], tokens[j], tokens[j + 1]] for j in range(1, len(tokens) - 1)], False
+    tris, ear = triangulate_polygon(at)
+    return [[tokens[a] for a in t] for t in tris], ear
+
+
+def _split_obj(text: str):
+    """The OBJ ``text`` with each polygon ``f`` line replaced by its triangles."""
+    out, corners, triangles, clipped, points = [], [], 0, 0, []
     for line in text.splitlines():
         p = line.split("#", 1)[0].split()
+        if p and p[0] == "v":
+            points.append(_point(p[1:]))
         if p and p[0] == "f" and len(p) > 4:
             corners.append(len(p) - 1)
-            for t in _fan(p[1:]):
+
+            def index(token, n=len(points)):
+                i = int(token.split("/")[0])
+                return i - 1 if i > 0 else n + i       # OBJ: 1-based, negative: from the end
+            tris, ear = _triangles(p[1:], index, points)
+            clipped += ear
+            for t in tris:
                 out.append("f " + " ".join(t))
                 triangles += 1
         else:
             out.append(line)
-    return "\n".join(out) + "\n", len(corners), corners or [0], triangles
+    return "\n".join(out) + "\n", corners, clipped, triangles
 
 
 # --- the command line -----------------------------------------------------------------------------

@@ -118,6 +118,48 @@ def test_polygon_faces_are_fan_triangulated_with_a_note(small_corpus):
     assert "1 polygon face (5 corners) fan-triangulated from its first corner" in notes[-1]
 
 
+#: an L-shaped hexagon listed from its reflex corner's neighbour: the fan from corner 0
+#: folds (its first triangle turns clockwise); area 3
+L_SHAPE = [(2, 1), (1, 1), (1, 2), (0, 2), (0, 0), (2, 0)]
+
+
+def _signed_area2(a, b, c):
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+@pytest.mark.parametrize("tilted", [False, True])
+def test_a_non_convex_polygon_is_ear_clipped_into_triangles_of_its_orientation(reverse, tilted):
+    """A fan of a non-convex polygon folds (cgal:corner_poly.off: a dihedral angle of pi;
+    cgal:mpi.off: a zero-area triangle, the mesh skipped): ear clipping, decided exactly,
+    keeps the polygon's orientation and area; a convex polygon keeps its fan."""
+    from fractions import Fraction
+    pts = L_SHAPE[::-1] if reverse else L_SHAPE
+    corners = [(Fraction(x), Fraction(y), Fraction(x) if tilted else Fraction(0)) for x, y in pts]
+    tris, clipped = corpus.triangulate_polygon(corners)
+    assert clipped and len(tris) == 4
+    way = -1 if reverse else 1
+    areas = [_signed_area2(*(pts[v] for v in t)) for t in tris]
+    assert all(way * a > 0 for a in areas), areas
+    assert sum(abs(a) for a in areas) == 2 * 3
+    square = [(Fraction(x), Fraction(y), Fraction(0)) for x, y in [(0, 0), (1, 0), (1, 1), (0, 1)]]
+    assert corpus.triangulate_polygon(square) == ([(0, 1, 2), (0, 2, 3)], False)
+
+
+@pytest.mark.parametrize("suffix", [".off", ".obj"])
+def test_a_corpus_file_with_a_non_convex_polygon_reads_as_a_valid_surface(tmp_path, suffix):
+    xyz = [f"{x} {y} 0" for x, y in L_SHAPE]
+    if suffix == ".off":
+        text = "OFF\n6 1 0\n" + "\n".join(xyz) + "\n6 0 1 2 3 4 5\n"
+    else:
+        text = "".join(f"v {p}\n" for p in xyz) + "f 1/1 2/2 3/3 4/4 5/5 -1\n"
+    path = tmp_path / f"l_shape{suffix}"
+    path.write_text(text)
+    V, F, note = corpus.read_triangulated(path)
+    assert len(F) == 4 and "1 non-convex one(s) by ear clipping" in note
+    assert all(_signed_area2(*(L_SHAPE[v] for v in f)) > 0 for f in F)
+
+
 def test_a_users_own_polygon_file_is_still_rejected(small_corpus):
     with pytest.raises(MeshFileError, match="only triangles are accepted"):
         load(str(small_corpus / "meshes" / "cube_quad.off"),
