@@ -165,9 +165,9 @@ Left out: {left_out}.
 
 ## Not done
 
-- `--scheduler` (dask) is not implemented for survey: its parallelism is compare's own,
-  `--workers N` processes computing each mesh's exact values while this process asks the
-  implementations; meshes run one after another.
+- This document is measured locally (`--workers`: processes computing each mesh's exact
+  values, meshes one after another); `ddg-oracle survey --scheduler ADDRESS` runs one mesh
+  per task on a dask cluster and scores the same.
 - The meshes left out above (the exact reference on them takes too long for this
   document; `ddg-oracle survey pymeshlab:` runs them all).
 """

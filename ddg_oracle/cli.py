@@ -219,6 +219,11 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--workers", type=int, default=None, metavar="N",
                    help=f"processes computing the exact values of each mesh (default "
                         f"{default_workers()}); 1 computes them in this process")
+    s.add_argument("--scheduler", metavar="ADDRESS",
+                   help="survey the meshes on a dask.distributed cluster, one mesh per task "
+                        "(each worker starts the implementations once): a scheduler's "
+                        "address (tcp://host:8786) or local:N; a lost worker's mesh runs "
+                        "again elsewhere; needs pip install 'ddg-oracle[dask]'")
     s.add_argument("--report", metavar="DIR",
                    help="keep each finished mesh in DIR/results.jsonl and write the scoreboard "
                         "to DIR/survey.md, DIR/survey.html and DIR/results.json (a new or "
@@ -744,9 +749,10 @@ def _survey(args) -> int:
     if args.resume:
         # the interrupted run's own options (its run.json), in the directory as it is now
         stored = survey.command_of(args.resume)
-        workers, report = args.workers, stored["report"]
+        workers, scheduler, report = args.workers, args.scheduler, stored["report"]
         args = parser().parse_args(["survey", *stored["argv"]])
-        args.report, args.resume, args.workers = report, report, workers
+        args.report, args.resume, args.workers, args.scheduler = report, report, workers, \
+            scheduler
     check_timeout(args)
     return survey.run(args)
 

@@ -188,18 +188,19 @@ def _run(run, task):
 # --- in the client --------------------------------------------------------------------------------
 
 
-def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
-    """Run the tasks ``todo`` (indices into ``tasks``) on ``client``'s cluster; ``finish(k,
-    results)`` as each arrives (any order), ``check()`` at least twice a second (raises on
-    SIGINT or SIGTERM: the unfinished tasks are cancelled)."""
+def map_on_cluster(client, fn, shared, items, finish, check=lambda: None) -> None:
+    """``fn(shared, item)`` for every item on ``client``'s cluster (``shared`` sent once per
+    worker); ``finish(k, result, error)`` as each arrives, in any order: ``error`` is None,
+    or why the cluster could not finish item ``k`` (its workers died
+    :data:`ALLOWED_FAILURES` + 1 times, or ``fn`` raised); ``check()`` at least twice a
+    second (raise there, or on a signal, to stop: the unfinished items are cancelled)."""
     from distributed import wait
-    from ddg_oracle import jobs
 
     token = uuid.uuid4().hex
-    [run] = client.scatter([(token, options, meshes)], broadcast=True)
+    [run] = client.scatter([shared], broadcast=True)
     index = {}
-    for k in todo:
-        f = client.submit(_run, run, tasks[k], key=f"ddg-oracle-{token}-{k}", pure=False)
+    for k, item in enumerate(items):
+        f = client.submit(fn, run, item, key=f"ddg-oracle-{token}-{k}", pure=False)
         index[f] = k
     remaining = set(index)
     try:
@@ -211,16 +212,27 @@ def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
                 continue
             for f in done:
                 remaining.discard(f)
-                k = index[f]
                 try:
-                    results = f.result()
+                    result, error = f.result(), None
                 except Exception as e:  # noqa: BLE001  (KilledWorker: a result, the run goes on)
-                    results = jobs.crashed(
-                        tasks[k], f"the cluster could not finish this task ({type(e).__name__}: "
-                                  f"{e}); a task is run again when its worker dies, "
-                                  f"{ALLOWED_FAILURES} times at most")
-                finish(k, results)
+                    result, error = None, (
+                        f"the cluster could not finish this task ({type(e).__name__}: {e}); a "
+                        f"task is run again when its worker dies, {ALLOWED_FAILURES} times at most")
+                finish(index[f], result, error)
                 f.release()
     except BaseException:
         client.cancel(list(remaining))
         raise
+
+
+def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
+    """Run the tasks ``todo`` (indices into ``tasks``) on ``client``'s cluster; ``finish(k,
+    results)`` as each arrives (any order), ``check()`` at least twice a second (raises on
+    SIGINT or SIGTERM: the unfinished tasks are cancelled)."""
+    from ddg_oracle import jobs
+
+    def arrived(i, results, error):
+        k = todo[i]
+        finish(k, jobs.crashed(tasks[k], error) if error is not None else results)
+    map_on_cluster(client, _run, (uuid.uuid4().hex, options, meshes), [tasks[k] for k in todo],
+                   arrived, check)

@@ -12,6 +12,11 @@ it finishes (:class:`SurveyStream`, a :class:`~ddg_oracle.report.ResultStream` w
 is a mesh).  An interrupted survey keeps its finished meshes; ``--resume DIR`` runs
 only the others.  The scoreboard is written as ``DIR/results.json``, ``DIR/survey.md``
 (a markdown table) and ``DIR/survey.html`` (a heatmap, one self-contained SVG).
+
+With ``--scheduler ADDRESS`` the meshes are tasks of a ``dask.distributed`` cluster
+(:func:`ddg_oracle.cluster.map_on_cluster`): each worker process starts the
+implementations once per run (:func:`survey_mesh_in_worker`) and compares one mesh at a
+time; finished meshes arrive in any order and the scoreboard is the local run's.
 """
 
 from __future__ import annotations
@@ -378,6 +383,61 @@ def _argv(args, specs: list[str]) -> list[str]:
     return out + ["--timeout", repr(args.timeout)]
 
 
+def survey_mesh(mesh, started: dict, specs: list[str], reference, workers: int) -> MeshResult:
+    """One mesh's :class:`MeshResult`: every started implementation (spec -> object)
+    compared with the exact reference on it (:func:`~ddg_oracle.compare.compare_mesh`,
+    ``workers`` processes computing its exact values)."""
+    import time
+    from ddg_oracle.compare import compare_mesh
+    from ddg_oracle.properties.protocol import implementation_name
+    t = time.perf_counter()
+    rows = compare_mesh(mesh, [started[s] for s in specs], reference, workers=workers)
+    spec_of: dict = {}
+    for s in specs:
+        spec_of.setdefault(implementation_name(started[s]), s)
+    return MeshResult(mesh.name, len(mesh.V), len(mesh.F),
+                      [record(r, spec_of.get(r.implementation, r.implementation))
+                       for r in rows if r.note != NOT_PROVIDED],
+                      time.perf_counter() - t, mesh.note)
+
+
+#: in a dask worker: (the run's token, its started implementations, the reference)
+_IN_WORKER: dict = {}
+
+
+def survey_mesh_in_worker(run, mesh) -> dict:
+    """:func:`survey_mesh` in a dask worker (``--scheduler``), as JSON: the run's
+    implementations (``run``: token, specs, timeout) are started once per worker process
+    and kept until the next run or :func:`close_in_worker`."""
+    from ddg_oracle import commands
+    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    token, specs, timeout = run
+    if _IN_WORKER.get("token") != token:
+        close_in_worker()
+        _IN_WORKER.update(token=token, reference=ReferenceImplementation(),
+                          started=commands.start_implementations(specs, timeout))
+    return survey_mesh(mesh, _IN_WORKER["started"], specs, _IN_WORKER["reference"],
+                       workers=1).to_json()
+
+
+def close_in_worker() -> None:
+    """Stop the implementations a dask worker started for a survey (their processes)."""
+    for impl in (_IN_WORKER.pop("started", None) or {}).values():
+        getattr(impl, "close", lambda: None)()
+    _IN_WORKER.clear()
+
+
+def _lost_mesh(mesh, specs: list[str], why: str) -> MeshResult:
+    """The result of a mesh the cluster could not finish (its workers died): a crash of
+    every implementation on it, said as such (quantity ``*``: not one of them in
+    particular)."""
+    return MeshResult(mesh.name, len(mesh.V), len(mesh.F),
+                      [{"quantity": "*", "implementation": s, "spec": s, "status": "crashed",
+                        "worst": None, "error": None, "bound": None, "where": None,
+                        "expected": None, "observed": None, "over": 0, "elements": 0,
+                        "note": why, "explained_by": []} for s in specs], 0.0, mesh.note)
+
+
 def run(args) -> int:
     """``ddg-oracle survey``: see the module's docstring.  Exit 0 when every row agrees or
     is not applicable, 1 when something differs or crashed, 2 for a usage error, 128 + N
@@ -385,12 +445,12 @@ def run(args) -> int:
     import signal
     import sys
     import time
+    import uuid
     from ddg_oracle import commands
-    from ddg_oracle.compare import compare_mesh, load_all
+    from ddg_oracle.compare import load_all
     from ddg_oracle.implementations import available
     from ddg_oracle.jobs import stopped_by_signals
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    from ddg_oracle.properties.protocol import implementation_name
 
     workers = args.workers
     if workers is not None and workers < 1:
@@ -425,33 +485,52 @@ def run(args) -> int:
     t0 = time.perf_counter()
     interrupted = None
     started: dict = {}
+    client = dask = None
     lost: list = []                     # the report directory stopped taking writes
+
+    def finished(result: MeshResult) -> None:
+        done[result.name] = result
+        if stream is not None and not lost:
+            try:
+                stream.add(result)
+            except OSError as e:        # full, read-only or gone: the run goes on
+                lost.append(e)
     try:
         with stopped_by_signals():
             if todo:
                 started = commands.start_implementations(specs, args.timeout)
                 commands.warn_near_misses(started.values())
-            display = {s: implementation_name(i) for s, i in started.items()}
-            reference = ReferenceImplementation()
-            for k, mesh in enumerate(todo, len(done) + 1):
-                print(f"ddg-oracle: [{k}/{len(meshes)}] {mesh.name} ({len(mesh.F):,} faces)",
-                      file=sys.stderr, flush=True)
-                t = time.perf_counter()
-                rows = compare_mesh(mesh, [started[s] for s in specs], reference,
-                                    workers=workers)
-                spec_of = {}
-                for s in specs:
-                    spec_of.setdefault(display[s], s)
-                result = MeshResult(mesh.name, len(mesh.V), len(mesh.F),
-                                    [record(r, spec_of.get(r.implementation, r.implementation))
-                                     for r in rows if r.note != NOT_PROVIDED],
-                                    time.perf_counter() - t, mesh.note)
-                done[mesh.name] = result
-                if stream is not None and not lost:
+            if todo and args.scheduler:
+                # the workers start their own: here they were only seen to load (exit 2 at
+                # once for a mistake), and a worker may be on another machine
+                for impl in started.values():
+                    getattr(impl, "close", lambda: None)()
+                started = {}
+                from ddg_oracle import cluster as dask
+                client, cluster_ = dask.connect(args.scheduler)
+                print(f"ddg-oracle: {len(todo)} meshes on {dask.n_workers(client)} workers of "
+                      f"{args.scheduler}", file=sys.stderr, flush=True)
+
+                def arrived(k, result, error):
+                    mesh = todo[k]
+                    print(f"ddg-oracle: [{len(done) + 1}/{len(meshes)}] {mesh.name} "
+                          f"({len(mesh.F):,} faces)", file=sys.stderr, flush=True)
+                    finished(_lost_mesh(mesh, specs, error) if error is not None
+                             else MeshResult.from_json(result))
+                try:
+                    dask.map_on_cluster(client, survey_mesh_in_worker,
+                                        (uuid.uuid4().hex, specs, args.timeout), todo, arrived)
+                finally:
                     try:
-                        stream.add(result)
-                    except OSError as e:        # full, read-only or gone: the run goes on
-                        lost.append(e)
+                        client.run(close_in_worker)
+                    finally:
+                        dask.close(client, cluster_)
+            else:
+                reference = ReferenceImplementation()
+                for k, mesh in enumerate(todo, len(done) + 1):
+                    print(f"ddg-oracle: [{k}/{len(meshes)}] {mesh.name} ({len(mesh.F):,} faces)",
+                          file=sys.stderr, flush=True)
+                    finished(survey_mesh(mesh, started, specs, reference, workers))
     except KeyboardInterrupt as e:
         interrupted = e
     finally:

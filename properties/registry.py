@@ -128,11 +128,13 @@ class Property:
     # how it runs on a given mesh file (``check --mesh``): None, on drawn examples only;
     # else the requirements (REQUIREMENTS) a mesh must meet, () for any mesh
     on_mesh: tuple | None = None
+    # called when the implementation has them, not required (R1.6 reads genus if given)
+    also: frozenset[str] = frozenset()
 
     @property
     def methods(self) -> frozenset[str]:
         """Every protocol method the check may call."""
-        return self.needs | self.needs_any
+        return self.needs | self.needs_any | self.also
 
     def applies_to(self, caps: frozenset[str]) -> bool:
         return self.needs <= caps and (not self.needs_any or bool(self.needs_any & caps))
@@ -148,9 +150,11 @@ class Property:
 PROPERTIES: dict[str, Property] = {}
 
 
-def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_any=()):
+def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_any=(),
+         also=()):
     """Register ``check(impl, example)`` as the property of ``catalog_id``: it applies to an
-    implementation with every method of ``needs`` and at least one of ``needs_any``.
+    implementation with every method of ``needs`` and at least one of ``needs_any``, and
+    also calls those of ``also`` that the implementation has.
 
     ``on_mesh`` (required: every property declares it) says how it runs on a mesh file
     given to ``check --mesh``: ``None`` if it needs drawn examples (what it checks is not
@@ -175,7 +179,7 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
 
         PROPERTIES[catalog_id] = Property(
             catalog_id, check.__name__, statement, frozenset(needs), strategy, checked,
-            frozenset(needs_any), None if on_mesh is None else tuple(on_mesh))
+            frozenset(needs_any), None if on_mesh is None else tuple(on_mesh), frozenset(also))
         check.property_id = catalog_id
         return check
     return register

@@ -50,3 +50,16 @@ def test_ties_are_one_line_per_implementation_unless_listed(capsys):
     assert "tie disagreement: exactly flat vertex" not in out
     rc, out, _ = _run(capsys, *args, "--ties")
     assert "tie disagreement: exactly flat vertex" in out
+
+
+def test_a_wrong_genus_in_r1_6_is_blamed_on_genus():
+    """R1.6 reads genus when the implementation has it (Property.also): its failure was
+    blamed on euler_characteristic or boundary_loops, and the catch benchmark, which runs
+    the properties that call a planted method, never ran R1.6 on a genus bug (0 of 3)."""
+    from benchmarks.planted.variants import GenusIgnoresBoundary
+    from ddg_oracle.properties import PROPERTIES
+    from ddg_oracle.properties.profiles import profile
+    from ddg_oracle.properties.runner import FAILED, run_property
+    assert "genus" in PROPERTIES["R1.6"].methods
+    r = run_property(PROPERTIES["R1.6"], GenusIgnoresBoundary(), profile("ci"))
+    assert r.status == FAILED and "wrong" in str(r.failure) and "genus" in str(r.failure)

@@ -166,14 +166,30 @@ def test_interrupt_keeps_finished_meshes_and_resume_finishes_as_undisturbed(
     assert "[1/3]" not in again.stderr and "[3/3]" in again.stderr   # only the rest ran
     resumed = json.loads((moved / "results.json").read_text())
     _, _, whole = undisturbed
-
-    def same(doc):
-        return {"scoreboard": doc["scoreboard"], "command": doc["command"]["argv"],
-                "meshes": [{k: v for k, v in m.items() if k != "seconds"}
-                           for m in doc["meshes"]]}
-    assert resumed["interrupted"] is False and same(resumed) == same(whole)
+    assert resumed["interrupted"] is False and _same(resumed) == _same(whole)
     assert [json.loads(x)["mesh"] for x in (moved / "results.jsonl").read_text().splitlines()] \
         == corpus
+
+
+def _same(doc):
+    return {"scoreboard": doc["scoreboard"], "command": doc["command"]["argv"],
+            "meshes": [{k: v for k, v in m.items() if k != "seconds"} for m in doc["meshes"]]}
+
+
+def test_a_survey_on_a_dask_cluster_scores_as_the_local_one(corpus, undisturbed, tmp_path):
+    """--scheduler local:2: one mesh per task, each worker starting the implementations
+    once; the meshes finish in any order, the scoreboard and every row are the local run's."""
+    import importlib.util
+    if importlib.util.find_spec("distributed") is None:   # not imported here: see test_cluster
+        pytest.skip("dask.distributed is not installed (pip install 'ddg-oracle[dask]')")
+    report = tmp_path / "cluster"
+    out = _survey(*corpus, *IMPLS, "--scheduler", "local:2", "--report", str(report))
+    local, _, whole = undisturbed
+    assert out.returncode == local.returncode == 1, out.stdout + out.stderr
+    assert "3 meshes on 2 workers of local:2" in out.stderr and "Traceback" not in out.stderr
+    assert _same(json.loads((report / "results.json").read_text())) == _same(whole)
+    assert sorted(json.loads(x)["mesh"] for x in
+                  (report / "results.jsonl").read_text().splitlines()) == sorted(corpus)
 
 
 def _one_line_error(out, *words):
