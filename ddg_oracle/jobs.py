@@ -138,13 +138,28 @@ def _run_task(task: Task) -> list:
         r = run_property(p, impl, profile(opts.profile), opts.seed,
                          counterpart=counterpart, convention=convention, budget=budget)
         return [with_diagnosis(r, p, impl)]
-    from ddg_oracle.compare import MeshExamples, run_mesh_properties
-    examples = _HERE.examples
-    if task.mesh not in examples:
-        examples.clear()                 # one mesh's exact values at a time
-        examples[task.mesh] = MeshExamples(_HERE.meshes[task.mesh])
+    from ddg_oracle.compare import MeshExamples, as_read_by, run_mesh_properties
+    from ddg_oracle.properties.precision import format_of
+    from ddg_oracle.properties.protocol import machine_epsilon
+    from ddg_oracle.reference.errors import InputError
     only = opts.only if task.property_id is None else frozenset([task.property_id])
-    return run_mesh_properties(examples[task.mesh], impl, only, counterpart, convention)
+    examples = _HERE.examples
+    # the mesh as this implementation reads it (a float32 one: rounded to float32), its
+    # exact values computed once per format; one mesh's at a time
+    key = (task.mesh, format_of(machine_epsilon(impl)).bits)
+    if key not in examples:
+        for k in [k for k in examples if k[0] != task.mesh]:
+            del examples[k]
+        try:
+            examples[key] = MeshExamples(as_read_by(_HERE.meshes[task.mesh], machine_epsilon(impl)))
+        except InputError as e:          # the rounding collapsed a face: nothing to check
+            examples[key] = e
+    if isinstance(examples[key], InputError):
+        from ddg_oracle.compare import file_properties
+        from ddg_oracle.properties.runner import NOT_APPLICABLE, Result
+        return [Result(p.id, p.name, task.spec, NOT_APPLICABLE, source=_HERE.meshes[task.mesh].name,
+                       note=str(examples[key])) for p in file_properties(only)]
+    return run_mesh_properties(examples[key], impl, only, counterpart, convention)
 
 
 def with_diagnosis(r, p, impl):

@@ -485,7 +485,6 @@ def run(args) -> int:
     t0 = time.perf_counter()
     interrupted = None
     started: dict = {}
-    client = dask = None
     lost: list = []                     # the report directory stopped taking writes
 
     def finished(result: MeshResult) -> None:
@@ -523,6 +522,8 @@ def run(args) -> int:
                 finally:
                     try:
                         client.run(close_in_worker)
+                    except Exception:  # noqa: BLE001  (workers gone: their processes with them)
+                        pass
                     finally:
                         dask.close(client, cluster_)
             else:

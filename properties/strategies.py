@@ -300,14 +300,29 @@ def mobius_strips(max_size: int = 6):
 def annuli(max_size: int = 6):
     """Annuli of 2n faces, n = 3..max_size (``surfaces.annulus``): the smallest orientable
     surfaces with two boundary loops (where code that finds one loop, or counts loops by
-    their vertices, breaks; punched surfaces need 22 faces for two holes)."""
+    their vertices, breaks; punched surfaces need 22 faces for two holes).  In one draw of
+    two from n = 4 on, the two loops touch in space: a vertex of each, sharing no face, at
+    one position (distinct points elsewhere), as in a mesh to be stitched (CGAL's
+    quads_to_stitch.off): the surface and its loops are the same, and code that finds
+    boundary vertices by position (VTK's vtkFeatureEdges, F-vtk-4) merges them."""
     truth = expected_classification(True, 0, 2)
 
-    def build(n):
+    def build(args):
+        n, touching = args
         s = surfaces.annulus(n)
-        return Example.of_triangulation(s.triangulation, s.positions, truth, f"annulus, {2 * n} faces")
+        if not touching or n < 4:
+            return Example.of_triangulation(s.triangulation, s.positions, truth,
+                                            f"annulus, {2 * n} faces")
+        t = s.triangulation
+        pts = list(_placeholder_positions(t))
+        inner, outer = t.boundary_loops()
+        a, b = next((a, b) for a in inner for b in outer
+                    if not any(a in f and b in f for f in t.faces))
+        pts[b] = pts[a]
+        return Example.of_triangulation(t, tuple(pts), truth, f"annulus, {2 * n} faces, "
+                                        f"boundary vertices {a} and {b} at one position")
 
-    return st.integers(3, max_size).map(build)
+    return st.tuples(st.integers(3, max_size), st.booleans()).map(build)
 
 
 # --- polyhedral surfaces with float coordinates (curvature, Laplacian, mass matrices) ---------
