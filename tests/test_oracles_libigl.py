@@ -288,13 +288,23 @@ def test_is_orientable_on_closed_non_orientable_surfaces():
         assert IGL.genus(V, F) == t.classify().genus
 
 
-CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS", "T1.1 / C1.2"]      # R1.6: finding F-libigl-1 (below)
+# R1.6 and T1.1 / C1.2: finding F-libigl-1 (below)
+CHAPTER1 = ["D1.6", "R1.5", "X1.4", "CS"]
 
 
 @pytest.mark.parametrize("pid", CHAPTER1)
 def test_chapter1_properties_pass(pid):
     r = run_property(PROPERTIES[pid], IGL, profile("default"))
     assert r.status == PASSED, r.failure or r.error
+
+
+def test_T1_1_meets_F_libigl_1_on_a_reversed_face():
+    """T1.1's orientation traps (a surface with faces listed the other way) make libigl's
+    boundary walk find loops on a closed surface; the adapter's genus then refuses the odd
+    2 - chi - k: a crash of the genus, reported with its mesh (F-libigl-1)."""
+    from ddg_oracle.properties.runner import CRASHED
+    r = run_property(PROPERTIES["T1.1 / C1.2"], IGL, profile("ci"))
+    assert r.status == CRASHED and "odd 2 - chi - k" in r.error, r.failure or r.error
 
 
 def test_R1_6_holds_on_orientable_surfaces_the_non_orientable_failure_is_L1():
