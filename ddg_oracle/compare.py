@@ -182,16 +182,13 @@ def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
     angles on cgal:fold.off by 6 times their float32 bound).  The same object for float64
     or when every coordinate is representable; InputError when the rounded mesh is no
     longer a valid surface (a face collapsed by the rounding)."""
-    import struct
-    from ddg_oracle.properties.precision import format_of
+    from ddg_oracle.properties.precision import format_of, rounded_to
     fmt = format_of(epsilon)
     if fmt.bits == 53:
         return mesh
-    try:
-        V = [[struct.unpack(fmt.code, struct.pack(fmt.code, float(x)))[0] for x in p]
-             for p in mesh.V]
-    except OverflowError:
-        raise InputError(f"{mesh.name}: a coordinate is beyond the {fmt.name} range") from None
+    V = [[rounded_to(fmt, float(x)) for x in p] for p in mesh.V]
+    if any(math.isinf(x) for p in V for x in p):
+        raise InputError(f"{mesh.name}: a coordinate is beyond the {fmt.name} range")
     if V == [[float(x) for x in p] for p in mesh.V]:
         return mesh
     try:
@@ -391,7 +388,8 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
                 read = as_read_by(mesh, machine_epsilon(group[0]))
             except InputError as e:
                 rows += [Comparison(m, implementation_name(i), "not applicable", note=str(e))
-                         for i in group for m in METHODS if methods is None or m in methods]
+                         for i in group for m in METHODS if m in capabilities(i)
+                         and (methods is None or m in methods)]
                 continue
             rows += _compare_read(read, group, reference, workers, methods, explain)
         order = {implementation_name(i): k for k, i in enumerate(impls)}

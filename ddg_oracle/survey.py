@@ -431,11 +431,10 @@ def _lost_mesh(mesh, specs: list[str], why: str) -> MeshResult:
     """The result of a mesh the cluster could not finish (its workers died): a crash of
     every implementation on it, said as such (quantity ``*``: not one of them in
     particular)."""
+    from ddg_oracle.compare import Comparison
     return MeshResult(mesh.name, len(mesh.V), len(mesh.F),
-                      [{"quantity": "*", "implementation": s, "spec": s, "status": "crashed",
-                        "worst": None, "error": None, "bound": None, "where": None,
-                        "expected": None, "observed": None, "over": 0, "elements": 0,
-                        "note": why, "explained_by": []} for s in specs], 0.0, mesh.note)
+                      [record(Comparison("*", s, "crashed", note=why), s) for s in specs],
+                      0.0, mesh.note)
 
 
 def run(args) -> int:

@@ -975,11 +975,11 @@ def _as_read_in_float32(method: str, c: dict, value, wrong: "_Wrong") -> Verdict
     the input as written, and a float32 code reads the coordinates float32 cannot hold
     rounded (a 2^-30 needle collapses).  Such a case is compared again with the exact
     values of the rounded input (what the code computed with); a FAIL either way."""
-    import struct
+    from ddg_oracle.properties.precision import FORMATS, rounded_to
     V = _unportable(c["input"].get("V") or [])
     try:
-        V32 = [[struct.unpack("f", struct.pack("f", x))[0] for x in p] for p in V]
-    except (OverflowError, TypeError, struct.error):
+        V32 = [[rounded_to(FORMATS[24], x) for x in p] for p in V]
+    except (OverflowError, TypeError, ValueError):
         return Verdict(c["id"], "FAIL", str(wrong))
     if V32 == V:
         return Verdict(c["id"], "FAIL", str(wrong))

@@ -23,7 +23,7 @@ import struct
 from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["InputFormat", "FORMATS", "inputs_at", "input_format", "representable"]
+__all__ = ["InputFormat", "FORMATS", "inputs_at", "input_format", "representable", "rounded_to"]
 
 
 @dataclass(frozen=True)
@@ -78,6 +78,16 @@ def input_format() -> InputFormat:
     return _format.get()
 
 
+def rounded_to(fmt: InputFormat, x: float) -> float:
+    """The float ``x`` rounded to the nearest number of ``fmt`` (as a float64); an infinity
+    beyond its range (IEEE rounding, as a cast in the implementation would give).
+
+    >>> rounded_to(FORMATS[24], 0.1) == 0.10000000149011612
+    True
+    """
+    return struct.unpack(fmt.code, struct.pack(fmt.code, x))[0]
+
+
 def representable(x) -> Fraction:
     """``x`` (a rational) rounded to the nearest number of the current input format, taken
     exactly; OverflowError beyond its range (the strategies then draw another example).
@@ -97,4 +107,4 @@ def representable(x) -> Fraction:
     # float64 first, then the format: double rounding may differ from rounding once in a
     # halfway case, and the result is representable either way (what the implementation
     # receives is what the reference computes with)
-    return Fraction(struct.unpack(fmt.code, struct.pack(fmt.code, f))[0])
+    return Fraction(rounded_to(fmt, f))

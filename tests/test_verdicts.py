@@ -551,6 +551,10 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
     from ddg_oracle.compare import as_read_by, compare_mesh
     mesh = _far_mesh()
     assert as_read_by(mesh, 2.0 ** -23) is not mesh and as_read_by(mesh, 2.0 ** -52) is mesh
+    from dataclasses import replace
+    from ddg_oracle.reference.errors import InputError
+    with pytest.raises(InputError, match="beyond the float32 range"):   # not a silent inf
+        as_read_by(replace(mesh, V=[[1e300, 0.0, 0.0]] + mesh.V[1:]), 2.0 ** -23)
     rows = compare_mesh(mesh, [Atan2Cross32(), Atan2Cross()], ReferenceImplementation(),
                         methods=["corner_angles", "angle_defects", "cotan_laplacian"])
     bad = [(r.implementation, r.quantity, r.worst) for r in rows if r.status != "agrees"]
