@@ -154,6 +154,33 @@ def test_declined_examples_are_replaced_and_a_full_count_passes():
     assert r.status == PASSED and r.examples == 25 and "outside its domain" in r.note
 
 
+class DeclinesLikeGel(ReferenceImplementation):
+    """Declines as PyGEL3D's halfedge mesh does (about 12 draws of D2.2 in 13): a mesh with
+    boundary, an edge used twice in one direction (non-orientable or some faces reversed),
+    or two used vertices at one position."""
+    name = "declines-like-gel"
+
+    def angle_defects(self, V, F):
+        F = np.asarray(F)
+        halfedges = [(int(a), int(b)) for f in F for a, b in zip(f, np.roll(f, -1))]
+        used = np.unique(F)
+        if (len(set(halfedges)) < len(halfedges)
+                or any((b, a) not in set(halfedges) for a, b in halfedges)
+                or len({tuple(np.asarray(V)[i]) for i in used}) < len(used)):
+            raise OutsideDomain("not a closed consistently oriented surface")
+        return super().angle_defects(V, F)
+
+
+@pytest.mark.parametrize("seed", [3677166103, 0, 1])
+def test_a_rare_acceptance_still_runs_every_example(seed):
+    # at 17 of 25 examples after 200 declines, a fixed cap of 8 declines per example ended
+    # PyGEL3D's D2.2 incomplete on seed 3677166103 (fresh-clone CI at 15a79c0)
+    r = run_property(PROPERTIES["D2.2"], DeclinesLikeGel(), settings(QUICK, database=None),
+                     seed=seed)
+    assert r.status == PASSED and r.examples == 25, (r.status, r.note)
+    assert "outside its domain" in r.note
+
+
 def test_an_implementation_declining_nearly_everything_is_incomplete_or_not_applicable():
     some = run_property(PROPERTIES["D1.6"], Declines(4), QUICK)
     assert some.status in (INCOMPLETE, NOT_APPLICABLE) and some.examples < 25
