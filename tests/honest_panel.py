@@ -394,9 +394,25 @@ class IntrinsicFlips:
                 self.same[f, c] = self.same[g, d] = a == b
 
     def cot(self, f, c):
-        return self.impl._cots_from_lengths(self.l2[f][None, :],
-                                            "lengths" if self.impl.cot_rule == "dotcross"
-                                            else self.impl.cot_rule)[0, c]
+        """``impl._cots_from_lengths(l2[f])[c]`` (the same operations on the dtype's
+        scalars, bit for bit: tests/test_bounds_vs_honest.py): the flip loop asks per
+        corner, and numpy's per-call cost on 1-row arrays made this loop most of the
+        panel's time."""
+        dt, row = self.impl.dtype, self.l2[f]
+        o2, p2, q2 = row[c], row[_nx(c)], row[_pv(c)]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.impl.cot_rule == "halfangle":
+                o, p, q = np.sqrt(o2), np.sqrt(p2), np.sqrt(q2)
+                a, b = max(p, q), min(p, q)
+                mu = o - (a - b) if b >= o else b - (a - o)
+                num = max(((a - b) + o) * mu, dt(0))
+                den = (a + (b + o)) * max((a - o) + b, dt(0))
+                t = np.sqrt(num / den)
+                return (dt(1) / t - t) / dt(2)
+            a, b, cc = sorted((np.sqrt(o2), np.sqrt(p2), np.sqrt(q2)), reverse=True)
+            h = (a + (b + cc)) * (cc - (a - b)) * (cc + (a - b)) * (a + (b - cc))
+            area = dt(0.25) * np.sqrt(max(h, dt(0)))
+            return (p2 + q2 - o2) / (dt(4) * area)
 
     def _reverse(self, g):
         """Swap corners 1 and 2 of face g (its orientation), keeping every gluing: a

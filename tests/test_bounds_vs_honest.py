@@ -36,7 +36,7 @@ from ddg_oracle.properties.protocol import at_machine_epsilon
 from ddg_oracle.reference.exact import exact_sum, rounded_sum
 
 from tests.honest_panel import (Atan2Cross, Atan2Cross32, KahanHalfAngle, KahanHalfAngle32,
-                                LawOfCosines, LawOfCosines32)
+                                IntrinsicFlips, LawOfCosines, LawOfCosines32, PANEL)
 
 #: format name -> (input format, numpy type, machine epsilon, the panel at that precision)
 PRECISIONS = {
@@ -625,3 +625,23 @@ def test_vertex_area_bounds_cover_honest_mixed_voronoi_and_barycentric_areas(nam
         errors = {cls.name: np.abs(per_piece(getattr(cls(), method), V, F) - exact[method])
                   for cls in panel}
         _assert_covered(f"{method}, {name}", errors, bound)
+
+
+@pytest.mark.parametrize("name", sorted(PANEL))
+def test_the_flip_loops_corner_cotangent_is_the_panels_bit_for_bit(name):
+    """IntrinsicFlips.cot (scalar, per corner) is the panel's array route, rounding included:
+    random, degenerate, triangle-inequality-breaking and tiny or huge squared lengths."""
+    impl = PANEL[name]()
+    rng = np.random.default_rng(7)
+    rows = [rng.random(3) * 10.0 ** rng.integers(-20, 20) for _ in range(400)]
+    rows += [[1.0, 1.0, 4.0], [1.0, 1.0, 0.0], [0.0, 0.0, 0.0], [1e-30, 1.0, 1.0],
+             [1.0, 1.0, 3.9999999], [2.0, 1.0, 1.0]]
+    flips = IntrinsicFlips.__new__(IntrinsicFlips)
+    flips.impl = impl
+    rule = "lengths" if impl.cot_rule == "dotcross" else impl.cot_rule
+    for row in rows:
+        flips.l2 = np.array([row], dtype=impl.dtype)
+        with np.errstate(all="ignore"):
+            want = impl._cots_from_lengths(flips.l2, rule)[0]
+        got = np.array([flips.cot(0, c) for c in range(3)], dtype=impl.dtype)
+        assert np.array_equal(got, want, equal_nan=True), (row, got, want)
