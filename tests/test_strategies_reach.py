@@ -34,6 +34,9 @@ from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, Boun
 
 SEARCH = settings(max_examples=1000, database=None, deadline=None, derandomize=True,
                   suppress_health_check=list(HealthCheck))
+#: the first example found, unshrunk: for the tests that only say a kind of input is drawn
+#: (shrinking it took 10 s of test_boundary_sets_come_unsorted_too's 10)
+DRAWN = settings(SEARCH, phases=[Phase.generate])
 
 
 def _param(case, key):
@@ -143,7 +146,7 @@ def test_isolated_vertices_are_drawn_anywhere_and_shrink_to_one_at_the_end():
     V, F = case.arrays()
     assert len(V) == 5 and 4 not in set(F.ravel().tolist())   # leftover vertex at the end
     inner = find(jittered_surfaces(), lambda c: any(0 < i < c.surface.n_vertices
-                                                    for i, _ in c.isolated), settings=SEARCH)
+                                                    for i, _ in c.isolated), settings=DRAWN)
     V, F = inner.arrays()
     used = set(F.ravel().tolist())
     assert any(0 < i < len(V) - 1 and i not in used for i in range(len(V)))   # in the middle
@@ -222,7 +225,7 @@ def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
 def test_topology_examples_know_chi_of_components_and_unused_vertices():
     wide = triangulated_surfaces(reversed=True, components=2, isolated=2)
     case = find(wide, lambda c: len(c.triangulation.components()) > 1 and c.isolated,
-                settings=SEARCH)
+                settings=DRAWN)
     V, F = case.arrays()
     # chi counted directly from the arrays: V - E + F, every row of V counts
     edges = {frozenset((int(f[c]), int(f[(c + 1) % 3]))) for f in F for c in range(3)}
@@ -234,7 +237,7 @@ def test_topology_examples_know_chi_of_components_and_unused_vertices():
 
 def test_reversed_faces_keep_an_orientable_surface_orientable():
     case = find(triangulated_surfaces(reversed=True), lambda c: "reversed" in c.recipe,
-                settings=SEARCH)
+                settings=DRAWN)
     t = case.triangulation
     assert any(t.reversed_gluing(e) for e in range(t.n_edges))
     assert t.is_orientable() == case.expected.orientable
@@ -255,7 +258,7 @@ def test_topology_bugs_only_components_unused_vertices_or_reversed_faces_show(bu
 @pytest.mark.parametrize("family", ["clustered", "banded"])
 def test_sliver_families_are_drawn(family):
     case = find(jittered_surfaces(), lambda c: _param(c, "sliver family") == family,
-                settings=SEARCH)
+                settings=DRAWN)
     assert f"{family} (" in case.recipe
 
 
@@ -283,14 +286,14 @@ def test_clustered_slivers_meet_at_one_point_and_banded_ones_cross_faces():
 
 def test_boundary_sets_come_unsorted_too():
     case = find(with_boundary(acute_meshes()), lambda c: len(c.boundary) > 2
-                and list(c.boundary) != sorted(c.boundary), settings=SEARCH)
+                and list(c.boundary) != sorted(c.boundary), settings=DRAWN)
     assert sorted(case.boundary) != list(case.boundary)
     assert len(set(case.boundary)) == len(case.boundary)
 
 
 def test_scaled_meshes_are_also_moved_far_and_stay_floats():
     case = find(scaled_meshes(any_meshes(far=False)), lambda c: "moved by 2**" in c.recipe,
-                settings=SEARCH)
+                settings=DRAWN)
     V, _ = case.arrays()
     assert all(Fraction(float(x)) == x for p in case.positions for x in p)
     assert np.abs(V).min() > 0
@@ -313,7 +316,7 @@ def test_float32_implementations_get_float32_inputs():
             find(jittered_surfaces(), lambda c: abs(_param(c, "scale exponent")) > 20,
                  settings=settings(SEARCH, max_examples=150))
     # and float64 ones get float64 numbers that float32 cannot hold
-    find(jittered_surfaces(), lambda c: not in_float32(c), settings=SEARCH)
+    find(jittered_surfaces(), lambda c: not in_float32(c), settings=DRAWN)
 
 
 # --- where the planted variants hide (issue 40, items 4-5): near ties across their range,
