@@ -15,14 +15,17 @@ SCHEMA = json.loads((Path(__file__).resolve().parent.parent / "docs" / "protocol
                     .read_text(encoding="utf-8"))
 COUNTS = Path(sys.argv[1]) if len(sys.argv) > 1 else None    # where to count what was checked
 checked = {"requests": 0, "answers": 0}
+jsonschema.Draft202012Validator.check_schema(SCHEMA)   # once: jsonschema.validate did it per message
+validators: dict[str, jsonschema.Draft202012Validator] = {}
 
 
 def check(message: dict, kind: str) -> None:
-    ref = {"$ref": f"#/$defs/{kind}", "$defs": SCHEMA["$defs"]}
-    try:
-        jsonschema.validate(message, ref, cls=jsonschema.Draft202012Validator)
-    except jsonschema.ValidationError as e:
-        print(f"{kind} does not validate: {e.message}", file=sys.stderr)
+    if kind not in validators:
+        validators[kind] = jsonschema.Draft202012Validator(
+            {"$ref": f"#/$defs/{kind}", "$defs": SCHEMA["$defs"]})
+    error = jsonschema.exceptions.best_match(validators[kind].iter_errors(message))
+    if error is not None:                       # what jsonschema.validate would raise
+        print(f"{kind} does not validate: {error.message}", file=sys.stderr)
         sys.exit(3)
 
 

@@ -45,11 +45,20 @@ def local_run(tmp_path_factory):
     return rc, (report / "results.json").read_bytes()
 
 
-@pytest.fixture
-def cluster(tmp_path):
-    """(scheduler address, worker processes): `dask scheduler` and two `dask worker`s
-    without nannies (a killed worker stays dead: its tasks must go to the other one)."""
-    sched_file = tmp_path / "scheduler.json"
+#: waits until the scheduler's workers are exactly the named ones (a killed worker gone)
+_WAIT_FOR = ("import sys, time; from distributed import Client\n"
+             "c = Client(sys.argv[1], timeout=60); want = set(sys.argv[2:])\n"
+             "deadline = time.monotonic() + 60\n"
+             "while {w['name'] for w in c.scheduler_info()['workers'].values()} != want:\n"
+             "    assert time.monotonic() < deadline, c.scheduler_info()['workers']\n"
+             "    time.sleep(0.1)\n")
+
+
+@pytest.fixture(scope="module")
+def _scheduler(tmp_path_factory):
+    """(scheduler address, worker processes so far): one `dask scheduler` for the module;
+    its workers are started by `cluster` (each test's)."""
+    sched_file = tmp_path_factory.mktemp("dask") / "scheduler.json"
     procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler",
                                "--scheduler-file", str(sched_file), "--port", "0",
                                "--no-dashboard"], cwd=ROOT,
@@ -60,19 +69,34 @@ def cluster(tmp_path):
             time.sleep(0.1)
         time.sleep(0.2)                              # written at once, but not atomically
         address = json.loads(sched_file.read_text())["address"]
-        workers = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker",
-                                     address, "--nthreads", "1", "--no-nanny", "--no-dashboard"],
-                                    cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                   for _ in range(2)]
-        procs += workers
-        subprocess.run([sys.executable, "-c", "import sys; from distributed import Client; "
-                        "c = Client(sys.argv[1], timeout=60); c.wait_for_workers(2, timeout=60)",
-                        address], check=True, timeout=120, capture_output=True)
-        yield address, workers
+        yield address, procs
     finally:
         for p in procs:
             p.kill()
             p.wait()
+
+
+@pytest.fixture
+def cluster(_scheduler):
+    """(scheduler address, worker processes): the module's `dask scheduler` and two live
+    `dask worker`s without nannies (a killed worker stays dead: its tasks must go to the
+    other one).  The workers are shared by the tests; one a test killed is replaced by a
+    fresh one, and the scheduler knows exactly the two live ones before the test starts."""
+    address, procs = _scheduler
+    workers = [p for p in procs[1:] if p.poll() is None]
+    started = False
+    while len(workers) < 2:
+        name = f"w{len(procs)}"
+        w = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                              "--nthreads", "1", "--no-nanny", "--no-dashboard", "--name", name],
+                             cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        w.name, started = name, True
+        procs.append(w)
+        workers.append(w)
+    if started:
+        subprocess.run([sys.executable, "-c", _WAIT_FOR, address, *(w.name for w in workers)],
+                       check=True, timeout=120, capture_output=True)
+    return address, workers
 
 
 def test_results_on_a_cluster_are_byte_identical_to_the_local_run(tmp_path, cluster, local_run):

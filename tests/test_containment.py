@@ -115,8 +115,10 @@ def test_a_stopped_pool_worker_is_replaced_and_the_run_completes(tmp_path):
     from ddg_oracle.containment import descendants
     # ci: tasks of seconds, so the worker is stopped while it runs one (the resource
     # tracker, also a "multiprocessing" child, is not a pool worker: stopping it tested
-    # something else, see the next test)
-    only = ["D2.2", "R2.4", "T2.6", "D2.6", "D3.1", "T3.6"]
+    # something else, see the next test); a worker is sent its first task as it starts,
+    # so the stopped one holds a task, and its death makes the rest of the run wait for
+    # a fresh worker to run that task again
+    only = ["D2.2", "R2.4", "T2.6", "D2.6", "D3.1"]
     p = _ddg(tmp_path, "--impl", "reference", "--only", *only, "--workers", "2",
              "--profile", "ci")
     deadline = time.monotonic() + 60

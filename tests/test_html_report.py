@@ -36,11 +36,12 @@ ID, IMPL, STATUS, MESSAGE, EXAMPLES, FINDING = range(6)
 def report(tmp_path_factory):
     """A report with a failure in R^3 (libigl's boundary loops on a Moebius strip,
     F-libigl-1), a planted sign error of the cotan Laplacian (one root cause, several
-    properties) and passes."""
+    properties: D3.1 and L3.8, which reference and libigl pass in a fraction of a second
+    where T3.6 took 8 s) and passes."""
     pytest.importorskip("igl")
     d = tmp_path_factory.mktemp("html") / "report"
     rc = main(["check", "--impl", "reference", "--impl", "libigl", "--impl",
-               "examples.numpy_cotan:SignError", "--only", "R1.6", "D1.6", "D3.1", "T3.6",
+               "examples.numpy_cotan:SignError", "--only", "R1.6", "D1.6", "D3.1", "L3.8",
                "--profile", "ci", "--workers", "1", "--report", str(d)])
     assert rc == 1 and (d / "index.html").is_file()
     return d

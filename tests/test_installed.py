@@ -124,11 +124,13 @@ def installed(tmp_path_factory):
                 str(tree)], cwd=base)
     assert out.returncode == 0, out.stderr
     wheel = next(dist.glob("ddg_oracle-*.whl"))
-    out = _run([sys.executable, "-m", "venv", str(venv)], cwd=base)
+    # a venv without its own copy of pip (ensurepip costs seconds), installed into by this
+    # environment's pip (--python: the same pip, run by the venv's interpreter)
+    out = _run([sys.executable, "-m", "venv", "--without-pip", str(venv)], cwd=base)
     assert out.returncode == 0, out.stderr
     python = venv / "bin" / "python"
-    out = _run([str(python), "-m", "pip", "install", "-q", str(wheel), "pytest>=8,<10"],
-               cwd=base)
+    out = _run([sys.executable, "-m", "pip", "--python", str(python), "install", "-q",
+                str(wheel), "pytest>=8,<10"], cwd=base)
     assert out.returncode == 0, out.stderr
     for name, text in USER_FILES.items():
         (project / name).parent.mkdir(parents=True, exist_ok=True)
