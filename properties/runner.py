@@ -363,7 +363,10 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     with task_budget(budget.seconds if budget is not None else None), \
             inputs_at(machine_epsilon(impl)):
         errors, run = _search(body, p, settings, seed, state=state)
-        if not errors and state["tie"] is not None and state["stopped"] is None:
+        # the second pass only shrinks: without the shrink phase it would replay, up to the
+        # first tie, examples the first pass ran already
+        if not errors and state["tie"] is not None and state["stopped"] is None \
+                and Phase.shrink in settings.phases:
             errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
     r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],

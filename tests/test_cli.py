@@ -105,6 +105,23 @@ def test_a_tie_decided_within_rounding_is_a_tie_disagreement_not_a_failure():
     assert worse.failure.error_in_bounds > 1
 
 
+def test_without_the_shrink_phase_a_tie_is_not_searched_twice():
+    """The tie's second pass exists to shrink it: without the shrink phase it would only
+    replay examples the first pass ran (each of them a call of the implementation)."""
+    from hypothesis import Phase, settings
+    calls = []
+
+    class Counted(RoundsFlatVertices):
+        def angle_defects(self, V, F):
+            calls.append(len(F))
+            return super().angle_defects(V, F)
+    quick = settings(max_examples=40, deadline=None, database=None, derandomize=True,
+                     phases=(Phase.explicit, Phase.generate))
+    r = run_property(PROPERTIES["L2.4"], Counted(), quick)
+    assert r.status == TIE and r.ties > 0
+    assert len(calls) == r.examples                # one call per example: one pass
+
+
 def test_tie_disagreement_keeps_exit_0(capsys):
     rc, out, _ = _run(capsys, "check", "--impl", "tests.test_cli:RoundsFlatVertices",
                       "--only", "L2.4", "--profile", "ci", "--workers", "1", "--wide")

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import Phase, settings
 
 pytest.importorskip("vtkmodules")
 
@@ -46,7 +47,10 @@ def test_vtk_boundary_convention_is_pi_more_at_boundary_vertices():
 
 
 def test_vtk_passes_the_curvature_and_topology_properties():
+    # statuses only: no shrink phase (a passing run never shrinks; a failure is FAILED on
+    # its first example; what is skipped is shrinking L2.4's tie), the same ci examples
+    s = settings(profile("ci"), phases=(Phase.explicit, Phase.reuse, Phase.generate))
     for pid in ("D2.2", "T2.6", "R2.4", "R2.2", "D1.6", "CS"):
-        r = run_property(PROPERTIES[pid], Vtk(), profile("ci"))
+        r = run_property(PROPERTIES[pid], Vtk(), s)
         assert r.status == PASSED, (pid, r.summary())
-    assert run_property(PROPERTIES["L2.4"], Vtk(), profile("ci")).status in (PASSED, TIE)  # F-vtk-3
+    assert run_property(PROPERTIES["L2.4"], Vtk(), s).status in (PASSED, TIE)  # F-vtk-3
