@@ -101,7 +101,10 @@ def test_methods_lists_the_drivers_methods(tmp_path):
 def test_check_passes_on_selected_properties(tmp_path):
     ids = ["D3.1", "T3.9", "L3.7", "D2.2", "D2.6", "R1.6"]
     report = tmp_path / "report"
-    out = _oracle(tmp_path, "check", "--impl", SPEC, "--only", *ids, "--profile", "ci",
+    # the default profile (25 examples, not ci's 60; seeded, so still one fixed stream):
+    # the count is not what this test is about, and "passed" still needs the profile's 25
+    # examples run (fewer is "incomplete"), which the assertion below checks as before
+    out = _oracle(tmp_path, "check", "--impl", SPEC, "--only", *ids, "--profile", "default",
                   "--seed", "0", "--workers", "2", "--report", str(report))
     assert out.returncode == 0, out.stdout + out.stderr
     results = _results(report)
