@@ -306,6 +306,11 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    if argv is None:
+        # as the command (not called from Python): no third-party Hypothesis plugin in this
+        # process or its workers.  The properties use none, and trio's (which selenium
+        # installs) costs 0.17 s of CPU at every start of a process.  A value set stands.
+        os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
     try:
         args = parser().parse_args(argv)
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)

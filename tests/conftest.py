@@ -11,6 +11,11 @@ from hypothesis import settings
 
 from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
+# the suite's own processes (xdist workers, the scripts and commands its tests start) load
+# no third-party Hypothesis plugin: trio's, installed with selenium for the browser tests,
+# costs 0.17 s of CPU at every start of a process (the ddg-oracle command skips them too)
+os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
+
 register_profiles()
 settings.load_profile(PREFIX + ("ci" if os.environ.get("CI") else "default"))
 

@@ -4,6 +4,7 @@ one-line errors for bad mesh files."""
 import contextlib
 import io
 import json
+import os
 import re
 import subprocess
 import sys
@@ -717,3 +718,27 @@ def test_a_mesh_file_with_inconsistently_oriented_faces_is_not_a_dihedral_sign_c
     for pid in ("D2.3", "R2.5"):
         assert status[pid]["status"] == "not applicable", status[pid]
         assert "not consistently oriented" in json.dumps(status[pid])
+
+
+def test_the_command_loads_no_third_party_hypothesis_plugin():
+    """trio's Hypothesis plugin (installed with selenium) cost 0.17 s of every check
+    process's and worker's start; the command skips plugins unless the user set
+    HYPOTHESIS_NO_PLUGINS, and a call of main() from Python changes no environment."""
+    env = {k: v for k, v in os.environ.items() if k != "HYPOTHESIS_NO_PLUGINS"}
+    probe = ("import os, sys; sys.argv = ['ddg-oracle', '--version']\n"
+             "from ddg_oracle.cli import main\n"
+             "{call}\n"
+             "import hypothesis\n"
+             "print(sorted(m for m in ('trio', 'pytest') if m in sys.modules), "
+             "os.environ.get('HYPOTHESIS_NO_PLUGINS'))")
+
+    def loaded(call):
+        out = subprocess.run([sys.executable, "-c", probe.format(call=call)], cwd=ROOT, env=env,
+                             capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0, out.stderr
+        return out.stdout.split("\n")[-2]
+    control = loaded("pass")
+    if not control.startswith("['pytest', 'trio']"):
+        pytest.skip(f"no Hypothesis plugin to skip here: {control}")
+    assert loaded("main()") == "[] 1"                        # as the command: none loaded
+    assert loaded("main(['--version'])") == control          # from Python: nothing changed

@@ -31,7 +31,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-ENV = {k: v for k, v in os.environ.items() if k not in ("CI", "PYTHONPATH", "VIRTUAL_ENV")}
+ENV = {k: v for k, v in os.environ.items()
+       if k not in ("CI", "PYTHONPATH", "VIRTUAL_ENV", "HYPOTHESIS_NO_PLUGINS")}
 
 USER_FILES = {
     # the user's own modules, named as our packages once were at top level
