@@ -18,16 +18,24 @@ The wrong versions (``VARIANTS``) are generic, decided from the result of each c
 
 * ``value``: a number made wrong by its type: ``bool`` negated, ``int`` + 1, ``Fraction``
   + 1/3, ``float`` * (1 + 2**-10) + 2**-10, a Surd + 1/3, an Angle or AngleLength + pi/3,
-  an Interval shifted by 1/3;
+  an Interval shifted by 1/3; and an object by a small change that keeps it valid: a
+  SparseMatrix's last stored entry + 1/3, a PolyhedralSurface's last vertex moved by 1/3
+  along x, a Triangulation's last two vertex labels swapped (same gluings), a
+  PiecewiseFlatSurface's squared length of one edge (the last whose faces have rational
+  squared lengths) x 9/8, or 8/9 where 9/8 breaks a strict triangle inequality (areas of
+  its faces recomputed);
 * ``last``: a tuple or list with its last element made wrong (recursively: ``value``,
-  ``last`` of it, or ``drop`` of a set), a dict with its last key's value made wrong;
+  ``last`` of it, or ``drop`` of a set), a dict with its last key's value made wrong, a
+  Triangulation with its last face's corner order reversed (its gluings' reversed flags
+  toggled to match, as ``with_reversed_faces`` does: the same surface, one face oriented
+  against its neighbours);
 * ``drop``: a tuple or list without its last element, a set or frozenset without one;
 * ``skip``: the function returns None without running its body (for functions that return
   None: validators that never raise, procedures that do nothing).
 
 A call whose result the variant does not fit (another type, an empty tuple, a perturbation
-that raises) returns the original result: the knockout only ever changes a value, it never
-makes the wrapper crash.
+that raises, a changed triangulation failing its own structural checks) returns the original
+result: the knockout only ever changes a value, it never makes the wrapper crash.
 """
 
 from __future__ import annotations
@@ -85,16 +93,17 @@ def kind(x) -> str:
         return "dict"
     if isinstance(x, (set, frozenset)) and type(x) in (set, frozenset):
         return type(x).__name__
-    SparseMatrix, PolyhedralSurface = _object_types()
-    if type(x) in (SparseMatrix, PolyhedralSurface):
+    if type(x) in _object_types():
         return type(x).__name__
     return f"other:{type(x).__name__}"
 
 
 def _object_types():
+    from ddg_oracle.reference.combinatorics import Triangulation
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface
     from ddg_oracle.reference.polyhedral import PolyhedralSurface
     from ddg_oracle.reference.sparse import SparseMatrix
-    return SparseMatrix, PolyhedralSurface
+    return SparseMatrix, PolyhedralSurface, Triangulation, PiecewiseFlatSurface
 
 
 VARIANTS_OF_KIND = {
@@ -103,6 +112,7 @@ VARIANTS_OF_KIND = {
     "tuple": ("last", "drop"), "list": ("last", "drop"), "dict": ("last",),
     "set": ("drop",), "frozenset": ("drop",),
     "SparseMatrix": ("value",), "PolyhedralSurface": ("value",),
+    "Triangulation": ("value", "last"), "PiecewiseFlatSurface": ("value",),
 }
 
 
@@ -127,7 +137,7 @@ def wrong_value(x):
         return x + Angle(pi_coefficient=Fraction(1, 3))       # + pi/3
     if isinstance(x, Interval):
         return x + Fraction(1, 3)
-    SparseMatrix, PolyhedralSurface = _object_types()
+    SparseMatrix, PolyhedralSurface, Triangulation, PiecewiseFlatSurface = _object_types()
     if type(x) is SparseMatrix:                   # its last stored entry + 1/3
         n = x.shape[0]
         rows = {i: dict(x.row(i)) for i in range(n)}
@@ -142,7 +152,72 @@ def wrong_value(x):
         p = list(x.positions)
         p[-1] = (p[-1][0] + Fraction(1, 3), *p[-1][1:])
         return x.with_positions(p)
+    if type(x) is Triangulation:                  # its last two vertex labels swapped
+        return _swapped_labels(x)
+    if type(x) is PiecewiseFlatSurface:           # one edge's squared length x 9/8 (or 8/9)
+        return _stretched_edge(x)
     raise NotApplicable(type(x).__name__)
+
+
+def _checked(t):
+    """``t`` if it passes the triangulation's own structural checks (the private ones, so
+    that a knocked-out ``validate`` plays no part), else NotApplicable."""
+    try:
+        t._check_gluings()
+        t._check_vertices()
+    except Exception as e:
+        raise NotApplicable(f"invalid: {e}") from None
+    return t
+
+
+def _swapped_labels(t):
+    """The same gluings with vertices n-2 and n-1 renamed into each other (a relabelling
+    bug: a valid triangulation of the same surface, its vertices out of step with
+    whatever they index, e.g. positions)."""
+    from ddg_oracle.reference.combinatorics import Triangulation
+    n = t._n
+    if n < 2:
+        raise NotApplicable("one vertex")
+    swap = {n - 2: n - 1, n - 1: n - 2}
+    faces = tuple(tuple(swap.get(v, v) for v in f) for f in t._faces)
+    gluings = tuple((a, b, t._rev[a]) for a, b in t._edges)
+    return _checked(Triangulation._trusted(faces, n, gluings))
+
+
+def _reversed_last_face(t):
+    """Its last face's corner order reversed, ``(a, b, c) -> (a, c, b)``, its gluings'
+    reversed flags toggled to match (the reference's own face reversal, ``_Builder``):
+    the same surface, one face oriented against its neighbours (an orientation bug)."""
+    from ddg_oracle.reference.combinatorics import _Builder
+    if not t._faces:
+        raise NotApplicable("no face")
+    b = _Builder(t)
+    b.reverse_faces({len(t._faces) - 1})
+    return _checked(b.build())
+
+
+def _stretched_edge(s):
+    """The same surface with the squared length of its last edge whose faces have rational
+    squared lengths multiplied by 9/8 (8/9 where 9/8 breaks a strict triangle inequality),
+    the areas of its faces recomputed by Heron: a valid surface, one length wrong."""
+    from ddg_oracle.reference.exact import sqrt
+    from ddg_oracle.reference.metric import PiecewiseFlatSurface, heron16
+    t = s.triangulation
+    sq = list(s.squared_lengths)
+    for e in reversed(range(len(sq))):
+        faces = sorted({h // 3 for h in t._edges[e] if h >= 0})
+        if not all(type(x) is Fraction for f in faces for x in s.face_squared_lengths(f)):
+            continue
+        for k in (Fraction(9, 8), Fraction(8, 9)):
+            new = sq[:e] + [sq[e] * k] + sq[e + 1:]
+            out = PiecewiseFlatSurface._trusted(t, new, s.areas)
+            h = {f: heron16(*out.face_squared_lengths(f)) for f in faces}
+            if all(v > 0 for v in h.values()):
+                areas = list(s.areas)
+                for f, v in h.items():
+                    areas[f] = sqrt(v) / 4
+                return PiecewiseFlatSurface._trusted(t, new, areas)
+    raise NotApplicable("no edge with rational faces can be stretched")
 
 
 def _rebuild(x, items):
@@ -154,7 +229,10 @@ def _rebuild(x, items):
 
 
 def wrong_last(x):
-    """The last element of a tuple/list (the last key's value of a dict) made wrong."""
+    """The last element of a tuple/list (the last key's value of a dict) made wrong; a
+    Triangulation with its last face's orientation reversed."""
+    if type(x) is _object_types()[2]:
+        return _reversed_last_face(x)
     if isinstance(x, (tuple, list)):
         if not x:
             raise NotApplicable("empty")

@@ -1,8 +1,9 @@
 """Public reference functions that a generic wrong version of their result survived in the
 reference's tests (benchmarks/knockout.py, docs/knockout.md: the result negated, off by one,
-shifted by 1/3, an element dropped, the body skipped), or that no reference test called;
-each test here fails on that wrong version.  Exact, and on generic inputs (unequal areas,
-boundary, points in general position) wherever the function allows."""
+shifted by 1/3, an element dropped, the body skipped, two vertex labels swapped, a face
+reversed), or that no reference test called; each test here fails on that wrong
+version.  Exact, and on generic inputs (unequal areas, boundary, points in general
+position) wherever the function allows."""
 
 import random
 from fractions import Fraction
@@ -119,6 +120,62 @@ def test_validate_raises_on_each_broken_invariant():
                                  tuple((h, -1, False) for h in range(6)))
     with pytest.raises(NonManifoldVertex):
         bow.validate()
+
+
+def test_connected_sum_keeps_a_and_numbers_b_as_documented():
+    """CS's documented numbering (its last two vertex labels swapped survived: the tests
+    read only the sum's topology): the faces of ``a`` without ``face_a`` first, unchanged;
+    then those of ``b`` without ``face_b``, renamed by one map read off them position by
+    position, which sends ``face_b = (y0, y1, y2)`` to ``(x0, x2, x1)`` and ``b``'s other
+    vertices to ``n_a, n_a + 1, ...`` in increasing order."""
+    from ddg_oracle.reference.combinatorics import connected_sum
+    cases = [(surfaces.torus(3, 4).triangulation, surfaces.icosahedron().triangulation, 5, 7),
+             (surfaces.octahedron().triangulation, surfaces.genus_surface(2).triangulation,
+              -1, -1),
+             (surfaces.projective_plane(), surfaces.klein_bottle(3, 4), 2, 9),
+             (Triangulation.from_faces([(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)]),
+              surfaces.cube().triangulation, 3, 0)]
+    for a, b, fa, fb in cases:
+        s = connected_sum(a, b, fa, fb)
+        fa, fb = fa % a.n_faces, fb % b.n_faces
+        kept_a = [f for g, f in enumerate(a.faces) if g != fa]
+        kept_b = [f for g, f in enumerate(b.faces) if g != fb]
+        assert list(s.faces[:len(kept_a)]) == kept_a
+        assert s.n_faces == len(kept_a) + len(kept_b)
+        m = {}
+        for fb_, fs in zip(kept_b, s.faces[len(kept_a):]):
+            for y, z in zip(fb_, fs):
+                assert m.setdefault(y, z) == z, (y, z, m[y])
+        (x0, x1, x2), (y0, y1, y2) = a.faces[fa], b.faces[fb]
+        assert (m[y0], m[y1], m[y2]) == (x0, x2, x1)
+        others = sorted(set(m) - {y0, y1, y2})
+        assert others == [v for v in range(b.n_vertices) if v not in (y0, y1, y2)]
+        assert [m[v] for v in others] == list(range(a.n_vertices, s.n_vertices))
+
+
+def test_klein_bottle_is_the_twisted_grid():
+    """surfaces.klein_bottle(m, n) against its docstring's grid (its last two vertex
+    labels swapped, or its last face reversed, survived: the tests read only its
+    topology): the edges are exactly the grid steps (i, j) -> (i + 1, j), (i, j + 1),
+    (i + 1, j + 1) with vertex (i, j) = i n + j mod n and (m, j) ~ (0, -j); the faces are
+    oriented as the grid is, so the only gluings reversing orientation are those of the
+    circle i = 0 (= i = m) along which the grid is glued with its flip."""
+    for m, n in [(3, 3), (4, 5), (5, 4), (3, 6)]:
+        k = surfaces.klein_bottle(m, n)
+
+        def vid(i, j):
+            if i == m:
+                i, j = 0, -j
+            return i * n + j % n
+        steps = {frozenset((vid(i, j), vid(i + di, j + dj)))
+                 for i in range(m) for j in range(n) for di, dj in ((1, 0), (0, 1), (1, 1))}
+        edges = [frozenset(k.edge_vertices(e)) for e in range(k.n_edges)]
+        assert len(set(edges)) == len(edges) == 3 * m * n
+        assert set(edges) == steps
+        assert k.n_vertices == m * n and k.n_faces == 2 * m * n
+        flipped = {e for e in range(k.n_edges) if k.reversed_gluing(k.edge_halfedges(e)[0])}
+        circle = {e for e in range(k.n_edges) if all(v < n for v in k.edge_vertices(e))}
+        assert flipped == circle and len(circle) == n
 
 
 # --- planar and rigidity -----------------------------------------------------------------------
