@@ -90,6 +90,7 @@ its conditioning is infinite and its bounds accept anything.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -102,7 +103,7 @@ from ddg_oracle.reference.metric import heron16
 
 from . import memo
 from .example import Example
-from .protocol import eps
+from .protocol import FLOAT64_EPSILON, eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
@@ -110,9 +111,18 @@ __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_toleranc
            "float_geometry", "EntryBounds", "entry_bounds", "total_area_view"]
 
 
-def gamma(k: int) -> float:
-    """Higham's gamma_k = k EPS / (1 - k EPS), EPS = eps(): bound on the relative error of k roundings."""
-    return k * eps() / (1 - k * eps())
+def gamma(k: int, epsilon: float | None = None) -> float:
+    """Higham's gamma_k = k EPS / (1 - k EPS): bound on the relative error of k roundings,
+    EPS = ``epsilon``, by default eps() (the checked implementation's; ddg-oracle's own
+    float64 computations pass FLOAT64_EPSILON).  Where k EPS >= 1 (a float16 sum of 1024
+    terms) there is no bound: the largest float, never a negative one (nor inf, whose
+    product with a zero term would be NaN and fail every comparison).
+
+    >>> gamma(2, 2.0 ** -10) == 2 / 1022, gamma(1024, 2.0 ** -10) == sys.float_info.max
+    (True, True)
+    """
+    e = eps() if epsilon is None else epsilon
+    return k * e / (1 - k * e) if k * e < 1 else sys.float_info.max
 
 
 # --- angles, curvature and areas from float points (chapter 2) -------------------------------

@@ -165,3 +165,33 @@ def test_an_infinite_cotangent_is_a_tie_only_beyond_float_resolution():
                       (Fraction(0), Fraction(1), Fraction(0))), ((0, 1, 2),), "triangle")
     r = run_on_example(PROPERTIES["T3.6"], NaNWeights(), plain, "triangle")
     assert r.status == FAILED and "non-finite entries (first: (0, 1))" in str(r.failure)
+
+
+class Reference16(ReferenceImplementation):
+    """The exact reference declared float16 (a format the strategies know: its inputs are
+    float16 numbers)."""
+    name = "reference-f16"
+    machine_epsilon = 2.0 ** -10
+
+
+def test_our_own_float64_bounds_do_not_take_the_implementations_epsilon():
+    """T2.7's quadrature and C3.3 / R3.3's spectrum of the exact L are ddg-oracle's own
+    float64 computations: their bounds took the declared epsilon.  At float32 that loosened
+    T2.7's quadrature bound 47x (1.36 against 0.029 on an octahedron); at float16 gamma went
+    negative (a bound of -64: T2.7 failed the float16 reference) and the exact L's kernel
+    could not be counted (C3.3: an internal error)."""
+    import numpy as np
+    from ddg_oracle.properties.bounds import gamma
+    from ddg_oracle.properties.curvature import support_function_integral
+    from ddg_oracle.properties.protocol import at_machine_epsilon
+    V = np.array([[0.0, 0, -8], [0, 0, 8], [0, 8, 0], [8, 0, 0], [0, -8, 0], [-8, 0, 0]])
+    here = support_function_integral(V)
+    for e in (2.0 ** -23, 2.0 ** -10):
+        with at_machine_epsilon(e):
+            assert support_function_integral(V) == here
+            assert 0 < gamma(3) < gamma(1000) < np.finfo(float).max
+            assert gamma(2000) == (np.finfo(float).max if e == 2.0 ** -10
+                                   else 2000 * e / (1 - 2000 * e))
+    for pid in ("T2.7", "C3.3", "R3.3"):
+        r = run_property(PROPERTIES[pid], Reference16(), profile("ci"))
+        assert r.status == PASSED, (pid, r.status, r.failure or r.error)
