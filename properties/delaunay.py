@@ -475,7 +475,7 @@ def nonnegative_weights_iff_delaunay(impl, case: Example):
 def laplace_beltrami_operator(impl, case: Example):
     pid = "D4.8 / R4.9"
     # sparse throughout: runs on a mesh file of any size (ddg-oracle check --mesh)
-    A = implementation_matrix(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_matrix(impl, case, pid, "intrinsic_delaunay_laplacian", flips=True)
     D = DelaunayExact.of(case)
     C = A.tocoo()
     neg = (entries_at(D.interior_s, C.row, C.col) != 0) & (C.data > entries_at(D.Bs, C.row, C.col))
@@ -492,8 +492,8 @@ def laplace_beltrami_operator(impl, case: Example):
       needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=two_triangulations)
 def unique_delaunay_operator(impl, pair):
     c1, c2 = pair
-    A1 = implementation_dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian")
-    A2 = implementation_dense(impl, c2, "T4.5", "intrinsic_delaunay_laplacian")
+    A1 = implementation_dense(impl, c1, "T4.5", "intrinsic_delaunay_laplacian", flips=True)
+    A2 = implementation_dense(impl, c2, "T4.5", "intrinsic_delaunay_laplacian", flips=True)
     B = DelaunayExact.of(c1).B + DelaunayExact.of(c2).B
     err = np.abs(A1 - A2)
     record("T4.5", err, B)
@@ -513,7 +513,7 @@ def unique_delaunay_operator(impl, pair):
       on_mesh=None, strategy=delaunay_meshes)
 def delaunay_minimises_the_energy(impl, case: Example):
     L = implementation_dense(impl, case, "T4.21")
-    D = implementation_dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian")
+    D = implementation_dense(impl, case, "T4.21", "intrinsic_delaunay_laplacian", flips=True)
     De = DelaunayExact.of(case)
     M = (L - D + (L - D).T) / 2
     lam = float(np.linalg.eigvalsh(M)[0])
@@ -529,7 +529,7 @@ def delaunay_minimises_the_energy(impl, case: Example):
       "non-regular triangulation) the intrinsic Delaunay Laplacian is the exact one",
       needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=x42_tetrahedron)
 def valence_one_vertex(impl, case: Example):
-    A = implementation_dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, "X4.2", "intrinsic_delaunay_laplacian", flips=True)
     D = DelaunayExact.of(case)
     if D.delaunay.triangulation.is_regular():
         raise AssertionError("X4.2 case: the reference's Delaunay triangulation is regular")
@@ -753,7 +753,7 @@ def _interior(X: Exact) -> np.ndarray:
       strategy=lambda: planar_meshes(min_size=2))
 def flat_meshes_are_minimal(impl, case: Example):
     pid = "D4.9 / R4.10"
-    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian", flips=True)
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
@@ -779,7 +779,7 @@ def flat_meshes_are_minimal(impl, case: Example):
       needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=_interior_meshes)
 def delaunay_minimal_surface_step(impl, case: Example):
     pid = "A4.23"
-    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian")
+    A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian", flips=True)
     D = DelaunayExact.of(case)
     V, _ = case.arrays()
     inner = _interior(D.X)
