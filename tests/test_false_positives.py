@@ -21,7 +21,9 @@ tests/test_false_positives.py -k thorough``.  Its float32 half (``-k "thorough a
 the float32 reference and the three float32 panel members, 174 tests) ran at 9d32ef7 on
 2026-12-06 in 33 min on two cores (nice 19, beside other work): 173 passed, and one false
 alarm, fixed with its test below (non-finite entries after flips across a face beyond
-float resolution)."""
+float resolution).  Its float64 half (``-k "thorough and not f32 and not reference"``: the
+three float64 panel members, 126 tests) at 60df306: 126 passed in 20 min; the float32
+T2.7, C3.3 and R3.3, whose bounds b6580a8 tightened, again there: 12 passed."""
 
 import os
 
