@@ -84,8 +84,13 @@ def rounded_to(fmt: InputFormat, x: float) -> float:
 
     >>> rounded_to(FORMATS[24], 0.1) == 0.10000000149011612
     True
+    >>> rounded_to(FORMATS[24], 1e39), rounded_to(FORMATS[11], -70000.0)
+    (inf, -inf)
     """
-    return struct.unpack(fmt.code, struct.pack(fmt.code, x))[0]
+    try:
+        return struct.unpack(fmt.code, struct.pack(fmt.code, x))[0]
+    except OverflowError:        # struct rounds to inf for "f" but refuses for "e": one rule
+        return math.copysign(math.inf, x)
 
 
 def representable(x) -> Fraction:

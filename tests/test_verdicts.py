@@ -586,6 +586,10 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
     from ddg_oracle.reference.errors import InputError
     with pytest.raises(InputError, match="beyond the float32 range"):   # not a silent inf
         as_read_by(replace(mesh, V=[[1e300, 0.0, 0.0]] + mesh.V[1:]), 2.0 ** -23)
+    # float16 too (struct refuses to round 70000 to float16 where it gives float32 an inf:
+    # an OverflowError was our internal error, exit 3)
+    with pytest.raises(InputError, match="beyond the float16 range"):
+        as_read_by(replace(mesh, V=[[7e4, 0.0, 0.0]] + mesh.V[1:]), 2.0 ** -10)
     rows = compare_mesh(mesh, [Atan2Cross32(), Atan2Cross()], ReferenceImplementation(),
                         methods=["corner_angles", "angle_defects", "cotan_laplacian"])
     bad = [(r.implementation, r.quantity, r.worst) for r in rows if r.status != "agrees"]
