@@ -39,3 +39,16 @@ def assert_element_on_mesh(failure):
         assert 0 <= v < len(V), f"{failure.element!r} names vertex {v} of {len(V)}"
     if "face" in ids:
         assert 0 <= ids["face"] < len(F), f"{failure.element!r} names a face of {len(F)}"
+
+
+def every_property_unshrunk(impl, seed):
+    """Every registered property on ``impl`` under the default profile with ``seed``, its
+    budget and examples, but no shrink phase: which properties pass or fail (an adapter's
+    whole-catalog test), not their smallest examples, for a quarter to a half of the time.
+    Each finding's minimal example is its own snippet's (tests/test_findings.py)."""
+    from hypothesis import Phase, settings
+    from ddg_oracle.properties.profiles import profile_budget
+    from ddg_oracle.properties.runner import select_properties
+    s = settings(profile("default"), phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    return [run_property(p, impl, s, seed, budget=profile_budget("default"))
+            for p in select_properties(None)]

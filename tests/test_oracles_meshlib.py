@@ -11,7 +11,6 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import Phase, settings
 
 pytest.importorskip("meshlib.mrmeshpy")
 
@@ -22,8 +21,7 @@ from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: 
 from ddg_oracle.oracles.meshlib import MeshLib  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
 from ddg_oracle.properties.protocol import OutsideDomain, capabilities  # noqa: E402
-from ddg_oracle.properties.profiles import profile, profile_budget  # noqa: E402
-from ddg_oracle.properties.runner import run_property, select_properties  # noqa: E402
+from tests.property_checks import every_property_unshrunk  # noqa: E402
 
 V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0.2, 0.2, 0.1]])   # obtuse faces too
 F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
@@ -140,10 +138,7 @@ def test_intrinsic_delaunay_on_a_mesh_meshlib_flips():
 
 
 def test_every_applicable_property_passes_except_the_findings():
-    # which properties fail, not their smallest examples: no shrinking (a quarter of the time)
-    s = settings(profile("default"), phases=(Phase.explicit, Phase.reuse, Phase.generate))
-    results = [run_property(p, ML, s, 1, budget=profile_budget("default"))
-               for p in select_properties(None)]
+    results = every_property_unshrunk(ML, 1)
     failed = {r.property_id for r in results
               if r.status not in ("passed", "not applicable", "tie disagreement")}
     assert failed <= set(KNOWN), failed

@@ -17,7 +17,7 @@ M = pytest.importorskip("mouette")
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.mouette import Mouette  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
-from ddg_oracle.properties.runner import run_properties  # noqa: E402
+from tests.property_checks import every_property_unshrunk  # noqa: E402
 
 V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
 F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
@@ -28,7 +28,7 @@ F_MOUETTE_2 = {"R2.4", "D2.2", "T2.6", "R2.2", "X2.1", "T2.5", "X2.3", "R2.5",
 
 
 def test_every_applicable_property_passes_except_F_mouette_2():
-    results = run_properties(Mouette(), "default", None, 1)
+    results = every_property_unshrunk(Mouette(), 1)
     failed = {r.property_id for r in results
               if r.status not in ("passed", "not applicable", "tie disagreement")}
     assert failed <= F_MOUETTE_2, failed

@@ -12,25 +12,26 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import Phase, settings
+from hypothesis import settings
 
 rl = pytest.importorskip("robust_laplacian")
 
 from ddg_oracle.oracles.arrays import boundary_edges  # noqa: E402
 from ddg_oracle.oracles.robust_laplacian import RobustLaplacian  # noqa: E402
-from ddg_oracle.properties import PROPERTIES, check_implementation  # noqa: E402
+from ddg_oracle.properties import PROPERTIES  # noqa: E402
 from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
 from ddg_oracle.properties.bounds import entry_bounds  # noqa: E402
 from ddg_oracle.properties.budget import Budget  # noqa: E402
 from ddg_oracle.properties.harness import Exact  # noqa: E402
-from ddg_oracle.properties.profiles import profile, profile_budget  # noqa: E402
+from ddg_oracle.properties.profiles import profile  # noqa: E402
 from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
 from ddg_oracle.properties.runner import (FAILED, NOT_APPLICABLE, PASSED, run_on_example,  # noqa: E402
-                                         run_property, select_properties)
+                                         run_property)
 from ddg_oracle.reference import PolyhedralSurface, Triangulation  # noqa: E402
 from ddg_oracle.reference.delaunay import flip_to_delaunay, laplace_beltrami  # noqa: E402
 from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_barycentric  # noqa: E402
 from tests import peer_checks as pc  # noqa: E402
+from tests.property_checks import every_property_unshrunk  # noqa: E402
 
 RL = RobustLaplacian()
 TUFTED = RobustLaplacian(boundary="library")
@@ -253,10 +254,7 @@ def test_every_applicable_property_passes_but_D48_on_the_flip_threshold_RL2():
     # the example): no shrink phase, the same seed, examples and budget as
     # run_properties(RL, "default", seed=0) had; the shrunk D4.8 example is checked below
     # from a run of its own that does shrink
-    s = settings(profile("default"), phases=(Phase.explicit, Phase.reuse, Phase.generate))
-    results = {r.property_id: r for r in (run_property(p, RL, s, 0,
-                                                       budget=profile_budget("default"))
-                                          for p in select_properties(None))}
+    results = {r.property_id: r for r in every_property_unshrunk(RL, 0)}
     assert results["X4.2"].status == PASSED
     d48 = results["D4.8 / R4.9"]
     assert d48.status == FAILED, d48.status
