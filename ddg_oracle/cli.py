@@ -311,6 +311,9 @@ def main(argv=None) -> int:
         # process or its workers.  The properties use none, and trio's (which selenium
         # installs) costs 0.17 s of CPU at every start of a process.  A value set stands.
         os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
+        # and its workers forked from a forkserver that imported the properties once
+        from ddg_oracle.containment import start_workers_from_a_forkserver
+        start_workers_from_a_forkserver()
     try:
         args = parser().parse_args(argv)
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)

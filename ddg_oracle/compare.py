@@ -552,7 +552,12 @@ def _start_worker(mesh: MeshInput) -> None:
 
 
 def _expected_in_worker(job):
-    """(method, {epsilon: (want, bound)}) in a worker; an exception comes back as a value."""
+    """(method, the pickle of {epsilon: (want, bound)}) in a worker; an exception comes back
+    as a value.  Pickled here and unpickled by the caller: the pool's result thread would
+    otherwise import the values' modules (scipy.sparse, ours) while the main thread may be
+    importing them too, and two threads importing one package's circular modules deadlock
+    (the main thread's reference raised ``_DeadlockError``, reported as its crash)."""
+    import pickle
     from ddg_oracle.properties.registry import all_quantities
     method, epsilons = job
     V = np.array(_Worker.mesh.V, dtype=np.float64)
@@ -561,19 +566,20 @@ def _expected_in_worker(job):
                              lambda m: getattr(_Worker.reference, m)(V, F))
     q = all_quantities()[method]
     try:
-        return method, {e: values(q, e) for e in sorted(epsilons)}
+        got = {e: values(q, e) for e in sorted(epsilons)}
     except Exception as e:  # noqa: BLE001  (raised again in the parent, where it is asked for)
-        return method, e
+        got = e
+    return method, pickle.dumps(got)
 
 
 def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
-    """Start computing every asked method's values and bounds in ``workers`` spawned
+    """Start computing every asked method's values and bounds in ``workers`` worker
     processes; returns a function that waits for them and answers as :class:`_ExpectedValues`."""
-    import multiprocessing as mp
     from ddg_oracle.properties.protocol import METHODS
     # the later chapters hold the costly quantities (curvature, Laplacians, Delaunay): first
     jobs = [(m, asked[m]) for m in reversed(METHODS) if m in asked]
-    pool = mp.get_context("spawn").Pool(min(workers, len(jobs)), _start_worker, (mesh,))
+    from ddg_oracle.containment import worker_context
+    pool = worker_context().Pool(min(workers, len(jobs)), _start_worker, (mesh,))
     running = pool.imap_unordered(_expected_in_worker, jobs)
 
     def close():
@@ -581,8 +587,9 @@ def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
         pool.join()
 
     def wait():
+        import pickle
         try:
-            done = dict(running)
+            done = {method: pickle.loads(got) for method, got in running}   # in this thread
         finally:
             close()
 

@@ -18,7 +18,8 @@ import signal
 import time
 from contextlib import contextmanager
 
-__all__ = ["contained", "descendants", "kill_descendants", "become_subreaper", "stopped"]
+__all__ = ["contained", "descendants", "kill_descendants", "become_subreaper", "stopped",
+           "worker_context", "start_workers_from_a_forkserver"]
 
 PR_SET_CHILD_SUBREAPER = 36
 
@@ -31,6 +32,69 @@ def become_subreaper() -> bool:
         return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
     except (OSError, AttributeError):
         return False
+
+
+#: what a forkserver imports once for every worker it forks: a spawned worker imported them
+#: itself (0.5 s of CPU each; a run starts 2 pool workers and, in each, an isolated worker per
+#: library, a new one after every crash).  No checked library: importing one may start
+#: threads, and a process holding threads must not fork.
+PRELOAD = ("ddg_oracle.jobs", "ddg_oracle.isolation", "ddg_oracle.properties.registry",
+           "ddg_oracle.properties.runner", "ddg_oracle.properties.strategies",
+           "ddg_oracle.oracles.exact_reference", "scipy.sparse")
+_forkserver = False
+
+
+def start_workers_from_a_forkserver() -> bool:
+    """From now on, start this process's workers from a forkserver that imported
+    :data:`PRELOAD` (POSIX; False where there is none).  For ddg-oracle's own processes
+    only: the preload list is the whole process's, and the forkserver keeps the
+    environment it started with (the command sets its environment first)."""
+    global _forkserver
+    import multiprocessing as mp
+    if "forkserver" in mp.get_all_start_methods():
+        mp.set_forkserver_preload(list(PRELOAD))
+        _forkserver = True
+    return _forkserver
+
+
+def worker_context() -> "WorkerContext":
+    """The multiprocessing context our workers start from: a forkserver in ddg-oracle's own
+    processes (:func:`start_workers_from_a_forkserver`), else spawn (never a plain fork of a
+    process that may hold threads; a user's process keeps its multiprocessing state)."""
+    import multiprocessing as mp
+    return WorkerContext(mp.get_context("forkserver" if _forkserver else "spawn"))
+
+
+class WorkerContext:
+    """A multiprocessing context whose processes and pool workers start with the environment
+    this process has when it starts them: a forkserver's children would have the one the
+    forkserver started with (the database, memory and time limits are read from it)."""
+
+    def __init__(self, ctx):
+        self._ctx = ctx
+
+    def __getattr__(self, name):
+        return getattr(self._ctx, name)
+
+    def Process(self, target, args=(), **kwargs):
+        return self._ctx.Process(target=_in_environment, args=(dict(os.environ), target, args),
+                                 **kwargs)
+
+    def Pool(self, processes, initializer=None, initargs=()):
+        return self._ctx.Pool(processes, _in_environment, (dict(os.environ), initializer, initargs))
+
+
+def _in_environment(environ: dict, target, args):
+    """``target(*args)`` in a worker, with its parent's environment ``environ``."""
+    os.environ.clear()
+    os.environ.update(environ)
+    if target is not None:
+        return target(*args)
+
+
+def forkserver_in_use() -> bool:
+    """Whether :func:`worker_context` is a forkserver here (passed on to pool workers)."""
+    return _forkserver
 
 
 def descendants(pid: int | None = None) -> list[int]:
@@ -80,14 +144,19 @@ def stopped(pid: int) -> bool:
 def kill_descendants(grace: float = 1.0, keep=frozenset()) -> int:
     """SIGTERM every descendant process but ``keep``, then SIGKILL those still there after
     ``grace`` s, and reap those that are our children; returns how many were stopped.
-    multiprocessing's resource tracker is kept: it ends by itself when this process
-    exits, and killed before, this process's exit handlers would start a new one that
-    prints a traceback for every semaphore they release."""
+    multiprocessing's resource tracker and forkserver are kept: they end by themselves when
+    this process exits; killed before, this process's exit handlers would start a new
+    tracker that prints a traceback for every semaphore they release."""
     keep = set(keep)
     tracker = _resource_tracker()
     if tracker is not None and not stopped(tracker):
         # (a stopped tracker would never end: this process's exit waits for it)
         keep.add(tracker)
+    server = _forkserver_pid()
+    if server is not None and not stopped(server):
+        # multiprocessing's forkserver too: it ends when this process exits, and killed
+        # (and reaped here) the next worker's start in this process fails on its waitpid
+        keep.add(server)
     procs = [p for p in descendants() if p not in keep]
     for p in procs:
         try:
@@ -111,6 +180,13 @@ def _resource_tracker() -> int | None:
     import sys
     module = sys.modules.get("multiprocessing.resource_tracker")
     return getattr(getattr(module, "_resource_tracker", None), "_pid", None)
+
+
+def _forkserver_pid() -> int | None:
+    """The pid of multiprocessing's forkserver, if this process started one."""
+    import sys
+    module = sys.modules.get("multiprocessing.forkserver")
+    return getattr(getattr(module, "_forkserver", None), "_forkserver_pid", None)
 
 
 def _reap(pids) -> None:

@@ -20,13 +20,13 @@ restarted, and the run goes on.
 
 from __future__ import annotations
 
-import multiprocessing as mp
 import os
 import resource
 import tempfile
 import time
 import traceback
 
+from ddg_oracle.containment import worker_context
 from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
                                           rows_of, stderr_tail)
 from ddg_oracle.properties.budget import check_time_left, cut_short, time_left
@@ -142,7 +142,7 @@ class Isolated:
         if memory == "env":
             memory = memory_limit()
         self.spec, self.timeout, self.memory = spec, timeout, memory
-        self._ctx = mp.get_context("spawn")     # no fork of a parent holding threads
+        self._ctx = worker_context()
         self._proc = None
         self._conn = None
         fd, self._stderr = tempfile.mkstemp(prefix="ddg-oracle-worker-", suffix=".stderr")

@@ -14,12 +14,12 @@ does not depend on scheduling.
 
 from __future__ import annotations
 
-import multiprocessing as mp
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from ddg_oracle.containment import stopped
+from ddg_oracle.containment import (forkserver_in_use, start_workers_from_a_forkserver, stopped,
+                                    worker_context)
 from ddg_oracle.oracles.processes import exit_text
 
 IN_PROCESS = ("reference",)      # specs run in the checking process itself
@@ -242,11 +242,14 @@ def stopped_by_signals():
             signal.signal(s, handler)
 
 
-def _worker_main(options: Options, meshes: list, conn) -> None:
+def _worker_main(options: Options, meshes: list, conn, forkserver: bool = False) -> None:
     """A pool worker: run the tasks it is sent, one at a time, answer each with its results.
-    On SIGTERM it closes its isolated library workers first (no orphan)."""
+    On SIGTERM it closes its isolated library workers first (no orphan).  ``forkserver``:
+    its isolated library workers start from a forkserver too, as its parent's did."""
     import os
     import signal
+    if forkserver:
+        start_workers_from_a_forkserver()
 
     def stop(signum, frame):
         close_all()
@@ -393,7 +396,8 @@ def _wedge_limit(options) -> float | None:
 def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
     from multiprocessing.connection import wait
 
-    ctx = mp.get_context("spawn")       # no fork of a parent holding threads
+    ctx = worker_context()
+    forkserver = forkserver_in_use()
     # dispatched from the last task on: the catalog's later chapters hold the costly
     # properties (curvature, Laplacian, Delaunay) and chapter 1 the cheap ones (topology),
     # which then fill both workers at the end instead of one worker finishing a long task
@@ -435,7 +439,8 @@ def _run_pool(tasks, todo, options, meshes, workers, finish, check) -> None:
         parent, child = ctx.Pipe()
         # not a daemon: it starts the isolated library workers; when this process dies its
         # pipe closes, and the worker, reading EOF, closes them and exits
-        proc = ctx.Process(target=_worker_main, args=(options, meshes, child), daemon=False)
+        proc = ctx.Process(target=_worker_main, args=(options, meshes, child, forkserver),
+                           daemon=False)
         proc.start()
         child.close()
         running[parent] = (proc, None)

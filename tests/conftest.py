@@ -9,12 +9,17 @@ import os
 
 from hypothesis import settings
 
+from ddg_oracle.containment import start_workers_from_a_forkserver
 from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
 # the suite's own processes (xdist workers, the scripts and commands its tests start) load
 # no third-party Hypothesis plugin: trio's, installed with selenium for the browser tests,
 # costs 0.17 s of CPU at every start of a process (the ddg-oracle command skips them too)
 os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
+# and start their workers (in-process runs, isolated libraries) as the command does, from a
+# forkserver that imported the properties once; a user's process spawns them, which the
+# tests that run pytest, Python or the wheel in a process of their own keep covering
+start_workers_from_a_forkserver()
 
 register_profiles()
 settings.load_profile(PREFIX + ("ci" if os.environ.get("CI") else "default"))

@@ -95,3 +95,15 @@ class SlowChi(ReferenceImplementation):
         import time
         time.sleep(0.05)
         return super().euler_characteristic(V, F)
+
+
+class LoadsSlowly(ReferenceImplementation):
+    """The reference, 0.3 s to construct: a worker still loading when an alarm rings, however
+    fast the worker process itself starts (forked from a preloaded forkserver, in ms)."""
+
+    name = "loads-slowly"
+
+    def __init__(self):
+        import time
+        time.sleep(0.3)
+        super().__init__()

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.processes import cmdline, parent, pool_workers
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -112,7 +114,6 @@ def test_an_interrupted_run_leaves_no_process_and_says_how_to_resume(project, si
 
 def test_a_stopped_pool_worker_is_replaced_and_the_run_completes(tmp_path):
     # a SIGSTOPped worker stalled the run forever: the heartbeat kills it, its task runs again
-    from ddg_oracle.containment import descendants
     # ci: tasks of seconds, so the worker is stopped while it runs one (the resource
     # tracker, also a "multiprocessing" child, is not a pool worker: stopping it tested
     # something else, see the next test); a worker is sent its first task as it starts,
@@ -124,7 +125,7 @@ def test_a_stopped_pool_worker_is_replaced_and_the_run_completes(tmp_path):
     deadline = time.monotonic() + 60
     workers = []
     while time.monotonic() < deadline and len(workers) < 2:
-        workers = [q for q in descendants(p.pid) if _pool_worker(q) and _parent(q) == p.pid]
+        workers = pool_workers(p.pid)
         time.sleep(0.05)
     assert workers, "no pool worker started"
     time.sleep(0.5)
@@ -134,13 +135,6 @@ def test_a_stopped_pool_worker_is_replaced_and_the_run_completes(tmp_path):
     assert f"{len(only)} checks in" in out and f"{len(only)} passed" in out
 
 
-def _pool_worker(pid: int) -> bool:
-    """A spawned multiprocessing worker (not multiprocessing's resource tracker)."""
-    try:
-        cmdline = Path(f"/proc/{pid}/cmdline").read_bytes()
-    except OSError:
-        return False
-    return b"multiprocessing" in cmdline and b"resource_tracker" not in cmdline
 
 
 def test_a_stopped_resource_tracker_does_not_hang_the_exit(tmp_path):
@@ -153,8 +147,8 @@ def test_a_stopped_resource_tracker_does_not_hang_the_exit(tmp_path):
     deadline = time.monotonic() + 60
     trackers = []
     while time.monotonic() < deadline and not trackers and p.poll() is None:
-        trackers = [q for q in descendants(p.pid) if _parent(q) == p.pid
-                    and b"resource_tracker" in _cmdline(q)]
+        trackers = [q for q in descendants(p.pid) if parent(q) == p.pid
+                    and b"resource_tracker" in cmdline(q)]
         time.sleep(0.05)
     if not trackers:
         pytest.skip("the run started no resource tracker before it ended")
@@ -164,16 +158,44 @@ def test_a_stopped_resource_tracker_does_not_hang_the_exit(tmp_path):
     assert "4 checks in" in out
 
 
-def _cmdline(pid: int) -> bytes:
-    try:
-        return Path(f"/proc/{pid}/cmdline").read_bytes()
-    except OSError:
-        return b""
 
 
-def _parent(pid: int) -> int:
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as fh:
-            return int(fh.read().rsplit(b")", 1)[1].split()[1])
-    except OSError:
-        return -1
+
+# --- how workers start: from a preloaded forkserver in the command, spawned elsewhere ------
+
+_STARTS = """
+import multiprocessing as mp, os, sys
+from ddg_oracle.containment import start_workers_from_a_forkserver, worker_context
+from tests.processes import report_environment
+
+def seen(ctx):
+    parent, child = ctx.Pipe()
+    p = ctx.Process(target=report_environment, args=(child, "DDG_TEST_VALUE"))
+    p.start()
+    child.close()
+    got = parent.recv()
+    p.join()
+    return got
+
+if sys.argv[1] == "command":
+    assert start_workers_from_a_forkserver()
+os.environ["DDG_TEST_VALUE"] = "first"
+print(*seen(worker_context()))
+os.environ["DDG_TEST_VALUE"] = "second"          # after the forkserver started
+print(*seen(worker_context()))
+# the user's own forkserver: none of our modules preloaded (a user's process only)
+print(*seen(mp.get_context("forkserver")))
+"""
+
+
+@pytest.mark.parametrize("process", ["command", "user"])
+def test_workers_start_with_the_parents_environment_and_preload_only_in_the_command(process):
+    out = subprocess.run([sys.executable, "-c", _STARTS, process], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    first, second, users = out.stdout.splitlines()
+    preloaded = str(process == "command")
+    # the environment when the worker starts, not the one the forkserver started with
+    assert first == f"first {preloaded}" and second == f"second {preloaded}", out.stdout
+    if process == "user":                 # the user's forkserver is left as it was
+        assert users == "second False", out.stdout

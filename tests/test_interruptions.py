@@ -18,6 +18,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.processes import pool_workers
+
 ROOT = Path(__file__).resolve().parent.parent
 ONLY = ["D1.6", "R1.5", "X1.4", "CS", "D2.2", "T2.6", "D3.1"]
 
@@ -107,27 +109,11 @@ def test_a_signal_mid_run_keeps_a_partial_report_and_leaves_no_process(tmp_path,
     assert _lines(report) == len(ONLY) and done < len(ONLY)   # finished tasks were not rerun
 
 
-def _pool_workers(pid: int) -> list[int]:
-    """Direct children of ``pid`` that are pool workers (not multiprocessing's tracker)."""
-    out = []
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            fields = open(f"/proc/{entry}/stat", "rb").read().rsplit(b")", 1)[1].split()
-            cmdline = open(f"/proc/{entry}/cmdline", "rb").read()
-        except OSError:
-            continue
-        if int(fields[1]) == pid and b"spawn_main" in cmdline and b"resource_tracker" not in cmdline:
-            out.append(int(entry))
-    return out
-
-
 def test_a_killed_pool_worker_is_replaced_and_nothing_is_lost(tmp_path, undisturbed):
     report = tmp_path / "report"
     proc = _start(report)
     _wait_for_lines(report, 1, proc)
-    workers = _pool_workers(proc.pid)
+    workers = pool_workers(proc.pid)
     assert workers, "no pool worker found"
     os.kill(workers[0], signal.SIGKILL)
     out, err = proc.communicate(timeout=600)

@@ -155,8 +155,7 @@ def test_a_worker_start_interrupted_never_answers_the_next_call():
     killed and the next call starts a fresh one."""
     from tests.alarms import interrupted
 
-    with Isolated("ddg_oracle.oracles.exact_reference:ReferenceImplementation",
-                  timeout=30) as impl:
+    with Isolated("tests.misbehaving:LoadsSlowly", timeout=30) as impl:
         interrupted(impl._start, 0.05)      # loading takes longer than that
         V, F = _arrays(CLOSED)
         assert impl.euler_characteristic(V, F) == 2
