@@ -41,18 +41,21 @@ def become_subreaper() -> bool:
 PRELOAD = ("ddg_oracle.jobs", "ddg_oracle.isolation", "ddg_oracle.properties.registry",
            "ddg_oracle.properties.runner", "ddg_oracle.properties.strategies",
            "ddg_oracle.oracles.exact_reference", "scipy.sparse")
+#: what a pool worker's forkserver imports: it forks isolated library workers only, which
+#: import ``isolation`` (not the properties) and an adapter (numpy, scipy.sparse)
+LIBRARY_PRELOAD = ("ddg_oracle.isolation", "ddg_oracle.oracles.arrays", "scipy.sparse")
 _forkserver = False
 
 
-def start_workers_from_a_forkserver() -> bool:
+def start_workers_from_a_forkserver(preload=PRELOAD) -> bool:
     """From now on, start this process's workers from a forkserver that imported
-    :data:`PRELOAD` (POSIX; False where there is none).  For ddg-oracle's own processes
+    ``preload`` (POSIX; False where there is none).  For ddg-oracle's own processes
     only: the preload list is the whole process's, and the forkserver keeps the
-    environment it started with (the command sets its environment first)."""
+    environment it started with (:class:`WorkerContext` gives each worker its parent's)."""
     global _forkserver
     import multiprocessing as mp
     if "forkserver" in mp.get_all_start_methods():
-        mp.set_forkserver_preload(list(PRELOAD))
+        mp.set_forkserver_preload(list(preload))
         _forkserver = True
     return _forkserver
 

@@ -18,8 +18,8 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from ddg_oracle.containment import (forkserver_in_use, start_workers_from_a_forkserver, stopped,
-                                    worker_context)
+from ddg_oracle.containment import (LIBRARY_PRELOAD, forkserver_in_use,
+                                    start_workers_from_a_forkserver, stopped, worker_context)
 from ddg_oracle.oracles.processes import exit_text
 
 IN_PROCESS = ("reference",)      # specs run in the checking process itself
@@ -249,7 +249,7 @@ def _worker_main(options: Options, meshes: list, conn, forkserver: bool = False)
     import os
     import signal
     if forkserver:
-        start_workers_from_a_forkserver()
+        start_workers_from_a_forkserver(LIBRARY_PRELOAD)
 
     def stop(signum, frame):
         close_all()
