@@ -198,8 +198,8 @@ def test_our_own_float64_bounds_do_not_take_the_implementations_epsilon():
             assert 0 < gamma(3) < gamma(1000) < np.finfo(float).max
             assert gamma(2000) == (np.finfo(float).max if e == 2.0 ** -10
                                    else 2000 * e / (1 - 2000 * e))
-    for pid in ("T2.7", "C3.3", "R3.3"):
-        r = run_property(PROPERTIES[pid], Reference16(), profile("ci"))
+    for pid in ("T2.7", "C3.3", "R3.3"):          # both broke on every example
+        r = run_property(PROPERTIES[pid], Reference16(), profile("default"))
         assert r.status == PASSED, (pid, r.status, r.failure or r.error)
 
 
