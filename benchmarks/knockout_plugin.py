@@ -29,6 +29,9 @@ The wrong versions (``VARIANTS``) are generic, decided from the result of each c
   Triangulation with its last face's corner order reversed (its gluings' reversed flags
   toggled to match, as ``with_reversed_faces`` does: the same surface, one face oriented
   against its neighbours);
+  a dataclass instance (a certificate, a run, a classification) with its first field that
+  can be made wrong (by ``value`` of it, or ``last`` of it) made wrong, and with ``last``
+  its last such field (``dataclasses.replace``: the class's own checks still run);
 * ``drop``: a tuple or list without its last element, a set or frozenset without one;
 * ``skip``: the function returns None without running its body (for functions that return
   None: validators that never raise, procedures that do nothing).
@@ -40,6 +43,7 @@ result: the knockout only ever changes a value, it never makes the wrapper crash
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib
 import inspect
@@ -95,6 +99,8 @@ def kind(x) -> str:
         return type(x).__name__
     if type(x) in _object_types():
         return type(x).__name__
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return "dataclass"
     return f"other:{type(x).__name__}"
 
 
@@ -113,6 +119,7 @@ VARIANTS_OF_KIND = {
     "set": ("drop",), "frozenset": ("drop",),
     "SparseMatrix": ("value",), "PolyhedralSurface": ("value",),
     "Triangulation": ("value", "last"), "PiecewiseFlatSurface": ("value",),
+    "dataclass": ("value", "last"),
 }
 
 
@@ -156,7 +163,20 @@ def wrong_value(x):
         return _swapped_labels(x)
     if type(x) is PiecewiseFlatSurface:           # one edge's squared length x 9/8 (or 8/9)
         return _stretched_edge(x)
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return _wrong_field(x, dataclasses.fields(x))
     raise NotApplicable(type(x).__name__)
+
+
+def _wrong_field(x, fields):
+    """``x`` with the first of ``fields`` that can be made wrong (by its own kind) made
+    wrong; the class's __init__ and __post_init__ check the result."""
+    for f in fields:
+        try:
+            return dataclasses.replace(x, **{f.name: _wrong_element(getattr(x, f.name))})
+        except Exception:             # NotApplicable, a type no rule takes, a check refusing it
+            continue
+    raise NotApplicable(f"{type(x).__name__}: no field can be made wrong")
 
 
 def _checked(t):
@@ -233,6 +253,8 @@ def wrong_last(x):
     Triangulation with its last face's orientation reversed."""
     if type(x) is _object_types()[2]:
         return _reversed_last_face(x)
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return _wrong_field(x, reversed(dataclasses.fields(x)))
     if isinstance(x, (tuple, list)):
         if not x:
             raise NotApplicable("empty")

@@ -82,6 +82,14 @@ def test_a_knockout_patches_the_function_object_and_undo_restores_it():
     assert wrong_last((1, [Fraction(1), True])) == (1, [Fraction(1), False])
     assert wrong_last({"a": 1, "b": 2.0}) == {"a": 1, "b": 2.0 * (1 + 2**-10) + 2**-10}
     assert wrong_drop([1, 2, 3]) == [1, 2] and len(wrong_drop({1, 2, 3})) == 2
+    # a dataclass: its first (value) or last (last) field that can be made wrong
+    from dataclasses import astuple
+
+    from benchmarks.knockout_plugin import kind, wrong_value
+    c = surfaces.torus(3, 3).triangulation.classify()
+    assert kind(c) == "dataclass" and astuple(c) == (True, 1, 0, 0)
+    assert astuple(wrong_value(c)) == (False, 1, 0, 0)
+    assert astuple(wrong_last(c)) == (True, 1, 0, 1)
 
 
 def test_a_knockout_that_must_be_killed_is_killed_in_a_child():

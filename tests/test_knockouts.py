@@ -239,3 +239,42 @@ def test_convex_hull_keeps_the_given_points_as_its_vertices():
         a, b, c = (hull.positions[v] for v in f)
         assert all(orientation3d(a, b, c, x) < 0
                    for v, x in enumerate(hull.positions) if v not in f)
+
+
+def test_circumdisk_is_the_disk_of_the_face_asked_for():
+    """Knockout gap (``circumdisk`` ``value``, the disk's ``face`` + 1, survived every
+    reference test): the disk names the face it was asked for, whose own corners are on its
+    circle, on every face of three closed surfaces (one with non-empty disks)."""
+    from ddg_oracle.reference.empty_disks import circumdisk
+    for s in (surfaces.octahedron(), surfaces.cube(), surfaces.torus(3, 3)):
+        m = s.metric()
+        for f in range(m.triangulation.n_faces):
+            d = circumdisk(m, f)
+            assert d.face == f
+            assert f in d.cell_faces
+
+
+def test_minimal_surface_iteration_returns_its_surfaces_areas_and_certificates():
+    """Knockout gap (``minimal_surface_iteration`` ``value`` and ``last``: the last surface
+    moved by 1/3, the last certificate changed, survived every reference test, which read
+    only the certificates' verdicts and the areas' order): each surface is the previous
+    one's exact step rounded to ``bits`` fractional bits, each area is its surface's, each
+    certificate is that of the step from the previous surface."""
+    from ddg_oracle.reference.minimal import (area_decrease_certificate,
+                                              minimal_surface_iteration, minimal_surface_step)
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = PolyhedralSurface.from_arrays(
+        [(0, 0, 2), (2, 0, 0), (1, 2, 1), (-1, 2, 0), (-2, 0, 1), (-1, -2, 0), (1, -2, 1)],
+        [(0, 1 + t, 1 + (t + 1) % 6) for t in range(6)])
+    bits, steps = 20, 2
+    run = minimal_surface_iteration(s, steps, bits=bits)
+    assert len(run.surfaces) == len(run.areas) == steps + 1 and len(run.certificates) == steps
+    assert run.surfaces[0].positions == s.positions
+    for before, after, cert in zip(run.surfaces, run.surfaces[1:], run.certificates):
+        exact = minimal_surface_step(before)
+        for p, q in zip(after.positions, exact):
+            for x, y in zip(p, q):
+                assert (x * 2 ** bits).denominator == 1 and abs(x - y) <= Fraction(1, 2 ** (bits + 1))
+        assert cert == area_decrease_certificate(before, exact)
+    for surface, area in zip(run.surfaces, run.areas):
+        assert area == surface.metric().total_area()
