@@ -15,7 +15,6 @@ Exit codes (the same for every subcommand, so CI can tell a finding from a broke
 from __future__ import annotations
 
 import argparse
-import concurrent.futures as cf
 import os
 import random
 import sys

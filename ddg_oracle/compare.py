@@ -364,7 +364,7 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     how each answer compares is its declared quantity's
     (:data:`ddg_oracle.properties.registry.QUANTITIES`).
 
-    ``workers > 1``: the exact values and their bounds are computed by that many spawned
+    ``workers > 1``: the exact values and their bounds are computed by that many worker
     processes, one method at a time (the costly chapters first), while this process asks
     the implementations; the rows are the same as with one worker.  ``methods``: only
     these protocol methods (default: every one).  An implementation's answers are first
@@ -374,9 +374,6 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     from ddg_oracle.properties.precision import format_of
     from ddg_oracle.properties.protocol import (METHODS, capabilities, implementation_name,
                                                 machine_epsilon)
-    from ddg_oracle.properties.registry import all_quantities, unmet
-
-    quantities = all_quantities()
     # each implementation against the exact values of the input it reads (as_read_by)
     formats: dict = {}
     for impl in impls:

@@ -365,7 +365,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
     not-applicable ones in one line per implementation; then one full block per root
     cause and crash group (its smallest counterexample; the others named) and per other
     non-passing result (``files``: result index -> where its whole mesh and snippet are)."""
-    from ddg_oracle.properties.runner import CONVENTION, CRASHED, FAILED, NOT_APPLICABLE, PASSED
+    from ddg_oracle.properties.runner import CONVENTION, FAILED, NOT_APPLICABLE, PASSED
     from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED, describe
 
     findings = known_findings()

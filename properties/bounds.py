@@ -103,7 +103,7 @@ from ddg_oracle.reference.metric import heron16
 
 from . import memo
 from .example import Example
-from .protocol import FLOAT64_EPSILON, eps
+from .protocol import eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",

@@ -21,9 +21,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from ddg_oracle.properties.bounds import (C_HERON, K_COT, _conditioning, corner_tolerances,
+from ddg_oracle.properties.bounds import (K_COT, _conditioning, corner_tolerances,
                                           edge_mean_curvature_tolerances, entry_bounds,
-                                          face_area_tolerances, face_condition, float_geometry,
+                                          face_area_tolerances, float_geometry,
                                           gamma, heron_condition, heron_product,
                                           total_area_view,
                                           vertex_tolerances)

@@ -7,7 +7,6 @@ import base64
 import json
 import pickle
 import zlib
-from fractions import Fraction
 
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings

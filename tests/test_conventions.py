@@ -8,7 +8,6 @@ convention of the vocabulary applied to its answers, the way the library does it
 
 from __future__ import annotations
 
-import json
 import sys
 import textwrap
 

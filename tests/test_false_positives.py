@@ -121,7 +121,6 @@ def test_the_float32_reference_passes_R3_3_on_a_single_triangle():
     decides the exact eigenvalue first and fails only a matrix that cannot be within the
     entry bounds of the exact one."""
     from fractions import Fraction
-    import numpy as np
     from ddg_oracle.properties.runner import FAILED, run_on_example
     from ddg_oracle.properties.strategies import Example
     tri = ((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),

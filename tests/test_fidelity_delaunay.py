@@ -30,7 +30,7 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.delaunay import (delaunay_tessellation_edges, flip_to_delaunay,
                                            harmonic_index, is_delaunay, laplace_beltrami)
-from ddg_oracle.reference.exact import Surd, sqrt
+from ddg_oracle.reference.exact import Surd
 from ddg_oracle.reference.intrinsic import cot_sum, flip, is_flippable
 from ddg_oracle.reference.laplacian import cotan_laplacian, cotan_weights
 from ddg_oracle.reference.metric import PiecewiseFlatSurface

@@ -7,8 +7,6 @@ Needs ``pip install -e '.[pygel3d]'``."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 

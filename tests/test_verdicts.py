@@ -7,8 +7,6 @@ Each test here is a false pass or a hidden failure that a session found on lande
 
 from __future__ import annotations
 
-import json
-import subprocess
 import sys
 import textwrap
 import time
