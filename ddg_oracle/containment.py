@@ -19,7 +19,8 @@ import time
 from contextlib import contextmanager
 
 __all__ = ["contained", "descendants", "kill_descendants", "become_subreaper", "stopped",
-           "worker_context", "start_workers_from_a_forkserver"]
+           "worker_context", "WorkerContext", "start_workers_from_a_forkserver",
+           "forkserver_in_use", "PRELOAD", "LIBRARY_PRELOAD"]
 
 PR_SET_CHILD_SUBREAPER = 36
 

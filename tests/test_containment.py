@@ -199,3 +199,32 @@ def test_workers_start_with_the_parents_environment_and_preload_only_in_the_comm
     assert first == f"first {preloaded}" and second == f"second {preloaded}", out.stdout
     if process == "user":                 # the user's forkserver is left as it was
         assert users == "second False", out.stdout
+
+
+_USERS_ISOLATION = """
+import numpy as np
+from ddg_oracle.isolation import ImplementationCrashed, Isolated
+from ddg_oracle.reference import surfaces
+from tests.processes import cmdline
+closed, disk = (tuple(np.array(a) for a in s.to_arrays())
+                for s in (surfaces.tetrahedron(), surfaces.disk(5)))
+with Isolated("tests.misbehaving:SegfaultsOnBoundary", timeout=30) as impl:
+    assert impl.euler_characteristic(*closed) == 2
+    assert b"spawn_main" in cmdline(impl._proc.pid), cmdline(impl._proc.pid)
+    try:
+        impl.euler_characteristic(*disk)
+        raise SystemExit("the segfault was not reported")
+    except ImplementationCrashed as e:
+        assert "SIGSEGV" in str(e), e
+    assert impl.euler_characteristic(*closed) == 2          # a fresh worker, spawned again
+print("ok")
+"""
+
+
+def test_in_a_users_process_an_isolated_crash_is_reported_from_a_spawned_worker():
+    """The path a user's process takes (the plugin, main(argv)): no forkserver, the isolated
+    library spawned; its crash is a reported crash and the next call starts a fresh one.
+    (The suite's own processes fork their workers, as the command does: conftest.)"""
+    out = subprocess.run([sys.executable, "-c", _USERS_ISOLATION], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stdout + out.stderr
