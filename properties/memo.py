@@ -11,6 +11,14 @@ example instead of once per implementation.
 
 What is kept never depends on an implementation, so a result can only be the
 one the property would compute again; callers must not mutate what they get.
+Two things of the implementation do reach a computation: the format its inputs
+are rounded to (:func:`~.precision.input_format`: a moved copy of the example
+is rounded to float32 for a float32 implementation) and the machine epsilon its
+bounds are derived for (:func:`~.protocol.eps`).  Every key therefore carries
+both (:func:`context`): a value computed for a float32 implementation is never
+handed to a float64 one checked after it in the same worker, where the float32
+rounding of its input was once reported as the float64 implementation's error
+(T2.5, the moved copy of the example).
 The table holds at most :data:`LIMIT` entries (a few examples' worth of every
 property), so memory stays bounded on long runs.
 
@@ -26,6 +34,21 @@ from __future__ import annotations
 import weakref
 from collections import OrderedDict
 
+from .precision import input_format
+from .protocol import eps
+
+
+def context() -> tuple:
+    """What a computation may read of the implementation being checked: its input format
+    and machine epsilon (part of every key here).
+
+    >>> from ddg_oracle.properties.precision import inputs_at
+    >>> with inputs_at(2.0 ** -23):
+    ...     context()
+    ('float32', 2.220446049250313e-16)
+    """
+    return input_format().name, eps()
+
 
 class Table:
     """A least-recently-used table of at most ``limit`` entries."""
@@ -36,8 +59,9 @@ class Table:
     def shared(self, key, compute):
         """``compute()``, or what it returned for an equal ``key`` before (see module doc).
 
-        ``key`` must be hashable and determine the value completely (e.g. a name and the
-        exact content of the example it is computed from).
+        ``key`` must be hashable and determine the value completely together with
+        :func:`context` (e.g. a name and the exact content of the example it is computed
+        from).
 
         >>> calls, table = [], Table(2)
         >>> table.shared(("demo", 1), lambda: calls.append(1) or "value")
@@ -45,7 +69,7 @@ class Table:
         >>> table.shared(("demo", 1), lambda: calls.append(1) or "other"), len(calls)
         ('value', 1)
         """
-        entries = self._entries
+        entries, key = self._entries, (context(), key)
         try:
             entries.move_to_end(key)
             return entries[key]
@@ -59,6 +83,7 @@ class Table:
 
     def get(self, key, default=None):
         """The value kept for ``key`` (marked recently used), else ``default``; adds nothing."""
+        key = (context(), key)
         try:
             self._entries.move_to_end(key)
         except KeyError:
@@ -105,7 +130,7 @@ def of(fn, obj):
             if table.get(k, (None,))[0] is ref:
                 del table[k]
         entry = _OF[k] = (weakref.ref(obj, drop), {})
-    values, name = entry[1], (fn.__module__, fn.__qualname__)
+    values, name = entry[1], (fn.__module__, fn.__qualname__, context())
     if name not in values:
         values[name] = fn(obj)
     return values[name]
