@@ -18,10 +18,12 @@ reference's convention (:func:`to_reference`, applied by
 :class:`~ddg_oracle.properties.calls.Watched` to every call) before comparing.  A map
 adds at most two roundings (a sign and a factor 2 none), far inside the derived bounds,
 whose constants leave a margin of about 2 over the counted roundings (:mod:`.bounds`).
-A pointwise curvature is multiplied back by the reference's float area: the library's own
-area error (relative, a few eps times the faces' conditioning for an honest route) then
-reaches the angle defect times |K A|, which the defect bounds' per-corner terms cover on
-the meshes measured (PyGEL3D, VTK); they do not count it separately.
+A pointwise curvature is multiplied back by a float vertex area (:attr:`Convention.divides_by`):
+the library's own area and this one each carry an honest float error, within the vertex-area
+bound of L3.7 and relative to the area unbounded on a needle; the angle defects' bounds add
+both for such an implementation (:func:`pointwise_area`; the curvature properties).  Once
+they did not, and PyGEL3D failed D2.2 at 1.38 x the bound on a needle tetrahedron where its
+curvature times its own mixed area is accurate.
 Where an implementation declares nothing and fails, :func:`explaining` names the
 conventions under which its answer agrees with the exact one: the report then says
 "your cotan_laplacian is -L: declare conventions = {'laplacian': 'negative'}".
@@ -39,7 +41,7 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
-           "declaration_text"]
+           "declaration_text", "pointwise_area"]
 
 
 @dataclass(frozen=True)
@@ -52,6 +54,9 @@ class Convention:
     methods: tuple
     about: str
     to_reference: Callable = None
+    #: a pointwise curvature: the vertex area (a protocol method's name) the map multiplies
+    #: the answer back by, whose float error the angle defects' bounds must then add
+    divides_by: str | None = None
 
     @property
     def name(self) -> str:
@@ -214,11 +219,13 @@ def _vocabulary() -> dict:
         Convention("curvature", "per_barycentric_area", ("angle_defects",),
                    "pointwise: the angle defect divided by the vertex's barycentric area "
                    "(a third of the incident faces' area; VTK's Gaussian curvature)",
-                   _by_method(angle_defects=per(barycentric_areas))),
+                   _by_method(angle_defects=per(barycentric_areas)),
+                   divides_by="vertex_areas_barycentric"),
         Convention("curvature", "per_mixed_area", ("angle_defects",),
                    "pointwise: the angle defect divided by the vertex's mixed Voronoi area "
                    "(Meyer et al.; PyGEL3D's and many papers' Gaussian curvature)",
-                   _by_method(angle_defects=per(mixed_areas))),
+                   _by_method(angle_defects=per(mixed_areas)),
+                   divides_by="vertex_areas_voronoi"),
         Convention("dihedral", "negative", ("edge_mean_curvature",),
                    "theta > 0 where concave (the normals compared the other way round)",
                    lambda method, H, V, F: {e: -h for e, h in dict(H).items()}),
@@ -337,6 +344,16 @@ def declared(impl) -> tuple[Convention, ...]:
     if not value or (isinstance(value, dict) and "follows" in value):
         return ()
     return parse(value)
+
+
+def pointwise_area(conventions) -> str | None:
+    """The vertex area (protocol method name) a declared pointwise curvature is multiplied
+    back by, or None for an integrated one.
+
+    >>> pointwise_area(parse("vtk")), pointwise_area(parse("libigl"))
+    ('vertex_areas_barycentric', None)
+    """
+    return next((c.divides_by for c in conventions if c.divides_by), None)
 
 
 def to_reference(conventions, method: str, answer, V, F):

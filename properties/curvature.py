@@ -30,6 +30,8 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from . import memo
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, total_area_view, vertex_tolerances)
+from .conventions import declared, pointwise_area
+from .harness import Exact
 from .protocol import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
 from .registry import EXACT_SUM_LIMIT, PropertyFailure, TieDisagreement, prop, quantity
 from .strategies import Example, floated, jittered_surfaces
@@ -218,6 +220,26 @@ def _defects(impl, case: Example, pid: str) -> np.ndarray:
     return K[at] if case.isolated else K
 
 
+def _defect_bounds(impl, case: Example, K, corner_tol) -> np.ndarray:
+    """The bounds of the angle defects ``K`` (:func:`.bounds.vertex_tolerances`), plus, for
+    a pointwise curvature multiplied back by a float vertex area (a declared per-area
+    convention: :func:`.conventions.pointwise_area`), that area's error twice over: the
+    library divided by its own float area and the map multiplies by another, each within
+    L3.7's vertex-area bound B of the exact A, so K_mapped = D (1 + d) with |d| <= 2 B /
+    (A - B); no bound where B >= A (the float area is not even of certain sign)."""
+    tol = vertex_tolerances(case, corner_tol)
+    name = pointwise_area(declared(impl))
+    if name is None:
+        return tol
+    X = Exact.of(case)
+    B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
+    A = np.zeros(len(B))
+    A[X.keep] = X.vertex_areas(name)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(A > B, 2 * B / (A - B), np.inf)
+    return tol + d * (np.abs(K) + tol)
+
+
 def _units(err: float, bound: float) -> str:
     return f"error {err:.3g} = {err / bound:.3g} x its bound {bound:.3g}"
 
@@ -230,7 +252,7 @@ def _units(err: float, bound: float) -> str:
       needs={"angle_defects"}, on_mesh=(), strategy=lambda: jittered_surfaces(intrinsic=True))
 def angle_defects_match_reference(impl, case: Example):
     K = _defects(impl, case, "D2.2")
-    tol = vertex_tolerances(case, corner_tolerances(case))
+    tol = _defect_bounds(impl, case, K, corner_tolerances(case))
     for v, k in _reference(case, "defects").items():
         err = abs(K[v] - k)
         if not err <= tol[v]:
@@ -245,7 +267,7 @@ def angle_defects_match_reference(impl, case: Example):
       strategy=lambda: jittered_surfaces(closed=False, intrinsic=True))
 def turning_angles_and_gauss_bonnet_with_boundary(impl, case: Example):
     K = _defects(impl, case, "R2.4")
-    tol = vertex_tolerances(case, corner_tolerances(case))
+    tol = _defect_bounds(impl, case, K, corner_tolerances(case))
     _check_total("R2.4", impl, case, K, tol)           # cheap: needs no exact values
     for v, k in _reference(case, "turning").items():
         err = abs(K[v] - k)
@@ -272,7 +294,7 @@ def _check_total(pid, impl, case, K, tol):
       strategy=lambda: jittered_surfaces(closed=True, intrinsic=True))
 def gauss_bonnet(impl, case: Example):
     K = _defects(impl, case, "T2.6")
-    tol = vertex_tolerances(case, corner_tolerances(case))
+    tol = _defect_bounds(impl, case, K, corner_tolerances(case))
     _check_total("T2.6", impl, case, K, tol)
 
 
@@ -285,7 +307,7 @@ def cube_angle_defects(impl, example):
     moved, _ = _relabel_surface(ref.rigid_motion(surfaces.cube(), R, tr), key)
     case = Example.of_surface(floated(moved), 2, f"unit cube moved by {R}, {tr}, relabelled {key}")
     K = _defects(impl, case, "X2.1")
-    tol = vertex_tolerances(case, corner_tolerances(case, input_rounding=True))
+    tol = _defect_bounds(impl, case, K, corner_tolerances(case, input_rounding=True))
     for v in range(8):
         err = abs(K[v] - math.pi / 2)
         if not err <= tol[v]:
@@ -316,8 +338,8 @@ def angle_defects_are_invariant(impl, example):
                             lambda c: variants.is_degenerate(moved) or variants.has_fold(moved)))
     other = Example.of_surface(moved, case.chi, case.recipe + f", moved, relabelled {key}")
     K1, K2 = _defects(impl, case, "T2.5"), _defects(impl, other, "T2.5")
-    tol1 = vertex_tolerances(case, corner_tolerances(case))
-    tol2 = vertex_tolerances(other, corner_tolerances(other, input_rounding=True))
+    tol1 = _defect_bounds(impl, case, K1, corner_tolerances(case))
+    tol2 = _defect_bounds(impl, other, K2, corner_tolerances(other, input_rounding=True))
     for v in range(case.triangulation.n_vertices):
         w = perm[v]
         err, bound = abs(K1[v] - K2[w]), tol1[v] + tol2[w]
@@ -373,7 +395,7 @@ def pushing_a_vertex_in_keeps_the_metric(impl, example):
                               mesh=pushed.mesh, element=f"face {f}, corner {c}",
                               expected=float(A1[f, c]), observed=float(A2[f, c]), bound=bound)
     K1, K2 = _defects(impl, case, "X2.3"), _defects(impl, pushed, "X2.3")
-    tol = vertex_tolerances(case, ct1) + vertex_tolerances(pushed, ct2)
+    tol = _defect_bounds(impl, case, K1, ct1) + _defect_bounds(impl, pushed, K2, ct2)
     bad = np.abs(K1 - K2) - tol
     if (bad > 0).any():
         w = int(np.argmax(bad))
@@ -389,7 +411,7 @@ def pushing_a_vertex_in_keeps_the_metric(impl, example):
 def curvature_bounded_above_not_below(impl, example):
     case, star = example
     K = _defects(impl, case, "R2.2")
-    tol = vertex_tolerances(case, corner_tolerances(case))
+    tol = _defect_bounds(impl, case, K, corner_tolerances(case))
     t = case.triangulation
     for v in range(t.n_vertices):
         bound = math.pi if t.is_boundary_vertex(v) else 2 * math.pi    # turning angle < pi
@@ -399,7 +421,7 @@ def curvature_bounded_above_not_below(impl, example):
                                   observed=float(K[v]))
     n, h = star.params
     Ks = _defects(impl, star, "R2.2")
-    tol_s = vertex_tolerances(star, corner_tolerances(star))[0]
+    tol_s = _defect_bounds(impl, star, Ks, corner_tolerances(star))[0]
     # The star was rounded to floats: its unit-circle points moved by <= eps, which
     # moves each of the n angles by <= 4 eps / sin; the float evaluation of the bound
     # itself is off by <= gamma_4 (2 pi + 2 n atan h).  Both are in `slack`.
@@ -423,8 +445,8 @@ _SIGN = {"convex": 1, "planar": 0, "saddle": -1}
 def star_kind_decides_curvature_sign(impl, star: Example):
     # the kind survived rounding to floats
     assume(star.derived("kind", lambda c: _PREDICATES[c.kind](c.surface, 0)))
-    K = float(_defects(impl, star, "L2.4")[0])
-    tol = float(vertex_tolerances(star, corner_tolerances(star))[0])
+    Ks = _defects(impl, star, "L2.4")
+    K, tol = float(Ks[0]), float(_defect_bounds(impl, star, Ks, corner_tolerances(star))[0])
     want = _SIGN[star.kind]
     exact = _reference(star, "defects")[0]
     if want == 0:
@@ -665,7 +687,7 @@ def steiner_coefficients_match(impl, case: Example):
         raise PropertyFailure("R2.5", impl, f"2 H(S) off: {_units(err, bound_H)}",
                               mesh=case.mesh, expected=float(twoH_ref), observed=twoH, bound=bound_H)
     K = _defects(impl, case, "R2.5")
-    _check_total("R2.5", impl, case, K, vertex_tolerances(case, corner_tolerances(case)))
+    _check_total("R2.5", impl, case, K, _defect_bounds(impl, case, K, corner_tolerances(case)))
 
 
 def _steiner_views(case: Example) -> tuple[float, float, float, float]:

@@ -278,3 +278,29 @@ def test_the_diagnosis_names_the_convention_on_a_mesh_with_an_unused_vertex():
                                 "entry (1, 1)", "entry (2, 2)", "entry (3, 3)")
     assert diagnose((V, [[1, 2, 3]]), _declaring(NegativeL, {"laplacian": "negative"})(),
                     ["cotan_laplacian"])[0]["status"] == "agrees"
+
+
+class MixedAreaAtItsBound(ReferenceImplementation):
+    """A pointwise curvature: the exact angle defects (correctly rounded) divided by a mixed
+    Voronoi area 0.9 of L3.7's derived bound above the exact one, an area L3.7 accepts."""
+    name = "mixed-area-at-its-bound"
+    conventions = {"curvature": "per_mixed_area"}
+
+    def angle_defects(self, V, F):
+        from ddg_oracle.properties.harness import Exact
+        from ddg_oracle.properties.strategies import mesh_case
+        D = np.asarray(super().angle_defects(V, F), dtype=float)
+        X = Exact.of(mesh_case(np.asarray(V).tolist(), np.asarray(F).tolist(), "the input"))
+        A = np.zeros(len(D))
+        A[X.keep] = X.vertex_areas("vertex_areas_voronoi")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return D / (A + 0.9 * X.vertex_area_bounds[0])
+
+
+@pytest.mark.parametrize("pid", ["D2.2", "T2.6", "R2.4"])
+def test_a_pointwise_curvature_over_an_area_within_its_bound_passes(pid):
+    # the map multiplies K back by a float area: the defects' bounds add both areas' error
+    # (within L3.7's bound each); without it, this failed D2.2 at 1.29 x, T2.6 at 3.3 x and
+    # R2.4 at 7.4 x the bound in 3 examples (PyGEL3D once D2.2 at 1.38 x on a needle)
+    r = run_property(PROPERTIES[pid], MixedAreaAtItsBound(), profile("default"), seed=0)
+    assert r.status == PASSED and r.examples == 25, (r.status, r.failure)
