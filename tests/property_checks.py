@@ -41,14 +41,24 @@ def assert_element_on_mesh(failure):
         assert 0 <= ids["face"] < len(F), f"{failure.element!r} names a face of {len(F)}"
 
 
+#: examples per property of an adapter's whole-catalog test in the suite: about half the
+#: default profile's 25, for half the time; ``DDG_THOROUGH_PANEL=1`` runs the profile's own
+WHOLE_CATALOG_EXAMPLES = 12
+
+
 def every_property_unshrunk(impl, seed):
-    """Every registered property on ``impl`` under the default profile with ``seed``, its
-    budget and examples, but no shrink phase: which properties pass or fail (an adapter's
-    whole-catalog test), not their smallest examples, for a quarter to a half of the time.
-    Each finding's minimal example is its own snippet's (tests/test_findings.py)."""
+    """Every registered property on ``impl`` under the default profile with ``seed`` and its
+    budget, :data:`WHOLE_CATALOG_EXAMPLES` examples each (the profile's with
+    ``DDG_THOROUGH_PANEL=1``), and no shrink phase: which properties pass or fail (an
+    adapter's whole-catalog test), not their smallest examples, for a quarter to a half of
+    the time.  Each finding's minimal example is its own snippet's (tests/test_findings.py)."""
+    import os
     from hypothesis import Phase, settings
     from ddg_oracle.properties.profiles import profile_budget
     from ddg_oracle.properties.runner import select_properties
-    s = settings(profile("default"), phases=(Phase.explicit, Phase.reuse, Phase.generate))
+    base = profile("default")
+    examples = base.max_examples if os.environ.get("DDG_THOROUGH_PANEL") else WHOLE_CATALOG_EXAMPLES
+    s = settings(base, max_examples=examples,
+                 phases=(Phase.explicit, Phase.reuse, Phase.generate))
     return [run_property(p, impl, s, seed, budget=profile_budget("default"))
             for p in select_properties(None)]

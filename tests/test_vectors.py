@@ -49,6 +49,8 @@ def _write(path: Path, lines) -> Path:
 
 
 def test_the_committed_corpus_is_what_the_generator_writes(corpus_dir):
+    # also the generator's determinism: vectors/ was written by another process (its own
+    # hash seed), on another machine
     written = sorted(p.name for p in corpus_dir.iterdir())
     assert sorted(p.name for p in COMMITTED.iterdir()) == written
     stale = [name for name in written
@@ -61,12 +63,6 @@ def test_the_manual_counts_the_committed_cases(corpus_dir):
     n = json.loads((corpus_dir / "manifest.json").read_text())["cases"]
     page = ROOT / "docs" / "languages.md"
     assert f"JSON file of cases ({n} in all" in " ".join(page.read_text().split())
-
-
-def test_the_generator_is_deterministic(corpus_dir, tmp_path):
-    assert main(["vectors", "--out", str(tmp_path)]) == 0
-    for p in corpus_dir.iterdir():
-        assert (tmp_path / p.name).read_bytes() == p.read_bytes(), p.name
 
 
 def test_the_corpus_validates_against_its_schema(corpus_dir, reference_answers):

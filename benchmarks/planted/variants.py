@@ -16,7 +16,6 @@ Every variant differs from NumpyAll on a small hand-made mesh (tests/test_plante
 
 from __future__ import annotations
 
-import inspect
 import math
 import sys
 
@@ -739,6 +738,8 @@ class PlanarDelaunayFloat32(Variant):
 
 
 #: every variant, in the order above
-VARIANTS = [cls for _, cls in inspect.getmembers(sys.modules[__name__], inspect.isclass)
-            if issubclass(cls, Variant) and cls.planted and cls.__module__ == __name__]
-VARIANTS.sort(key=lambda cls: inspect.getsourcelines(cls)[1])
+#: (the module's names keep their definition order; inspect.getsourcelines parsed this file
+#: once per class, 0.75 s at each import)
+VARIANTS = [cls for cls in list(vars(sys.modules[__name__]).values())
+            if isinstance(cls, type) and issubclass(cls, Variant) and cls.planted
+            and cls.__module__ == __name__]
