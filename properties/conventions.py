@@ -21,7 +21,7 @@ whose constants leave a margin of about 2 over the counted roundings (:mod:`.bou
 A pointwise curvature is multiplied back by a float vertex area (:attr:`Convention.divides_by`):
 the library's own area and this one each carry an honest float error, within the vertex-area
 bound of L3.7 and relative to the area unbounded on a needle; the angle defects' bounds add
-both for such an implementation (:func:`pointwise_area`; the curvature properties).  Once
+both for such an implementation (:func:`widened`: the curvature properties and ``compare``).  Once
 they did not, and PyGEL3D failed D2.2 at 1.38 x the bound on a needle tetrahedron where its
 curvature times its own mixed area is accurate.
 Where an implementation declares nothing and fails, :func:`explaining` names the
@@ -41,7 +41,7 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
-           "declaration_text", "pointwise_area"]
+           "declaration_text", "pointwise_area", "widened"]
 
 
 @dataclass(frozen=True)
@@ -354,6 +354,28 @@ def pointwise_area(conventions) -> str | None:
     ('vertex_areas_barycentric', None)
     """
     return next((c.divides_by for c in conventions if c.divides_by), None)
+
+
+def widened(conventions, method: str, answer, case, bound):
+    """``bound`` on ``method``'s ``answer`` (already mapped) on ``case``, widened by what the
+    declared conventions' maps cannot carry back exactly: a pointwise curvature multiplied
+    back by a float vertex area (:func:`pointwise_area`).  The library divided by its own
+    float area and the map multiplies by another, each within L3.7's vertex-area bound B of
+    the exact A (:attr:`.harness.Exact.vertex_area_bounds`), so the answer is the angle
+    defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), and
+    is infinite where B >= A (the float area is not even of certain sign).  Every other
+    map adds at most two roundings, inside the bounds: ``bound`` unchanged."""
+    name = pointwise_area(c for c in conventions if c.applies(method))
+    if name is None:
+        return bound
+    from .harness import Exact
+    X = Exact.of(case)
+    B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
+    A = np.zeros(len(B))
+    A[X.keep] = X.vertex_areas(name)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(A > B, 2 * B / (A - B), np.inf)
+    return bound + d * (np.abs(np.asarray(answer, dtype=np.float64)) + bound)
 
 
 def to_reference(conventions, method: str, answer, V, F):

@@ -30,8 +30,7 @@ from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from . import memo
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, total_area_view, vertex_tolerances)
-from .conventions import declared, pointwise_area
-from .harness import Exact
+from .conventions import declared, widened
 from .protocol import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
 from .registry import EXACT_SUM_LIMIT, PropertyFailure, TieDisagreement, prop, quantity
 from .strategies import Example, floated, jittered_surfaces
@@ -221,23 +220,9 @@ def _defects(impl, case: Example, pid: str) -> np.ndarray:
 
 
 def _defect_bounds(impl, case: Example, K, corner_tol) -> np.ndarray:
-    """The bounds of the angle defects ``K`` (:func:`.bounds.vertex_tolerances`), plus, for
-    a pointwise curvature multiplied back by a float vertex area (a declared per-area
-    convention: :func:`.conventions.pointwise_area`), that area's error twice over: the
-    library divided by its own float area and the map multiplies by another, each within
-    L3.7's vertex-area bound B of the exact A, so K_mapped = D (1 + d) with |d| <= 2 B /
-    (A - B); no bound where B >= A (the float area is not even of certain sign)."""
-    tol = vertex_tolerances(case, corner_tol)
-    name = pointwise_area(declared(impl))
-    if name is None:
-        return tol
-    X = Exact.of(case)
-    B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
-    A = np.zeros(len(B))
-    A[X.keep] = X.vertex_areas(name)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d = np.where(A > B, 2 * B / (A - B), np.inf)
-    return tol + d * (np.abs(K) + tol)
+    """The bounds of the angle defects ``K`` (:func:`.bounds.vertex_tolerances`), widened
+    for a declared pointwise curvature (:func:`.conventions.widened`)."""
+    return widened(declared(impl), "angle_defects", K, case, vertex_tolerances(case, corner_tol))
 
 
 def _units(err: float, bound: float) -> str:

@@ -304,3 +304,13 @@ def test_a_pointwise_curvature_over_an_area_within_its_bound_passes(pid):
     # R2.4 at 7.4 x the bound in 3 examples (PyGEL3D once D2.2 at 1.38 x on a needle)
     r = run_property(PROPERTIES[pid], MixedAreaAtItsBound(), profile("default"), seed=0)
     assert r.status == PASSED and r.examples == 25, (r.status, r.failure)
+
+
+def test_compare_widens_the_bound_of_a_pointwise_curvature_as_the_properties_do():
+    # the unit tetrahedron: D2.2's shrunk counterexample of MixedAreaAtItsBound before the
+    # bounds counted the area (1.29 x the bound)
+    V = [[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    F = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    [row] = compare_mesh(MeshInput("tetrahedron", V, F), [MixedAreaAtItsBound()],
+                         ReferenceImplementation(), methods=["angle_defects"])
+    assert row.status == "agrees", (row.status, row.worst)
