@@ -786,14 +786,16 @@ def _verify(args) -> int:
     if args.write_answers and not args.impl:
         raise UsageError("verify: --write-answers needs --impl")
     float32 = args.float32
+    conventions = ()
     if args.impl:
+        from ddg_oracle.properties.conventions import declared
         started = start_implementations([args.impl], args.timeout)
         impl = started[args.impl]
         warn_near_misses([impl])
         try:
             lines = vectors.answers(corpus, impl)
             float32 = float32 or machine_epsilon(impl) > FLOAT64_EPSILON
-            name = implementation_name(impl)
+            name, conventions = implementation_name(impl), declared(impl)
         finally:
             getattr(impl, "close", lambda: None)()
         if args.write_answers:
@@ -803,7 +805,7 @@ def _verify(args) -> int:
     else:
         lines = vectors.read_answers(args.answers)
         name = args.answers
-    verdicts = vectors.verify(corpus, lines, float32=float32)
+    verdicts = vectors.verify(corpus, lines, float32=float32, conventions=conventions)
     for x in verdicts:
         if x.status in ("FAIL", "not run"):
             print(f"{x.status.upper() if x.status == 'FAIL' else x.status} {x.id}: {x.message}")

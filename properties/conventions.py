@@ -364,12 +364,13 @@ def widened(conventions, method: str, answer, case, bound):
     the exact A (:attr:`.harness.Exact.vertex_area_bounds`), so the answer is the angle
     defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), and
     is infinite where B >= A (the float area is not even of certain sign).  Every other
-    map adds at most two roundings, inside the bounds: ``bound`` unchanged."""
+    map adds at most two roundings, inside the bounds: ``bound`` unchanged.  ``case``: the
+    Example, or a function building it (called only if needed)."""
     name = pointwise_area(c for c in conventions if c.applies(method))
     if name is None:
         return bound
     from .harness import Exact
-    X = Exact.of(case)
+    X = Exact.of(case() if callable(case) else case)
     B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
     A = np.zeros(len(B))
     A[X.keep] = X.vertex_areas(name)
