@@ -22,7 +22,8 @@ OPTIONAL = {"ddg_oracle.oracles.libigl": "igl", "ddg_oracle.oracles.pymeshlab": 
             "ddg_oracle.oracles.potpourri3d": "potpourri3d",
             "ddg_oracle.oracles.lapy": "lapy", "ddg_oracle.oracles.mouette": "mouette",
             "ddg_oracle.oracles.pygel3d": "pygel3d", "ddg_oracle.oracles.lagrange": "lagrange",
-            "ddg_oracle.oracles.meshlib": "meshlib.mrmeshpy"}
+            "ddg_oracle.oracles.meshlib": "meshlib.mrmeshpy",
+            "ddg_oracle.oracles.torch_geometric": "torch_geometric"}
 
 
 def test_every_package_is_walked():
