@@ -119,6 +119,9 @@ def parser() -> argparse.ArgumentParser:
                         "shrinking included; a call still running then is a hang; 0: none "
                         "(default: 18, at most 3 of them shrinking, with --profile default; "
                         "40, at most 10 shrinking, with ci; none with thorough)")
+    c.add_argument("--examples", type=int, default=None, metavar="N",
+                   help="examples per property and implementation (default: the profile's: "
+                        "25 default, 60 ci, 1,000 thorough); fewer: a quick smoke run")
     c.add_argument("--only", action="extend", nargs="+", metavar="ID",
                    help="only these catalog IDs (several, or comma-separated; any part of a "
                         "joint ID: L4.3 selects 'L4.3 / P4.4')")
@@ -513,6 +516,8 @@ def _validate_check(args) -> None:
     from ddg_oracle.isolation import memory_limit
     from ddg_oracle.meshfiles import size_limit
     from ddg_oracle.properties.profiles import time_limit_seconds
+    if args.examples is not None and args.examples < 1:
+        raise UsageError(f"--examples must be at least 1, got {args.examples}")
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
     check_timeout(args)
@@ -581,7 +586,8 @@ def _check(args, argv) -> int:
               "bash examples/cpp/build.sh builds them")
     specs = list(dict.fromkeys(args.impl or available() + drivers))
     t0 = time.perf_counter()
-    options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget)
+    options = jobs.Options(args.profile, seed, args.timeout, args.expect_conventions, only, budget,
+                           args.examples)
     if meshes:
         # one task per (mesh, implementation, property): a worker keeps to one property's
         # tasks (jobs.next_task), so each exact value is computed by one worker, not all
@@ -699,7 +705,8 @@ def _check(args, argv) -> int:
     else:
         print(terminal_report(results, width=args.width, files=folders,
                               list_ties=args.ties))
-    print("\n" + fit(closing_line(results, seconds, workers, args.profile, seed,
+    shown = args.profile + (f" ({args.examples} examples each)" if args.examples else "")
+    print("\n" + fit(closing_line(results, seconds, workers, shown, seed,
                                   args.accept_incomplete), args.width))
     if args.report and lost:
         e = lost[0]

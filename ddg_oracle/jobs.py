@@ -33,6 +33,7 @@ class Options:
     expect_conventions: bool = False
     only: frozenset | None = None
     budget: object = None           # properties.budget.Budget of each task; None: the profile's
+    examples: int | None = None     # examples per property (check --examples); None: the profile's
 
 
 @dataclass(frozen=True)
@@ -135,7 +136,11 @@ def _run_task(task: Task) -> list:
     if task.mesh is None:
         budget = opts.budget if opts.budget is not None else profile_budget(opts.profile)
         p = PROPERTIES[task.property_id]
-        r = run_property(p, impl, profile(opts.profile), opts.seed,
+        settings = profile(opts.profile)
+        if opts.examples is not None:
+            from hypothesis import settings as Settings
+            settings = Settings(settings, max_examples=opts.examples)
+        r = run_property(p, impl, settings, opts.seed,
                          counterpart=counterpart, convention=convention, budget=budget)
         return [with_diagnosis(r, p, impl)]
     from ddg_oracle.compare import MeshExamples, as_read_by, run_mesh_properties

@@ -742,3 +742,14 @@ def test_the_command_loads_no_third_party_hypothesis_plugin():
         pytest.skip(f"no Hypothesis plugin to skip here: {control}")
     assert loaded("main()") == "[] 1"                        # as the command: none loaded
     assert loaded("main(['--version'])") == control          # from Python: nothing changed
+
+
+def test_examples_sets_how_many_examples_each_check_runs(capsys, tmp_path):
+    rc, out, err = _run(capsys, "check", "--impl", "reference", "--only", "D1.6", "D3.1",
+                        "--examples", "3", "--seed", "1", "--workers", "1",
+                        "--report", str(tmp_path / "r"))
+    assert rc == 0 and "(3 examples each)" in out, out
+    results = json.loads((tmp_path / "r" / "results.json").read_text())["results"]
+    assert [(r["status"], r["examples"], r["wanted"]) for r in results] == [("passed", 3, 3)] * 2
+    rc, _, err = _run(capsys, "check", "--impl", "reference", "--examples", "0")
+    assert rc == 2 and "--examples must be at least 1" in err and err.count("\n") == 1
