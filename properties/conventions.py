@@ -21,9 +21,9 @@ whose constants leave a margin of about 2 over the counted roundings (:mod:`.bou
 A pointwise curvature is multiplied back by a float vertex area (:attr:`Convention.divides_by`):
 the library's own area and this one each carry an honest float error, within the vertex-area
 bound of L3.7 and relative to the area unbounded on a needle; the angle defects' bounds add
-both for such an implementation (:func:`widened`: the curvature properties and ``compare``).  Once
-they did not, and PyGEL3D failed D2.2 at 1.38 x the bound on a needle tetrahedron where its
-curvature times its own mixed area is accurate.
+both for such an implementation (:func:`widened`: the curvature properties, ``compare`` and
+``verify --impl``).  Once they did not, and PyGEL3D failed D2.2 at 1.38 x the bound on a
+needle tetrahedron where its curvature times its own mixed area is accurate.
 Where an implementation declares nothing and fails, :func:`explaining` names the
 conventions under which its answer agrees with the exact one: the report then says
 "your cotan_laplacian is -L: declare conventions = {'laplacian': 'negative'}".
@@ -362,8 +362,9 @@ def widened(conventions, method: str, answer, case, bound):
     back by a float vertex area (:func:`pointwise_area`).  The library divided by its own
     float area and the map multiplies by another, each within L3.7's vertex-area bound B of
     the exact A (:attr:`.harness.Exact.vertex_area_bounds`), so the answer is the angle
-    defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), and
-    is infinite where B >= A (the float area is not even of certain sign).  Every other
+    defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), is
+    infinite where 0 < A <= B (the float area is not even of certain sign) and unchanged at
+    a vertex of no face (A = B = 0).  Every other
     map adds at most two roundings, inside the bounds: ``bound`` unchanged.  ``case``: the
     Example, or a function building it (called only if needed)."""
     name = pointwise_area(c for c in conventions if c.applies(method))
@@ -375,8 +376,12 @@ def widened(conventions, method: str, answer, case, bound):
     A = np.zeros(len(B))
     A[X.keep] = X.vertex_areas(name)
     with np.errstate(divide="ignore", invalid="ignore"):
-        d = np.where(A > B, 2 * B / (A - B), np.inf)
-    return bound + d * (np.abs(np.asarray(answer, dtype=np.float64)) + bound)
+        # no area at all (a vertex of no face: the map puts the protocol's value there,
+        # nothing is divided): nothing to add; an area not even of certain sign: no bound
+        d = np.where(A > B, 2 * B / (A - B), np.where(B == 0, 0.0, np.inf))
+        extra = d * (np.abs(np.asarray(answer, dtype=np.float64)) + bound)
+    # inf * 0 is NaN, and a NaN bound fails every comparison: infinite stays infinite
+    return bound + np.where(np.isinf(d), np.inf, extra)
 
 
 def to_reference(conventions, method: str, answer, V, F):

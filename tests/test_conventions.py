@@ -327,3 +327,17 @@ def test_verify_widens_the_written_bounds_of_a_pointwise_curvature(capsys):
                "tests.test_conventions:MixedAreaAtItsBound"])
     out = capsys.readouterr().out
     assert rc == 0 and " 0 FAIL" in out, out
+
+
+def test_the_widening_leaves_a_vertex_of_no_face_alone_and_is_never_nan():
+    from ddg_oracle.properties.conventions import parse, widened
+    from ddg_oracle.properties.strategies import mesh_case
+    V = [[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [5, 5, 5]]      # vertex 4: no face
+    case = mesh_case(V, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], "tetrahedron and a point")
+    K = np.array([1.0, 1.0, 1.0, 1.0, 2 * np.pi])
+    tol = np.full(5, 1e-15)
+    for bound in (tol, np.zeros(5)):
+        wide = widened(parse({"curvature": "per_mixed_area"}), "angle_defects", K, case, bound)
+        assert not np.isnan(wide).any() and wide[4] == bound[4]
+        assert (wide[:4] > bound[:4]).all() and np.isfinite(wide[:4]).all()
+    assert widened(parse("libigl"), "angle_defects", K, case, tol) is tol
