@@ -106,7 +106,8 @@ def _client(distributed, address: str):
     # a daemon thread: a scheduler that never answers must not keep the process alive
     thread = threading.Thread(target=connect, daemon=True, name="ddg-oracle-scheduler")
     thread.start()
-    thread.join(SCHEDULER_TIMEOUT + 5)
+    # dask's own error, if it comes within a little longer, is the more precise message
+    thread.join(SCHEDULER_TIMEOUT + min(5.0, SCHEDULER_TIMEOUT))
     if not got:
         raise InputError(f"--scheduler {address}: no dask scheduler answered within "
                          f"{SCHEDULER_TIMEOUT:g} s")

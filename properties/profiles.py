@@ -138,7 +138,7 @@ def database_from(spec: str | None):
         # the pooled connections it broke are reopened on the next command.
         client = redis.Redis.from_url(
             spec, socket_connect_timeout=5, socket_timeout=30,
-            retry=Retry(ExponentialBackoff(cap=1.0, base=0.05), 8),
+            retry=Retry(ExponentialBackoff(cap=1.0, base=0.05), REDIS_RETRIES),
             retry_on_error=[redis.ConnectionError, redis.TimeoutError])
         return TolerantDatabase(RedisExampleDatabase(client), spec)
     if os.path.exists(spec) and not os.path.isdir(spec):
@@ -149,6 +149,10 @@ def database_from(spec: str | None):
                       "goes on without it", RuntimeWarning, stacklevel=2)
         return None
     return TolerantDatabase(DirectoryBasedExampleDatabase(spec), spec)
+
+
+#: retries of a failed Redis command (backoff 0.05 s doubling, at most 1 s: 4.6 s for 8)
+REDIS_RETRIES = 8
 
 
 def _register(database) -> None:

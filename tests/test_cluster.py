@@ -1,7 +1,8 @@
 """check --scheduler on a real dask.distributed cluster: a scheduler and two workers started
 as a user starts them (``dask scheduler``, ``dask worker --nthreads 1``), each a process of
-its own, and ``local:N``; the results are the local run's byte for byte, a worker killed
-mid-run loses no result, --resume finishes a run on a cluster.
+its own; the results are the local run's byte for byte, a worker killed mid-run loses no
+result, --resume finishes a run on the cluster.  ``local:N`` (a LocalCluster started by the
+run) is tests/test_survey.py's, through the same module.
 
 Everything dask runs in processes of its own, as for a user: the suite's own processes
 never import distributed."""
@@ -99,12 +100,23 @@ def cluster(_scheduler):
     return address, workers
 
 
-def test_results_on_a_cluster_are_byte_identical_to_the_local_run(tmp_path, cluster, local_run):
+def test_results_on_a_cluster_are_byte_identical_and_resume_finishes_them(tmp_path, cluster,
+                                                                         local_run):
     address, _ = cluster
-    rc, out = _check(tmp_path / "remote", "--scheduler", address)
+    report = tmp_path / "remote"
+    rc, out = _check(report, "--scheduler", address)
     assert rc == local_run[0], out
-    assert (tmp_path / "remote" / "results.json").read_bytes() == local_run[1]
+    assert (report / "results.json").read_bytes() == local_run[1]
     assert "2 workers" in out
+    # as if interrupted after three results: --resume runs the rest on the same cluster (its
+    # command line, --scheduler included, is the run's own) and ends with the same bytes
+    lines = (report / "results.jsonl").read_text().splitlines()
+    (report / "results.jsonl").write_text("\n".join(lines[:3]) + "\n")
+    (report / "results.json").unlink()
+    p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--resume", str(report)],
+                       cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300)
+    assert p.returncode == local_run[0], p.stdout + p.stderr
+    assert (report / "results.json").read_bytes() == local_run[1]
 
 
 def test_a_worker_killed_mid_run_loses_no_result(tmp_path, cluster, local_run):
@@ -125,19 +137,6 @@ def test_a_worker_killed_mid_run_loses_no_result(tmp_path, cluster, local_run):
     assert not [r for r in results if r["status"] == "crashed"]
     assert (report / "results.json").read_bytes() == local_run[1]
     assert workers[0].wait() == -signal.SIGKILL and workers[1].poll() is None
-
-
-def test_resume_finishes_a_run_on_a_local_cluster(tmp_path, local_run):
-    part = tmp_path / "part"
-    rc, out = _check(part, "--scheduler", "local:2")
-    assert rc == local_run[0], out
-    lines = (part / "results.jsonl").read_text().splitlines()
-    (part / "results.jsonl").write_text("\n".join(lines[:3]) + "\n")   # as if interrupted
-    (part / "results.json").unlink()
-    p = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--resume", str(part)],
-                       cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300)
-    assert p.returncode == local_run[0], p.stdout + p.stderr
-    assert (part / "results.json").read_bytes() == local_run[1]
 
 
 def test_a_bad_scheduler_address_is_a_usage_error(capsys):

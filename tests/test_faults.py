@@ -150,6 +150,9 @@ def test_an_unreachable_database_is_a_warning_and_the_run_goes_on(capsys, monkey
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
     monkeypatch.setattr(profiles, "_registered", False)
     monkeypatch.setenv("DDG_HYPOTHESIS_DATABASE", "redis://127.0.0.1:1")
+    # no retry: the warning, not the backoff (4.6 s, which rides out a restart in
+    # tests/test_redis_database.py), is what this test is about
+    monkeypatch.setattr(profiles, "REDIS_RETRIES", 0)
     try:
         with pytest.warns(RuntimeWarning, match="the example database .* failed"):
             results = check_implementation(ReferenceImplementation(), only={"D1.6"})
@@ -179,7 +182,7 @@ def test_a_port_that_never_answers_as_a_scheduler_is_a_usage_error(capsys, monke
     import socket
     from ddg_oracle import cluster
     # dask's client hangs on a silent port whatever its timeout (over 30 s): any limit
-    # shows the refusal; the run waits for it plus 5 s
+    # shows the refusal; the run waits for it plus as long again (at most 5 s more)
     monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", 0.5)
     silent = socket.socket()
     silent.bind(("127.0.0.1", 0))

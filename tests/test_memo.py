@@ -65,11 +65,11 @@ def test_a_drawn_example_is_the_one_built_without_the_memo(name, monkeypatch):
                 "stars": curvature.vertex_stars(),
                 "convex": curvature.convex_polyhedra()}[name]
     memo.clear()
-    with_table = _drawn(strategy, 150)
+    with_table = _drawn(strategy, 100)
     assert len(memo.DRAWN) > 0                      # the steps were kept ...
-    again = _drawn(strategy, 150)                   # ... and a warm table changes nothing
+    again = _drawn(strategy, 100)                   # ... and a warm table changes nothing
     monkeypatch.setattr(memo.DRAWN, "shared", lambda key, compute: compute())
-    without = _drawn(strategy, 150)
+    without = _drawn(strategy, 100)
     assert with_table == again == without
 
 
