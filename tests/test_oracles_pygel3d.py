@@ -33,9 +33,15 @@ def test_every_applicable_property_passes_except_F_pygel3d_2():
     assert {"D1.6", "X1.4", "CS"} <= passed
     for r in results:
         if r.status == "FAILED":          # F-pygel3d-2: far from the origin, small error
+            # (unshrunk, or replayed from the example database: the first failing example,
+            # which may lie farther out than the finding's minimal one; products of absolute
+            # coordinates M round at eps M^2, so the error grows as M^2; a wrong formula
+            # would be off by O(1))
             Vf, _ = r.failure.mesh
-            assert np.abs(np.asarray(Vf, dtype=float)).max() >= 16, r.property_id
-            assert abs(r.failure.observed - r.failure.expected) < 1e-9, r.property_id
+            M = np.abs(np.asarray(Vf, dtype=float)).max()
+            assert M >= 16, r.property_id
+            error = abs(r.failure.observed - r.failure.expected)
+            assert error < min(1e-9 * M ** 2, 1e-3), (r.property_id, M, error)
 
 
 def test_pointwise_curvature_times_the_mixed_area_is_the_angle_defect():
