@@ -37,7 +37,7 @@ from collections import Counter
 from pathlib import Path
 
 from .common import ROOT, Mode, machine, say
-from .knockout_plugin import (ENV, PACKAGE, RECORD_ENV, STATS_ENV, VARIANTS,
+from .knockout_plugin import (ENV, HAND_ENV, PACKAGE, RECORD_ENV, STATS_ENV, VARIANTS,
                               VARIANTS_OF_KIND, reference_modules, targets_of)
 
 JSON = ROOT / "docs" / "perf" / "knockout.json"
@@ -91,7 +91,7 @@ def full(module: str) -> str:
 
 def _env(**extra) -> dict:
     env = {k: v for k, v in os.environ.items()
-           if k not in ("CI", ENV, RECORD_ENV, "PYTEST_ADDOPTS", "PYTEST_XDIST_WORKER")}
+           if k not in ("CI", ENV, HAND_ENV, RECORD_ENV, "PYTEST_ADDOPTS", "PYTEST_XDIST_WORKER")}
     env.update(DDG_HYPOTHESIS_DATABASE="none", PYTHONHASHSEED="0", **extra)
     return env
 
@@ -117,13 +117,14 @@ def _first_failure(out: str) -> str:
     return ""
 
 
-def run_knockout(spec: str | None, files, timeout: float = TIMEOUT) -> dict:
-    """One child: ``spec`` (MODULE:QUALNAME:VARIANT, or None) on ``files`` with ``-x``.
+def run_knockout(spec: str | None, files, timeout: float = TIMEOUT, hand: bool = False) -> dict:
+    """One child: ``spec`` (MODULE:QUALNAME:VARIANT, or None; with ``hand`` a hand-written
+    wrong version's MODULE:QUALNAME:NAME, benchmarks/knockout_hand.py) on ``files`` with ``-x``.
     status: killed (a test failed, or a test module failed to import), survived, timeout,
     or broken (pytest itself or the plugin failed: not a verdict)."""
     with tempfile.TemporaryDirectory(prefix="ddg-knockout-") as tmp:
         stats = Path(tmp) / "stats.json"
-        env = _env(**({ENV: spec, STATS_ENV: str(stats)} if spec else {}))
+        env = _env(**({HAND_ENV if hand else ENV: spec, STATS_ENV: str(stats)} if spec else {}))
         rc, secs, out = _pytest(files, env, timeout)
         changed = json.loads(stats.read_text()) if stats.exists() else None
     if rc is None:

@@ -7,7 +7,11 @@ Loaded with ``-p benchmarks.knockout_plugin`` by ``benchmarks/knockout.py`` in a
   at ``pytest_configure``, before any test module is imported, the function object itself
   is patched (its ``__code__`` replaced by a wrapper's), so a name imported elsewhere
   with ``from .cotangents import face_data`` is switched too.
-* ``DDG_KNOCKOUT_STATS=PATH`` (with it): at the end, how many calls of the function the
+* ``DDG_KNOCKOUT_HAND=MODULE:QUALNAME:NAME`` (``curvature:vertex_type:sign_reversed``): the
+  same, with a wrong version written by hand (``HAND_WRITTEN`` in
+  benchmarks/knockout_hand.py: a realistic mistake for a function no generic variant fits;
+  the function's code becomes a wrapper calling it, a generator function's too).
+* ``DDG_KNOCKOUT_STATS=PATH`` (with either): at the end, how many calls of the function the
   tests made and how many results the variant changed (a survivor with none changed was
   never really switched on).
 * ``DDG_KNOCKOUT_RECORD=PATH``: every target is wrapped by a recorder that leaves results
@@ -54,6 +58,7 @@ from fractions import Fraction
 
 ENV = "DDG_KNOCKOUT"
 RECORD_ENV = "DDG_KNOCKOUT_RECORD"
+HAND_ENV = "DDG_KNOCKOUT_HAND"           # a hand-written wrong version (knockout_hand.py)
 STATS_ENV = "DDG_KNOCKOUT_STATS"         # where to write how many results were changed
 VARIANTS = ("value", "last", "drop", "skip")
 PACKAGE = "ddg_oracle.reference"
@@ -395,6 +400,7 @@ def _factory():
     return wrapper
 """
 _CALL = "return {perturb}({orig}(*args, **kwargs))"
+_REPLACE = "return {perturb}({orig}, *args, **kwargs)"
 _SKIP = "{perturb}(); return None"
 _counter = [0]
 
@@ -413,10 +419,13 @@ def _wrapper_code(freevars: tuple, body: str):
 class Patch:
     """``f``'s code replaced by ``wrapper(*args, **kwargs)``: ``perturb(copy(*args,
     **kwargs))`` (or ``return None`` for ``skip``), where ``copy`` is a new function with
-    f's original code, globals, defaults and closure.  :meth:`undo` restores f."""
+    f's original code, globals, defaults and closure.  With ``replace``: ``replace(copy,
+    *args, **kwargs)`` (a hand-written wrong version; a generator function can take one,
+    its code becoming a plain function's returning what ``replace`` returns).
+    :meth:`undo` restores f."""
 
-    def __init__(self, f, perturb=None, skip=False, cache=None):
-        if inspect.isgeneratorfunction(f) or inspect.iscoroutinefunction(f):
+    def __init__(self, f, perturb=None, skip=False, cache=None, replace=None):
+        if replace is None and (inspect.isgeneratorfunction(f) or inspect.iscoroutinefunction(f)):
             raise NotApplicable("a generator function")
         self.f, self.cache = f, cache
         self.saved = (f.__code__, f.__defaults__, f.__kwdefaults__)
@@ -428,10 +437,12 @@ class Patch:
         copy.__kwdefaults__ = f.__kwdefaults__
         copy.__qualname__ = f.__qualname__
         self.original = copy
-        body = (_SKIP if skip else _CALL).format(orig=self.names[0], perturb=self.names[1])
+        body = (_REPLACE if replace is not None else _SKIP if skip else _CALL).format(
+            orig=self.names[0], perturb=self.names[1])
         code = _wrapper_code(f.__code__.co_freevars, body)
         f.__globals__[self.names[0]] = copy
-        f.__globals__[self.names[1]] = _skipped if skip else perturb
+        f.__globals__[self.names[1]] = (replace if replace is not None else
+                                        _skipped if skip else perturb)
         f.__code__ = code
         f.__defaults__ = None
         f.__kwdefaults__ = None
@@ -456,6 +467,19 @@ def knock_out(spec: str) -> Patch:
     if variant == "skip":
         return Patch(f, skip=True, cache=cache)
     return Patch(f, perturber(variant), cache=cache)
+
+
+def knock_out_by_hand(key: str) -> Patch:
+    """Switch on the hand-written wrong version ``MODULE:QUALNAME:NAME`` (MODULE short, as
+    ``curvature`` or ``exact.surds``; benchmarks/knockout_hand.py's ``HAND_WRITTEN``)."""
+    from .knockout_hand import HAND_WRITTEN
+    if key not in HAND_WRITTEN:
+        raise ValueError(f"no hand-written wrong version {key!r} (one of "
+                         f"{', '.join(HAND_WRITTEN)})")
+    h = HAND_WRITTEN[key]
+    module, qualname = h.target.split(":")
+    f, cache = function_of(f"{PACKAGE}.{module}", qualname)
+    return Patch(f, cache=cache, replace=h.call)
 
 
 # -- recording what each target returns and who calls it ----------------------------------------
@@ -501,6 +525,9 @@ def pytest_configure(config):
     spec = os.environ.get(ENV)
     if spec:
         _STATE["patch"] = knock_out(spec)
+    hand = os.environ.get(HAND_ENV)
+    if hand:
+        _STATE["patch"] = knock_out_by_hand(hand)
     if os.environ.get(RECORD_ENV):
         rec = Recorder()
         rec.wrap_all()

@@ -92,6 +92,34 @@ def test_a_knockout_patches_the_function_object_and_undo_restores_it():
     assert astuple(wrong_last(c)) == (True, 1, 0, 1)
 
 
+def test_a_hand_written_wrong_version_patches_the_function_and_undo_restores_it():
+    """benchmarks/knockout_hand.py's wrong versions switch on in the function object itself,
+    a generator function's too (cube_belt_twist), and count the results they change."""
+    from benchmarks.knockout_hand import HAND_WRITTEN
+    from benchmarks.knockout_plugin import STATS, knock_out_by_hand
+    from ddg_oracle.reference import surfaces
+    from ddg_oracle.reference.curvature import vertex_type
+    from ddg_oracle.reference.triangulations import cube_belt_twist
+
+    assert all(h.doc and h.key.count(":") == 2 for h in HAND_WRITTEN.values())
+    torus = surfaces.torus(8, 6)
+    right = [vertex_type(torus, v) for v in range(6)]
+    assert set(right) == {"elliptic", "hyperbolic"}
+    STATS.update(calls=0, changed=0)
+    p = knock_out_by_hand("curvature:vertex_type:sign_reversed")
+    q = knock_out_by_hand("triangulations:cube_belt_twist:one_fewer")
+    try:
+        swap = {"elliptic": "hyperbolic", "hyperbolic": "elliptic"}
+        assert [vertex_type(torus, v) for v in range(6)] == [swap[r] for r in right]
+        assert len(list(cube_belt_twist(3))) == 3
+        assert STATS == {"calls": 7, "changed": 7}
+    finally:
+        p.undo()
+        q.undo()
+    assert [vertex_type(torus, v) for v in range(6)] == right
+    assert len(list(cube_belt_twist(3))) == 4
+
+
 def test_a_knockout_that_must_be_killed_is_killed_in_a_child():
     """One child pytest run with the plugin: euler_characteristic off by one fails
     tests/test_surfaces.py; with no knockout it passes."""

@@ -1,11 +1,13 @@
 """Public reference functions that a generic wrong version of their result survived in the
 reference's tests (benchmarks/knockout.py, docs/knockout.md: the result negated, off by one,
 shifted by 1/3, an element dropped, the body skipped, two vertex labels swapped, a face
-reversed), or that no reference test called; each test here fails on that wrong
-version.  Exact, and on generic inputs (unequal areas, boundary, points in general
-position) wherever the function allows."""
+reversed), or a hand-written one (benchmarks/knockout_hand.py: a realistic mistake in a
+function no generic variant fits), or that no reference test called; each test here fails
+on that wrong version.  Exact, and on generic inputs (unequal areas, boundary, points in
+general position) wherever the function allows."""
 
 import random
+import re
 from fractions import Fraction
 from itertools import combinations
 
@@ -13,10 +15,11 @@ import pytest
 
 from ddg_oracle.reference import planar, rigidity, surfaces
 from ddg_oracle.reference.combinatorics import Triangulation
-from ddg_oracle.reference.errors import InputError, NonManifoldVertex
+from ddg_oracle.reference.errors import (DegenerateFace, InputError, NonManifoldVertex,
+                                         TriangleInequalityViolated)
 from ddg_oracle.reference.exact import sqrt
 from ddg_oracle.reference.geodesics import root_sum_at_least
-from ddg_oracle.reference.metric import PiecewiseFlatSurface
+from ddg_oracle.reference.metric import PiecewiseFlatSurface, degenerate_face
 from ddg_oracle.reference.sparse import SparseMatrix
 
 # --- never called by a reference test -------------------------------------------------------------
@@ -278,3 +281,218 @@ def test_minimal_surface_iteration_returns_its_surfaces_areas_and_certificates()
         assert cert == area_decrease_certificate(before, exact)
     for surface, area in zip(run.surfaces, run.areas):
         assert area == surface.metric().total_area()
+
+
+# --- hand-written wrong versions (benchmarks/knockout_hand.py) ---------------------------------
+# The functions no generic variant fits (results that are strings, exceptions, context
+# managers, scipy matrices, a generator; or never called): each test below fails on a
+# hand-written mistake that the reference tests let through.
+
+
+def _edge_lengths(t, by_pair):
+    """One length per edge of ``t`` from ``{(u, v): length}``."""
+    out = [None] * t.n_edges
+    for (u, v), x in by_pair.items():
+        out[next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {u, v})] = x
+    return out
+
+
+def test_from_lengths_takes_floats_exactly_and_refuses_lengths_not_positive():
+    """PiecewiseFlatSurface.from_lengths squares each length exactly: a float length's
+    square is its exact value's, ``Fraction(x) ** 2`` (not the rounded ``x * x``); a length
+    <= 0 is refused even where its square would make valid faces (squaring hides the sign)."""
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3)])
+    pairs = {(0, 1): 0.3, (1, 2): 0.4, (0, 2): 0.6, (2, 3): 0.7, (0, 3): 0.9}
+    s = PiecewiseFlatSurface.from_lengths(t, _edge_lengths(t, pairs))
+    for (u, v), x in pairs.items():
+        e = next(e for e in range(t.n_edges) if set(t.edge_vertices(e)) == {u, v})
+        assert s.squared_lengths[e] == Fraction(x) * Fraction(x) != Fraction(x * x)
+    for bad in (-0.3, 0):
+        with pytest.raises(TriangleInequalityViolated):
+            PiecewiseFlatSurface.from_lengths(t, _edge_lengths(t, {**pairs, (0, 1): bad}))
+
+
+def test_sparse_diagonal_takes_floats_exactly():
+    """SparseMatrix.diagonal makes its values exact (floats taken exactly, as every entry
+    of a SparseMatrix is a Fraction or a Surd): products with it are exact."""
+    values = [0.1, 3, Fraction(1, 3), -2.5, 0.7]
+    m = SparseMatrix.diagonal(values)
+    x = [3, 5, 7, 11, 13]
+    assert m.matvec(x) == [Fraction(v) * k for v, k in zip(values, x)]
+    assert m.quadratic_form(x) == sum(Fraction(v) * k * k for v, k in zip(values, x))
+    assert all(type(v) is Fraction for _, _, v in m.entries())
+
+
+def test_degenerate_face_names_the_edge_between_the_coincident_vertices():
+    """metric.degenerate_face with positions: for every face of a fan and every pair of its
+    corners made coincident, the error names an edge whose end points (read back from the
+    triangulation) are those two vertices; without positions, or with distinct collinear
+    ones, it names the face and its corners."""
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3), (0, 3, 4)])
+    base = [(0, 0), (4, 1), (1, 5), (-3, 2), (-2, -4)]
+    for f, face in enumerate(t.faces):
+        for a, b in combinations(face, 2):
+            pos = list(base)
+            pos[b] = pos[a]
+            err = degenerate_face(t, f, pos)
+            assert isinstance(err, DegenerateFace) and "coincident" in str(err)
+            e, i, j = map(int, re.match(r"edge (\d+) between vertices (\d+) and (\d+)",
+                                        str(err)).groups())
+            assert {i, j} == {a, b} == set(t.edge_vertices(e))
+        line = list(base)
+        line[face[2]] = (2 * line[face[1]][0] - line[face[0]][0],
+                         2 * line[face[1]][1] - line[face[0]][1])     # c = 2 b - a
+        for err in (degenerate_face(t, f), degenerate_face(t, f, line)):
+            assert isinstance(err, DegenerateFace)
+            assert f"face {f} {face}" in str(err) and "collinear" in str(err)
+
+
+def test_limits_restore_the_enclosing_value_and_none_keeps_it():
+    """exact.surds.limits nests: leaving a block restores the value before it (the
+    enclosing block's, not the default), also when the block raises; ``None`` keeps the
+    current value; and the guard is the one in force (a product over it raises)."""
+    from ddg_oracle.reference.errors import TermLimitExceeded
+    from ddg_oracle.reference.exact.surds import Surd, limits, settings
+    before = settings.term_limit
+    try:
+        with limits(term_limit=8):
+            with limits(term_limit=16):
+                assert settings.term_limit == 16
+            assert settings.term_limit == 8
+            with limits():
+                assert settings.term_limit == 8
+            with pytest.raises(RuntimeError):
+                with limits(term_limit=3):
+                    raise RuntimeError
+            assert settings.term_limit == 8
+            x = Surd(1)
+            for p in (2, 3, 5):
+                x = x * (1 + sqrt(p))                  # 8 terms: allowed
+            with pytest.raises(TermLimitExceeded):
+                x * (1 + sqrt(7))                      # 16 terms
+        assert settings.term_limit == before
+    finally:
+        settings.term_limit = before
+
+
+def test_to_scipy_keeps_underflowing_entries_and_rounds_each_entry_once():
+    """SparseMatrix.to_scipy: an entry whose float is 0.0 stays a stored entry (its
+    position kept), and every entry is its value correctly rounded, checked against
+    mpmath's division of numerator by denominator rounded once to 53 bits (large
+    numerators and denominators, where dividing two rounded floats is off)."""
+    import mpmath
+    rng = random.Random(45)
+    entries = [(0, 0, Fraction(1, 10 ** 400)), (1, 2, Fraction(-3, 7 * 10 ** 350))]
+    entries += [(2 + k // 5, k % 5, Fraction(rng.randrange(2 ** 60, 2 ** 80) * rng.choice((1, -1)),
+                                             rng.randrange(2 ** 60, 2 ** 80)))
+                for k in range(30)]
+    m = SparseMatrix.from_entries((8, 5), entries)
+    assert m.nnz == len(entries)
+    S = m.to_scipy()
+    assert S.shape == (8, 5)
+    c = S.tocoo()
+    got = {(i, j): x for i, j, x in zip(c.row.tolist(), c.col.tolist(), c.data.tolist())}
+    assert len(got) == c.nnz == len(entries)
+    for i, j, v in entries:
+        assert got[i, j] == float(mpmath.fdiv(v.numerator, v.denominator, prec=53)), (i, j)
+
+
+def _mp_defect(positions, v, neighbours):
+    """2 pi minus the angles at ``v`` between consecutive neighbours, by mpmath (60 digits)."""
+    import mpmath
+    with mpmath.workdps(60):
+        p = [mpmath.mpf(x.numerator) / x.denominator for x in map(Fraction, positions[v])]
+        d = [[mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator - y
+              for x, y in zip(positions[w], p)] for w in neighbours]
+        total = 0
+        for a, b in zip(d, d[1:] + d[:1]):
+            dot = sum(x * y for x, y in zip(a, b))
+            total += mpmath.acos(dot / mpmath.sqrt(sum(x * x for x in a) * sum(y * y for y in b)))
+        return 2 * mpmath.pi - total
+
+
+def test_vertex_type_decides_tiny_curvature_exactly():
+    """curvature.vertex_type by the exact sign of K (D2.2): the apex of a very flat cone
+    (|K| ~ 1e-12, below any float tolerance) is elliptic, a very flat saddle hyperbolic,
+    as K evaluated by mpmath to 60 digits says; the planar star is flat."""
+    from ddg_oracle.reference.curvature import vertex_type
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    ring = [(5, 0), (3, 4), (0, 5), (-4, 3), (-5, 0), (-3, -4), (0, -5), (4, -3)]
+    n = len(ring)
+    t = Triangulation.from_faces([(0, 1 + j, 1 + (j + 1) % n) for j in range(n)] +
+                                 [(1 + (j + 1) % n, 1 + j, 9) for j in range(n)])  # closed
+    seen = set()
+    for h in (Fraction(1, 10 ** 6), Fraction(-1, 10 ** 6), Fraction(1, 10 ** 3), 0):
+        for saddle in (False, True):
+            pos = [(0, 0, 0)] + [(x, y, h * (-1) ** j if saddle else -h)
+                                 for j, (x, y) in enumerate(ring)] + [(0, 0, -7)]
+            s = PolyhedralSurface(t, pos)
+            got = vertex_type(s, 0)
+            if h == 0:
+                assert got == "flat"
+            else:
+                k = _mp_defect(pos, 0, [1 + j for j in range(n)])
+                assert abs(k) > 1e-40
+                assert got == ("elliptic" if k > 0 else "hyperbolic"), (h, saddle, k)
+            seen.add(got)
+    assert seen == {"elliptic", "flat", "hyperbolic"}
+
+
+def test_decimal_is_the_value_rounded_with_its_integer_part():
+    """ArccotSum.decimal against mpmath (60 digits): the string is ``-?D+.D{digits}``
+    (a 0 before the point below 1) and within 0.51 units of its last digit of the value,
+    for positive and negative angles below and above 1 and several digit counts."""
+    import mpmath
+    from ddg_oracle.reference.exact import corner_angle, pi
+    with mpmath.workdps(60):
+        cases = [(pi / 7, mpmath.pi / 7), (-pi / 7, -mpmath.pi / 7), (-pi, -mpmath.pi),
+                 (corner_angle(2), mpmath.acot(2)), (-corner_angle(3), -mpmath.acot(3)),
+                 (pi * Fraction(-7, 3) + corner_angle(5), -7 * mpmath.pi / 3 + mpmath.acot(5))]
+        for x, want in cases:
+            for digits in (1, 2, 3, 5, 8, 13):
+                s = x.decimal(digits)
+                assert re.fullmatch(rf"-?[0-9]+\.[0-9]{{{digits}}}", s), s
+                assert s.startswith("-") == (want < 0)
+                assert abs(mpmath.mpf(s) - want) <= mpmath.mpf(51) / 100 / 10 ** digits, (s, want)
+
+
+def test_cube_belt_twist_yields_flips_plus_one_triangulations_from_the_cube():
+    """triangulations.cube_belt_twist(n) (Examples 4.3 / 4.4): n + 1 triangulations of the
+    cube's surface (the same total area as the cube's), the first the cube's own, also for
+    n = 0; each has an edge at least as long as Example 4.4's bound 1 + ((k - 2) / 4)^2
+    after k flips (the flips twist the belt, they never undo each other)."""
+    from ddg_oracle.reference.triangulations import cube_belt_twist
+    c = surfaces.cube().metric()
+    assert [s.squared_lengths for s in cube_belt_twist(0)] == [c.squared_lengths]
+    with pytest.raises(ValueError):
+        list(cube_belt_twist(-1))
+    seq = list(cube_belt_twist(14))
+    assert len(seq) == 15 and seq[0].squared_lengths == c.squared_lengths
+    for k, s in enumerate(seq):
+        assert s.total_area() == c.total_area() == 6
+        assert max(s.squared_lengths) >= 1 + Fraction(k - 2, 4) ** 2, k
+
+
+def test_face_data_scales_and_gram_integers_match_the_faces():
+    """cotangents.face_data on a surface given by squared lengths whose denominators have
+    primes above 100 (FaceData's docstring): per face, ``S[f]`` makes the face's squared
+    lengths integers, ``G[f] = 16 area^2 S[f]^2`` with ``16 area^2`` by Heron's formula in
+    the squared lengths, ``2(ab + bc + ca) - a^2 - b^2 - c^2``, and ``N[h] / sqrt(G)`` is
+    the cotangent ``(x + y - o) / (4 area)`` at the corner opposite halfedge h."""
+    from ddg_oracle.reference.cotangents import face_data
+    t = Triangulation.from_faces([(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)])
+    rng = random.Random(46)
+    primes = (101, 103, 107, 109, 113, 127)
+    sq = [1 + Fraction(rng.randint(-20, 20), p) for p in primes[:t.n_edges]]
+    m = PiecewiseFlatSurface(t, sq)
+    fd = face_data(m)
+    for f in range(t.n_faces):
+        a, b, c = m.face_squared_lengths(f)             # halfedges 3f, 3f + 1, 3f + 2
+        S = fd.S[f]
+        assert all((S * x).denominator == 1 for x in (a, b, c))
+        h16 = 2 * (a * b + b * c + c * a) - a * a - b * b - c * c
+        assert fd.G[f] == h16 * S * S
+        for h, (o, x, y) in zip(range(3 * f, 3 * f + 3), ((a, b, c), (b, c, a), (c, a, b))):
+            # cot^2 = (x + y - o)^2 / h16, with the sign of x + y - o
+            assert Fraction(fd.N[h] ** 2, fd.G[f]) == (x + y - o) ** 2 / h16
+            assert (fd.N[h] > 0) == (x + y - o > 0)
