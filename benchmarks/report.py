@@ -129,7 +129,9 @@ a sum over all faces (it dominates the time on these surfaces).
 SUITE = """\
 ## 4. Test suite and `ddg-oracle check`
 
-Wall time on 2 workers (`pytest -n 2`), one run each.
+README's test command exactly (its `pytest -n N`), and README's `ddg-oracle check`, one
+run each: the wall time, and the CPU time (user + system) of the command and every process
+it waited for (less noisy than wall time on a shared machine).
 """
 
 MESHCHECK = """\
@@ -490,6 +492,7 @@ _TABLES = [
                 ("h terms", lambda r: str(r["max_terms_h"]))]),
     ("suite", SUITE, [("command", lambda r: r["command"]),
                       ("wall seconds", lambda r: f"{r['wall']:.0f}"),
+                      ("CPU seconds", lambda r: f"{r['cpu']:.0f}" if "cpu" in r else "-"),
                       ("exit", lambda r: str(r["exit"])), ("last line", lambda r: r["summary"])]),
     ("main", MAIN, [("profile", lambda r: r["profile"]), ("run", lambda r: str(r["run"])),
                     ("wall seconds", lambda r: f"{r['wall']:.1f}"),

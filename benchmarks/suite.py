@@ -38,26 +38,38 @@ def run_hypothesis(mode: Mode) -> dict:
     return {"rows": rows}
 
 
-COMMANDS = [
-    ("test suite, default profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
-                                     "-p", "no:cacheprovider", "tests"], {}),
-    ("test suite, ci profile", [sys.executable, "-m", "pytest", "-n", "2", "-q",
-                                "-p", "no:cacheprovider", "tests"], {"CI": "true"}),
-    ("ddg-oracle check (default)", [sys.executable, "-m", "ddg_oracle", "check"], {}),
-]
+def readme_workers() -> str:
+    """The xdist worker count of README's test command (``python -m pytest -n N tests``)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    return re.search(r"python -m pytest -n (\d+) tests", text).group(1)
+
+
+def commands() -> list:
+    """(label, argv, environment) of the suite exactly as README runs it, and of the check."""
+    suite = [sys.executable, "-m", "pytest", "-n", readme_workers(), "-q", "-p",
+             "no:cacheprovider", "tests"]
+    return [("test suite, default profile", suite, {}),
+            ("test suite, ci profile", suite, {"CI": "true"}),
+            ("ddg-oracle check (default)", [sys.executable, "-m", "ddg_oracle", "check"], {})]
 
 
 def run_suite(mode: Mode) -> dict:
-    """One run each (minutes): wall time, exit status."""
+    """One run each (minutes): wall time, the CPU time of the command and every process it
+    waited for (user + system: less noisy than wall on a shared machine), exit status."""
+    import resource
     rows = []
-    for label, cmd, env in COMMANDS:
+    for label, cmd, env in commands():
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         p = subprocess.run(cmd, cwd=ROOT, env={**os.environ, **env}, capture_output=True,
                            text=True)
         wall = time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         last = (p.stdout.strip().splitlines() or [""])[-1]
-        rows.append({"command": label, "wall": wall, "exit": p.returncode, "summary": last})
-        say(f"  suite {label:30} {wall:8.1f} s exit {p.returncode}: {last}")
+        rows.append({"command": label, "wall": wall, "cpu": cpu, "exit": p.returncode,
+                     "summary": last})
+        say(f"  suite {label:30} {wall:8.1f} s ({cpu:.0f} CPU-s) exit {p.returncode}: {last}")
     return {"rows": rows}
 
 
