@@ -682,3 +682,97 @@ def test_ER_27_the_voronoi_vertex_radius_is_measured_from_Q():
     Q = P[0]
     assert holds and d2(Q, P[0]) < r2                              # P_0 lies in D_Q
     assert not condition(Q)[0]                                     # corrected: Q is no vertex
+
+
+# --- ER-28 ------------------------------------------------------------------------------
+
+
+def _superbasis_faces(T):
+    """The two faces (0, p, p + q) and (0, p + q, q) of the one-vertex square torus whose
+    edges are the three lines of the superbasis T (as from `_lattice_triangulations`)."""
+    p, q, r = sorted(T)
+    if (p[0] - q[0], p[1] - q[1]) in (r, (-r[0], -r[1])):
+        q = (-q[0], -q[1])                                   # then r = +-(p + q)
+    s = (p[0] + q[0], p[1] + q[1])
+    assert s in (r, (-r[0], -r[1]))
+    return [((0, 0), p, s), ((0, 0), s, q)]
+
+
+def _incircle(a, b, c, d):
+    """> 0 iff d is strictly inside the circle through a, b, c (integers, exact)."""
+    rows = [(x[0] - d[0], x[1] - d[1]) for x in (a, b, c)]
+    m = [(u, v, u * u + v * v) for u, v in rows]
+    det = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+           - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+           + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    return det * (1 if _cross(a, b, c) > 0 else -1)
+
+
+def _theorem_4_7_set_A(faces):
+    """The set A of the proof of Theorem 4.7 (lines 2039-2043) on the square torus R^2 / Z^2
+    with one vertex v (every lattice point is a lift of v), and the angle alpha on it (line
+    2047), as an exact cotangent (a larger angle has a smaller cotangent): (Delta, a, S) with
+    Delta a face with no empty immersed disk (a lattice point strictly inside its circumcircle),
+    a = (B C) an edge of Delta whose largest empty disk segment D_(Delta, a) beyond a lies in
+    D_Delta (a lattice point beyond a in the closed circumdisk), S = v on its arc (a lattice
+    point beyond a of largest angle BSC).  On the flat torus every disk segment extends the
+    immersion of Delta, so only the lattice points decide."""
+    A = {}
+    for f, (P0, P1, P2) in enumerate(faces):
+        tri = (P0, P1, P2)
+        xs, ys = [t[0] for t in tri], [t[1] for t in tri]
+        den = 2 * _cross(*tri)
+        d = [t[0] ** 2 + t[1] ** 2 for t in tri]
+        cx = Fraction(d[0] * (P1[1] - P2[1]) + d[1] * (P2[1] - P0[1]) + d[2] * (P0[1] - P1[1]), den)
+        cy = Fraction(d[0] * (P2[0] - P1[0]) + d[1] * (P0[0] - P2[0]) + d[2] * (P1[0] - P0[0]), den)
+        r = isqrt(int((cx - P0[0]) ** 2 + (cy - P0[1]) ** 2)) + 2
+        box = [(i, j) for i in range(int(cx) - r, int(cx) + r + 1)
+               for j in range(int(cy) - r, int(cy) + r + 1)]       # holds the closed circumdisk
+        assert min(xs) >= int(cx) - r and max(xs) <= int(cx) + r
+        assert min(ys) >= int(cy) - r and max(ys) <= int(cy) + r
+        if not any(_incircle(*tri, z) > 0 for z in box):
+            continue                                          # Delta has an empty disk
+        for e in range(3):
+            B, C, O = tri[e], tri[(e + 1) % 3], tri[(e + 2) % 3]
+            beyond = [z for z in box if _cross(B, C, z) * _cross(B, C, O) < 0]
+            if not any(_incircle(*tri, z) >= 0 for z in beyond):
+                continue                                      # D_(Delta, a) leaves D_Delta
+            cots = [Fraction((B[0] - z[0]) * (C[0] - z[0]) + (B[1] - z[1]) * (C[1] - z[1]),
+                             abs(_cross(z, B, C))) for z in beyond]
+            A[(f, e, "v")] = min(cots)                        # the first lattice point hit
+    return A
+
+
+def test_ER_28_the_maximum_in_theorem_4_7s_proof_is_taken_over_A():
+    """Proof of Theorem 4.7 (line 2049): 'Let (Delta, a, S) in D such that alpha(Delta, a, S)
+    = max over (Delta, a, S) in A of alpha (4.1)'.  The triple must lie in A (lines 2039-2045),
+    the set alpha is defined on (alpha : A -> (0, pi)); the proof's D's are disks (D_Delta,
+    D') and disk segments (D_(Delta, a), the family of segments fitting along a), which hold
+    no triples.  On the one-vertex square torus, for every triangulation with |x|^2 + |y|^2 +
+    |x + y|^2 <= 52 (34 of them): A (computed from lattice points, exact) is empty iff every
+    edge is Delaunay (the theorem), and otherwise the maximiser of alpha over A has a
+    non-Delaunay edge a, which is what the proof derives by contradiction from (4.1).  None
+    of the segments D_(Delta*, a*) fitting along its edge is a triple."""
+    seen_non_delaunay = 0
+    for T in _lattice_triangulations(52):
+        faces = _superbasis_faces(T)
+        delaunay = []                                  # each edge, from both of its faces
+        for (P0, P1, P2) in faces:
+            tri = (P0, P1, P2)
+            for e in range(3):
+                B, C, O = tri[e], tri[(e + 1) % 3], tri[(e + 2) % 3]
+                X = (B[0] + C[0] - O[0], B[1] + C[1] - O[1])   # across (B C): a parallelogram
+                delaunay.append(_incircle(*tri, X) <= 0)
+        A = _theorem_4_7_set_A(faces)
+        assert (not A) == all(delaunay)
+        if not A:
+            continue
+        seen_non_delaunay += 1
+        best = min(A.values())                          # the largest angle alpha
+        star = next(t for t, c in A.items() if c == best)
+        f, e, S = star
+        assert star in A                                # corrected: (Delta, a, S) in A
+        assert not delaunay[3 * f + e]                  # the proof's conclusion: a is not Delaunay
+        segments = {("segment", faces[f][e], faces[f][(e + 1) % 3], c) for c in A.values()}
+        assert star not in segments                     # printed: no D holds the triple
+    assert seen_non_delaunay >= 3
