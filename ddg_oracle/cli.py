@@ -518,6 +518,10 @@ def _validate_check(args) -> None:
     from ddg_oracle.properties.profiles import time_limit_seconds
     if args.examples is not None and args.examples < 1:
         raise UsageError(f"--examples must be at least 1, got {args.examples}")
+    if args.examples is not None and args.mesh:
+        # a mesh file is one example: a count would be silently ignored
+        raise UsageError("--examples counts generated examples; with --mesh each file is "
+                         "checked once: drop one of them")
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
     check_timeout(args)

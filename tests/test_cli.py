@@ -753,3 +753,9 @@ def test_examples_sets_how_many_examples_each_check_runs(capsys, tmp_path):
     assert [(r["status"], r["examples"], r["wanted"]) for r in results] == [("passed", 3, 3)] * 2
     rc, _, err = _run(capsys, "check", "--impl", "reference", "--examples", "0")
     assert rc == 2 and "--examples must be at least 1" in err and err.count("\n") == 1
+    # a mesh file is checked once: a count would be silently ignored
+    mesh = tmp_path / "t.obj"
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    rc, _, err = _run(capsys, "check", "--impl", "reference", "--mesh", str(mesh),
+                      "--examples", "5")
+    assert rc == 2 and "with --mesh each file is checked once" in err and err.count("\n") == 1
