@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ddg_oracle.containment import alive
+from ddg_oracle.application.containment import alive
 
 from .common import ROOT, Mode, machine, say
 
@@ -164,9 +164,9 @@ MODULES = {
                    "resource.setrlimit(resource.RLIMIT_AS, (n, n))\n"
                    "os.execv(sys.argv[2], sys.argv[2:])\n",
     # tests/test_faults.py sets cluster.SCHEDULER_TIMEOUT to 2 s; the same in a subprocess
-    "short_scheduler_timeout.py": "import sys\nfrom ddg_oracle import cluster\n"
+    "short_scheduler_timeout.py": "import sys\nfrom ddg_oracle.application import cluster\n"
                                   "cluster.SCHEDULER_TIMEOUT = 2.0\n"
-                                  "from ddg_oracle.cli import main\nsys.exit(main(sys.argv[1:]))\n",
+                                  "from ddg_oracle.application.cli import main\nsys.exit(main(sys.argv[1:]))\n",
     "raises_at_init.py": "class Impl:\n    def __init__(self):\n"
                          "        raise RuntimeError('no licence for this machine')\n",
 }
@@ -174,7 +174,7 @@ MODULES = {
 
 def make_kit(directory) -> Path:
     """Write the kit (implementations, a driver, an icosahedron) into ``directory``."""
-    from ddg_oracle.meshfiles import write_obj
+    from ddg_oracle.application.meshfiles import write_obj
     from ddg_oracle.reference import surfaces
     kit = Path(directory)
     kit.mkdir(parents=True, exist_ok=True)

@@ -42,7 +42,7 @@ def pymeshlab_sample(name: str):
         import pymeshlab
     except ImportError:
         return None
-    from ddg_oracle.meshfiles import read_mesh
+    from ddg_oracle.application.meshfiles import read_mesh
     path = Path(pymeshlab.__file__).parent / "tests" / "sample_meshes" / name
     return read_mesh(path) if path.exists() else None
 

@@ -3,7 +3,7 @@
 The benchmark writes a wavy grid surface (float64 coordinates printed as ``repr``, the way an
 exporter that round-trips writes them) as OBJ, OFF, ASCII PLY and binary PLY of about 5, 30
 and 100 MB (``--quick``: 1 and 5 MB) into a temporary directory, and reads each one with
-``ddg_oracle.meshfiles.read_mesh`` in a fresh interpreter.  The peak is that interpreter's
+``ddg_oracle.application.meshfiles.read_mesh`` in a fresh interpreter.  The peak is that interpreter's
 ``ru_maxrss`` from ``os.wait4`` in a small wrapper process (``_PEAK`` of
 tests/test_hostile.py): a process forked from a big parent starts with the parent's
 high-water mark, a wrapper's child with the wrapper's few MB.  The same interpreter doing
@@ -33,7 +33,7 @@ TARGET = 10.0                        # peak RSS at most this many times the file
 
 #: the child: read the mesh (argv[1]) unless argv[2] == "baseline"; prints nothing
 _READ = ("import os, sys\n"
-         "from ddg_oracle.meshfiles import read_mesh\n"
+         "from ddg_oracle.application.meshfiles import read_mesh\n"
          "os.stat(sys.argv[1])\n"
          "if sys.argv[2] != 'baseline':\n"
          "    V, F = read_mesh(sys.argv[1])\n"

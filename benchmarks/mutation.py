@@ -7,8 +7,9 @@ mutants on by *module name*: ``ddg_oracle.reference.cotangents`` at run time mus
 path ``ddg_oracle/reference/cotangents.py`` of the copy.  This repository installs
 ``reference/`` as ``ddg_oracle.reference`` through a package-dir mapping (an editable
 install), so each run first stages, under a temporary folder (never inside the
-repository), the installed layout: ``ddg_oracle/`` with ``reference/``, ``properties/`` and
-``oracles/`` inside it, and beside it the tests, examples, benchmarks, docs and vectors.
+repository), the installed layout: ``ddg_oracle/`` with the layers' folders (``reference/``,
+``protocol/``, ``properties/``, ``oracles/``, ``application/``) inside it, and beside it the
+tests, examples, benchmarks, docs and vectors.
 mutmut puts its ``mutants/`` first on ``sys.path``, so the tests import the staged, mutated
 package, not the editable one.  The repository's own files are only read.
 
@@ -36,6 +37,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 from collections import Counter
 from pathlib import Path
 
@@ -65,7 +67,11 @@ PINNED = "mutmut>=3.8,<3.9"       # the optional extra ``mutation`` of pyproject
 SAMPLES = {"combinatorics": 12}
 # what the staged copy needs beside the package (tests import tests.*, examples.*, benchmarks.*)
 ALSO = ["tests", "examples", "benchmarks", "docs", "vectors"]
-SUBPACKAGES = {"reference": "reference", "properties": "properties", "oracles": "oracles"}
+#: layer -> its folder in the repository (pyproject.toml's package-dir table), staged inside
+#: ``ddg_oracle/`` as the wheel installs them
+SUBPACKAGES = {package.split(".", 1)[1]: folder for package, folder in tomllib.loads(
+    (ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-dir"].items()
+    if "." in package}
 _SKIP = shutil.ignore_patterns("__pycache__", ".hypothesis", "build", "mutants", "*.pyc")
 
 

@@ -159,7 +159,7 @@ is their median); then once more with `--report` into a temporary directory
 (the report's pictures and files add some seconds) for its `timings.json`, and
 `--profile ci --report` once.  *slowest task*: one property on one
 implementation, from `timings.json`; every task runs under its budget
-(`properties/budget.py`: 18 s, of which at most 3 s shrinking once a failure
+(`protocol/budget.py`: 18 s, of which at most 3 s shrinking once a failure
 is found, and 6 crashes with `default`; 40 s, 10 s shrinking and 12 crashes
 with `ci`).  Load: the 1-minute load average before the run.
 """

@@ -46,7 +46,7 @@ def _faces(name: str, path: Path) -> int | str:
     """The number of (triangulated) faces of a corpus mesh as survey reads and validates
     it, or why it cannot be surveyed (a mesh with no faces, a degenerate or non-manifold
     one): named one by one, survey would stop at it."""
-    from ddg_oracle.compare import load
+    from ddg_oracle.application.compare import load
     from ddg_oracle.reference.errors import InputError
     try:
         return len(load(name, path).F)
@@ -58,7 +58,7 @@ def corpus_sets() -> list[str]:
     """``pymeshlab:``, and ``cgal:`` if its cache is there."""
     sets = ["pymeshlab:"]
     try:
-        from ddg_oracle import corpus
+        from ddg_oracle.application import corpus
         if (corpus.corpus_dir() / corpus.MANIFEST).is_file():
             sets.append("cgal:")
     except Exception:  # noqa: BLE001  (no corpus support in this version: PyMeshLab only)
@@ -68,7 +68,7 @@ def corpus_sets() -> list[str]:
 
 def choose(sets: list[str], max_faces: int) -> tuple[list[tuple[str, int]], list]:
     """(the meshes to survey, those left out (too large, too slow or unreadable)), each (name, faces)."""
-    from ddg_oracle.compare import resolve
+    from ddg_oracle.application.compare import resolve
     chosen, left = [], []
     for name, path, _ in resolve(sets):
         n = _faces(name, path)
@@ -108,7 +108,7 @@ def run(mode: Mode) -> dict:
     if out.returncode not in (0, 1):          # a usage error, our bug, or interrupted
         raise RuntimeError(f"ddg-oracle survey exited {out.returncode}; {DOC.name} left as it was")
     doc = json.loads((report / "results.json").read_text())
-    from ddg_oracle.survey import MeshResult, markdown_table, scoreboard, summary_line
+    from ddg_oracle.application.survey import MeshResult, markdown_table, scoreboard, summary_line
     done = [MeshResult.from_json(x) for x in doc["meshes"]]
     scores = scoreboard(done, list(dict.fromkeys(s["implementation"]
                                                  for s in doc["scoreboard"])))

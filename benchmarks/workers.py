@@ -5,12 +5,12 @@ median of 10 each, wall milliseconds.  ``python -m benchmarks.workers``."""
 import statistics
 import time
 
-from ddg_oracle import containment
+from ddg_oracle.application import containment
 
 
 def _ready(conn) -> None:
     """A worker's start: what a pool worker needs imported, then one message."""
-    import ddg_oracle.isolation  # noqa: F401
+    import ddg_oracle.application.isolation  # noqa: F401
     import ddg_oracle.properties.registry  # noqa: F401
     conn.send(1)
     conn.close()

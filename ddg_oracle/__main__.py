@@ -2,6 +2,6 @@
 
 import sys
 
-from ddg_oracle.cli import main
+from ddg_oracle.application.cli import main
 
 sys.exit(main())

@@ -5,7 +5,7 @@ library's own value where it follows another convention than the notes (each
 documented in docs/findings.md and docs/conventions.md).  Each adapter lists its
 options next to its code (e.g. ``oracles/libigl.py``, ``LIBRARY_CONVENTIONS``) and
 declares the chosen ones with :func:`declare`, through the same ``conventions``
-attribute any implementation may have (``properties.protocol.declared_conventions``);
+attribute any implementation may have (``protocol.methods.declared_conventions``);
 ``ddg-oracle check --expect-conventions`` reports a failure of such an option as
 "convention" when the same adapter with reference conventions passes the same example.
 """

@@ -11,18 +11,18 @@ import math
 
 import numpy as np
 
-from ddg_oracle.reference import delaunay, laplacian
-from ddg_oracle.reference.combinatorics import Triangulation, next_corner
-from ddg_oracle.reference.exact import rounded_sum
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference import delaunay, laplacian
+from ..reference.combinatorics import Triangulation, next_corner
+from ..reference.exact import rounded_sum
+from ..reference.polyhedral import PolyhedralSurface
 
-from ddg_oracle.properties import curvature as views, memo
-from ddg_oracle.properties.delaunay import delaunay_of
-from ddg_oracle.properties.example import surface_key
-from ddg_oracle.properties.harness import laplacian_view
-from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
+from ..properties import curvature as views, memo
+from ..properties.delaunay import delaunay_of
+from ..properties.example import surface_key
+from ..properties.harness import laplacian_view
+from ..protocol.methods import ISOLATED_VERTEX, OutsideDomain
 
-from .arrays import Referenced
+from ..protocol.arrays import Referenced
 
 
 def float_view(x) -> float:
@@ -35,7 +35,7 @@ def float_view(x) -> float:
 
 
 #: this adapter as ``ddg-oracle check --impl reference`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "reference", "object": "ReferenceImplementation", "library": None, "extra": None,
            "rank": 0}
@@ -124,7 +124,7 @@ class ReferenceImplementation:
         return Referenced(V, F).embed(laplacian_view(self._s(V, F)).copy())
 
     def area_gradient(self, V, F):
-        from ddg_oracle.reference.areas import area_gradient_floats
+        from ..reference.areas import area_gradient_floats
         r = Referenced(V, F)
         out = np.full((r.n, 3), ISOLATED_VERTEX["area_gradient"])   # no face: no area to move
         out[r.keep] = np.array(area_gradient_floats(self._s(V, F)), dtype=np.float64).reshape(-1, 3)
@@ -138,7 +138,7 @@ class ReferenceImplementation:
         over the square roots of every face does not finish on float meshes (issue 18).
         The properties do not need it: they check a solver by the exact energy."""
         from fractions import Fraction
-        from ddg_oracle.reference.dirichlet import solve_dirichlet
+        from ..reference.dirichlet import solve_dirichlet
         r = Referenced(V, F)
         boundary = np.asarray(boundary, dtype=np.int64).reshape(-1)
         values = np.asarray(values, dtype=np.float64).reshape(-1)
@@ -196,12 +196,12 @@ class ReferenceImplementation:
         return keep[np.array(t.faces, dtype=np.int64)], np.array(l2, dtype=float)
 
     def planar_delaunay(self, P):
-        from ddg_oracle.reference.planar import delaunay_triangulation
+        from ..reference.planar import delaunay_triangulation
         return np.array(delaunay_triangulation([tuple(p) for p in np.asarray(P, float)])
                         .triangulation.faces, dtype=np.int64)
 
     def planar_flip_to_delaunay(self, V, F):
-        from ddg_oracle.reference.planar import planar_flip_to_delaunay
+        from ..reference.planar import planar_flip_to_delaunay
         V = np.asarray(V, float)
         if V.ndim == 2 and V.shape[1] == 3 and np.any(V[:, 2] != 0):
             raise ValueError("planar_flip_to_delaunay: the points must lie in the plane z = 0")

@@ -22,7 +22,7 @@ The program's failures are the implementation's: it dies, hangs (no answer
 within ``timeout`` seconds), writes a line that is not JSON, answers another
 id or the wrong shape: each raises :class:`DriverFailed` (a crash of the
 implementation, reported with its input; the program is restarted for the
-next call).  ``outside_domain`` raises :class:`~ddg_oracle.properties.protocol.OutsideDomain`.
+next call).  ``outside_domain`` raises :class:`~ddg_oracle.protocol.methods.OutsideDomain`.
 What the program printed on stderr is kept and quoted when it fails.
 """
 
@@ -39,11 +39,11 @@ import time
 import numpy as np
 import scipy.sparse
 
-from ddg_oracle.properties.budget import check_time_left, cut_short, time_left
-from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain
+from ..protocol.budget import check_time_left, cut_short, time_left
+from ..protocol.methods import FLOAT64_EPSILON, METHODS, OutsideDomain
 
-from .arrays import checked_arrays
-from .processes import NotSent, call_limit, exit_text, stderr_tail
+from ..protocol.arrays import checked_arrays
+from ..protocol.processes import NotSent, call_limit, exit_text, stderr_tail
 
 PROTOCOL_VERSION = 1
 #: the longest answer line read: this many bytes, plus as many per vertex and face of the
@@ -84,7 +84,7 @@ def _short(value) -> str:
     return text if len(text) <= 120 else text[:117] + "..."
 
 
-#: the dtype and shape of each argument of a request (properties.protocol.Method.arguments)
+#: the dtype and shape of each argument of a request (protocol.methods.Method.arguments)
 _ARGUMENTS = {"V": (np.float64, 2), "F": (np.int64, 2), "P": (np.float64, 2),
               "boundary": (np.int64, 1), "values": (np.float64, 1)}
 #: the shape of a "numbers" answer by its element (n vertices, m faces of the request)
@@ -94,7 +94,7 @@ _NUMBERS_SHAPE = {"corner": lambda n, m: (m, 3), "vertex": lambda n, m: (n,),
 
 def decode_value(method: str, value, n: int, m: int):
     """The protocol value of ``method`` from its JSON answer (docs/protocol.md), read by the
-    method's kind and element (:class:`~ddg_oracle.properties.protocol.Method`)."""
+    method's kind and element (:class:`~ddg_oracle.protocol.methods.Method`)."""
     spec = METHODS.get(method)
     if spec is None:
         raise DriverFailed(f"{method}: not a protocol method")
@@ -234,7 +234,7 @@ class Executable:
         if isinstance(declared, str) or (isinstance(declared, dict) and declared
                                          and "follows" not in declared):
             # a preset or a map of the vocabulary (properties.conventions): validated here
-            from ddg_oracle.properties.conventions import parse
+            from ..properties.conventions import parse
             try:
                 parse(declared)
             except ValueError as e:
@@ -333,7 +333,7 @@ class Executable:
                  budget_cut: float | None = None):
         """The next answer line, parsed: at most ``timeout`` seconds and ``longest`` bytes.
         ``budget_cut``: the wait is the rest of a check task's budget, and the call began
-        then (out of time: :func:`~ddg_oracle.properties.budget.cut_short` decides whether
+        then (out of time: :func:`~ddg_oracle.protocol.budget.cut_short` decides whether
         the program hangs)."""
         deadline = time.monotonic() + timeout
         buffer, seen = self._buffer, 0
@@ -391,7 +391,7 @@ class Executable:
             request[name] = (a if ndim == 2 else a.reshape(-1)).tolist()
         n = len(request["V"] if "V" in request else request["P"])
         m = len(request.get("F", ()))
-        # inside a check task, wait at most what its budget has left (properties.budget):
+        # inside a check task, wait at most what its budget has left (protocol.budget):
         # an answer still missing then is this program's hang
         check_time_left(f"{self.name}.{method}")
         left, limit = time_left(), call_limit(self.timeout, max(n, m))
@@ -478,7 +478,7 @@ def serve(impl, stdin=None, stdout=None, name: str | None = None) -> None:
     {"id": 1, "value": 1}
     """
     import sys
-    from ddg_oracle.properties.protocol import capabilities, implementation_name, machine_epsilon
+    from ..protocol.methods import capabilities, implementation_name, machine_epsilon
     stdin = stdin or sys.stdin
     stdout = stdout or sys.stdout
     for line in stdin:

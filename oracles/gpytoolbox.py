@@ -32,7 +32,7 @@ convex for outward faces).  ``dihedral="library"`` keeps the unsigned angle.
 
 Bad input: gpytoolbox does not check indices (a negative one silently wraps
 around in numpy, one >= #V raises IndexError deep inside); :func:`_arrays`
-(``ddg_oracle.oracles.arrays.checked_arrays``) checks shapes, index ranges and finite
+(``ddg_oracle.protocol.arrays.checked_arrays``) checks shapes, index ranges and finite
 coordinates first and raises the reference's typed ``ValueError``s.
 
 >>> import numpy as np
@@ -52,9 +52,9 @@ import scipy.sparse
 
 import gpytoolbox as gpy
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
-from ddg_oracle.reference.combinatorics import next_corner, prev_corner
+from ..reference.combinatorics import next_corner, prev_corner
 
 _arrays = checked_arrays
 
@@ -67,14 +67,14 @@ LIBRARY_CONVENTIONS = {
 
 
 #: this adapter as ``ddg-oracle check --impl gpytoolbox`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "gpytoolbox", "object": "Gpytoolbox", "library": "gpytoolbox", "extra": "peers",
            "rank": 4}
 
 
 class Gpytoolbox:
-    """gpytoolbox as an implementation of the protocol (``properties/protocol.py``)."""
+    """gpytoolbox as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "gpytoolbox"
 

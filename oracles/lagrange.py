@@ -74,7 +74,7 @@ import scipy.sparse
 import lagrange
 from lagrange import polyddg
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -84,7 +84,7 @@ LIBRARY_CONVENTIONS = {
 }
 
 #: this adapter as ``ddg-oracle check --impl lagrange`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs, the pip extra
+#: module: ddg_oracle.application.implementations): the object, the library it needs, the pip extra
 #: that installs it, its place in reports
 ADAPTER = {"name": "lagrange", "object": "Lagrange", "library": "lagrange",
                    "extra": "lagrange", "rank": 12}
@@ -104,7 +104,7 @@ def _attribute(m, attribute_id) -> np.ndarray:
 
 
 class Lagrange:
-    """Adobe Lagrange as an implementation of the protocol (``properties/protocol.py``)."""
+    """Adobe Lagrange as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "lagrange"
 

@@ -48,12 +48,12 @@ import scipy.sparse
 
 import lapy
 
-from ddg_oracle.properties.protocol import OutsideDomain
+from ..protocol.methods import OutsideDomain
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 
 #: this adapter as ``ddg-oracle check --impl lapy`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs, the pip extra
+#: module: ddg_oracle.application.implementations): the object, the library it needs, the pip extra
 #: that installs it, its place in reports
 ADAPTER = {"name": "lapy", "object": "Lapy", "library": "lapy", "extra": "lapy", "rank": 9}
 
@@ -71,7 +71,7 @@ def _used_mesh(V, F) -> tuple["lapy.TriaMesh", np.ndarray]:
 
 
 class Lapy:
-    """LaPy as an implementation of the protocol (``properties/protocol.py``)."""
+    """LaPy as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "lapy"
     conventions = "lapy"            # {"unused_vertices": "dropped"} (module doc)

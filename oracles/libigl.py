@@ -42,7 +42,7 @@ import scipy.sparse
 
 import igl
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
 
 
@@ -65,14 +65,14 @@ LIBRARY_CONVENTIONS = {
 
 
 #: this adapter as ``ddg-oracle check --impl libigl`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "libigl", "object": "Libigl", "library": "igl", "extra": "libigl",
            "rank": 1}
 
 
 class Libigl:
-    """libigl as an implementation of the protocol (``properties/protocol.py``)."""
+    """libigl as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "libigl"
 

@@ -97,12 +97,12 @@ import scipy.sparse
 from meshlib import mrmeshnumpy as mn
 from meshlib import mrmeshpy as mm
 
-from ddg_oracle.properties.protocol import ISOLATED_VERTEX, OutsideDomain
+from ..protocol.methods import ISOLATED_VERTEX, OutsideDomain
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 
 #: this adapter as ``ddg-oracle check --impl meshlib`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs, the pip extra
+#: module: ddg_oracle.application.implementations): the object, the library it needs, the pip extra
 #: that installs it, its place in reports
 ADAPTER = {"name": "meshlib", "object": "MeshLib", "library": "meshlib", "extra": "meshlib",
            "rank": 13}
@@ -179,7 +179,7 @@ def _flipped(b: _Built):
 
 
 class MeshLib:
-    """MeshLib as an implementation of the protocol (``properties/protocol.py``)."""
+    """MeshLib as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "meshlib"
     machine_epsilon = 2.0 ** -23          # float coordinates and arithmetic (module doc)

@@ -46,7 +46,7 @@ import scipy.sparse
 import mouette as M
 from mouette.processing.border import extract_border_cycle_all
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -55,7 +55,7 @@ LIBRARY_CONVENTIONS = {
 }
 
 #: this adapter as ``ddg-oracle check --impl mouette`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs, the pip extra that
+#: module: ddg_oracle.application.implementations): the object, the library it needs, the pip extra that
 #: installs it, its place in reports
 ADAPTER = {"name": "mouette", "object": "Mouette", "library": "mouette", "extra": "mouette",
            "rank": 10}
@@ -72,7 +72,7 @@ def _padded(A, n: int) -> scipy.sparse.csr_matrix:
 
 
 class Mouette:
-    """mouette as an implementation of the protocol (``properties/protocol.py``)."""
+    """mouette as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "mouette"
 

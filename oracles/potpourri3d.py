@@ -22,7 +22,7 @@ Bad input: ``validate_mesh`` checks shapes only (its index test, off by
 default, uses ``np.amin`` where it means the maximum, core.py l. 23); an
 index out of range raises numpy's IndexError in the numpy functions but
 reaches C++ unchecked in ``edges``.  :func:`_arrays`
-(``ddg_oracle.oracles.arrays.checked_arrays``) checks first and raises the reference's
+(``ddg_oracle.protocol.arrays.checked_arrays``) checks first and raises the reference's
 typed ``ValueError``s.
 
 >>> import numpy as np
@@ -42,20 +42,20 @@ import scipy.sparse
 
 import potpourri3d
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 
 _arrays = checked_arrays
 
 
 #: this adapter as ``ddg-oracle check --impl potpourri3d`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "potpourri3d", "object": "Potpourri3d", "library": "potpourri3d", "extra": "peers",
            "rank": 6}
 
 
 class Potpourri3d:
-    """potpourri3d as an implementation of the protocol (``properties/protocol.py``)."""
+    """potpourri3d as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "potpourri3d"
 

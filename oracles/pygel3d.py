@@ -41,9 +41,9 @@ import numpy as np
 
 from pygel3d import hmesh
 
-from ddg_oracle.properties.protocol import OutsideDomain
+from ..protocol.methods import OutsideDomain
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -52,7 +52,7 @@ LIBRARY_CONVENTIONS = {
 }
 
 #: this adapter as ``ddg-oracle check --impl pygel3d`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs, the pip extra that
+#: module: ddg_oracle.application.implementations): the object, the library it needs, the pip extra that
 #: installs it, its place in reports
 ADAPTER = {"name": "pygel3d", "object": "Pygel3d", "library": "pygel3d", "extra": "pygel3d",
            "rank": 11}
@@ -79,7 +79,7 @@ def _manifold(V, F):
 
 
 class Pygel3d:
-    """PyGEL3D as an implementation of the protocol (``properties/protocol.py``)."""
+    """PyGEL3D as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "pygel3d"
 

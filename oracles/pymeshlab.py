@@ -54,13 +54,13 @@ import math
 
 import numpy as np
 
-from ddg_oracle.properties.protocol import ISOLATED_VERTEX
+from ..protocol.methods import ISOLATED_VERTEX
 
-from .arrays import Referenced, checked_arrays
+from ..protocol.arrays import Referenced, checked_arrays
 from .conventions import declare
 
 import pymeshlab
-from ddg_oracle.reference.combinatorics import next_corner, prev_corner
+from ..reference.combinatorics import next_corner, prev_corner
 
 
 class VertexOrderChanged(ValueError):
@@ -110,11 +110,11 @@ def exact_mixed_voronoi_areas(V, F, exact: bool = False):
     A/4 to the others.  Sums are exact.  Returns floats (each correctly
     rounded), or the exact ``Surd`` values with ``exact=True``.
     """
-    from ddg_oracle.reference import PolyhedralSurface
+    from ..reference import PolyhedralSurface
 
     surface = PolyhedralSurface.from_arrays(V, F)
     try:
-        from ddg_oracle.reference.laplacian import vertex_areas_voronoi
+        from ..reference.laplacian import vertex_areas_voronoi
     except ImportError:
         areas = _mixed_areas_from_metric(surface.metric())
     else:
@@ -149,7 +149,7 @@ def mixed_voronoi_areas(V, F) -> np.ndarray:
 
 
 def _mixed_areas_from_metric(metric) -> list:
-    from ddg_oracle.reference.exact import Surd
+    from ..reference.exact import Surd
 
     t = metric.triangulation
     acc = [Surd(0)] * t.n_vertices
@@ -194,14 +194,14 @@ LIBRARY_CONVENTIONS = {
 
 
 #: this adapter as ``ddg-oracle check --impl pymeshlab`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "pymeshlab", "object": "PyMeshLab", "library": "pymeshlab", "extra": "pymeshlab",
            "rank": 2}
 
 
 class PyMeshLab:
-    """PyMeshLab as an implementation of the protocol (``properties/protocol.py``)."""
+    """PyMeshLab as an implementation of the protocol (``protocol/methods.py``)."""
 
     #: vcglib computes curvature and areas in float32: tolerances use its epsilon
     machine_epsilon = 2.0 ** -23

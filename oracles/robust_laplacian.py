@@ -29,7 +29,7 @@ Options (the defaults give the reference's conventions)
 -------------------------------------------------------
 ``RobustLaplacian(boundary="reference")``: meshes with a boundary edge (an
 edge of exactly one face) are outside the domain: the method raises
-:class:`ddg_oracle.properties.protocol.OutsideDomain` and the properties do not check
+:class:`ddg_oracle.protocol.methods.OutsideDomain` and the properties do not check
 that example.  ``boundary="library"``: the tufted-cover operator on every mesh.
 
 ``RobustLaplacian(mollify="reference")``: ``mollify_factor=0``, no intrinsic
@@ -40,7 +40,7 @@ some triangle is that close to degenerate (geometry-central
 ``intrinsic_mollification.cpp`` l. 20-37); then every weight changes (F-robust-laplacian-3).
 
 Bad input: the C++ code indexes vertices by the face list unchecked;
-:func:`_arrays` (``ddg_oracle.oracles.arrays.checked_arrays``) checks shapes, index ranges
+:func:`_arrays` (``ddg_oracle.protocol.arrays.checked_arrays``) checks shapes, index ranges
 and finite coordinates first and raises the reference's typed ``ValueError``s.
 
 >>> import numpy as np
@@ -58,9 +58,9 @@ import scipy.sparse
 
 import robust_laplacian
 
-from ddg_oracle.properties.protocol import OutsideDomain
+from ..protocol.methods import OutsideDomain
 
-from .arrays import Referenced, boundary_edges, checked_arrays
+from ..protocol.arrays import Referenced, boundary_edges, checked_arrays
 from .conventions import declare
 
 MOLLIFY_FACTOR = {"reference": 0.0, "library": 1e-5}   # mollify option -> mollify_factor
@@ -77,14 +77,14 @@ LIBRARY_CONVENTIONS = {
 
 
 #: this adapter as ``ddg-oracle check --impl robust_laplacian`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "robust_laplacian", "object": "RobustLaplacian", "library": "robust_laplacian", "extra": "peers",
            "rank": 5}
 
 
 class RobustLaplacian:
-    """robust-laplacian as an implementation of the protocol (``properties/protocol.py``)."""
+    """robust-laplacian as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "robust_laplacian"
 

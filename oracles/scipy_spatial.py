@@ -15,7 +15,7 @@ import scipy.spatial
 
 
 #: this adapter as ``ddg-oracle check --impl scipy`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "scipy", "object": "ScipySpatial", "library": "scipy", "extra": None,
            "rank": 3}

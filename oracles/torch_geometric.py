@@ -39,17 +39,17 @@ import scipy.sparse
 import torch
 from torch_geometric.utils import get_mesh_laplacian
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 
 #: this adapter as ``ddg-oracle check --impl torch_geometric`` finds it (read without
-#: importing the module: ddg_oracle.implementations): the object, the library it needs,
+#: importing the module: ddg_oracle.application.implementations): the object, the library it needs,
 #: the pip extra that installs it, its place in reports
 ADAPTER = {"name": "torch_geometric", "object": "TorchGeometric", "library": "torch_geometric",
            "extra": "torch-geometric", "rank": 14}
 
 
 class TorchGeometric:
-    """PyTorch Geometric as an implementation of the protocol (``properties/protocol.py``)."""
+    """PyTorch Geometric as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "torch_geometric"
     conventions = {"laplacian": "negative"}      # C = -L (module doc)

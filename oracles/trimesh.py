@@ -20,7 +20,7 @@ vertices (the protocol's vertices are the input's rows).
   ``dihedral="library"`` keeps the unsigned angle (F-trimesh-5).
 * ``area``: ``mesh.area``.
 
-Bad input is checked first by :func:`~ddg_oracle.oracles.arrays.checked_arrays`
+Bad input is checked first by :func:`~ddg_oracle.protocol.arrays.checked_arrays`
 (trimesh would index out of range deep inside, or wrap negative indices).
 
 >>> import numpy as np
@@ -39,7 +39,7 @@ import numpy as np
 
 import trimesh
 
-from .arrays import checked_arrays
+from ..protocol.arrays import checked_arrays
 from .conventions import declare
 
 
@@ -56,14 +56,14 @@ LIBRARY_CONVENTIONS = {
 
 
 #: this adapter as ``ddg-oracle check --impl trimesh`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "trimesh", "object": "Trimesh", "library": "trimesh", "extra": "peers",
            "rank": 7}
 
 
 class Trimesh:
-    """trimesh as an implementation of the protocol (``properties/protocol.py``)."""
+    """trimesh as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "trimesh"
 

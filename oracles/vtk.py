@@ -47,7 +47,7 @@ try:                                             # VTK >= 9.4
 except ImportError:                              # VTK 9.2, 9.3
     from vtkmodules.vtkFiltersCore import vtkIdFilter as _IdFilter
 
-from .arrays import boundary_edges, checked_arrays
+from ..protocol.arrays import boundary_edges, checked_arrays
 from .conventions import declare
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -73,14 +73,14 @@ def polydata(V, F) -> vtkPolyData:
 
 
 #: this adapter as ``ddg-oracle check --impl vtk`` finds it (read without importing the
-#: module: ddg_oracle.implementations): the object, the library it needs (None: the
+#: module: ddg_oracle.application.implementations): the object, the library it needs (None: the
 #: core's own dependencies), the pip extra that installs it, its place in reports
 ADAPTER = {"name": "vtk", "object": "Vtk", "library": "vtkmodules", "extra": "peers",
            "rank": 8}
 
 
 class Vtk:
-    """VTK as an implementation of the protocol (``properties/protocol.py``)."""
+    """VTK as an implementation of the protocol (``protocol/methods.py``)."""
 
     name = "vtk"
 

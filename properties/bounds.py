@@ -96,14 +96,14 @@ from fractions import Fraction
 
 import numpy as np
 
-from ddg_oracle.reference.combinatorics import face_of, next_corner, opposite_corner, prev_corner
-from ddg_oracle.reference.exact import rounded_sum
-from ddg_oracle.reference.exact.rationals import on_common_denominator
-from ddg_oracle.reference.metric import heron16
+from ..reference.combinatorics import face_of, next_corner, opposite_corner, prev_corner
+from ..reference.exact import rounded_sum
+from ..reference.exact.rationals import on_common_denominator
+from ..reference.metric import heron16
 
 from . import memo
 from .example import Example
-from .protocol import eps
+from ..protocol.methods import eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",

@@ -23,8 +23,8 @@ from __future__ import annotations
 import numpy as np
 
 from .arithmetic import implementations_arithmetic
-from .budget import BudgetExceeded, calling
-from .protocol import METHODS, OutsideDomain, implementation_name
+from ..protocol.budget import BudgetExceeded, calling
+from ..protocol.methods import METHODS, OutsideDomain, implementation_name
 from .registry import PropertyFailure
 
 __all__ = ["Watched", "first_non_finite", "raised_by_implementation"]

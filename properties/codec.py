@@ -39,7 +39,7 @@ class BadEncoding(ValueError):
 def _records():
     """name -> (type, fields of the value, build from the fields): the records that may
     appear, each rebuilt by its own (validating) constructor."""
-    from ddg_oracle.reference.combinatorics import Classification, Triangulation
+    from ..reference.combinatorics import Classification, Triangulation
 
     from .example import Example
     from .registry import PropertyFailure, TieDisagreement

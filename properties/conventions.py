@@ -171,7 +171,7 @@ def _shift(eps):
 def _vocabulary() -> dict:
     two = lambda a, V, F: a / 2                                  # noqa: E731  (exact)
     neg = lambda a, V, F: -a                                     # noqa: E731  (exact)
-    from .protocol import ISOLATED_VERTEX, OutsideDomain
+    from ..protocol.methods import ISOLATED_VERTEX, OutsideDomain
 
     def unused(method):
         return lambda a, V, F: _expand_used(a, V, F, ISOLATED_VERTEX.get(method, 0.0))

@@ -12,7 +12,7 @@ terminal, ``check_implementation``'s AssertionError, a pytest failure,
   example, with only ddg-oracle and the user's module installed::
 
       from ddg_oracle.properties.counterexample import replay
-      from ddg_oracle.implementations import load_implementation
+      from ddg_oracle.application.implementations import load_implementation
       replay("D1.6", load_implementation("mymod:Impl"), "eNqr...")
 
   :func:`replay` raises what the check raised (the PropertyFailure, or the
@@ -163,7 +163,7 @@ def mesh_text(mesh, exact=None, limit: int = INLINE_VERTICES, indent: str = "  "
 
 
 def implementation_spec(impl) -> str | None:
-    """How :func:`ddg_oracle.implementations.load_implementation` loads ``impl`` again: its
+    """How :func:`ddg_oracle.application.implementations.load_implementation` loads ``impl`` again: its
     ``spec`` (an isolated or built-in implementation), else ``module:Class`` of its class;
     None for an object no import can rebuild (a class defined in a function, ``__main__``)."""
     spec = getattr(impl, "spec", None)
@@ -224,7 +224,7 @@ def snippet(property_id: str, spec: str | None, encoded: str, width: int = 88) -
     if spec is None:
         lines.append("impl = ...  # your implementation object (its class could not be imported)")
     else:
-        lines.append("from ddg_oracle.implementations import load_implementation")
+        lines.append("from ddg_oracle.application.implementations import load_implementation")
         lines.append(f"impl = load_implementation({spec!r})")
     chunk = width - 8
     parts = [encoded[k:k + chunk] for k in range(0, len(encoded), chunk)] or [""]

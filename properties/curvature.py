@@ -1,7 +1,7 @@
 """Chapter 2 properties: curvature of polyhedral surfaces (D2.2, R2.2, L2.4, T2.5, T2.6,
 X2.1, R2.4, D2.3, T2.7, R2.5, D2.6, X2.3).
 
-Each property takes an implementation (see :mod:`ddg_oracle.properties.protocol`) and an
+Each property takes an implementation (see :mod:`ddg_oracle.protocol.methods`) and an
 example drawn from its strategy.  Expected values come from the exact reference
 (:mod:`ddg_oracle.reference.curvature`) evaluated on *exactly the float coordinates the
 implementation receives* (every float is a rational), or from how the example
@@ -22,16 +22,16 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import assume, strategies as st
 
-from ddg_oracle.reference import curvature as ref
-from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.combinatorics import Triangulation
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference import curvature as ref
+from ..reference import surfaces
+from ..reference.combinatorics import Triangulation
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, total_area_view, vertex_tolerances)
 from .conventions import declared, widened
-from .protocol import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
+from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
 from .registry import EXACT_SUM_LIMIT, PropertyFailure, TieDisagreement, prop, quantity
 from .strategies import Example, floated, jittered_surfaces
 from . import variants

@@ -1,6 +1,6 @@
 """Chapter 4 properties: intrinsic Delaunay triangulations and the Laplace-Beltrami operator.
 
-Protocol methods used (``properties/protocol.py``): ``cotan_laplacian``,
+Protocol methods used (``protocol/methods.py``): ``cotan_laplacian``,
 ``corner_angles``, ``is_locally_delaunay`` (per face and corner: is the edge
 opposite the corner locally Delaunay), ``intrinsic_delaunay_laplacian`` (the
 cotan Laplacian of an intrinsic Delaunay triangulation of the mesh's metric,
@@ -43,10 +43,10 @@ from functools import cached_property
 import numpy as np
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.curvature import corner_angles
-from ddg_oracle.reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
-from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.curvature import corner_angles
+from ..reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
+from ..reference.intrinsic import IntrinsicTriangulation
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import K_COT, corner_tolerances, entry_bounds, gamma, heron_product
@@ -57,9 +57,9 @@ from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
                          single_triangles)
 from .metrics import polycube_surfaces
 from .precision import representable
-from .protocol import eps
+from ..protocol.methods import eps
 from .registry import PropertyFailure, TieDisagreement, faces_text, prop, quantity
-from ddg_oracle.reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
+from ..reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
                                                 opposite_corner, prev_corner)
 
 
@@ -278,7 +278,7 @@ def flipped_meshes(draw):
     """A closed jittered polyhedron (or a grid in R^3) with up to 12 drawn combinatorial
     flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
     flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
-    from ddg_oracle.reference.errors import InputError
+    from ..reference.errors import InputError
     case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
         lambda s: mesh_case(s.positions, s.triangulation.faces, "polycube"))))
     t = case.surface.triangulation
@@ -332,8 +332,8 @@ def non_orientable_meshes(draw):
     immersion, whose metric is all an intrinsic triangulation needs) or a Moebius strip:
     D4.8, A4.13, C4.19 and L4.20 hold for any piecewise flat surface, orientable or not
     (docs/findings.md F-libigl-6: a flip algorithm that assumes an orientation breaks there)."""
-    from ddg_oracle.reference import surfaces
-    from ddg_oracle.reference.errors import InputError
+    from ..reference import surfaces
+    from ..reference.errors import InputError
     kind = draw(st.sampled_from(["Moebius strip", "projective plane", "Klein bottle"]))
     if kind == "Moebius strip":
         s = surfaces.mobius_strip(draw(st.integers(3, 6)))
@@ -834,7 +834,7 @@ def _planar_result(impl, pts, pid):
     of three exactly collinear points is a failure of an exact implementation; for a float
     one it is an orientation tie (exactly 0) that rounding decided otherwise: its caller
     checks the other triangles and reports a tie disagreement if they pass."""
-    from ddg_oracle.reference.planar import orientation
+    from ..reference.planar import orientation
     P = np.array([[float(x), float(y)] for x, y in pts], dtype=np.float64)
     T = np.asarray(impl.planar_delaunay(P))
     mesh = ([[float(x), float(y), 0.0] for x, y in pts], T.tolist() if T.ndim == 2 else [])
@@ -908,7 +908,7 @@ def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
     """(exact in-circle determinant of the exact points (D4.1), as float; the bound on the
     error of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
     the permanent of the lifted 3 x 3 matrix, rounded up to 16 eps."""
-    from ddg_oracle.reference.delaunay import incircle_determinant
+    from ..reference.delaunay import incircle_determinant
     rows = [(p[0] - d[0], p[1] - d[1]) for p in (a, b, c)]
     lifts = [x * x + y * y for x, y in rows]
     (ax, ay), (bx, by), (cx, cy) = rows
@@ -921,7 +921,7 @@ def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
 def _real_violations(pts, tris):
     """Empty-disk violations of the triangles beyond the float in-circle bound, and the
     number within it (near ties, which rounding decides)."""
-    from ddg_oracle.reference.planar import empty_disk_violations, orientation
+    from ..reference.planar import empty_disk_violations, orientation
     real, ties = [], 0
     for cell, v, why in empty_disk_violations(pts, [frozenset(t) for t in tris]):
         t = sorted(cell)
@@ -958,7 +958,7 @@ def empty_disk_property(impl, pts):
       "cocircular triangles are merged (compared with the exact flip algorithm's)",
       needs={"planar_delaunay"}, on_mesh=None, strategy=_planar_points)
 def unique_planar_tessellation(impl, pts):
-    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
+    from ..reference.planar import cocircular_cells, delaunay_tessellation
     tris, mesh, flat = _planar_result(impl, pts, "T4.1")
     got, want = cocircular_cells(pts, tris), delaunay_tessellation(pts)
     if got != want or flat:
@@ -1005,8 +1005,8 @@ def planar_delaunay_problems(pts, tris, boundary) -> int:
     Shewchuk's float bound of 0 (:func:`incircle_with_bound`, at :func:`eps`).  Raises
     :class:`NotPlanarDelaunay` for the first problem; returns the number of edges
     non-Delaunay within the bound (near ties, which rounding decides).  Shared by the
-    property and the test vectors (``ddg_oracle.vectors``)."""
-    from ddg_oracle.reference.planar import in_circle, orientation
+    property and the test vectors (``ddg_oracle.application.vectors``)."""
+    from ..reference.planar import in_circle, orientation
     for k, t in enumerate(tris):
         if len(set(t)) < 3 or orientation(*(pts[v] for v in t)) <= 0:
             raise NotPlanarDelaunay(f"face {k} {t} is degenerate or clockwise",
@@ -1039,7 +1039,7 @@ def planar_delaunay_problems(pts, tris, boundary) -> int:
       "started on the convex hull, the Delaunay tessellation (T4.1)",
       needs={"planar_flip_to_delaunay"}, on_mesh=None, strategy=_planar_triangulations)
 def planar_flips_reach_delaunay(impl, example):
-    from ddg_oracle.reference.planar import cocircular_cells, delaunay_tessellation
+    from ..reference.planar import cocircular_cells, delaunay_tessellation
     pid = "L4.3 / P4.4"
     pts, faces, on_hull = example
     V = np.array([[float(x), float(y), 0.0] for x, y in pts])
@@ -1080,7 +1080,7 @@ def _quads():
       "sign is that of r1 r3 - r2 r4 (L4.15, C4.16) unless within the bound",
       needs={"cotan_laplacian"}, on_mesh=None, strategy=_quads)
 def rippa_energy_difference(impl, quad_u):
-    from ddg_oracle.reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
+    from ..reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
     pts, u = quad_u
     exact = float(rippa_right_side(pts, u))
     V = [(x, y, 0) for x, y in pts]

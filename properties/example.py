@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ddg_oracle.reference.combinatorics import Classification, Triangulation
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.combinatorics import Classification, Triangulation
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 

@@ -15,14 +15,14 @@ from functools import cached_property
 
 import numpy as np
 
-from ddg_oracle.reference.areas import area_gradient_floats
-from ddg_oracle.reference.laplacian import cotan_laplacian, vertex_areas_floats
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.areas import area_gradient_floats
+from ..reference.laplacian import cotan_laplacian, vertex_areas_floats
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
-from .protocol import ISOLATED_VERTEX, eps
+from ..protocol.methods import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
 
 __all__ = ["Exact", "exact_laplacian", "laplacian_view", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",

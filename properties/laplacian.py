@@ -4,7 +4,7 @@ Every property takes an implementation providing ``cotan_laplacian(V, F)`` (and,
 for L3.7, ``vertex_areas_voronoi`` / ``vertex_areas_barycentric``), V float64
 n x 3 and F int m x 3, in the reference's conventions: ``(L f)(i) = sum_j nu(ij)
 (f(i) - f(j))``, positive semidefinite, ``nu = 1/2 (cot a + cot b)``, boundary
-``1/2 cot a`` (see ``properties/protocol.py``).  The truth comes from the exact
+``1/2 cot a`` (see ``protocol/methods.py``).  The truth comes from the exact
 reference (``ddg_oracle.reference.laplacian``, ``ddg_oracle.reference.areas``) evaluated on the very
 floats the implementation received (every float is a dyadic rational, taken
 exactly), or from how the example was built.
@@ -27,16 +27,16 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.dirichlet import directional_derivative
-from ddg_oracle.reference.laplacian import (dirichlet_energy_pl, dirichlet_energy_gradient_pl,
+from ..reference.dirichlet import directional_derivative
+from ..reference.laplacian import (dirichlet_energy_pl, dirichlet_energy_gradient_pl,
                                             weight_signs_by_angles)
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import gamma, total_area_view
 from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
                       implementation_matrix, record, worst, worst_sparse)
-from .protocol import FLOAT64_EPSILON, ISOLATED_VERTEX, capabilities, eps
+from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, capabilities, eps
 from .registry import TieDisagreement, prop, quantity
 from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
@@ -506,7 +506,7 @@ def minimal_surface_step_decreases_area(impl, case: Example):
 
 
 def _face_areas(surface):
-    from ddg_oracle.reference.exact import sqrt
+    from ..reference.exact import sqrt
     p = surface.positions
     for a, b, c in surface.triangulation.faces:
         u = [y - x for x, y in zip(p[a], p[b])]

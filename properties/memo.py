@@ -35,7 +35,7 @@ import weakref
 from collections import OrderedDict
 
 from .precision import input_format
-from .protocol import eps
+from ..protocol.methods import eps
 
 
 def context() -> tuple:

@@ -22,10 +22,10 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.combinatorics import Triangulation, next_corner
-from ddg_oracle.reference.intrinsic import flip, is_flippable
-from ddg_oracle.reference.metric import PiecewiseFlatSurface
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.combinatorics import Triangulation, next_corner
+from ..reference.intrinsic import flip, is_flippable
+from ..reference.metric import PiecewiseFlatSurface
+from ..reference.polyhedral import PolyhedralSurface
 
 __all__ = ["flat_torus", "flat_tori", "polycube", "polycube_surfaces", "randomly_flipped",
            "bump", "bumps"]

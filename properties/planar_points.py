@@ -13,7 +13,7 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.planar import orientation
+from ..reference.planar import orientation
 
 from .precision import representable
 
@@ -149,8 +149,8 @@ def planar_triangulations(draw, max_points: int = 12):
     non-convex polygon: ``on_hull`` is False, the flips keep its boundary).
     Faces are counterclockwise.  Shrinks towards three points.
     """
-    from ddg_oracle.reference.errors import InputError
-    from ddg_oracle.reference.planar import planar_triangulation, straight_line_flip
+    from ..reference.errors import InputError
+    from ..reference.planar import planar_triangulation, straight_line_flip
 
     pts = tuple((representable(x), representable(y))
                 for x, y in draw(rational_point_sets(max_points)))

@@ -50,9 +50,9 @@ from contextlib import contextmanager
 from hypothesis import HealthCheck, settings
 from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 
-from ddg_oracle.reference.errors import InputError, TimeLimitExceeded
+from ..reference.errors import InputError, TimeLimitExceeded
 
-from .budget import (BUDGETS, Budget, BudgetExceeded, ImplementationHang, current_call,
+from ..protocol.budget import (BUDGETS, Budget, BudgetExceeded, ImplementationHang, current_call,
                      cut_short, time_left)
 
 PROFILES = ("default", "ci", "thorough")

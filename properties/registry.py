@@ -22,7 +22,7 @@ from typing import Any, Callable
 
 from .arithmetic import own_arithmetic
 from .profiles import example_time_limit
-from .protocol import at_machine_epsilon, implementation_name, machine_epsilon
+from ..protocol.methods import at_machine_epsilon, implementation_name, machine_epsilon
 
 
 class PropertyFailure(AssertionError):
@@ -243,12 +243,12 @@ class Quantity:
 
     @property
     def kind(self) -> str:
-        from .protocol import METHODS
+        from ..protocol.methods import METHODS
         return METHODS[self.method].kind
 
     @property
     def element(self) -> str:
-        from .protocol import METHODS
+        from ..protocol.methods import METHODS
         return METHODS[self.method].element
 
 
@@ -258,9 +258,9 @@ QUANTITIES: dict[str, Quantity] = {}
 def quantity(method: str, **how) -> Quantity:
     """Declare how closely ``method``'s answers must match (:class:`Quantity`); once per
     protocol method, beside the properties that check it."""
-    from .protocol import METHODS
+    from ..protocol.methods import METHODS
     if method not in METHODS:
-        raise ValueError(f"{method!r} is not a protocol method (properties.protocol.METHODS)")
+        raise ValueError(f"{method!r} is not a protocol method (protocol.methods.METHODS)")
     if method in QUANTITIES:
         raise ValueError(f"quantity {method!r} declared twice")
     unknown = set(how.get("requires", ())) - set(REQUIREMENTS)
@@ -275,7 +275,7 @@ def quantity(method: str, **how) -> Quantity:
 
 def all_quantities() -> dict[str, Quantity]:
     """Every declared quantity, in the protocol's order (the chapter modules imported)."""
-    from .protocol import METHODS
+    from ..protocol.methods import METHODS
     all_properties()
     return {m: QUANTITIES[m] for m in METHODS if m in QUANTITIES}
 

@@ -30,7 +30,7 @@ A :class:`Result` has one of these statuses:
   says which limit to raise;
 * ``not applicable``: the implementation lacks a method the property needs, or
   declined every example as outside its domain
-  (:class:`~ddg_oracle.properties.protocol.OutsideDomain`; a declined example is not
+  (:class:`~ddg_oracle.protocol.methods.OutsideDomain`; a declined example is not
   counted, and Hypothesis draws another in its place);
 * ``internal error``: ddg-oracle itself raised (in a strategy, the exact reference's
   arithmetic or a property's own code), not the implementation: nothing is said about
@@ -52,15 +52,15 @@ from hypothesis import HealthCheck, Phase, given, reject, seed as hypothesis_see
 from hypothesis.errors import Unsatisfiable, UnsatisfiedAssumption
 from hypothesis.reporting import with_reporter
 
-from ddg_oracle.reference.errors import ExactArithmeticLimit
+from ..reference.errors import ExactArithmeticLimit
 
-from .budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
+from ..protocol.budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
 from .calls import Watched, raised_by_implementation
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
 from .profiles import profile as named_profile, profile_budget
 from .precision import inputs_at
-from .protocol import (OutsideDomain, capabilities, implementation_name, machine_epsilon,
+from ..protocol.methods import (OutsideDomain, capabilities, implementation_name, machine_epsilon,
                        near_miss_warning, require_protocol)
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
 from .stream import same_stream
@@ -109,7 +109,7 @@ class Result:
     spec: str | None = None           # how to load the implementation again (None: unknown)
     exact: list | None = None         # exact coordinates (str) where the floats round them
     # per protocol method the property called, how its answer on the counterexample compares
-    # with the exact one (ddg_oracle.compare.diagnose: quantity, status, where, expected,
+    # with the exact one (ddg_oracle.application.compare.diagnose: quantity, status, where, expected,
     # observed, worst): which method is wrong, and where
     diagnosis: list | None = None
 

@@ -14,12 +14,12 @@ from fractions import Fraction
 from hypothesis import assume
 from hypothesis import strategies as st
 
-from ddg_oracle.reference import planar
-from ddg_oracle.reference.combinatorics import connected_sum, face_of
-from ddg_oracle.reference.errors import InputError
-from ddg_oracle.reference.laplacian import graph_laplacian
-from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.polyhedral import orientation3d
+from ..reference import planar
+from ..reference.combinatorics import connected_sum, face_of
+from ..reference.errors import InputError
+from ..reference.laplacian import graph_laplacian
+from ..reference import surfaces
+from ..reference.polyhedral import orientation3d
 
 from .planar_points import integer_point_sets, unit_circle_point
 
@@ -78,7 +78,7 @@ def alexandrov_uniqueness_on_examples(points, face: int) -> None:
     edge length (the same metric) but gives a surface that is neither congruent to the
     capped P nor convex: among the realisations of this metric, the convex one is the
     one the theorem names, and without convexity uniqueness fails."""
-    from ddg_oracle.reference import rigidity
+    from ..reference import rigidity
     try:
         hull = surfaces.convex_hull(points)
     except InputError:
@@ -230,8 +230,8 @@ def cube_faces(choices):
     """The unit cube with the diagonal of square ``k`` flipped where ``choices[k]``
     (every one of the 2^6 straight triangulations of its squares), as a piecewise flat
     surface (intrinsic flips of the reference's cube)."""
-    from ddg_oracle.reference.intrinsic import flip
-    from ddg_oracle.reference.metric import PiecewiseFlatSurface
+    from ..reference.intrinsic import flip
+    from ..reference.metric import PiecewiseFlatSurface
     cube = surfaces.cube()
     t = cube.triangulation
     m = PiecewiseFlatSurface(t, [sum((a - b) ** 2 for a, b in zip(
@@ -249,8 +249,8 @@ def voronoi_tessellation_of_the_cube(choices) -> None:
     Delaunay, each diagonal with weight exactly 0 (its two triangles share a circle: the
     square's, centred at the face centre, a Voronoi vertex); the Delaunay tessellation
     is the 6 squares (its 12 edges the cube's, weight 1), chi = 8 - 12 + 6 = 2."""
-    from ddg_oracle.reference.delaunay import delaunay_tessellation_edges, is_delaunay
-    from ddg_oracle.reference.laplacian import cotan_weights
+    from ..reference.delaunay import delaunay_tessellation_edges, is_delaunay
+    from ..reference.laplacian import cotan_weights
     m = cube_faces(choices)
     assert is_delaunay(m), "X4.1: a triangulation of the cube's squares is not Delaunay"
     w = cotan_weights(m)
@@ -267,8 +267,8 @@ def voronoi_tessellation_of_the_cube(choices) -> None:
 # --- Remark 2.3: the converses of Lemma 2.4 fail ------------------------------------------
 
 def _star(p, ring):
-    from ddg_oracle.reference.combinatorics import Triangulation
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..reference.combinatorics import Triangulation
+    from ..reference.polyhedral import PolyhedralSurface
     n = len(ring)
     t = Triangulation.from_faces([(0, 1 + i, 1 + (i + 1) % n) for i in range(n)])
     return PolyhedralSurface(t, [p] + list(ring))
@@ -293,7 +293,7 @@ CONVERSE_COUNTEREXAMPLES = {
 def moved_counterexamples(draw):
     """(name, star) of :data:`CONVERSE_COUNTEREXAMPLES` under a drawn rational rotation
     (Cayley), scale and translation: the vertex types and star predicates are invariant."""
-    from ddg_oracle.reference.curvature import cayley_rotation, rigid_motion
+    from ..reference.curvature import cayley_rotation, rigid_motion
     name = draw(st.sampled_from(sorted(CONVERSE_COUNTEREXAMPLES)))
     p, ring = CONVERSE_COUNTEREXAMPLES[name]
     k = Fraction(draw(st.integers(1, 9)), draw(st.integers(1, 9)))
@@ -307,7 +307,7 @@ def converses_of_lemma_2_4_fail(case) -> None:
     """R2.3: none of the implications of Lemma 2.4 (convex => elliptic, planar => flat,
     saddle => hyperbolic) is reversible: each star is of the curvature type but not of
     the shape (vertex_type exact; is_convex_star, is_planar_star, is_saddle_star)."""
-    from ddg_oracle.reference.curvature import (is_convex_star, is_planar_star,
+    from ..reference.curvature import (is_convex_star, is_planar_star,
                                                 is_saddle_star, vertex_type)
     name, s = case
     kind, shape = {"elliptic, not convex": ("elliptic", is_convex_star),
@@ -336,7 +336,7 @@ def cube_distance_is_a_metric(points) -> None:
     """D2.4 / R2.6: the intrinsic distance of the cube's surface is a metric (d(p, p) = 0,
     d > 0 between distinct points, symmetric, triangle inequality, exactly on squares),
     at least the chord |p - q| and equal to it on a common face."""
-    from ddg_oracle.reference.geodesics import (cube_faces_of, cube_squared_distance,
+    from ..reference.geodesics import (cube_faces_of, cube_squared_distance,
                                                 root_sum_at_least)
     d = {}
     for x, y in ((0, 1), (1, 2), (0, 2)):
@@ -365,7 +365,7 @@ def opposite_cube_points(draw):
 def straight_unfoldings_need_not_be_shortest(points) -> None:
     """X2.2: between points of opposite faces of the cube, the straight segments of the
     unfoldings are paths on the surface and the shortest is d(p, q); some is longer."""
-    from ddg_oracle.reference.geodesics import cube_squared_distance, cube_unfoldings
+    from ..reference.geodesics import cube_squared_distance, cube_unfoldings
     p, q = points
     lengths = sorted({length for _, length in cube_unfoldings(p, q)})
     assert lengths[0] == cube_squared_distance(p, q)
@@ -379,7 +379,7 @@ def straight_unfoldings_need_not_be_shortest(points) -> None:
 def closed_rational_metrics():
     """Closed surfaces with rational metrics (flat tori, polycubes) after drawn intrinsic
     flips, and half of them flipped on to Delaunay (so both answers of T4.7 are drawn)."""
-    from ddg_oracle.reference.delaunay import flip_to_delaunay
+    from ..reference.delaunay import flip_to_delaunay
     from .metrics import flat_tori, polycube_surfaces, randomly_flipped
     base = randomly_flipped(st.one_of(flat_tori(), polycube_surfaces(max_genus=1).map(
         lambda s: s.metric())), max_flips=30)
@@ -394,8 +394,8 @@ def empty_disks_give_the_tessellation(metric) -> None:
     triangulation each disk's cell ``conv phi^-1(V)`` is a k-gon triangulated by k - 2
     distinct faces, the cells are exactly the faces glued across the edges of weight 0
     (R4.7's tessellation), and they form a cell decomposition: V - E + F = chi."""
-    from ddg_oracle.reference.delaunay import delaunay_tessellation_edges, is_delaunay
-    from ddg_oracle.reference.empty_disks import circumdisk
+    from ..reference.delaunay import delaunay_tessellation_edges, is_delaunay
+    from ..reference.empty_disks import circumdisk
     t = metric.triangulation
     disks = [circumdisk(metric, f) for f in range(t.n_faces)]
     delaunay = is_delaunay(metric)
@@ -441,9 +441,9 @@ def cube_triangulations_grow_without_bound(flips: int, sequence=None) -> None:
     angle sum 3 pi / 2 and area 6, exactly), and the longest edge after n flips has
     l^2 >= 1 + ((n - 2) / 4)^2, so l(T) is unbounded on T_(M,V) and T_(M,V) infinite.
     ``sequence(flips)`` replaces ``cube_belt_twist`` (to check another construction)."""
-    from ddg_oracle.reference.curvature import angle_sums
-    from ddg_oracle.reference.exact import pi
-    from ddg_oracle.reference.triangulations import cube_belt_twist, longest_squared_length
+    from ..reference.curvature import angle_sums
+    from ..reference.exact import pi
+    from ..reference.triangulations import cube_belt_twist, longest_squared_length
     previous = None
     for n, s in enumerate((sequence or cube_belt_twist)(flips)):
         t = s.triangulation
@@ -469,9 +469,9 @@ def minimal_surface_state(surface) -> bool:
     cotan Laplacian of (S, T~) off the boundary, which stays where it was, and
     :func:`~ddg_oracle.reference.minimal.next_surface` is f~ on the combinatorics of T~.
     Returns whether T~ is still Delaunay for S~ (the remark: it need not be)."""
-    from ddg_oracle.reference.delaunay import is_delaunay
-    from ddg_oracle.reference.laplacian import cotan_laplacian
-    from ddg_oracle.reference.minimal import delaunay_minimal_surface_step, next_surface
+    from ..reference.delaunay import is_delaunay
+    from ..reference.laplacian import cotan_laplacian
+    from ..reference.minimal import delaunay_minimal_surface_step, next_surface
     t = surface.triangulation
     boundary = t.boundary_vertices()
     delaunay, new = delaunay_minimal_surface_step(surface)

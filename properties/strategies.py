@@ -16,10 +16,10 @@ from fractions import Fraction
 
 from hypothesis import assume, strategies as st
 
-from ddg_oracle.reference import surfaces
-from ddg_oracle.reference.combinatorics import Classification, Triangulation, connected_sum
-from ddg_oracle.reference.errors import NotFlippable
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference import surfaces
+from ..reference.combinatorics import Classification, Triangulation, connected_sum
+from ..reference.errors import NotFlippable
+from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo, variants
 from .example import Example

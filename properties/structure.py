@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.combinatorics import Triangulation
+from ..reference.combinatorics import Triangulation
 
 from .strategies import closed_surfaces
 
@@ -22,7 +22,7 @@ def unrestricted_flips():
 
 def flip_freely(t: Triangulation, choices) -> Triangulation:
     """Flip the edges chosen (skipping unflippable ones); loops and double edges may appear."""
-    from ddg_oracle.reference.errors import NotFlippable
+    from ..reference.errors import NotFlippable
     for c in choices:
         e = c % t.n_edges
         try:
@@ -62,10 +62,10 @@ def intrinsic_flip_keeps_the_metric(surface, e: int) -> None:
     every face satisfies the strict triangle inequality, and flipping back restores
     the squared lengths.
     """
-    from ddg_oracle.reference.errors import NotFlippable
-    from ddg_oracle.reference.exact import corner_angle
-    from ddg_oracle.reference.intrinsic import flip, is_flippable
-    from ddg_oracle.reference.metric import heron16
+    from ..reference.errors import NotFlippable
+    from ..reference.exact import corner_angle
+    from ..reference.intrinsic import flip, is_flippable
+    from ..reference.metric import heron16
 
     def sums(m):
         t = m.triangulation

@@ -1,6 +1,6 @@
 """Chapter 1 properties: Euler characteristic and the classification of surfaces.
 
-Each property takes an implementation (see :mod:`ddg_oracle.properties.protocol`) and an
+Each property takes an implementation (see :mod:`ddg_oracle.protocol.methods`) and an
 example drawn from its strategy.  The truth comes from how the example was
 built (genus, crosscaps, holes), never from the implementation under test.
 """
@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from ddg_oracle.reference.combinatorics import connected_sum
+from ..reference.combinatorics import connected_sum
 
-from .protocol import capabilities
+from ..protocol.methods import capabilities
 from .registry import PropertyFailure, prop, quantity
 from .strategies import (Example, annuli, apply_moves, closed_surfaces, extend_positions,
                          mobius_strips, named_surfaces, orientation_traps, surface_moves,

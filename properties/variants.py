@@ -23,9 +23,9 @@ import math
 import random
 from fractions import Fraction
 
-from ddg_oracle.reference.combinatorics import Triangulation, cyclic, face_of, opposite_corner
-from ddg_oracle.reference.exact.rationals import on_common_denominator
-from ddg_oracle.reference.polyhedral import PolyhedralSurface
+from ..reference.combinatorics import Triangulation, cyclic, face_of, opposite_corner
+from ..reference.exact.rationals import on_common_denominator
+from ..reference.polyhedral import PolyhedralSurface
 
 __all__ = ["relabelled", "permuted", "reversed_faces", "with_sliver", "slivers", "disjoint_union",
            "union_of", "fan", "bipyramid", "circle_point", "is_degenerate", "degenerate_faces",

@@ -9,7 +9,7 @@ import os
 
 from hypothesis import settings
 
-from ddg_oracle.containment import start_workers_from_a_forkserver
+from ddg_oracle.application.containment import start_workers_from_a_forkserver
 from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
 # the suite's own processes (xdist workers, the scripts and commands its tests start) load

@@ -24,7 +24,7 @@ What is an error and what is valid input (the reference's decisions):
   positions in R^2 or R^4 (the reference takes any dimension >= 2; the
   adapters take R^3 only).
 
-The adapters' array check (``ddg_oracle.oracles.arrays.checked_arrays``) rejects only what
+The adapters' array check (``ddg_oracle.protocol.arrays.checked_arrays``) rejects only what
 a library cannot survive or would misread (shapes, dtypes, index range, NaN);
 mesh-level problems go through to the library, whose handling is what a check
 observes.  ``ArrayCase.adapter_error`` records that.
@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from ddg_oracle.meshfiles import MeshFileError
+from ddg_oracle.application.meshfiles import MeshFileError
 from ddg_oracle.reference import errors as E
 from ddg_oracle.reference import surfaces
 
@@ -79,7 +79,7 @@ class ArrayCase:
     F: Any
     error: type | None              # PolyhedralSurface.from_arrays raises this (None: valid)
     words: tuple[str, ...] = ()     # fragments its message contains (case-insensitive)
-    adapter_error: type | None = None   # ddg_oracle.oracles.arrays.checked_arrays raises this
+    adapter_error: type | None = None   # ddg_oracle.protocol.arrays.checked_arrays raises this
     adapter_words: tuple[str, ...] = ()
     geometry_error: type | None = None  # valid input whose metric quantities raise this
     geometry_words: tuple[str, ...] = ()

@@ -2,7 +2,7 @@
 its bounds, or a planted bug is caught with a shrunk counterexample."""
 
 from ddg_oracle.properties.harness import ErrorLedger, recording
-from ddg_oracle.causes import element_ids
+from ddg_oracle.application.causes import element_ids
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.runner import FAILED, PASSED, run_property

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from ddg_oracle.containment import alive
+from ddg_oracle.application.containment import alive
 
 from benchmarks import faults, meshread
 

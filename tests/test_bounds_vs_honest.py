@@ -32,7 +32,7 @@ from ddg_oracle.properties.curvature import (corner_angle_views, defect_views,
 from ddg_oracle.properties import variants
 from ddg_oracle.properties.example import Example
 from ddg_oracle.properties.precision import FORMATS
-from ddg_oracle.properties.protocol import at_machine_epsilon
+from ddg_oracle.protocol.methods import at_machine_epsilon
 from ddg_oracle.reference.exact import exact_sum, rounded_sum
 
 from tests.honest_panel import (Atan2Cross, Atan2Cross32, KahanHalfAngle, KahanHalfAngle32,

@@ -1,10 +1,10 @@
-"""The task budget (properties/budget.py): a failure is shrunk for at most the budget's
+"""The task budget (protocol/budget.py): a failure is shrunk for at most the budget's
 shrink seconds, then the smallest failing example seen so far is the result."""
 
 import time
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.properties.budget import Budget
+from ddg_oracle.protocol.budget import Budget
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.registry import PROPERTIES, all_properties
 from ddg_oracle.properties.runner import FAILED, run_property
@@ -56,10 +56,10 @@ def test_the_manual_and_the_help_state_the_budgets_in_force():
     import re
     from pathlib import Path
 
-    from ddg_oracle.properties.budget import BUDGETS
+    from ddg_oracle.protocol.budget import BUDGETS
     root = Path(__file__).resolve().parents[1]
     readme = re.sub(r"\s+", " ", (root / "docs" / "check.md").read_text(encoding="utf-8"))
-    cli = re.sub(r'"\s+"', "", (root / "ddg_oracle" / "cli.py").read_text(encoding="utf-8"))
+    cli = re.sub(r'"\s+"', "", (root / "application" / "cli.py").read_text(encoding="utf-8"))
     d, ci = BUDGETS["default"], BUDGETS["ci"]
     assert (f"{d.seconds:g} s of wall clock, at most {d.shrink:g} s of it shrinking" in readme
             and f"{ci.seconds:g} s, {ci.shrink:g} s shrinking" in readme)

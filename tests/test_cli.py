@@ -13,11 +13,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddg_oracle.cli import Progress, main
+from ddg_oracle.application.cli import Progress, main
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.meshfiles import read_mesh, write_obj
-from ddg_oracle.causes import element_ids
-from ddg_oracle.report import jsonable
+from ddg_oracle.application.meshfiles import read_mesh, write_obj
+from ddg_oracle.application.causes import element_ids
+from ddg_oracle.application.report import jsonable
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.runner import CONVENTION, FAILED, PASSED, TIE, run_on_example, run_property
 from ddg_oracle.reference import surfaces
@@ -144,8 +144,8 @@ def test_expect_conventions_turns_a_documented_convention_into_an_expected_resul
 
 
 def test_conventions_are_declared_by_the_implementation_itself():
-    from ddg_oracle.implementations import load_implementation
-    from ddg_oracle.properties.protocol import NotAnImplementation, declared_conventions
+    from ddg_oracle.application.implementations import load_implementation
+    from ddg_oracle.protocol.methods import NotAnImplementation, declared_conventions
     assert declared_conventions(load_implementation("libigl(boundary=library)"))[0] == "libigl"
     assert declared_conventions(load_implementation("pymeshlab(genus=library, boundary=library)")) \
         == ("pymeshlab", "F-pymeshlab-2 (boundary term 2 pi - angle sum - phi); "
@@ -264,7 +264,7 @@ def test_progress_bar_only_on_a_terminal():
         def isatty(self):
             return True
 
-    from ddg_oracle.jobs import Task
+    from ddg_oracle.application.jobs import Task
     tty, pipe = Tty(), io.StringIO()
     for stream in (tty, pipe):
         p = Progress(2, stream)
@@ -311,7 +311,7 @@ def test_sample_meshes_of_pymeshlab(capsys):
     rc, out, err = _run(capsys, "check", "--mesh", "pymeshlab:cube.obj", "--impl", "reference",
                         "--only", "D2.2", "--only", "X1.4", "--wide")
     assert rc == 0 and "property on pymeshlab:cube.obj" in out
-    from ddg_oracle.compare import resolve
+    from ddg_oracle.application.compare import resolve
     everything = [name for name, _, _ in resolve(["pymeshlab:"])]
     assert "pymeshlab:cube.obj" in everything and "pymeshlab:bunny.obj" in everything
     rc, _, err = _run(capsys, "check", "--mesh", "pymeshlab:no-such.obj")
@@ -358,7 +358,7 @@ def test_unreferenced_vertices_are_removed_with_a_note(capsys, tmp_path):
 
 
 def test_run_on_example_uses_the_property_check_once():
-    from ddg_oracle.compare import MeshExamples, MeshInput
+    from ddg_oracle.application.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.example(), "cube")
@@ -368,7 +368,7 @@ def test_run_on_example_uses_the_property_check_once():
 def test_compare_lists_every_quantity_with_its_worst_element(capsys, tetra_obj):
     rc, out, _ = _run(capsys, "compare", str(tetra_obj), "--impl", "libigl")
     assert rc == 0
-    from ddg_oracle.properties.protocol import METHODS
+    from ddg_oracle.protocol.methods import METHODS
     not_comparable = {"intrinsic_delaunay_triangulation", "planar_delaunay",   # not unique / no mesh
                       "planar_flip_to_delaunay", "solve_dirichlet"}   # needs boundary data
     for method in METHODS:
@@ -395,7 +395,7 @@ def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
     class Limited(ReferenceImplementation):
         def euler_characteristic(self, V, F):
             raise TermLimitExceeded("a square-root number would have too many terms")
-    from ddg_oracle.compare import MeshExamples, MeshInput
+    from ddg_oracle.application.compare import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.example(), "cube")
@@ -433,7 +433,7 @@ def test_report_of_a_failure_on_a_large_mesh_file_reads_the_obj(tmp_path, capsys
 @pytest.mark.parametrize("element", [{"vertex": 3}, {"edge": [0, 5]}, {"face": 2, "corner": 1},
                                      {"face": 40}, None])
 def test_render_writes_a_png_for_each_kind_of_element(tmp_path, element):
-    from ddg_oracle.render import RING_LIMIT, render_mesh
+    from ddg_oracle.application.render import RING_LIMIT, render_mesh
     s = surfaces.torus(24, 12) if element == {"face": 40} else surfaces.disk(6)
     V, F = s.to_arrays()
     if element == {"face": 40}:
@@ -478,7 +478,7 @@ def test_every_hostile_mesh_file_is_one_line_and_exit_2(capsys, tmp_path, case):
 
 
 def test_a_crash_of_the_tool_itself_is_exit_3_with_its_traceback(capsys, monkeypatch):
-    import ddg_oracle.cli as cli
+    import ddg_oracle.application.cli as cli
 
     def broken(args):
         raise ValueError("an internal bug, not a usage error")
@@ -531,7 +531,7 @@ def test_version_and_help_are_plain_text_with_examples_and_exit_codes(capsys):
 
 
 def test_methods_lists_every_protocol_method_and_the_properties_calling_it(capsys):
-    from ddg_oracle.properties.protocol import METHODS
+    from ddg_oracle.protocol.methods import METHODS
     rc, out, _ = _run(capsys, "methods")
     assert rc == 0
     for name, m in METHODS.items():
@@ -552,7 +552,7 @@ class Typo:
 def test_an_object_without_protocol_methods_is_refused_with_did_you_mean(capsys, tmp_path,
                                                                          monkeypatch):
     from ddg_oracle.properties import check_implementation
-    from ddg_oracle.properties.protocol import NotAnImplementation
+    from ddg_oracle.protocol.methods import NotAnImplementation
 
     with pytest.raises(NotAnImplementation, match="did you mean `angle_defects` for "
                                                   "`angle_defect`, `cotan_laplacian` for `cotmatrix`"):
@@ -574,7 +574,7 @@ def test_a_user_module_that_fails_to_import_is_a_usage_error(capsys, tmp_path, m
 
 
 def test_the_current_directory_never_shadows_an_installed_module(tmp_path, monkeypatch):
-    import ddg_oracle.implementations as impls
+    import ddg_oracle.application.implementations as impls
 
     (tmp_path / "mine_impl.py").write_text("class Impl:\n    def genus(self, V, F):\n"
                                            "        return 0\n")
@@ -667,7 +667,7 @@ def test_read_bytes_reserves_the_file_not_the_limit(tmp_path, monkeypatch):
     """Fault suite (issue 45): read(limit + 1) reserved the 2 GiB mesh limit up front, a
     MemoryError under ulimit -v for a 20-face file.  The buffer follows the file's size."""
     import io
-    from ddg_oracle import files
+    from ddg_oracle.application import files
     path = tmp_path / "small.bin"
     path.write_bytes(b"x" * 100)
     asked = []
@@ -691,7 +691,7 @@ def test_an_undecided_result_is_never_attributed_to_a_library_finding():
     """The exact reference giving up (time or precision limit) on a mesh says nothing about
     the library: "(known: F-libigl-6)" beside an undecided D4.8 blamed libigl."""
     from ddg_oracle.properties.runner import INTERNAL, UNDECIDED, Result
-    from ddg_oracle.report import known_finding, known_findings
+    from ddg_oracle.application.report import known_finding, known_findings
     findings = known_findings()
     failed = Result("D4.8 / R4.9", "laplace_beltrami_operator", "libigl", FAILED)
     assert known_finding(failed, findings) is not None            # libigl has D4.8 findings
@@ -726,7 +726,7 @@ def test_the_command_loads_no_third_party_hypothesis_plugin():
     HYPOTHESIS_NO_PLUGINS, and a call of main() from Python changes no environment."""
     env = {k: v for k, v in os.environ.items() if k != "HYPOTHESIS_NO_PLUGINS"}
     probe = ("import os, sys; sys.argv = ['ddg-oracle', '--version']\n"
-             "from ddg_oracle.cli import main\n"
+             "from ddg_oracle.application.cli import main\n"
              "{call}\n"
              "import hypothesis\n"
              "print(sorted(m for m in ('trio', 'pytest') if m in sys.modules), "

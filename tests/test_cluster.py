@@ -140,7 +140,7 @@ def test_a_worker_killed_mid_run_loses_no_result(tmp_path, cluster, local_run):
 
 
 def test_a_bad_scheduler_address_is_a_usage_error(capsys):
-    from ddg_oracle.cli import main
+    from ddg_oracle.application.cli import main
     rc = main(["check", "--impl", "reference", "--only", "D1.6", "--scheduler", "local:zero"])
     _, err = capsys.readouterr()
     assert rc == 2 and "local:N" in err and err.count("\n") == 1

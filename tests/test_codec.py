@@ -11,7 +11,7 @@ import zlib
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 
-from ddg_oracle.cli import main
+from ddg_oracle.application.cli import main
 from ddg_oracle.properties import codec
 from ddg_oracle.properties.counterexample import decode_example, encode_example, replay
 from ddg_oracle.properties.registry import all_properties

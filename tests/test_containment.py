@@ -141,7 +141,7 @@ def test_a_stopped_resource_tracker_does_not_hang_the_exit(tmp_path):
     # the run keeps multiprocessing's resource tracker alive to its end (killed first, the
     # exit handlers relaunch it and it prints tracebacks); a stopped one is killed instead,
     # or the interpreter's exit would wait for it forever (os.waitpid in its _stop)
-    from ddg_oracle.containment import descendants
+    from ddg_oracle.application.containment import descendants
     p = _ddg(tmp_path, "--impl", "reference", "--only", "D2.2", "R2.4", "T2.6", "D2.6",
              "--workers", "2")
     deadline = time.monotonic() + 60
@@ -165,7 +165,7 @@ def test_a_stopped_resource_tracker_does_not_hang_the_exit(tmp_path):
 
 _STARTS = """
 import multiprocessing as mp, os, sys
-from ddg_oracle.containment import start_workers_from_a_forkserver, worker_context
+from ddg_oracle.application.containment import start_workers_from_a_forkserver, worker_context
 from tests.processes import report_environment
 
 def seen(ctx):
@@ -203,7 +203,7 @@ def test_workers_start_with_the_parents_environment_and_preload_only_in_the_comm
 
 _USERS_ISOLATION = """
 import numpy as np
-from ddg_oracle.isolation import ImplementationCrashed, Isolated
+from ddg_oracle.application.isolation import ImplementationCrashed, Isolated
 from ddg_oracle.reference import surfaces
 from tests.processes import cmdline
 closed, disk = (tuple(np.array(a) for a in s.to_arrays())

@@ -15,16 +15,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddg_oracle.cli import main
-from ddg_oracle.compare import MeshInput, compare_mesh
+from ddg_oracle.application.cli import main
+from ddg_oracle.application.compare import MeshInput, compare_mesh
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.conventions import (PRESETS, VOCABULARY, barycentric_areas,
                                                declaration_text, mixed_areas, parse)
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
-from ddg_oracle.jobs import with_diagnosis
-from ddg_oracle.causes import convention_hint
+from ddg_oracle.application.jobs import with_diagnosis
+from ddg_oracle.application.causes import convention_hint
 from examples.numpy_mesh import NumpyMesh
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -167,7 +167,7 @@ def test_pointwise_curvature_without_area_is_declined_not_failed():
     """A vertex whose faces have no area has no pointwise curvature: the map declines the
     example (OutsideDomain) rather than failing on K / 0."""
     from ddg_oracle.properties.conventions import to_reference
-    from ddg_oracle.properties.protocol import OutsideDomain
+    from ddg_oracle.protocol.methods import OutsideDomain
     V = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], float)
     F = np.array([[0, 1, 2]])
     with pytest.raises(OutsideDomain, match="vertex 0"):
@@ -273,7 +273,7 @@ def test_the_diagnosis_names_the_convention_on_a_mesh_with_an_unused_vertex():
     """A counterexample with a vertex of no face (D3.1 draws them) was diagnosed only for
     unused_vertices=dropped: -L there got no hint.  The rows and columns of the used
     vertices are compared on the mesh without the others, in the mesh's own numbers."""
-    from ddg_oracle.compare import diagnose
+    from ddg_oracle.application.compare import diagnose
     V = [[5.0, 5, 5], [0.0, 0, 0], [1.0, 0, 0], [0.0, 1, 0]]
     rows = diagnose((V, [[1, 2, 3]]), NegativeL(), ["cotan_laplacian"])
     assert [(r["status"], r["explained_by"]) for r in rows] == [("DIFFERS", ["laplacian=negative"])]

@@ -1,4 +1,4 @@
-"""The CGAL mesh corpus (ddg_oracle/corpus.py): ``cgal:`` and ``cgal:NAME`` beside ``pymeshlab:``.
+"""The CGAL mesh corpus (application/corpus.py): ``cgal:`` and ``cgal:NAME`` beside ``pymeshlab:``.
 
 The resolution, polygon and error tests run on a small corpus written here (a manifest and a
 few OFF files).  The fetch tests run ``apt-get download libcgal-demo`` into a fresh directory
@@ -19,11 +19,11 @@ from pathlib import Path
 
 import pytest
 
-from ddg_oracle import corpus
-from ddg_oracle.cli import main
-from ddg_oracle.compare import load, load_all, resolve
-from ddg_oracle.corpus import CorpusError, FETCH_COMMAND
-from ddg_oracle.meshfiles import MeshFileError
+from ddg_oracle.application import corpus
+from ddg_oracle.application.cli import main
+from ddg_oracle.application.compare import load, load_all, resolve
+from ddg_oracle.application.corpus import CorpusError, FETCH_COMMAND
+from ddg_oracle.application.meshfiles import MeshFileError
 
 ROOT = Path(__file__).resolve().parent.parent
 

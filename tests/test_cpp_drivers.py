@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddg_oracle.implementations import built_drivers
+from ddg_oracle.application.implementations import built_drivers
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.oracles.executable import Executable
 from ddg_oracle.properties import PROPERTIES
@@ -188,7 +188,7 @@ def test_check_without_impl_checks_the_built_drivers(build, tmp_path):
 
 
 def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it(build, tmp_path):
-    from ddg_oracle.properties.protocol import declared_conventions
+    from ddg_oracle.protocol.methods import declared_conventions
     raw = _driver(build, "cgal_driver", "--weights=library")
     counterpart, what = declared_conventions(raw)
     raw.close()
@@ -217,7 +217,7 @@ def test_the_test_vectors_find_cg1_cg2_and_om1(cgal, openmesh):
     """`ddg-oracle verify vectors/` on the drivers: CGAL's mixed Voronoi areas of obtuse
     triangles (F-cgal-1) and its layouts of a needle (F-cgal-2), OpenMesh's boundary weights (F-openmesh-1);
     and nothing on the cases those findings do not touch."""
-    from ddg_oracle import vectors
+    from ddg_oracle.application import vectors
     corpus = vectors.load(ROOT / "vectors")
 
     def failed(impl):

@@ -22,7 +22,7 @@ from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.oracles.executable import DriverFailed, Executable
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import profile, profile_budget
-from ddg_oracle.properties.protocol import OutsideDomain
+from ddg_oracle.protocol.methods import OutsideDomain
 from ddg_oracle.properties.runner import CRASHED, FAILED, PASSED, run_property
 from ddg_oracle.reference import surfaces
 
@@ -142,7 +142,7 @@ def test_a_crashing_driver_is_a_crashed_result_and_the_run_goes_on():
 
 
 def test_an_unstartable_command_is_a_usage_error(capsys):
-    from ddg_oracle.cli import main
+    from ddg_oracle.application.cli import main
     assert main(["check", "--impl", "exec:/no/such/driver", "--only", "D1.6"]) == 2
     err = capsys.readouterr().err
     assert "cannot start" in err and "/no/such/driver" in err and err.count("\n") == 1

@@ -34,7 +34,7 @@ from examples.numpy_mesh import NumpyMesh
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import profile
-from ddg_oracle.properties.protocol import capabilities
+from ddg_oracle.protocol.methods import capabilities
 from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED, TIE, run_property
 
 from tests.honest_panel import PANEL
@@ -107,7 +107,7 @@ def test_no_false_positive_thorough(name, pid):
 def test_the_panel_reaches_every_numeric_method_of_the_protocol():
     """Not vacuous: the panel defines every protocol method whose answer is a float
     computation (topology is integers), at both precisions."""
-    from ddg_oracle.properties.protocol import METHODS
+    from ddg_oracle.protocol.methods import METHODS
     numeric = set(METHODS) - {"euler_characteristic", "boundary_loops", "is_orientable", "genus"}
     for name, cls in PANEL.items():
         assert numeric <= capabilities(cls()), (name, numeric - capabilities(cls()))
@@ -188,7 +188,7 @@ def test_our_own_float64_bounds_do_not_take_the_implementations_epsilon():
     import numpy as np
     from ddg_oracle.properties.bounds import gamma
     from ddg_oracle.properties.curvature import support_function_integral
-    from ddg_oracle.properties.protocol import at_machine_epsilon
+    from ddg_oracle.protocol.methods import at_machine_epsilon
     V = np.array([[0.0, 0, -8], [0, 0, 8], [0, 8, 0], [8, 0, 0], [0, -8, 0], [-8, 0, 0]])
     here = support_function_integral(V)
     for e in (2.0 ** -23, 2.0 ** -10):

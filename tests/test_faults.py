@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from ddg_oracle.cli import main
+from ddg_oracle.application.cli import main
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VECTORS = os.path.join(ROOT, "vectors")
@@ -180,7 +180,7 @@ def test_a_scheduler_address_that_is_not_one_is_a_usage_error(capsys):
 def test_a_port_that_never_answers_as_a_scheduler_is_a_usage_error(capsys, monkeypatch):
     pytest.importorskip("distributed")
     import socket
-    from ddg_oracle import cluster
+    from ddg_oracle.application import cluster
     # dask's client hangs on a silent port whatever its timeout (over 30 s): any limit
     # shows the refusal; the run waits for it plus as long again (at most 5 s more)
     monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", 0.5)
@@ -202,8 +202,8 @@ def test_a_mesh_that_would_not_fit_in_memory_is_refused_before_reading(capsys, t
     """compare's load peaks near 40x the file (docs/faults.md): a file well under the 2 GiB
     size limit could exhaust the machine, or be killed by the kernel midway.  The memory
     left is compared first, and the error says how much was needed."""
-    from ddg_oracle import files
-    from ddg_oracle.meshfiles import write_obj
+    from ddg_oracle.application import files
+    from ddg_oracle.application.meshfiles import write_obj
     path = tmp_path / "tet.obj"
     write_obj(path, [[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
               [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])

@@ -66,7 +66,7 @@ def test_a_crash_is_the_finding_of_a_crash_and_a_wrong_answer_the_other():
     std::bad_alloc on 7 faces F-libigl-6)."""
     from types import SimpleNamespace
 
-    from ddg_oracle.report import known_finding, known_findings
+    from ddg_oracle.application.report import known_finding, known_findings
     findings = known_findings()
 
     def result(status):

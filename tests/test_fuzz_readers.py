@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from ddg_oracle.oracles.arrays import checked_arrays
-from ddg_oracle.meshfiles import MeshFileError, read_mesh
+from ddg_oracle.protocol.arrays import checked_arrays
+from ddg_oracle.application.meshfiles import MeshFileError, read_mesh
 from ddg_oracle.properties.profiles import example_time_limit
 from ddg_oracle.reference import PiecewiseFlatSurface, PolyhedralSurface, Triangulation
 from ddg_oracle.reference.curvature import angle_defects

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 from hypothesis import Phase, settings
 
-from ddg_oracle.oracles.arrays import checked_arrays
+from ddg_oracle.protocol.arrays import checked_arrays
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.meshfiles import MeshFileError, read_mesh
+from ddg_oracle.application.meshfiles import MeshFileError, read_mesh
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import TIME_LIMIT_ENV, example_time_limit, time_limit_seconds
 from ddg_oracle.properties.runner import CRASHED, run_property
@@ -349,7 +349,7 @@ def test_hostile_paths_are_one_line_and_exit_2_fast_and_small(tmp_path, command)
 
 
 def test_a_mesh_file_over_the_size_limit_is_refused(tmp_path, monkeypatch):
-    from ddg_oracle.meshfiles import SIZE_ENV
+    from ddg_oracle.application.meshfiles import SIZE_ENV
     path = tmp_path / "t.obj"
     path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     monkeypatch.setenv(SIZE_ENV, "20")

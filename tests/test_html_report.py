@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddg_oracle.cli import main
+from ddg_oracle.application.cli import main
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 DRIVER = shutil.which("chromedriver")
@@ -52,7 +52,7 @@ def mesh_report(tmp_path_factory):
     """A mesh-file failure on a mesh too large to draw whole: an implementation whose
     angle defect is wrong at one vertex of a subdivided icosahedron."""
     d = tmp_path_factory.mktemp("html-mesh")
-    from ddg_oracle.meshfiles import write_obj
+    from ddg_oracle.application.meshfiles import write_obj
     from ddg_oracle.reference import surfaces
     t = surfaces.icosahedron()
     V, F = t.to_arrays()
@@ -230,7 +230,7 @@ def test_a_failure_shows_statement_values_finding_snippet_and_mesh(report, brows
 
 def test_an_error_line_without_a_numeric_error_is_not_broken(tmp_path, browser):
     # regression: "error - = - x the derived bound" for a failure with a bound but no error
-    from ddg_oracle.html_report import write_html
+    from ddg_oracle.application.html_report import write_html
     from selenium.webdriver.common.by import By
     record = {"property_id": "L4.3 / P4.4", "property_name": "p", "statement": "s",
               "implementation": "x", "spec": "x", "source": "generated", "status": "FAILED",

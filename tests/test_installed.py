@@ -146,8 +146,8 @@ def test_the_wheel_installs_one_namespaced_package(installed):
     top = {n.split("/")[0] for n in names}
     assert {t for t in top if not t.endswith(".dist-info")} == {"ddg_oracle"}
     # what the installed tool reads is installed with it
-    for data in ("ddg_oracle/traceability.toml", "ddg_oracle/data/errata.md",
-                 "ddg_oracle/data/findings.md"):
+    for data in ("ddg_oracle/application/traceability.toml", "ddg_oracle/application/data/errata.md",
+                 "ddg_oracle/application/data/findings.md"):
         assert data in names
 
 

@@ -138,7 +138,7 @@ class SpawnsSlowly(ReferenceImplementation):
 
 
 def _children_started(pid: int) -> bool:
-    from ddg_oracle.containment import descendants
+    from ddg_oracle.application.containment import descendants
     return len(descendants(pid)) >= 2
 
 

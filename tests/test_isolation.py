@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from hypothesis import Phase, settings
 
-from ddg_oracle.isolation import ImplementationCrashed, Isolated, memory_limit
+from ddg_oracle.application.isolation import ImplementationCrashed, Isolated, memory_limit
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.budget import BUDGETS
+from ddg_oracle.protocol.budget import BUDGETS
 from ddg_oracle.properties.runner import CRASHED, PASSED, run_property
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.errors import InputError

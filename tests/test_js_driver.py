@@ -22,7 +22,7 @@ import pytest
 
 from ddg_oracle.oracles.executable import Executable
 from ddg_oracle.properties.conventions import parse
-from ddg_oracle.properties.protocol import METHODS
+from ddg_oracle.protocol.methods import METHODS
 
 ROOT = Path(__file__).resolve().parent.parent
 DRIVER = "examples/js/driver.js"                 # relative to ROOT, as docs/languages.md says

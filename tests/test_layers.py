@@ -1,32 +1,38 @@
 """The layers of docs/ARCHITECTURE.md, kept true: who may import whom.
 
-reference -> the standard library and itself; properties -> reference (and numpy,
-scipy, hypothesis); oracles -> reference and properties (and the libraries they
-adapt); only the application (ddg_oracle/) imports everything.  Read from the
+Five layers, each a folder of the repository installed as ``ddg_oracle.<folder>``:
+reference (the standard library and itself) < protocol < properties (and numpy, scipy,
+hypothesis) < oracles (and the libraries they adapt) < application.  A module imports
+only its own layer and the ones below.  The layers are read from pyproject.toml's
+package-dir table (a folder added there is checked at once), the imports from the
 import statements themselves (ast), so a lazy import inside a function counts too.
 """
 
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
+import tomllib
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-LAYERS = {"reference": 0, "properties": 1, "oracles": 2, "application": 3}
-APPLICATION = {"cli", "jobs", "isolation", "report", "render", "meshfiles", "compare", "corpus",
-               "survey", "implementations", "pytest_plugin", "traceability", "html_report",
-               "__main__", "cluster", "vectors", "containment", "files", "commands", "causes"}
+#: the layers, lowest first
+ORDER = ("reference", "protocol", "properties", "oracles", "application")
+LAYERS = {name: rank for rank, name in enumerate(ORDER)}
+#: package -> folder, as pyproject.toml installs them
+PACKAGE_DIR = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"][
+    "package-dir"]
 
 
 def _layer_of_module(name: str) -> str | None:
-    """The layer of an absolute module name of ours, or None for anything else."""
+    """The layer of an absolute module name of ours, or None for anything else (the
+    package's face, ``ddg_oracle`` itself, belongs to no layer: it imports none)."""
     parts = name.split(".")
-    if parts[0] != "ddg_oracle":
+    if parts[0] != "ddg_oracle" or len(parts) == 1:
         return None
-    if len(parts) == 1 or parts[1] in APPLICATION:
-        return "application"
     return parts[1] if parts[1] in LAYERS else None
 
 
@@ -49,13 +55,44 @@ def _imports(path: Path, package: str) -> list[tuple[int, str]]:
 
 
 def _files():
-    for folder, layer, package in (("reference", "reference", "ddg_oracle.reference"),
-                                   ("properties", "properties", "ddg_oracle.properties"),
-                                   ("oracles", "oracles", "ddg_oracle.oracles"),
-                                   ("ddg_oracle", "application", "ddg_oracle")):
+    for layer in ORDER:
+        folder, package = PACKAGE_DIR[f"ddg_oracle.{layer}"], f"ddg_oracle.{layer}"
         for path in sorted((ROOT / folder).rglob("*.py")):
             sub = ".".join(path.relative_to(ROOT / folder).with_suffix("").parts[:-1])
             yield path, layer, package + (f".{sub}" if sub else "")
+
+
+def test_the_layers_are_the_installed_folders():
+    """Every folder pyproject.toml installs is a layer (or the package's face), each layer
+    is a folder of its own at the top of the repository, and the face holds no module
+    but __init__ and __main__: a module added anywhere is under the layer checks."""
+    assert set(PACKAGE_DIR) == {"ddg_oracle"} | {f"ddg_oracle.{x}" for x in ORDER}
+    assert all(PACKAGE_DIR[f"ddg_oracle.{x}"] == x for x in ORDER)
+    assert {p.name for p in (ROOT / PACKAGE_DIR["ddg_oracle"]).glob("*.py")} == {
+        "__init__.py", "__main__.py"}
+
+
+def test_a_checkout_without_install_imports_its_layers():
+    """Issue 43: without ``pip install``, from the checkout's root, ``ddg_oracle.<layer>``
+    is the folder of that name (Python run with no site-packages and no environment)."""
+    code = ("import ddg_oracle.reference, ddg_oracle.protocol.methods as m\n"
+            "print(ddg_oracle.reference.__file__); print(m.__file__)")
+    out = subprocess.run([sys.executable, "-E", "-s", "-S", "-c", code], cwd=ROOT,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == [str(ROOT / "reference" / "__init__.py"),
+                                  str(ROOT / "protocol" / "methods.py")]
+
+
+def test_relative_imports_cross_the_layers_as_the_folders_do():
+    """Between layers the product imports relatively (``from ..reference import x``), so
+    that the import graph of the checkout, folder by folder, is the installed one."""
+    absolute = [f"{path.relative_to(ROOT)}:{node.lineno}"
+                for path, _, _ in _files()
+                for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                if isinstance(node, ast.ImportFrom) and not node.level
+                and (node.module or "").startswith("ddg_oracle.")]
+    assert absolute == []
 
 
 @pytest.mark.parametrize("path, layer, package", list(_files()),
@@ -73,7 +110,7 @@ def test_every_import_goes_down_the_layers(path, layer, package):
 
 def test_the_layer_check_catches_an_upward_import(tmp_path):
     bad = tmp_path / "bad.py"
-    bad.write_text("def f():\n    from ddg_oracle.cli import main\n")
+    bad.write_text("def f():\n    from ddg_oracle.application.cli import main\n")
     [(line, name)] = _imports(bad, "ddg_oracle.properties")
     assert (line, _layer_of_module(name)) == (2, "application")
     rel = tmp_path / "rel.py"
@@ -82,30 +119,22 @@ def test_the_layer_check_catches_an_upward_import(tmp_path):
 
 
 def test_a_library_worker_does_not_import_hypothesis_or_the_properties():
-    # an isolated library worker imports ddg_oracle.isolation (budget, protocol) and its
-    # adapter: the properties package loads its public names lazily, so such a process
+    # an isolated library worker imports ddg_oracle.application.isolation (the protocol
+    # layer) and its adapter, not the properties package, so such a process
     # starts without Hypothesis (0.5 s per worker, 16 workers in a main job)
     import subprocess
     import sys
-    code = ("import sys, ddg_oracle.isolation, ddg_oracle.oracles.arrays\n"
+    code = ("import sys, ddg_oracle.application.isolation, ddg_oracle.protocol.arrays\n"
             "print(sorted(m for m in sys.modules if m == 'hypothesis'\n"
-            "             or m.startswith('ddg_oracle.properties.') and not m.endswith(\n"
-            "             ('.budget', '.protocol'))))")
+            "             or m.startswith('ddg_oracle.properties')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
     import ddg_oracle.properties as p
     assert p.PROPERTIES["D1.6"].id == "D1.6" and len(p.PROPERTIES) == len(p.all_properties())
 
 
-def test_the_application_list_is_the_application_folder():
-    """The hand list above is every module of ddg_oracle/ (a new module left out would
-    escape the layer checks)."""
-    on_disk = {p.stem for p in (ROOT / "ddg_oracle").glob("*.py")} - {"__init__"}
-    assert on_disk == APPLICATION, (on_disk - APPLICATION, APPLICATION - on_disk)
-
-
 def _module_graph() -> dict[str, set[str]]:
-    """{module: the modules of ours it imports} over the four folders, lazy imports inside
+    """{module: the modules of ours it imports} over the five folders, lazy imports inside
     functions included (a cycle through them still ties two modules into one)."""
     modules = {}
     for path, _, package in _files():
@@ -166,4 +195,4 @@ def test_the_cycle_check_sees_a_lazy_cycle():
     assert _cycles({"a": {"b"}, "b": {"a"}, "c": {"a"}}) == [["a", "b"]]
     graph = _module_graph()
     assert "ddg_oracle.reference.exact.rationals" in graph["ddg_oracle.reference.exact.surds"]
-    assert "ddg_oracle.causes" in graph["ddg_oracle.html_report"]
+    assert "ddg_oracle.application.causes" in graph["ddg_oracle.application.html_report"]

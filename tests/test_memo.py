@@ -7,7 +7,8 @@ import pytest
 
 import numpy as np
 
-from ddg_oracle.properties import memo, protocol
+from ddg_oracle.properties import memo
+from ddg_oracle.protocol import methods as protocol
 from ddg_oracle.properties.harness import Exact
 from ddg_oracle.properties.strategies import mesh_case
 

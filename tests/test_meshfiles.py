@@ -5,7 +5,7 @@ import struct
 import pytest
 from hypothesis import given, strategies as st
 
-from ddg_oracle.meshfiles import MeshFileError, read_mesh, write_obj
+from ddg_oracle.application.meshfiles import MeshFileError, read_mesh, write_obj
 from ddg_oracle.reference import surfaces
 
 V0, F0 = surfaces.icosahedron().to_arrays()

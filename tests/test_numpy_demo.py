@@ -45,7 +45,7 @@ def _run(*args):
 
 
 def test_one_command_finds_the_wrong_corner():
-    out = _run("ddg_oracle.cli", "check", "--impl", "examples.numpy_cotan:WrongCorner",
+    out = _run("ddg_oracle.application.cli", "check", "--impl", "examples.numpy_cotan:WrongCorner",
                "--only", "D3.1", "--profile", "ci")
     assert out.returncode == 1, out.stdout + out.stderr
     assert "[D3.1] numpy-cotan-wrong-corner" in out.stdout

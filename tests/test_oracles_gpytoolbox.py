@@ -15,7 +15,7 @@ import pytest
 gpy = pytest.importorskip("gpytoolbox")
 
 from ddg_oracle.oracles.gpytoolbox import Gpytoolbox  # noqa: E402
-from ddg_oracle.properties.protocol import capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import capabilities  # noqa: E402
 from ddg_oracle.reference import surfaces  # noqa: E402
 from ddg_oracle.reference.curvature import corner_angles  # noqa: E402
 from ddg_oracle.reference.polyhedral import PolyhedralSurface  # noqa: E402
@@ -187,7 +187,7 @@ def test_every_applicable_property_passes_but_on_the_meshes_of_findings_G3_and_G
 
 
 def test_runs_in_a_worker_process():
-    from ddg_oracle.isolation import Isolated
+    from ddg_oracle.application.isolation import Isolated
     V, F = (np.array(a) for a in surfaces.torus(5, 4).to_arrays())
     with Isolated("gpytoolbox", timeout=60) as impl:
         assert impl.euler_characteristic(V, F) == 0

@@ -20,7 +20,7 @@ from lagrange import polyddg  # noqa: E402
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.lagrange import Lagrange  # noqa: E402
 from ddg_oracle.properties.conventions import declared  # noqa: E402
-from ddg_oracle.properties.protocol import capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import capabilities  # noqa: E402
 from tests.property_checks import every_property_unshrunk  # noqa: E402
 from ddg_oracle.reference import surfaces  # noqa: E402
 
@@ -243,7 +243,7 @@ def test_a_shared_library_clash_is_not_called_not_installed():
     import sys
     pytest.importorskip("pymeshlab")
     code = ("import pymeshlab\n"
-            "from ddg_oracle.implementations import load_implementation\n"
+            "from ddg_oracle.application.implementations import load_implementation\n"
             "try:\n    load_implementation('lagrange')\nexcept Exception as e:\n    print(e)\n"
             "else:\n    print('loaded')\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

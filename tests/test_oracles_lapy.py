@@ -16,7 +16,7 @@ lapy = pytest.importorskip("lapy")
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.lapy import Lapy  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
-from ddg_oracle.properties.protocol import OutsideDomain, capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import OutsideDomain, capabilities  # noqa: E402
 from tests.property_checks import every_property_unshrunk  # noqa: E402
 
 V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])

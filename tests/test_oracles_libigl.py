@@ -541,7 +541,7 @@ def test_bad_indices_raise_instead_of_segfaulting():
 
 
 def test_runs_in_a_worker_process():
-    from ddg_oracle.isolation import Isolated
+    from ddg_oracle.application.isolation import Isolated
     c = case("torus(5,4)")
     with Isolated("ddg_oracle.oracles.libigl:Libigl", timeout=60) as impl:
         assert impl.euler_characteristic(c.V, c.F) == 0

@@ -20,7 +20,7 @@ from meshlib import mrmeshpy as mm  # noqa: E402
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.meshlib import MeshLib  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
-from ddg_oracle.properties.protocol import OutsideDomain, capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import OutsideDomain, capabilities  # noqa: E402
 from tests.property_checks import every_property_unshrunk  # noqa: E402
 
 V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0.2, 0.2, 0.1]])   # obtuse faces too

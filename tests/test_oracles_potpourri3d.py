@@ -13,7 +13,7 @@ pp3d = pytest.importorskip("potpourri3d")
 
 from ddg_oracle.oracles.potpourri3d import Potpourri3d  # noqa: E402
 from ddg_oracle.properties import check_implementation  # noqa: E402
-from ddg_oracle.properties.protocol import capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import capabilities  # noqa: E402
 from tests import peer_checks as pc  # noqa: E402
 
 PP = Potpourri3d()
@@ -57,7 +57,7 @@ def test_bad_input_raises_a_value_error_before_potpourri3d():
 
 def test_a_negative_index_crashes_potpourri3d_edges_in_a_worker():
     """The isolation layer reports the crash of the raw library call as such."""
-    from ddg_oracle.isolation import ImplementationCrashed, Isolated
+    from ddg_oracle.application.isolation import ImplementationCrashed, Isolated
     V, F = pc.arrays("tetrahedron")
     with Isolated("tests.test_oracles_potpourri3d:RawEdges", timeout=60) as impl:
         assert impl.euler_characteristic(V, F) == 2

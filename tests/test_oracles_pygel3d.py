@@ -15,7 +15,7 @@ hmesh = pytest.importorskip("pygel3d.hmesh")
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.pygel3d import Pygel3d  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
-from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
+from ddg_oracle.protocol.methods import OutsideDomain  # noqa: E402
 
 from tests.property_checks import every_property_unshrunk  # noqa: E402
 

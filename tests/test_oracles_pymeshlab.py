@@ -401,7 +401,7 @@ def test_unreferenced_vertex_is_reported_not_silently_dropped():
 
 
 def test_runs_in_a_worker_process():
-    from ddg_oracle.isolation import Isolated
+    from ddg_oracle.application.isolation import Isolated
     c = case("annulus(5)")
     with Isolated("ddg_oracle.oracles.pymeshlab:PyMeshLab", timeout=60) as impl:
         assert impl.euler_characteristic(c.V, c.F) == 0

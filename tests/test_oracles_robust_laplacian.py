@@ -16,15 +16,15 @@ from hypothesis import settings
 
 rl = pytest.importorskip("robust_laplacian")
 
-from ddg_oracle.oracles.arrays import boundary_edges  # noqa: E402
+from ddg_oracle.protocol.arrays import boundary_edges  # noqa: E402
 from ddg_oracle.oracles.robust_laplacian import RobustLaplacian  # noqa: E402
 from ddg_oracle.properties import PROPERTIES  # noqa: E402
 from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
 from ddg_oracle.properties.bounds import entry_bounds  # noqa: E402
-from ddg_oracle.properties.budget import Budget  # noqa: E402
+from ddg_oracle.protocol.budget import Budget  # noqa: E402
 from ddg_oracle.properties.harness import Exact  # noqa: E402
 from ddg_oracle.properties.profiles import profile  # noqa: E402
-from ddg_oracle.properties.protocol import OutsideDomain  # noqa: E402
+from ddg_oracle.protocol.methods import OutsideDomain  # noqa: E402
 from ddg_oracle.properties.runner import (FAILED, NOT_APPLICABLE, PASSED, run_on_example,  # noqa: E402
                                          run_property)
 from ddg_oracle.reference import PolyhedralSurface, Triangulation  # noqa: E402
@@ -236,7 +236,7 @@ def test_runner_skips_examples_outside_the_domain():
 
 
 def test_outside_domain_crosses_the_worker_process():
-    from ddg_oracle.isolation import Isolated
+    from ddg_oracle.application.isolation import Isolated
     V, F = pc.arrays("disk(6)")
     with Isolated("robust_laplacian", timeout=60) as impl:
         with pytest.raises(OutsideDomain, match="F-robust-laplacian-1"):
@@ -249,7 +249,7 @@ def test_every_applicable_property_passes_but_D48_on_the_flip_threshold_RL2():
     """X4.2 passes; D4.8 fails on its closed near ties (a quad moved in by 2^-20, coned
     off) and on nothing else: the 1e-6 flip threshold of F-robust-laplacian-2, which the
     report names."""
-    from ddg_oracle.report import known_finding, known_findings
+    from ddg_oracle.application.report import known_finding, known_findings
     # which properties pass or fail (known_finding reads the status and property ID, not
     # the example): no shrink phase, the same seed, examples and budget as
     # run_properties(RL, "default", seed=0) had; the shrunk D4.8 example is checked below

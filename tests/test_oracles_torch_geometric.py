@@ -12,14 +12,14 @@ import pytest
 
 pytest.importorskip("torch_geometric")
 
-from ddg_oracle.causes import convention_hint  # noqa: E402
-from ddg_oracle.jobs import with_diagnosis  # noqa: E402
+from ddg_oracle.application.causes import convention_hint  # noqa: E402
+from ddg_oracle.application.jobs import with_diagnosis  # noqa: E402
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation  # noqa: E402
 from ddg_oracle.oracles.torch_geometric import TorchGeometric  # noqa: E402
 from ddg_oracle.properties import PROPERTIES  # noqa: E402
 from ddg_oracle.properties.conventions import declared, to_reference  # noqa: E402
 from ddg_oracle.properties.profiles import profile  # noqa: E402
-from ddg_oracle.properties.protocol import capabilities  # noqa: E402
+from ddg_oracle.protocol.methods import capabilities  # noqa: E402
 from ddg_oracle.properties.runner import FAILED, run_property  # noqa: E402
 from tests.property_checks import every_property_unshrunk  # noqa: E402
 

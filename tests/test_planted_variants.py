@@ -12,7 +12,7 @@ from benchmarks.planted.numpy_all import NumpyAll
 from benchmarks.planted.variants import VARIANTS
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.profiles import profile
-from ddg_oracle.properties.protocol import METHODS, capabilities
+from ddg_oracle.protocol.methods import METHODS, capabilities
 from ddg_oracle.properties.runner import PASSED, TIE, run_property
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.planar import planar_triangulation

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from ddg_oracle.cli import main
-from ddg_oracle import traceability
+from ddg_oracle.application.cli import main
+from ddg_oracle.application import traceability
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -140,7 +140,7 @@ def test_cli_check_reports_a_segfaulting_implementation_and_goes_on(capsys):
 
 
 def _notes_copy(tmp_path, edit):
-    from ddg_oracle import traceability
+    from ddg_oracle.application import traceability
     text = traceability.NOTES.read_text(encoding="utf-8")
     path = tmp_path / "notes.toml"
     path.write_text(edit(text), encoding="utf-8")
@@ -148,7 +148,7 @@ def _notes_copy(tmp_path, edit):
 
 
 def test_notes_table_lists_every_heading_of_the_notes_at_its_line():
-    from ddg_oracle import traceability
+    from ddg_oracle.application import traceability
     text = traceability.notes_path()
     if text is None:
         pytest.skip("the notes' text (../shared/seed) is not beside the repository")
@@ -160,7 +160,7 @@ def test_notes_table_lists_every_heading_of_the_notes_at_its_line():
 
 
 def test_notes_check_fails_on_a_missing_item_a_wrong_line_and_an_unknown_row(tmp_path):
-    from ddg_oracle import traceability
+    from ddg_oracle.application import traceability
     if traceability.notes_path() is None:
         pytest.skip("the notes' text (../shared/seed) is not beside the repository")
     import re as _re
@@ -178,7 +178,7 @@ def test_notes_check_fails_on_a_missing_item_a_wrong_line_and_an_unknown_row(tmp
 
 
 def test_every_erratum_has_its_fields_and_an_existing_test(tmp_path):
-    from ddg_oracle import traceability
+    from ddg_oracle.application import traceability
     assert traceability.errata_problems() == []
     text = (traceability.DATA / "errata.md").read_text(encoding="utf-8")
     broken = tmp_path / "errata.md"
@@ -193,7 +193,7 @@ def test_every_erratum_has_its_fields_and_an_existing_test(tmp_path):
 
 
 def test_the_manuals_counts_of_the_notes_items_and_errata_are_true():
-    from ddg_oracle import traceability
+    from ddg_oracle.application import traceability
     # the manual's page on the reference says them (README points there)
     readme = (Path(__file__).parent.parent / "docs" / "reference.md").read_text(encoding="utf-8")
     readme = " ".join(readme.split())

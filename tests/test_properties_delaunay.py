@@ -16,7 +16,7 @@ from ddg_oracle.reference.intrinsic import flip
 from ddg_oracle.reference.laplacian import cotan_weights
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
-from ddg_oracle.causes import element_ids
+from ddg_oracle.application.causes import element_ids
 from tests.planted_bugs import (LaplaceBeltramiWithoutHalf, NoFlips, OneFlipTooMany,
                                 OneSidedDelaunayTest)
 
@@ -128,7 +128,7 @@ def test_a_T4_5_failure_is_written_as_one_mesh_in_the_report(tmp_path, capsys, m
     # In process (the CLI's main, as `python -m ddg_oracle` calls it, from the repository
     # root as before): the report and the exit code are what is tested, not the
     # interpreter's start (~0.5 CPU-s of its 2.3); the same arguments, the same assertions
-    from ddg_oracle.cli import main
+    from ddg_oracle.application.cli import main
     monkeypatch.chdir(Path(__file__).resolve().parent.parent)
     report = tmp_path / "report"
     rc = main(["check", "--impl", "tests.planted_bugs:NoFlips", "--only", "T4.5", "--seed", "1",

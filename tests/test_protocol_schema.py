@@ -1,4 +1,4 @@
-"""docs/protocol.schema.json: generated from ddg_oracle.oracles.protocol_schema, a valid
+"""docs/protocol.schema.json: generated from ddg_oracle.protocol.schema, a valid
 draft 2020-12 schema, and true of real traffic: every request ddg-oracle sends and every
 answer of the reference served through the protocol validate, across the properties of
 every protocol method; malformed answers do not."""
@@ -13,10 +13,10 @@ from hypothesis import settings
 
 jsonschema = pytest.importorskip("jsonschema")
 
-from ddg_oracle.oracles import protocol_schema  # noqa: E402
+from ddg_oracle.protocol import schema as protocol_schema  # noqa: E402
 from ddg_oracle.oracles.executable import Executable  # noqa: E402
 from ddg_oracle.properties import PROPERTIES  # noqa: E402
-from ddg_oracle.properties.protocol import METHODS  # noqa: E402
+from ddg_oracle.protocol.methods import METHODS  # noqa: E402
 from ddg_oracle.properties.profiles import profile  # noqa: E402
 from ddg_oracle.properties.runner import CRASHED, run_property  # noqa: E402
 
@@ -32,7 +32,7 @@ def _valid(message, kind: str) -> bool:
 
 def test_the_committed_schema_is_the_generated_one_and_valid():
     assert COMMITTED.read_text(encoding="utf-8") == protocol_schema.text(), \
-        "regenerate: python -m ddg_oracle.oracles.protocol_schema docs/protocol.schema.json"
+        "regenerate: python -m ddg_oracle.protocol.schema docs/protocol.schema.json"
     jsonschema.Draft202012Validator.check_schema(SCHEMA)
     assert SCHEMA["version"] == 1
     assert {f"answer.{m}" for m in METHODS} | {f"request.{m}" for m in METHODS} <= set(SCHEMA["$defs"])

@@ -1,6 +1,6 @@
 """One registry: every property declares how it runs on a mesh file, every protocol method
 how its answers compare (properties.registry), adapters declare themselves
-(ddg_oracle.implementations reads their ADAPTER), and the application holds no per-method
+(ddg_oracle.application.implementations reads their ADAPTER), and the application holds no per-method
 or per-adapter table.  Adding a toy property and a toy adapter touches one file each: done
 here in a temporary copy of the package, then ``ddg-oracle check`` runs them."""
 
@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from ddg_oracle.properties.protocol import METHODS
+from ddg_oracle.protocol.methods import METHODS
 from ddg_oracle.properties.registry import (PROPERTIES, REQUIREMENTS, all_properties,
                                             all_quantities, prop, quantity)
 
@@ -57,13 +57,13 @@ def test_the_application_names_no_protocol_method_and_no_adapter():
     """compare, the exec protocol and its schema read the methods' shapes and quantities;
     the implementations table reads the adapters' declarations."""
     import ast
-    for path in ("ddg_oracle/compare.py", "oracles/executable.py", "oracles/protocol_schema.py"):
+    for path in ("application/compare.py", "oracles/executable.py", "protocol/schema.py"):
         tree = ast.parse((ROOT / path).read_text(encoding="utf-8"))
         named = sorted({n.value for n in ast.walk(tree)
                         if isinstance(n, ast.Constant) and n.value in METHODS})
         assert named == [], f"{path} names {named} in its code"
-    from ddg_oracle.implementations import BUILTIN
-    text = (ROOT / "ddg_oracle/implementations.py").read_text(encoding="utf-8")
+    from ddg_oracle.application.implementations import BUILTIN
+    text = (ROOT / "application/implementations.py").read_text(encoding="utf-8")
     assert not [name for name, target in BUILTIN.items() if target.split(":")[1] in text]
 
 
@@ -105,7 +105,7 @@ def test_a_toy_property_and_a_toy_adapter_touch_one_file_each(tmp_path):
     pkg = tmp_path / "ddg_oracle"
     shutil.copytree(ROOT / "ddg_oracle", pkg, symlinks=False,
                     ignore=shutil.ignore_patterns("__pycache__"))
-    for sub in ("reference", "properties", "oracles"):
+    for sub in ("reference", "protocol", "properties", "oracles", "application"):
         shutil.copytree(ROOT / sub, pkg / sub, ignore=shutil.ignore_patterns("__pycache__"))
     with open(pkg / "properties" / "topology.py", "a", encoding="utf-8") as out:
         out.write(TOY_PROPERTY)

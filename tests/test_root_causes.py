@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import re
 
-from ddg_oracle.cli import main
+from ddg_oracle.application.cli import main
 
 
 def _run(capsys, *argv):

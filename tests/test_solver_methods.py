@@ -86,7 +86,7 @@ def test_a_wrong_factor_or_sign_of_the_area_gradient_is_caught(planted):
 @pytest.mark.parametrize("spec", ["libigl", "gpytoolbox"])
 @pytest.mark.parametrize("pid", ["T3.2", "C3.4 / T3.5", "T3.9"])
 def test_libraries_solvers_and_gradients(spec, pid):
-    from ddg_oracle.implementations import load_implementation
+    from ddg_oracle.application.implementations import load_implementation
     impl = load_implementation(spec)
     assert {"solve_dirichlet", "area_gradient"} <= set(dir(impl))
     r = _run(pid, impl)

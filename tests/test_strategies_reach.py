@@ -19,7 +19,7 @@ from hypothesis.errors import NoSuchExample
 
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.strategies import jittered_surfaces
-from ddg_oracle.properties.budget import Budget
+from ddg_oracle.protocol.budget import Budget
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, run_property
 from ddg_oracle.properties.strategies import (acute_meshes, any_meshes, scaled_meshes,

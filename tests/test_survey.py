@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from ddg_oracle.meshfiles import write_obj
+from ddg_oracle.application.meshfiles import write_obj
 from ddg_oracle.reference import surfaces
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -220,7 +220,7 @@ def test_usage_errors_are_one_line_exit_2(corpus, undisturbed, tmp_path):
 
 
 def test_scoreboard_of_records_worst_and_median():
-    from ddg_oracle.survey import MeshResult, scoreboard
+    from ddg_oracle.application.survey import MeshResult, scoreboard
 
     def row(status, worst, where="vertex 0", note=None):
         return {"quantity": "angle_defects", "implementation": "x", "spec": "x",

@@ -5,8 +5,8 @@ import re
 
 import pytest
 
-from ddg_oracle import traceability
-from ddg_oracle.cli import main
+from ddg_oracle.application import traceability
+from ddg_oracle.application.cli import main
 
 NOTES = traceability.notes_path()
 needs_notes = pytest.mark.skipif(NOTES is None, reason="the notes' text (../shared/seed) is "
@@ -47,7 +47,7 @@ def test_check_fails_when_any_single_item_is_missing(tmp_path):
             continue
         path.write_text(header + "".join(items[:k] + items[k + 1:]), encoding="utf-8")
         problems = traceability.check_notes(path, entries=entries)
-        assert any(p.startswith(f"{name} (line ") and "is not in ddg_oracle/notes.toml" in p
+        assert any(p.startswith(f"{name} (line ") and "is not in application/notes.toml" in p
                    for p in problems), (name, problems)
 
 

@@ -17,10 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddg_oracle import vectors
-from ddg_oracle.cli import main
+from ddg_oracle.application import vectors
+from ddg_oracle.application.cli import main
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.properties.protocol import METHODS
+from ddg_oracle.protocol.methods import METHODS
 
 ROOT = Path(__file__).resolve().parent.parent
 COMMITTED = ROOT / "vectors"
@@ -186,7 +186,7 @@ class _TwoPiAtTheBoundary:
     """The classic convention bug: 2 pi - angle sum at boundary vertices too."""
 
     def angle_defects(self, V, F):
-        from ddg_oracle.oracles.arrays import boundary_edges
+        from ddg_oracle.protocol.arrays import boundary_edges
         K = ReferenceImplementation().angle_defects(V, F)
         K[np.unique(boundary_edges(np.asarray(F)))] += np.pi
         return K
@@ -292,8 +292,8 @@ def test_usage_errors_exit_2(corpus_dir, tmp_path, capsys):
 def test_the_vectors_find_the_documented_findings(corpus, spec, case, finding):
     """Each of these findings of docs/findings.md fails its test vector, and the library
     passes the same method on the plain octahedron (not a blanket failure)."""
-    from ddg_oracle.implementations import load_implementation
-    from ddg_oracle.properties.protocol import FLOAT64_EPSILON, machine_epsilon
+    from ddg_oracle.application.implementations import load_implementation
+    from ddg_oracle.protocol.methods import FLOAT64_EPSILON, machine_epsilon
     pytest.importorskip({"libigl": "igl"}.get(spec, spec))
     assert f"## {finding}" in (ROOT / "docs" / "findings.md").read_text()
     impl = load_implementation(spec)
@@ -317,7 +317,7 @@ def test_honest_precision_limits_pass_their_vectors(corpus, spec, case, finding)
     """Issue 40: these findings are precision limits of honest routes (flips and angles from
     edge lengths), which the derived bounds now cover (properties/bounds.py); failing
     them again would be a false alarm."""
-    from ddg_oracle.implementations import load_implementation
+    from ddg_oracle.application.implementations import load_implementation
     pytest.importorskip({"libigl": "igl"}.get(spec, spec))
     assert "within the bounds since issue 40" in (ROOT / "docs" / "findings.md").read_text()
     impl = load_implementation(spec)
@@ -332,7 +332,7 @@ def test_the_adapters_give_the_protocols_values_at_an_isolated_vertex(corpus, sp
     """Found by the vectors: libigl sizes chi and its intrinsic Delaunay Laplacian by
     max(F) + 1, robust-laplacian puts 1 on an unreferenced vertex's diagonal; the
     adapters map both (docs/conventions.md)."""
-    from ddg_oracle.implementations import load_implementation
+    from ddg_oracle.application.implementations import load_implementation
     pytest.importorskip({"libigl": "igl"}.get(spec, spec))
     impl = load_implementation(spec)
     sub = {m: dict(f, cases=[c for c in f["cases"] if c["name"] == "isolated-vertex"])

@@ -17,15 +17,15 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
-from ddg_oracle.cli import main
-from ddg_oracle.isolation import Isolated
+from ddg_oracle.application.cli import main
+from ddg_oracle.application.isolation import Isolated
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.oracles.executable import Executable, program_of
 from ddg_oracle.properties import PROPERTIES
-from ddg_oracle.properties.budget import Budget
+from ddg_oracle.protocol.budget import Budget
 from ddg_oracle.properties.calls import first_non_finite
 from ddg_oracle.properties.profiles import profile
-from ddg_oracle.properties.protocol import METHODS, OutsideDomain
+from ddg_oracle.protocol.methods import METHODS, OutsideDomain
 from ddg_oracle.properties.registry import all_properties
 from ddg_oracle.properties.runner import (CRASHED, FAILED, INCOMPLETE, NOT_APPLICABLE, PASSED,
                                           NearMissWarning, check_implementation, run_property,
@@ -354,12 +354,12 @@ class _budget_of_default:
         self.budget = budget
 
     def __enter__(self):
-        from ddg_oracle.properties import budget as b
+        from ddg_oracle.protocol import budget as b
         self.saved = b.BUDGETS["default"]
         b.BUDGETS["default"] = self.budget
 
     def __exit__(self, *exc):
-        from ddg_oracle.properties import budget as b
+        from ddg_oracle.protocol import budget as b
         b.BUDGETS["default"] = self.saved
 
 
@@ -415,14 +415,14 @@ class StoppedBySignal(ReferenceImplementation):
     name = "stopped-by-signal"
 
     def euler_characteristic(self, V, F):
-        from ddg_oracle.jobs import Interrupted
+        from ddg_oracle.application.jobs import Interrupted
         raise Interrupted(2)
 
 
 def test_a_signal_during_a_call_stops_the_run_and_is_not_the_implementations_crash():
     """Fault suite (issue 45): with --workers 1, SIGINT during an exec driver's call was
     recorded as that driver's crash, and --resume kept the crash."""
-    from ddg_oracle.jobs import Interrupted
+    from ddg_oracle.application.jobs import Interrupted
     with pytest.raises(Interrupted):
         run_property(PROPERTIES["D1.6"], StoppedBySignal(), profile("default"))
 
@@ -520,7 +520,7 @@ def test_compare_accepts_either_answer_on_an_exact_tie():
     differs on an exact tie DIFFERS: thousands per CAD mesh of the CGAL corpus (squares
     split by a diagonal) for libigl and MeshLib, which decide ties in float.  The property
     D4.4 and the test vectors always accepted either answer there."""
-    from ddg_oracle.compare import MeshInput, compare_mesh
+    from ddg_oracle.application.compare import MeshInput, compare_mesh
     from ddg_oracle.reference import surfaces
     g = surfaces.grid(3, 2)                        # every diagonal an exact tie
     V = [[float(x) for x in p] for p in g.positions]
@@ -546,7 +546,7 @@ def test_a_quantity_without_an_exact_value_on_a_mesh_is_not_applicable_and_the_r
     """survey stopped with exit 2 at cgal:corner_poly.off (a folded edge: no dihedral angle,
     no mean curvature), dropping every mesh after it: compare now says the quantity has
     no value there and compares the others."""
-    from ddg_oracle.compare import MeshInput, compare_mesh
+    from ddg_oracle.application.compare import MeshInput, compare_mesh
     V = [[0, 0, 0], [1, 0, 0], [0.25, 1, 0], [0.5, 0.5, 0]]     # face 1 folded onto face 0
     mesh = MeshInput("folded", V, [[0, 1, 2], [1, 0, 3]])
     rows = {c.quantity: c for c in compare_mesh(mesh, [ZeroMeanCurvature()],
@@ -561,7 +561,7 @@ def _far_mesh():
     """A closed float64 mesh far from the origin relative to its size (an icosahedron of
     radius 1 moved by 3000 with float64 jitter): float32 holds none of its coordinates, and
     their rounding alone moves its angles by thousands of float32 ulps."""
-    from ddg_oracle.compare import MeshInput
+    from ddg_oracle.application.compare import MeshInput
     from ddg_oracle.reference import surfaces
     s = surfaces.icosahedron()
     rng = np.random.default_rng(7)
@@ -576,7 +576,7 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
     (against the exact values of the float32-rounded coordinates: 1e-7).  An honest
     float32 implementation now agrees; its float64 twin is compared on the mesh as given."""
     from tests.honest_panel import Atan2Cross, Atan2Cross32
-    from ddg_oracle.compare import as_read_by, compare_mesh
+    from ddg_oracle.application.compare import as_read_by, compare_mesh
     mesh = _far_mesh()
     assert as_read_by(mesh, 2.0 ** -23) is not mesh and as_read_by(mesh, 2.0 ** -52) is mesh
     from dataclasses import replace
@@ -597,7 +597,7 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
 def test_check_mesh_gives_a_float32_implementation_the_input_it_reads(tmp_path, capsys):
     """The same in check --mesh: D2.6 failed an honest float32 implementation by 17 x its
     bound, D3.1 and D4.8 by 19 x, all of it the input's rounding."""
-    from ddg_oracle.meshfiles import write_obj
+    from ddg_oracle.application.meshfiles import write_obj
     mesh = _far_mesh()
     path = tmp_path / "far.obj"
     write_obj(path, mesh.V, mesh.F)

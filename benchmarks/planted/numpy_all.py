@@ -10,7 +10,7 @@ assumes an orientation, ...).  Every step serves one protocol method (its docstr
 and a method that needs another one's answer asks the correct implementation
 (:func:`correct`), so that a variant changes exactly the methods it declares as ``planted``.
 
-Conventions are the protocol's (``properties/protocol.py``): the surface's own metric, any
+Conventions are the protocol's (``protocol/methods.py``): the surface's own metric, any
 orientation (Möbius strips and reversed faces included: edges are unordered vertex pairs,
 and the intrinsic flips reorient a face where its gluing needs it), vertices used by no face
 keep 2 pi, area 0, a zero Laplacian row, and count in V - E + F.  Reused from

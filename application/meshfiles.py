@@ -27,7 +27,7 @@ import os
 import struct
 from pathlib import Path
 
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 
 class MeshFileError(InputError):

@@ -8,14 +8,14 @@ of each cotan weight, the intrinsic Delaunay Laplacian) on that mesh; ``ddg-orac
 protocol method, the largest error of each implementation in units of the
 derived bound, and where.  Both take the same mesh arguments:
 
-* a path to an OBJ, OFF, PLY or STL file (:func:`ddg_oracle.meshfiles.read_mesh`);
+* a path to an OBJ, OFF, PLY or STL file (:func:`ddg_oracle.application.meshfiles.read_mesh`);
 * a directory: every such file below it (a corpus; one that cannot be read is
   skipped with a note);
 * ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
   package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them;
 * ``cgal:`` -- every mesh of the CGAL corpus (CGAL's ``data/meshes`` from Debian's
-  ``libcgal-demo``, fetched once by ``python -m ddg_oracle.corpus fetch``, see
-  :mod:`ddg_oracle.corpus`), or ``cgal:NAME`` one of them (its file name or its path in
+  ``libcgal-demo``, fetched once by ``python -m ddg_oracle.application.corpus fetch``, see
+  :mod:`ddg_oracle.application.corpus`), or ``cgal:NAME`` one of them (its file name or its path in
   the corpus).  Their polygon faces are triangulated, with a note.
 
 The reference needs every vertex to lie in a face: unreferenced vertices are
@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ddg_oracle.reference.errors import ExactArithmeticLimit, InputError
+from ..reference.errors import ExactArithmeticLimit, InputError
 
 from . import corpus
 from .meshfiles import MeshFileError, read_mesh
@@ -142,7 +142,7 @@ def load(name: str, path: Path) -> MeshInput:
     if polygons:
         note = polygons if note is None else f"{polygons}; {note}"
     try:
-        from ddg_oracle.reference.polyhedral import PolyhedralSurface
+        from ..reference.polyhedral import PolyhedralSurface
         s = PolyhedralSurface.from_arrays(V, F)           # a manifold triangulation
         if not nondegenerate(V, F):
             s.metric()                  # names the zero-area face (exactly), or passes
@@ -182,7 +182,7 @@ def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
     angles on cgal:fold.off by 6 times their float32 bound).  The same object for float64
     or when every coordinate is representable; InputError when the rounded mesh is no
     longer a valid surface (a face collapsed by the rounding)."""
-    from ddg_oracle.properties.precision import format_of, rounded_to
+    from ..properties.precision import format_of, rounded_to
     fmt = format_of(epsilon)
     if fmt.bits == 53:
         return mesh
@@ -192,7 +192,7 @@ def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
     if V == [[float(x) for x in p] for p in mesh.V]:
         return mesh
     try:
-        from ddg_oracle.reference.polyhedral import PolyhedralSurface
+        from ..reference.polyhedral import PolyhedralSurface
         PolyhedralSurface.from_arrays(V, mesh.F)
     except InputError as e:
         raise InputError(f"{mesh.name} rounded to {fmt.name} (as this implementation reads "
@@ -236,9 +236,9 @@ class MeshExamples:
 
     @property
     def surface(self):
-        from ddg_oracle.properties import memo
-        from ddg_oracle.properties.example import surface_key
-        from ddg_oracle.reference.polyhedral import PolyhedralSurface
+        from ..properties import memo
+        from ..properties.example import surface_key
+        from ..reference.polyhedral import PolyhedralSurface
 
         def build():
             s = PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F)
@@ -263,8 +263,8 @@ class MeshExamples:
     def example(self):
         """The one example every property and quantity takes: the exact surface, its chi and
         (for a connected mesh) its classification."""
-        from ddg_oracle.properties.example import Example
-        from ddg_oracle.reference.combinatorics import Classification
+        from ..properties.example import Example
+        from ..reference.combinatorics import Classification
 
         def build():
             t, f = self.surface.triangulation, self.facts
@@ -277,7 +277,7 @@ class MeshExamples:
 
 def file_properties(only=None) -> list:
     """The properties that run on a given mesh file (``on_mesh`` declared), in order."""
-    from ddg_oracle.properties.registry import all_properties
+    from ..properties.registry import all_properties
     return [p for p in all_properties() if p.on_mesh is not None
             and (only is None or p.id in only)]
 
@@ -286,9 +286,9 @@ def run_mesh_properties(examples: MeshExamples, impl, only=None, counterpart=Non
                         convention=None) -> list:
     """Every property that runs on a mesh file (or ``only`` those IDs) on one mesh: not
     applicable, saying why, where the mesh does not meet its requirements."""
-    from ddg_oracle.properties.registry import unmet
-    from ddg_oracle.properties.runner import NOT_APPLICABLE, Result, run_on_example
-    from ddg_oracle.properties.protocol import implementation_name
+    from ..properties.registry import unmet
+    from ..properties.runner import NOT_APPLICABLE, Result, run_on_example
+    from ..protocol.methods import implementation_name
 
     results = []
     for p in file_properties(only):
@@ -326,13 +326,13 @@ class Comparison:
 
 
 def _epsilon_of(impl):
-    from ddg_oracle.properties.protocol import at_machine_epsilon, machine_epsilon
+    from ..protocol.methods import at_machine_epsilon, machine_epsilon
     return at_machine_epsilon(machine_epsilon(impl))
 
 
 def _worst(err: np.ndarray, bound: np.ndarray):
     """(index, largest err / bound, how many exceed their bound)."""
-    from ddg_oracle.properties.harness import ratios, worst
+    from ..properties.harness import ratios, worst
     k, ratio = worst(err, bound)
     return k, ratio, int(np.sum(ratios(err, bound) > 1))
 
@@ -371,8 +371,8 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     mapped from the conventions it declares (:mod:`ddg_oracle.properties.conventions`);
     with ``explain``, a differing answer is tried under the conventions it did not
     declare, and those under which it agrees are named (``explained_by``)."""
-    from ddg_oracle.properties.precision import format_of
-    from ddg_oracle.properties.protocol import (METHODS, capabilities, implementation_name,
+    from ..properties.precision import format_of
+    from ..protocol.methods import (METHODS, capabilities, implementation_name,
                                                 machine_epsilon)
     # each implementation against the exact values of the input it reads (as_read_by)
     formats: dict = {}
@@ -396,10 +396,10 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
 
 def _compare_read(mesh: MeshInput, impls, reference, workers, methods, explain):
     """:func:`compare_mesh` of implementations that all read ``mesh`` as it is."""
-    from ddg_oracle.properties.protocol import (METHODS, capabilities, implementation_name,
+    from ..protocol.methods import (METHODS, capabilities, implementation_name,
                                                 machine_epsilon)
-    from ddg_oracle.properties.conventions import declared, widened
-    from ddg_oracle.properties.registry import all_quantities, unmet
+    from ..properties.conventions import declared, widened
+    from ..properties.registry import all_quantities, unmet
 
     quantities = all_quantities()
     ex = MeshExamples(mesh)
@@ -465,8 +465,8 @@ def _compare_read(mesh: MeshInput, impls, reference, workers, methods, explain):
 def _answers(todo, V, F) -> list:
     """(impl, method, answer on the reference's conventions, or a Comparison saying why
     there is none) for each of ``todo``'s (impl, method, why not applicable)."""
-    from ddg_oracle.properties.conventions import declared, to_reference
-    from ddg_oracle.properties.protocol import OutsideDomain, implementation_name
+    from ..properties.conventions import declared, to_reference
+    from ..protocol.methods import OutsideDomain, implementation_name
     answers = []
     for impl, method, why in todo:
         name = implementation_name(impl)
@@ -486,8 +486,8 @@ def _answers(todo, V, F) -> list:
 def _explained(q, impl, got, want, ex, bound, V, F) -> tuple:
     """The conventions under which ``got`` (already mapped from the declared ones)
     agrees with the exact answer: what a failing implementation probably follows."""
-    from ddg_oracle.properties.conventions import declared, explaining
-    from ddg_oracle.properties.protocol import implementation_name
+    from ..properties.conventions import declared, explaining
+    from ..protocol.methods import implementation_name
 
     def agrees(mapped) -> bool:
         return _compare_one(q, implementation_name(impl), mapped, want, ex,
@@ -507,8 +507,8 @@ class _ExpectedValues:
         """(want, bound); the exact reference's giving up (its time limit per example,
         ``DDG_EXAMPLE_TIME_LIMIT``, or its precision limit) raised as
         :class:`~ddg_oracle.reference.errors.ExactArithmeticLimit`, once per method."""
-        from ddg_oracle.properties.profiles import example_time_limit
-        from ddg_oracle.reference.errors import ExactArithmeticLimit
+        from ..properties.profiles import example_time_limit
+        from ..reference.errors import ExactArithmeticLimit
         if q.method in self.gave_up:
             raise self.gave_up[q.method]
         try:
@@ -519,7 +519,7 @@ class _ExpectedValues:
             raise
 
     def _values(self, q, epsilon: float):
-        from ddg_oracle.properties.protocol import at_machine_epsilon
+        from ..protocol.methods import at_machine_epsilon
         if q.method not in self.wanted:
             answer = lambda: self.answer(q.method)       # noqa: E731
             self.wanted[q.method] = q.expected(self.ex.example(), answer) if q.expected \
@@ -547,7 +547,7 @@ class _Worker:
 
 
 def _start_worker(mesh: MeshInput) -> None:
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from ..oracles.exact_reference import ReferenceImplementation
     _Worker.mesh, _Worker.examples = mesh, MeshExamples(mesh)
     _Worker.reference = ReferenceImplementation()
 
@@ -559,7 +559,7 @@ def _expected_in_worker(job):
     importing them too, and two threads importing one package's circular modules deadlock
     (the main thread's reference raised ``_DeadlockError``, reported as its crash)."""
     import pickle
-    from ddg_oracle.properties.registry import all_quantities
+    from ..properties.registry import all_quantities
     method, epsilons = job
     V = np.array(_Worker.mesh.V, dtype=np.float64)
     F = np.array(_Worker.mesh.F, dtype=np.int64)
@@ -576,10 +576,10 @@ def _expected_in_worker(job):
 def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
     """Start computing every asked method's values and bounds in ``workers`` worker
     processes; returns a function that waits for them and answers as :class:`_ExpectedValues`."""
-    from ddg_oracle.properties.protocol import METHODS
+    from ..protocol.methods import METHODS
     # the later chapters hold the costly quantities (curvature, Laplacians, Delaunay): first
     jobs = [(m, asked[m]) for m in reversed(METHODS) if m in asked]
-    from ddg_oracle.containment import worker_context
+    from .containment import worker_context
     pool = worker_context().Pool(min(workers, len(jobs)), _start_worker, (mesh,))
     running = pool.imap_unordered(_expected_in_worker, jobs)
 
@@ -633,7 +633,7 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
         return Comparison(quantity, name, "agrees", worst=0.0, error=0.0,
                           bound=float(bound[i, j]), where=f"entry {(i, j)}",
                           expected=float(W.data[0]), observed=float(A[i, j]), elements=elements)
-    from ddg_oracle.properties.harness import entries_at
+    from ..properties.harness import entries_at
     b = entries_at(bound, err.row, err.col)
     (k,), ratio, over = _worst(err.data, b)
     i, j = int(err.row[k]), int(err.col[k])
@@ -656,8 +656,8 @@ def derived_bound(method: str, ex: MeshExamples, want=None):
     answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): the
     method's quantity's ``bound`` (an array of the answer's shape, a scipy matrix, or
     {edge: bound}); ``want``: what the answer is compared with.  Used by ``compare`` and
-    by the test vectors (:mod:`ddg_oracle.vectors`)."""
-    from ddg_oracle.properties.registry import all_quantities
+    by the test vectors (:mod:`ddg_oracle.application.vectors`)."""
+    from ..properties.registry import all_quantities
     return all_quantities()[method].bound(ex.example(), want)
 
 
@@ -723,9 +723,9 @@ def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:
     entry (0, 1) expected -0.5, observed 0.5").  Empty for a mesh compare does not take
     (a vertex used by no face, a degenerate face), a large one, or methods whose answer
     one mesh does not determine."""
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    from ddg_oracle.properties.protocol import capabilities
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..oracles.exact_reference import ReferenceImplementation
+    from ..protocol.methods import capabilities
+    from ..reference.polyhedral import PolyhedralSurface
     V, F = mesh
     methods = set(methods) & capabilities(impl)
     if not methods or len(F) > faces_limit:
@@ -748,8 +748,8 @@ def _diagnose_unused(V, F, impl, methods) -> list[dict]:
     """The diagnosis on a mesh with vertices no face uses, which compare does not take: an
     answer sized for the used vertices only, that agrees on the mesh without the others,
     is the convention unused_vertices=dropped (LaPy's); anything else says nothing."""
-    from ddg_oracle.properties.conventions import declared, to_reference
-    from ddg_oracle.properties.protocol import METHODS
+    from ..properties.conventions import declared, to_reference
+    from ..protocol.methods import METHODS
     used = sorted({int(v) for f in F for v in f})
     new = {v: k for k, v in enumerate(used)}
     compact = ([list(V[v]) for v in used], [[new[int(v)] for v in f] for f in F])
@@ -797,7 +797,7 @@ def _on_used(impl, method: str, got, used: list):
     the reference's conventions, for every vertex) restricted to the ``used`` vertices:
     per-vertex rows, or the rows and columns of a matrix."""
     import scipy.sparse as sp
-    from ddg_oracle.properties.protocol import METHODS, implementation_name, machine_epsilon
+    from ..protocol.methods import METHODS, implementation_name, machine_epsilon
     idx = np.asarray(used, dtype=np.int64)
     if sp.issparse(got):
         part = sp.csr_matrix(got)[idx][:, idx]

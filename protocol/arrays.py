@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ddg_oracle.reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, NegativeIndex,
+from ..reference.errors import (BadShape, EmptyMesh, IndexOutOfRange, NegativeIndex,
                               NonFiniteValue, NonIntegerIndex, NotANumber)
-from ddg_oracle.reference.combinatorics import corner_of, face_of
+from ..reference.combinatorics import corner_of, face_of
 
 
 def _array(x, what: str) -> np.ndarray:
@@ -87,7 +87,7 @@ class Referenced:
     others: ``V``, ``F`` compacted to them, ``keep[v]`` the input index of compact vertex v.
 
     Answers are put back on the input's indices with the protocol's values at the
-    isolated vertices (:data:`ddg_oracle.properties.protocol.ISOLATED_VERTEX`).
+    isolated vertices (:data:`ddg_oracle.protocol.methods.ISOLATED_VERTEX`).
 
     >>> r = Referenced([[0, 0, 0], [5, 5, 5], [1, 0, 0], [0, 1, 0]], [[0, 2, 3]])
     >>> r.keep.tolist(), r.F.tolist(), r.isolated

@@ -8,7 +8,7 @@ is bad, the answer must be an error; ``acceptable``: outside the notes' domain, 
 passes) and the expected answer: for numbers the exact value
 (an expression in integers, ``sqrt``, ``pi`` and ``arccot``), its correctly rounded float64
 and the derived tolerances for float64 and float32 implementations (the bounds ``check``
-uses, :func:`ddg_oracle.compare.derived_bound`).  ``DIR/README.md`` says how to use it
+uses, :func:`ddg_oracle.application.compare.derived_bound`).  ``DIR/README.md`` says how to use it
 without Python; ``DIR/schema.json`` is its JSON Schema (:func:`schema`).
 
 ``ddg-oracle verify DIR ANSWERS`` checks an answers file (JSON Lines, one
@@ -33,11 +33,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ddg_oracle.properties.protocol import FLOAT64_EPSILON, METHODS, OutsideDomain, at_machine_epsilon
+from ..protocol.methods import FLOAT64_EPSILON, METHODS, OutsideDomain, at_machine_epsilon
 
 from .files import read_text
-from ddg_oracle.reference.errors import InputError
-from ddg_oracle.reference.combinatorics import next_corner, prev_corner
+from ..reference.errors import InputError
+from ..reference.combinatorics import next_corner, prev_corner
 
 FORMAT = "ddg-oracle-test-vectors"
 #: the corpus format's version: bumped when a field changes meaning (new cases do not)
@@ -85,7 +85,7 @@ def _floats(surface) -> list:
 
 
 def _case(name, flags, comment, surface) -> Case:
-    from ddg_oracle.properties.strategies import floated
+    from ..properties.strategies import floated
     s = floated(surface)
     return Case(name, tuple(flags), comment, _floats(s), [list(f) for f in s.triangulation.faces])
 
@@ -98,14 +98,14 @@ def _scaled(surface, k: int):
 def _placed(t, seed: int):
     """A triangulation without geometry (RP^2, the Klein bottle) at seeded dyadic points
     (not an embedding: a piecewise flat metric needs only non-degenerate faces)."""
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..reference.polyhedral import PolyhedralSurface
     rng = random.Random(seed)
     return PolyhedralSurface(t, [tuple(Fraction(rng.randint(-64, 64), 16) for _ in range(3))
                                  for _ in range(t.n_vertices)])
 
 
 def _square_tie():
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..reference.polyhedral import PolyhedralSurface
     return PolyhedralSurface.from_arrays([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
                                          [(0, 1, 2), (0, 2, 3)])
 
@@ -113,23 +113,23 @@ def _square_tie():
 def _obtuse_fan():
     """A planar fan of 6 faces around (0, 0) with obtuse angles at the rim (non-Delaunay
     spokes, negative cotan weights)."""
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..reference.polyhedral import PolyhedralSurface
     ring = [(4, 0), (1, 1), (-4, 1), (-4, -1), (-1, -1), (4, -1)]
     pts = [(0, 0, 0)] + [(Fraction(x, 2), Fraction(y, 3), 0) for x, y in ring]
     return PolyhedralSurface.from_arrays(pts, [(0, 1 + j, 1 + (j + 1) % 6) for j in range(6)])
 
 
 def _x42():
-    from ddg_oracle.properties.delaunay import X42
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..properties.delaunay import X42
+    from ..reference.polyhedral import PolyhedralSurface
     return PolyhedralSurface.from_arrays(*X42)
 
 
 def _flipped_grid(m: int, n: int, seed: int):
     """An m x n unit grid in z = 0 with seeded diagonals, points jittered by seeded dyadics
     (not cocircular: a unique Delaunay triangulation, reached by flips)."""
-    from ddg_oracle.properties.strategies import grid_faces
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..properties.strategies import grid_faces
+    from ..reference.polyhedral import PolyhedralSurface
     rng = random.Random(seed)
     faces = grid_faces(m, n, [rng.random() < 0.5 for _ in range(m * n)])
     pts = [(i + Fraction(rng.randint(-3, 3), 16), j + Fraction(rng.randint(-3, 3), 16), 0)
@@ -139,10 +139,10 @@ def _flipped_grid(m: int, n: int, seed: int):
 
 def named_cases() -> list[Case]:
     """The hand-picked hard cases (valid inputs)."""
-    from ddg_oracle.properties import variants
-    from ddg_oracle.reference import surfaces
-    from ddg_oracle.properties.strategies import floated
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from ..properties import variants
+    from ..reference import surfaces
+    from ..properties.strategies import floated
+    from ..reference.polyhedral import PolyhedralSurface
     oct_ = surfaces.octahedron()
     out = [
         _case("tetrahedron", ["closed"], "the reference's tetrahedron (rational)", surfaces.tetrahedron()),
@@ -206,8 +206,8 @@ def named_cases() -> list[Case]:
 def seeded_cases(count: int = 4, seed: int = 2026) -> list[Case]:
     """Generated cases: closed and bounded surfaces with every coordinate moved by a seeded
     random float (no exact structure left), deterministic in ``seed``."""
-    from ddg_oracle.properties.strategies import jittered
-    from ddg_oracle.reference import surfaces
+    from ..properties.strategies import jittered
+    from ..reference import surfaces
     bases = [("octahedron", surfaces.octahedron), ("cube", surfaces.cube),
              ("grid", lambda: surfaces.grid(3, 3)), ("disk", lambda: surfaces.disk(6))]
     out = []
@@ -261,7 +261,7 @@ def exact_text(x) -> str:
 
 
 def float_view(x) -> float:
-    from ddg_oracle.oracles.exact_reference import float_view as view
+    from ..oracles.exact_reference import float_view as view
     return view(x)
 
 
@@ -287,7 +287,7 @@ def _request(method: str, case: Case, rng: random.Random) -> dict:
     if method == "solve_dirichlet":
         if case.invalid or not case.planar:
             raise _NotApplicable          # the reference solves exactly on planar meshes only
-        from ddg_oracle.reference.combinatorics import Triangulation
+        from ..reference.combinatorics import Triangulation
         t = Triangulation.from_faces(case.F, n_vertices=len(case.V))
         boundary = sorted({v for loop in t.boundary_loops() for v in loop})
         if not boundary or len(boundary) == len(case.V):
@@ -298,7 +298,7 @@ def _request(method: str, case: Case, rng: random.Random) -> dict:
 
 
 def _reference_answer(method, req):
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from ..oracles.exact_reference import ReferenceImplementation
     return _call(ReferenceImplementation(), method, req)
 
 
@@ -331,7 +331,7 @@ def _nested(a) -> list:
 
 def _bounds(method: str, ex, want=None) -> dict:
     """{"64": bound, "32": bound}: :func:`derived_bound` at each machine epsilon."""
-    from ddg_oracle.compare import derived_bound
+    from .compare import derived_bound
     out = {}
     for k, e in EPSILONS.items():
         with at_machine_epsilon(e):
@@ -362,11 +362,11 @@ def _matrix_expected(M_exact, Ls, bounds, n: int, keep) -> dict:
 def expected(method: str, case: Case, req: dict) -> dict:
     """The ``expected`` object of ``method`` on ``case`` (:class:`_NotApplicable` if the
     reference has no value there)."""
-    from ddg_oracle.compare import MeshExamples, MeshInput
-    from ddg_oracle.oracles.arrays import Referenced
-    from ddg_oracle.reference import curvature, delaunay, laplacian
-    from ddg_oracle.reference.areas import area_gradient
-    from ddg_oracle.reference.exact import exact_sum
+    from .compare import MeshExamples, MeshInput
+    from ..protocol.arrays import Referenced
+    from ..reference import curvature, delaunay, laplacian
+    from ..reference.areas import area_gradient
+    from ..reference.exact import exact_sum
 
     try:
         answer = _reference_answer(method, req)
@@ -468,8 +468,8 @@ def _flags_expected(answer, ex) -> dict:
 
 
 def _dirichlet_expected(req, answer, ex, r) -> dict:
-    from ddg_oracle.properties.harness import Exact
-    from ddg_oracle.reference.dirichlet import solve_dirichlet
+    from ..properties.harness import Exact
+    from ..reference.dirichlet import solve_dirichlet
     if r.isolated:
         raise _NotApplicable
     exact = solve_dirichlet(ex.surface, {v: Fraction(c) for v, c in
@@ -485,9 +485,9 @@ def _dirichlet_expected(req, answer, ex, r) -> dict:
 def _intrinsic_expected(case, req, answer, ex, r) -> dict:
     """The Laplace-Beltrami operator (the same for every intrinsic Delaunay triangulation,
     R4.9) and the total area, which any answer's (F2, l2) must reproduce."""
-    from ddg_oracle.reference import delaunay
-    from ddg_oracle.reference.exact import exact_sum
-    from ddg_oracle.properties.delaunay import DelaunayExact
+    from ..reference import delaunay
+    from ..reference.exact import exact_sum
+    from ..properties.delaunay import DelaunayExact
     F2, l2 = answer
     amp = max(DelaunayExact.of(ex.example()).amplification)   # flips' amplification
     lap = _matrix_expected(delaunay.laplace_beltrami(ex.surface),
@@ -504,7 +504,7 @@ def _intrinsic_expected(case, req, answer, ex, r) -> dict:
 def _intrinsic_area_bound(l2, amp: float, e: float) -> float:
     """A4.13's bound (:func:`ddg_oracle.properties.delaunay.total_area_bound`) on the total
     area recomputed from the squared lengths ``l2`` of a triangulation after flips."""
-    from ddg_oracle.properties.delaunay import angles_from_squared_lengths, total_area_bound
+    from ..properties.delaunay import angles_from_squared_lengths, total_area_bound
     _, area = angles_from_squared_lengths(np.asarray(l2, dtype=np.float64))
     rho = np.asarray(l2).max(axis=1) / (2 * area)
     with at_machine_epsilon(e):
@@ -517,7 +517,7 @@ def _intrinsic_area_bound(l2, amp: float, e: float) -> float:
 def build() -> dict[str, dict]:
     """{file name: JSON object} of the corpus (deterministic)."""
     from ddg_oracle import __version__
-    from ddg_oracle.oracles.executable import PROTOCOL_VERSION
+    from ..oracles.executable import PROTOCOL_VERSION
     all_cases = cases()
     files = {}
     total = 0
@@ -624,7 +624,7 @@ def write(out: str | Path) -> list[Path]:
 
 def corpus_readme() -> str:
     from importlib.resources import files
-    return (files("ddg_oracle") / "data" / "vectors.md").read_text(encoding="utf-8")
+    return (files("ddg_oracle.application") / "data" / "vectors.md").read_text(encoding="utf-8")
 
 
 # --- the schema -------------------------------------------------------------------------------
@@ -738,7 +738,7 @@ def load(directory: str | Path) -> dict[str, dict]:
 def _call(impl, method: str, req: dict):
     """``impl``'s answer to the request fields ``req`` of ``method`` (as a corpus case's
     ``input``: non-finite coordinates as strings)."""
-    from ddg_oracle.properties.conventions import declared, to_reference
+    from ..properties.conventions import declared, to_reference
     inp = _unportable(req)
     # integer arrays for faces and vertex sets, floats for points and values
     dtypes = {"F": np.int64, "boundary": np.int64}
@@ -755,9 +755,9 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
     :class:`OutsideDomain`, else ``failed`` with the exception's type and message).  A case
     the implementation never received (a program of the executable protocol cannot be sent
     a NaN coordinate) is a ``{"id", "not_run": why}`` line: no answer, and no pass."""
-    from ddg_oracle.oracles.executable import encode_value
-    from ddg_oracle.oracles.processes import NotSent
-    from ddg_oracle.properties.protocol import capabilities
+    from ..oracles.executable import encode_value
+    from ..protocol.processes import NotSent
+    from ..protocol.methods import capabilities
     caps = capabilities(impl)
     out = []
     for method, file in corpus.items():
@@ -825,9 +825,9 @@ def _short(x, width: int = 60) -> str:
 def _widened(conventions, method: str, got, inp: dict, want: dict, bits: str) -> dict:
     """``want`` with its bound at ``bits`` widened for the declared conventions' maps, on the
     case's mesh at that machine epsilon."""
-    from ddg_oracle.properties.conventions import widened
-    from ddg_oracle.properties.protocol import at_machine_epsilon
-    from ddg_oracle.properties.strategies import mesh_case
+    from ..properties.conventions import widened
+    from ..protocol.methods import at_machine_epsilon
+    from ..properties.strategies import mesh_case
     key = f"tolerance{bits}"
     tol = np.asarray(want[key], dtype=np.float64)
     with at_machine_epsilon(2.0 ** -23 if bits == "32" else 2.0 ** -52):
@@ -877,7 +877,7 @@ def _cotan_from_lengths(F2, l2, n: int):
     """The cotan Laplacian (protocol sign) of faces F2 with squared lengths l2 (column c:
     the edge opposite corner c): float64, Kahan's stable Heron as in A4.13."""
     import scipy.sparse as sp
-    from ddg_oracle.properties.delaunay import angles_from_squared_lengths
+    from ..properties.delaunay import angles_from_squared_lengths
     ang, area = angles_from_squared_lengths(l2)
     rows, cols, vals = [], [], []
     for c in range(3):
@@ -898,7 +898,7 @@ def _planar_check(F, pts, want: dict, e: float) -> None:
     counterclockwise, no directed edge twice, the expected boundary edges, every interior
     edge Delaunay up to the in-circle bound at machine epsilon ``e``: nearly cocircular
     points may split either way), and the vertices and total area of ``one_answer``."""
-    from ddg_oracle.properties.delaunay import NotPlanarDelaunay, planar_delaunay_problems
+    from ..properties.delaunay import NotPlanarDelaunay, planar_delaunay_problems
     P = [(Fraction(x), Fraction(y)) for x, y in pts]
     tris = [tuple(int(v) for v in f) for f in F]
     if any(not 0 <= v < len(P) for t in tris for v in t):
@@ -919,7 +919,7 @@ def _planar_check(F, pts, want: dict, e: float) -> None:
 
 
 def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None:
-    from ddg_oracle.oracles.executable import DriverFailed, decode_value
+    from ..oracles.executable import DriverFailed, decode_value
     inp = _unportable(c["input"])
     want = c["expected"]
     n = len(inp["P"]) if method == "planar_delaunay" else len(inp["V"])
@@ -935,7 +935,7 @@ def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None
         if got != want["value"]:
             raise _Wrong(f"got {got!r}, expected {want['value']!r}")
     elif kind == "loops":
-        from ddg_oracle.compare import loop_edges
+        from .compare import loop_edges
         if len(got) != len(want["value"]) or loop_edges(got) != loop_edges(want["value"]):
             raise _Wrong(f"loops {_short(got)}, expected {_short(want['value'])}")
     elif kind == "numbers":
@@ -992,7 +992,7 @@ def _as_read_in_float32(method: str, c: dict, value, wrong: "_Wrong") -> Verdict
     the input as written, and a float32 code reads the coordinates float32 cannot hold
     rounded (a 2^-30 needle collapses).  Such a case is compared again with the exact
     values of the rounded input (what the code computed with); a FAIL either way."""
-    from ddg_oracle.properties.precision import FORMATS, rounded_to
+    from ..properties.precision import FORMATS, rounded_to
     V = _unportable(c["input"].get("V") or [])
     try:
         V32 = [[rounded_to(FORMATS[24], x) for x in p] for p in V]

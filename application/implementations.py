@@ -90,7 +90,7 @@ def load_implementation(spec: str):
     """
     if spec.startswith("exec:"):
         # a program speaking the executable protocol (docs/protocol.md)
-        from ddg_oracle.oracles.executable import DriverFailed, Executable
+        from ..oracles.executable import DriverFailed, Executable
         try:
             return Executable(spec[len("exec:"):])
         except (DriverFailed, ValueError) as e:

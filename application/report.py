@@ -2,7 +2,7 @@
 
 ``ddg-oracle check --report DIR`` writes:
 
-* ``index.html``: one self-contained page (:mod:`ddg_oracle.html_report`): the
+* ``index.html``: one self-contained page (:mod:`ddg_oracle.application.html_report`): the
   table with filters and, per non-passing result, a view of its mesh;
 * ``results.json``: every result (schema below), deterministic: no times, no
   paths outside DIR, keys sorted, floats as Python's shortest round-trip repr;
@@ -135,7 +135,7 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
 
 
 def counts(results) -> dict:
-    from ddg_oracle.properties.runner import STATUSES
+    from ..properties.runner import STATUSES
     return {s: sum(r.status == s for r in results) for s in STATUSES}
 
 
@@ -191,7 +191,7 @@ class ResultStream:
         lines = self.directory / self.LINES
         # opening a FIFO (or a device) to append blocks, or writes nowhere: refuse it first
         if lines.exists() and not lines.is_file():
-            from ddg_oracle.commands import UsageError
+            from .commands import UsageError
             from .files import kind_of
             raise UsageError(f"{lines}: cannot keep a run's results there: it is "
                              f"{kind_of(lines.stat().st_mode)}, not a regular file")
@@ -204,7 +204,7 @@ class ResultStream:
     @classmethod
     def command_of(cls, directory) -> dict:
         """The run.json of an interrupted run (a usage error if there is none)."""
-        from ddg_oracle.commands import UsageError
+        from .commands import UsageError
         from .files import read_text
         path = Path(directory) / cls.RUN
         if not path.is_file():
@@ -224,7 +224,7 @@ class ResultStream:
     def entries(self):
         """(line number, the JSON value) of each line already in results.jsonl; a line that
         is not JSON, other than a last one cut short by an interruption, is a usage error."""
-        from ddg_oracle.commands import UsageError
+        from .commands import UsageError
         from .files import read_text
         lines = read_text(self.directory / self.LINES, "a run's results",
                           error=UsageError).splitlines()
@@ -241,9 +241,9 @@ class ResultStream:
         """{task index: its results} of the lines already in results.jsonl; a line that is
         not one this class wrote (damaged past its last line, or crafted) is a usage error
         naming it, and nothing of it is run or built but plain values."""
-        from ddg_oracle.commands import UsageError
-        from ddg_oracle.properties.codec import BadEncoding
-        from ddg_oracle.properties.runner import Result
+        from .commands import UsageError
+        from ..properties.codec import BadEncoding
+        from ..properties.runner import Result
         index = {tuple(self._key(t)): k for k, t in enumerate(self.tasks)}
         out = {}
         for n, entry in self.entries():
@@ -257,7 +257,7 @@ class ResultStream:
         return out
 
     def add(self, k: int, results) -> None:
-        from ddg_oracle.properties import PROPERTIES
+        from ..properties import PROPERTIES
         records = [result_record(r, getattr(PROPERTIES.get(r.property_id), "statement", ""),
                                  self.tasks[k].spec) for r in results]
         line = {"task": self._key(self.tasks[k]), "results": records,
@@ -312,7 +312,7 @@ def known_finding(r, findings) -> str | None:
     """The id of the documented finding a non-passing result is, if any: never for a result
     that is not the implementation's (undecided: the exact reference gave up; internal
     error; incomplete)."""
-    from ddg_oracle.properties.runner import CRASHED, INCOMPLETE, INTERNAL, TIE, UNDECIDED
+    from ..properties.runner import CRASHED, INCOMPLETE, INTERNAL, TIE, UNDECIDED
     if r.status in (UNDECIDED, INTERNAL, INCOMPLETE):
         return None
 
@@ -365,8 +365,8 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
     not-applicable ones in one line per implementation; then one full block per root
     cause and crash group (its smallest counterexample; the others named) and per other
     non-passing result (``files``: result index -> where its whole mesh and snippet are)."""
-    from ddg_oracle.properties.runner import CONVENTION, FAILED, NOT_APPLICABLE, PASSED
-    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED, describe
+    from ..properties.runner import CONVENTION, FAILED, NOT_APPLICABLE, PASSED
+    from ..properties.runner import INCOMPLETE, INTERNAL, TIE, UNDECIDED, describe
 
     findings = known_findings()
     impls = list(dict.fromkeys(r.implementation for r in results))
@@ -470,7 +470,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
 def closing_line(results, seconds: float, workers: int, profile: str, seed,
                  accept_incomplete: bool = False) -> str:
     """The last lines: counts, what the exit code means, what to run next."""
-    from ddg_oracle.properties.runner import CRASHED, FAILED, INCOMPLETE, INTERNAL
+    from ..properties.runner import CRASHED, FAILED, INCOMPLETE, INTERNAL
 
     c = counts(results)
     findings = known_findings()
@@ -536,14 +536,14 @@ sys.exit(subprocess.call([sys.executable, "-m", "ddg_oracle", "check", "--mesh",
 
 def snippet(r, spec: str, name: str = "reproduce.py") -> str:
     """The Python file that reproduces result ``r`` (see the module doc)."""
-    from ddg_oracle.properties.counterexample import snippet as replay_snippet
+    from ..properties.counterexample import snippet as replay_snippet
 
     title = describe_line(r)
     how = "" if r.source == "generated" else f" on {r.source}"
     if r.replay is not None:
         return _SNIPPET.format(title=title, how=how, name=name,
                                code=replay_snippet(r.property_id, r.spec or spec, r.replay))
-    from ddg_oracle.properties.counterexample import module_dir, program_dir
+    from ..properties.counterexample import module_dir, program_dir
     spec = r.spec or spec
     cwd = module_dir(spec) or program_dir(spec)
     return _SNIPPET_FILE.format(title=title, how=how, name=name, spec=spec, pid=r.property_id,
@@ -588,7 +588,7 @@ def _has_matplotlib() -> bool:
 
 def write_counterexamples(directory, results, spec_of: dict, picture: bool = False) -> dict:
     """The failure files of every non-passing result with a mesh; {result index: its folder}."""
-    from ddg_oracle.properties.runner import NOT_APPLICABLE, PASSED
+    from ..properties.runner import NOT_APPLICABLE, PASSED
 
     directory = Path(directory)
     out, k = {}, 0
@@ -607,8 +607,8 @@ def write_report(directory, results, command: dict, spec_of: dict, timings: dict
     """Write results.json, index.html, timings.json, summary.md and the failure files into
     ``directory``;
     returns {result index: its failure files} (paths relative to ``directory``)."""
-    from ddg_oracle.properties import PROPERTIES
-    from ddg_oracle.properties.runner import PASSED, NOT_APPLICABLE, describe
+    from ..properties import PROPERTIES
+    from ..properties.runner import PASSED, NOT_APPLICABLE, describe
 
     from .files import write_atomically
     from .html_report import page_data, write_html

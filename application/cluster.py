@@ -3,9 +3,9 @@
 ``ADDRESS`` is a running scheduler (``tcp://host:8786``, what ``dask scheduler``
 prints) or ``local:N``: a :class:`distributed.LocalCluster` of N worker
 processes started for this run and stopped after it.  The tasks are the same
-as a local run's (:class:`~ddg_oracle.jobs.Task`: implementation x property, or
+as a local run's (:class:`~ddg_oracle.application.jobs.Task`: implementation x property, or
 implementation x mesh file) and run the same way inside a worker
-(:func:`~ddg_oracle.jobs.run_task`: the reference in the worker process, every
+(:func:`~ddg_oracle.application.jobs.run_task`: the reference in the worker process, every
 other library isolated in a process of its own, a crash or hang of it a
 result).  So the results are the local run's: a property's examples depend
 only on the property, the profile and the seed (``properties/stream.py``),
@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import uuid
 
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 LOCAL_PREFIX = "local:"
 #: worker deaths a task may cause before it is reported as crashed (dask's own setting,
@@ -180,7 +180,7 @@ def n_workers(client) -> int:
 def _run(run, task):
     """One task in a dask worker: the run's options and meshes (``run``: token, options,
     meshes, sent once per worker) installed in this process when the run changes."""
-    from ddg_oracle import jobs
+    from . import jobs
     token, options, meshes = run
     jobs.install(options, meshes, run=token)
     return jobs.run_task(task)
@@ -230,7 +230,7 @@ def run_on_cluster(client, tasks, todo, options, meshes, finish, check) -> None:
     """Run the tasks ``todo`` (indices into ``tasks``) on ``client``'s cluster; ``finish(k,
     results)`` as each arrives (any order), ``check()`` at least twice a second (raises on
     SIGINT or SIGTERM: the unfinished tasks are cancelled)."""
-    from ddg_oracle import jobs
+    from . import jobs
 
     def arrived(i, results, error):
         k = todo[i]

@@ -39,12 +39,12 @@ def become_subreaper() -> bool:
 #: itself (0.5 s of CPU each; a run starts 2 pool workers and, in each, an isolated worker per
 #: library, a new one after every crash).  No checked library: importing one may start
 #: threads, and a process holding threads must not fork.
-PRELOAD = ("ddg_oracle.jobs", "ddg_oracle.isolation", "ddg_oracle.properties.registry",
+PRELOAD = ("ddg_oracle.application.jobs", "ddg_oracle.application.isolation", "ddg_oracle.properties.registry",
            "ddg_oracle.properties.runner", "ddg_oracle.properties.strategies",
            "ddg_oracle.oracles.exact_reference", "scipy.sparse")
 #: what a pool worker's forkserver imports: it forks isolated library workers only, which
 #: import ``isolation`` (not the properties) and an adapter (numpy, scipy.sparse)
-LIBRARY_PRELOAD = ("ddg_oracle.isolation", "ddg_oracle.oracles.arrays", "scipy.sparse")
+LIBRARY_PRELOAD = ("ddg_oracle.application.isolation", "ddg_oracle.protocol.arrays", "scipy.sparse")
 _forkserver = False
 
 

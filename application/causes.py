@@ -1,6 +1,6 @@
 """Root causes of failures: what a failing result blames and why (issue 42's diagnosis,
-issue 40's grouping), shared by the terminal report (:mod:`ddg_oracle.report`), the HTML
-page (:mod:`ddg_oracle.html_report`) and the pytest plugin.
+issue 40's grouping), shared by the terminal report (:mod:`ddg_oracle.application.report`), the HTML
+page (:mod:`ddg_oracle.application.html_report`) and the pytest plugin.
 
 * :func:`element_ids`: the mesh element a failure names (a vertex, an edge, a face corner);
 * :func:`blamed_methods`, :func:`wrong_answer`: the protocol methods a failure blames and
@@ -80,8 +80,8 @@ def blamed_methods(r) -> tuple:
     counterexample differs from the exact one (its diagnosis); else the method its message
     names ("cotan_laplacian has non-finite entries", "solve_dirichlet: ..."); else the
     methods its property calls."""
-    from ddg_oracle.properties.protocol import METHODS
-    from ddg_oracle.properties.registry import PROPERTIES
+    from ..protocol.methods import METHODS
+    from ..properties.registry import PROPERTIES
     wrong = [d["quantity"] for d in (r.diagnosis or []) if d["status"] in ("DIFFERS", "crashed")]
     if wrong:
         return tuple(wrong)
@@ -112,7 +112,7 @@ def convention_hint(r) -> str | None:
     of the vocabulary (``properties.conventions``; the diagnosis tried each), what to
     declare: "cotan_laplacian agrees under laplacian=negative (the matrix is -L ...):
     declare conventions = {'laplacian': 'negative'}"; else None."""
-    from ddg_oracle.properties.conventions import declaration_text, parse
+    from ..properties.conventions import declaration_text, parse
     for d in r.diagnosis or []:
         names = d.get("explained_by") or []
         if d["status"] == "DIFFERS" and names:
@@ -144,7 +144,7 @@ def root_causes(results) -> tuple[list, list]:
     """(failure causes, crash groups): FAILED results grouped by implementation and the
     protocol methods they blame (:func:`blamed_methods`), crashes by implementation and
     message; each group's members sorted by counterexample size, largest groups first."""
-    from ddg_oracle.properties.runner import CRASHED, FAILED
+    from ..properties.runner import CRASHED, FAILED
     groups: dict = {}
     crashes: dict = {}
     for k, r in enumerate(results):

@@ -297,7 +297,7 @@ def require_protocol(impl) -> frozenset[str]:
     >>> require_protocol(Typo())
     Traceback (most recent call last):
     ...
-    ddg_oracle.properties.protocol.NotAnImplementation: Typo defines none of the protocol's methods (did you mean `angle_defects` for `angle_defect`?); the methods are: euler_characteristic, boundary_loops, is_orientable, genus, corner_angles, angle_defects, edge_mean_curvature, area, cotan_laplacian, area_gradient, solve_dirichlet, vertex_areas_barycentric, vertex_areas_voronoi, is_locally_delaunay, intrinsic_delaunay_laplacian, intrinsic_delaunay_triangulation, planar_flip_to_delaunay, planar_delaunay (ddg_oracle.properties.protocol.METHODS)
+    ddg_oracle.protocol.methods.NotAnImplementation: Typo defines none of the protocol's methods (did you mean `angle_defects` for `angle_defect`?); the methods are: euler_characteristic, boundary_loops, is_orientable, genus, corner_angles, angle_defects, edge_mean_curvature, area, cotan_laplacian, area_gradient, solve_dirichlet, vertex_areas_barycentric, vertex_areas_voronoi, is_locally_delaunay, intrinsic_delaunay_laplacian, intrinsic_delaunay_triangulation, planar_flip_to_delaunay, planar_delaunay (ddg_oracle.protocol.methods.METHODS)
     """
     caps = capabilities(impl)
     if caps:
@@ -308,4 +308,4 @@ def require_protocol(impl) -> frozenset[str]:
         hint = " (did you mean " + ", ".join(f"`{g}` for `{n}`" for n, g in misses) + "?)"
     raise NotAnImplementation(
         f"{implementation_name(impl)} defines none of the protocol's methods{hint}; the "
-        f"methods are: {', '.join(METHODS)} (ddg_oracle.properties.protocol.METHODS)")
+        f"methods are: {', '.join(METHODS)} (ddg_oracle.protocol.methods.METHODS)")

@@ -59,7 +59,7 @@ class PropertyItem(pytest.Item):
         self.budget = budget
 
     def runtest(self):
-        from ddg_oracle.properties.runner import (NOT_APPLICABLE, UNDECIDED, describe,
+        from ..properties.runner import (NOT_APPLICABLE, UNDECIDED, describe,
                                                   run_property)
         r = run_property(self.prop, self.impl, self.profile, budget=self.budget)
         if r.status == NOT_APPLICABLE:
@@ -67,8 +67,8 @@ class PropertyItem(pytest.Item):
         if r.status == UNDECIDED:            # the exact reference hit a guard: nothing checked
             pytest.skip(f"undecided: {r.error}")
         if not r.ok:                         # FAILED, crashed (a hang too), incomplete
-            from ddg_oracle.jobs import with_diagnosis
-            from ddg_oracle.causes import convention_hint, wrong_answer
+            from .jobs import with_diagnosis
+            from .causes import convention_hint, wrong_answer
             text = describe(with_diagnosis(r, self.prop, self.impl))
             first = "\n".join(filter(None, [wrong_answer(r), convention_hint(r)]))
             if first:                        # the root cause first: the wrong answer
@@ -101,12 +101,12 @@ def pytest_collection_modifyitems(session, config, items):
         # a rerun by node id: the project's own tests were collected, not asked for
         config.hook.pytest_deselected(items=list(items))
         items.clear()
-    from ddg_oracle.implementations import ImplementationNotFound, load_implementation
-    from ddg_oracle.properties.budget import Budget
-    from ddg_oracle.properties.profiles import profile, profile_budget
-    from ddg_oracle.properties.protocol import (NotAnImplementation, near_miss_warning,
+    from .implementations import ImplementationNotFound, load_implementation
+    from ..protocol.budget import Budget
+    from ..properties.profiles import profile, profile_budget
+    from ..protocol.methods import (NotAnImplementation, near_miss_warning,
                                                 require_protocol)
-    from ddg_oracle.properties.registry import select_properties
+    from ..properties.registry import select_properties
 
     name = config.getoption("ddg_profile") or ("ci" if os.environ.get("CI") else "default")
     try:

@@ -1,8 +1,8 @@
 """What a child process that ran an implementation left behind: how it ended, what it said.
 
-Shared by the isolated Python workers (:mod:`ddg_oracle.isolation`), the programs of the
-executable protocol (:mod:`.executable`) and the pool of check workers
-(:mod:`ddg_oracle.jobs`), so that every report words a death the same way.
+Shared by the isolated Python workers (:mod:`ddg_oracle.application.isolation`), the programs of the
+executable protocol (:mod:`ddg_oracle.oracles.executable`) and the pool of check workers
+(:mod:`ddg_oracle.application.jobs`), so that every report words a death the same way.
 """
 
 from __future__ import annotations

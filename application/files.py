@@ -13,7 +13,7 @@ import os
 import stat
 from pathlib import Path
 
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 #: the largest JSON file (answers, corpus files, a report's state) read: 256 MiB
 JSON_LIMIT = 256 << 20

@@ -1,6 +1,6 @@
 """The CGAL mesh corpus: the meshes of CGAL's ``data/meshes``, from Debian's ``libcgal-demo``.
 
-``python -m ddg_oracle.corpus fetch`` runs ``apt-get download libcgal-demo`` in a
+``python -m ddg_oracle.application.corpus fetch`` runs ``apt-get download libcgal-demo`` in a
 temporary directory, unpacks the package (``dpkg -x``) and its inner tarballs, and
 copies every mesh file (.off, .obj, .ply, .stl) below a ``meshes`` directory into the
 cache directory :func:`corpus_dir` (``$DDG_ORACLE_CORPUS``, else
@@ -11,11 +11,11 @@ files intact and downloads nothing.  Nothing of it is in git.
 
 ``cgal:`` then names every mesh of the corpus, ``cgal:NAME`` one of them (its file name,
 ``elephant.off``, or its path in the corpus, ``meshes/elephant.off``); see
-:mod:`ddg_oracle.compare`.  Polygon faces of OFF and OBJ corpus meshes are
+:mod:`ddg_oracle.application.compare`.  Polygon faces of OFF and OBJ corpus meshes are
 fan-triangulated (:func:`read_triangulated`, with a note): the readers of
-:mod:`ddg_oracle.meshfiles` reject polygons, a user's file is never triangulated.
+:mod:`ddg_oracle.application.meshfiles` reject polygons, a user's file is never triangulated.
 
-``python -m ddg_oracle.corpus list`` prints the corpus's meshes, ``path`` its directory.
+``python -m ddg_oracle.application.corpus list`` prints the corpus's meshes, ``path`` its directory.
 Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the package cannot be
 downloaded, the directory is not a corpus).
 """
@@ -36,14 +36,14 @@ import time
 from fractions import Fraction
 from pathlib import Path, PurePosixPath
 
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 PREFIX = "cgal:"
 ENV = "DDG_ORACLE_CORPUS"
 PACKAGE = "libcgal-demo"
 MANIFEST = "manifest.json"
 SUFFIXES = (".obj", ".off", ".ply", ".stl")
-FETCH_COMMAND = "python -m ddg_oracle.corpus fetch"
+FETCH_COMMAND = "python -m ddg_oracle.application.corpus fetch"
 
 
 class CorpusError(InputError):
@@ -217,7 +217,7 @@ def meshes(d: Path | None = None) -> list[tuple[str, Path]]:
 
 def resolve(arg: str) -> list[tuple[str, Path, bool]]:
     """``cgal:`` (every mesh, skipped with a note when unusable) or ``cgal:NAME`` (one, whose
-    problems are errors), as :func:`ddg_oracle.compare.resolve` returns them."""
+    problems are errors), as :func:`ddg_oracle.application.compare.resolve` returns them."""
     name = arg[len(PREFIX):]
     d = corpus_dir()
     every = meshes(d)
@@ -240,7 +240,7 @@ def resolve(arg: str) -> list[tuple[str, Path, bool]]:
 
 
 def read_triangulated(path) -> tuple[list, list, str | None]:
-    """(V, F, note) of a corpus mesh: :func:`~ddg_oracle.meshfiles.read_mesh`, except that the
+    """(V, F, note) of a corpus mesh: :func:`~ddg_oracle.application.meshfiles.read_mesh`, except that the
     polygons of an OFF or OBJ file are triangulated (:func:`triangulate_polygon`: a convex
     one as the fan from its first corner, a non-convex one by ear clipping; the note says
     how many); every other problem is the reader's error."""
@@ -406,7 +406,7 @@ def _split_obj(text: str):
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(
-        prog="python -m ddg_oracle.corpus",
+        prog="python -m ddg_oracle.application.corpus",
         description=f"The CGAL mesh corpus (Debian's {PACKAGE}) in ${ENV}, else "
                     "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal; used as 'cgal:' and "
                     "'cgal:NAME' by ddg-oracle check --mesh and ddg-oracle compare.")

@@ -26,10 +26,10 @@ from functools import partial
 from pathlib import Path
 
 from ddg_oracle import __version__
-from ddg_oracle.commands import (DEFAULT_WORKERS, UsageError, check_timeout, default_workers,
+from .commands import (DEFAULT_WORKERS, UsageError, check_timeout, default_workers,
                                  refuse_used_report_dir, start_implementations, warn,
                                  warn_near_misses)
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE, EXIT_TOOL = 0, 1, 2, 3
 BUG_REPORT = ("ddg-oracle: internal error (exit 3): this is a bug in ddg-oracle, not in the "
@@ -53,7 +53,7 @@ class _Parser(argparse.ArgumentParser):
 def _epilog(examples: str, codes: str = EXIT_CODES, specs: bool = False) -> str:
     kinds = ""
     if specs:
-        from ddg_oracle.implementations import BUILTIN
+        from .implementations import BUILTIN
         names = textwrap.fill(", ".join(BUILTIN), 70, subsequent_indent=" " * 20)
         kinds = SPEC_KINDS.format(builtin=names) + "\n\n"
     return ("examples:\n" + textwrap.indent(textwrap.dedent(examples).strip(), "  ") + "\n\n"
@@ -134,7 +134,7 @@ def parser() -> argparse.ArgumentParser:
                         "meshes; 'pymeshlab:' = every sample mesh PyMeshLab ships, "
                         "'pymeshlab:NAME' one of them; 'cgal:' = every mesh of the CGAL "
                         "corpus, 'cgal:NAME' one of them (fetched once by: python -m "
-                        "ddg_oracle.corpus fetch)")
+                        "ddg_oracle.application.corpus fetch)")
     c.add_argument("--report", metavar="DIR",
                    help="write results.json, summary.md, timings.json and, per failure, the "
                         "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
@@ -183,7 +183,7 @@ def parser() -> argparse.ArgumentParser:
                        specs=True))
     m.add_argument("mesh", nargs="+", metavar="MESH",
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes), "
-                        "'cgal:' / 'cgal:NAME' (the CGAL corpus: python -m ddg_oracle.corpus "
+                        "'cgal:' / 'cgal:NAME' (the CGAL corpus: python -m ddg_oracle.application.corpus "
                         "fetch)")
     m.add_argument("--impl", action="append", metavar="SPEC",
                    help="implementation to compare (repeatable; default: every installed one): "
@@ -314,23 +314,23 @@ def main(argv=None) -> int:
         # installs) costs 0.17 s of CPU at every start of a process.  A value set stands.
         os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
         # and its workers forked from a forkserver that imported the properties once
-        from ddg_oracle.containment import start_workers_from_a_forkserver
+        from .containment import start_workers_from_a_forkserver
         start_workers_from_a_forkserver()
     try:
         args = parser().parse_args(argv)
     except SystemExit as e:                # --help, --version (0) or a bad command line (2)
         return e.code if isinstance(e.code, int) else EXIT_USAGE
-    from ddg_oracle.containment import contained
-    from ddg_oracle.jobs import stopped_by_signals
+    from .containment import contained
+    from .jobs import stopped_by_signals
     with contained(subreaper=argv is None), stopped_by_signals():
         return _main(args, argv)
 
 
 def _main(args, argv) -> int:
     """The command of ``args``, with every expected failure a one-line error (exit 2) and
-    any other a bug report (exit 3); inside :func:`~ddg_oracle.containment.contained`."""
-    from ddg_oracle.implementations import ImplementationNotFound
-    from ddg_oracle.properties.protocol import NotAnImplementation
+    any other a bug report (exit 3); inside :func:`~ddg_oracle.application.containment.contained`."""
+    from .implementations import ImplementationNotFound
+    from ..protocol.methods import NotAnImplementation
     try:
         if args.command == "check":
             # the check's own arguments: after the command name (the first argument)
@@ -364,9 +364,9 @@ def _main(args, argv) -> int:
 
 
 def _methods(args) -> int:
-    """``ddg-oracle methods``: the protocol (properties.protocol.METHODS) and who checks it."""
-    from ddg_oracle.properties.protocol import METHODS
-    from ddg_oracle.properties.registry import all_properties
+    """``ddg-oracle methods``: the protocol (protocol.methods.METHODS) and who checks it."""
+    from ..protocol.methods import METHODS
+    from ..properties.registry import all_properties
     props = all_properties()
     if args.impl:
         return _methods_of(args, METHODS, props)
@@ -378,16 +378,16 @@ def _methods(args) -> int:
                                                "only"), 96, initial_indent="    ",
                             subsequent_indent="      "))
     print(f"\n{len(METHODS)} methods; an implementation defines any of them "
-          "(ddg_oracle.properties.protocol.METHODS, docs/protocol.md for other languages)")
+          "(ddg_oracle.protocol.methods.METHODS, docs/protocol.md for other languages)")
     return 0
 
 
 def _methods_of(args, METHODS, props) -> int:
     """``ddg-oracle methods --impl SPEC``: what the properties would see of SPEC."""
-    from ddg_oracle.properties.protocol import (capabilities, declared_conventions,
+    from ..protocol.methods import (capabilities, declared_conventions,
                                                 implementation_name, machine_epsilon,
                                                 near_miss_warning)
-    from ddg_oracle.properties.conventions import declared
+    from ..properties.conventions import declared
     impl = start_implementations([args.impl], args.timeout)[args.impl]
     try:
         has = capabilities(impl)
@@ -412,7 +412,7 @@ def _methods_of(args, METHODS, props) -> int:
 
 
 def _theorems(args) -> int:
-    from ddg_oracle import traceability
+    from . import traceability
     claimed, entries = traceability.load()
     width = max(len(e.id) for e in entries)
     print(f"{'ID'.ljust(width)}  {'status':9}  reference / property")
@@ -428,7 +428,7 @@ def _theorems(args) -> int:
           + f"; claimed chapters: {', '.join(map(str, claimed)) or 'none'}")
     items = traceability.load_notes()
     width = max(len(i.name) for i in items)
-    print(f"\nThe notes, chapters 1-4 (ddg_oracle/notes.toml):\n"
+    print(f"\nThe notes, chapters 1-4 (application/notes.toml):\n"
           f"{'item'.ljust(width)}  {'line':>4}  {'status':14}  rows / reason")
     for i in items:
         print(f"{i.name.ljust(width)}  {i.line:>4}  {i.status:14}  "
@@ -449,8 +449,8 @@ def _theorems(args) -> int:
 
 def _budget(args):
     """The task budget of ``check``: the profile's, or ``--budget`` seconds (0: none)."""
-    from ddg_oracle.properties.budget import Budget
-    from ddg_oracle.properties.profiles import profile_budget
+    from ..protocol.budget import Budget
+    from ..properties.profiles import profile_budget
 
     budget = profile_budget(args.profile)
     if args.budget is None:
@@ -486,7 +486,7 @@ class Progress:
                       f"{time.perf_counter() - self.t0:.0f} s", file=self.stream, flush=True)
 
     def __call__(self, task, results) -> None:
-        from ddg_oracle.properties.runner import NOT_APPLICABLE
+        from ..properties.runner import NOT_APPLICABLE
 
         with self._lock:
             self.done += 1
@@ -513,9 +513,9 @@ class Progress:
 def _validate_check(args) -> None:
     """Every option and environment value of ``check`` checked before any work starts: a
     bad one is a one-line usage error (exit 2), never a result blamed on a library."""
-    from ddg_oracle.isolation import memory_limit
-    from ddg_oracle.meshfiles import size_limit
-    from ddg_oracle.properties.profiles import time_limit_seconds
+    from .isolation import memory_limit
+    from .meshfiles import size_limit
+    from ..properties.profiles import time_limit_seconds
     if args.examples is not None and args.examples < 1:
         raise UsageError(f"--examples must be at least 1, got {args.examples}")
     if args.examples is not None and args.mesh:
@@ -538,12 +538,12 @@ def _check_arguments(argv) -> list[str]:
 
 
 def _check(args, argv) -> int:
-    from ddg_oracle import jobs
-    from ddg_oracle.implementations import available, built_drivers, missing
-    from ddg_oracle.properties.profiles import profile
-    from ddg_oracle.properties.registry import select_properties
-    from ddg_oracle.properties.runner import describe
-    from ddg_oracle.report import ResultStream
+    from . import jobs
+    from .implementations import available, built_drivers, missing
+    from ..properties.profiles import profile
+    from ..properties.registry import select_properties
+    from ..properties.runner import describe
+    from .report import ResultStream
 
     stream_done: dict = {}
     if args.resume:
@@ -572,7 +572,7 @@ def _check(args, argv) -> int:
         refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
-        from ddg_oracle.compare import file_properties, load_all
+        from .compare import file_properties, load_all
         meshes = load_all(args.mesh, warn=warn)
         if not meshes:
             raise InputError("no usable mesh among " + ", ".join(args.mesh))
@@ -602,14 +602,14 @@ def _check(args, argv) -> int:
     workers = min(workers, len(tasks))
     client = cluster = None
     if args.scheduler:
-        from ddg_oracle import cluster as dask_cluster
+        from . import cluster as dask_cluster
         client, cluster = dask_cluster.connect(args.scheduler)
         workers = dask_cluster.n_workers(client)
     # Started here: what this process runs itself (one worker), or what must be seen to
     # load before the run (a user's module, a program) so that a mistake is exit 2 at
     # once.  With a pool, a built-in adapter whose library is installed is started by the
     # pool's workers only: starting it here too would cost every library's import again.
-    from ddg_oracle.implementations import BUILTIN
+    from .implementations import BUILTIN
     plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
     pool = workers > 1 or client is not None
     started = start_implementations([s for s in specs if not pool or s not in plain], args.timeout)
@@ -668,9 +668,9 @@ def _check(args, argv) -> int:
             stream.close()
     seconds = time.perf_counter() - t0
 
-    from ddg_oracle.report import fit, closing_line, table, terminal_report, write_counterexamples
-    from ddg_oracle.report import write_report
-    from ddg_oracle.properties.runner import INCOMPLETE, INTERNAL
+    from .report import fit, closing_line, table, terminal_report, write_counterexamples
+    from .report import write_report
+    from ..properties.runner import INCOMPLETE, INTERNAL
     bad = [r for r in results if not r.ok
            and not (args.accept_incomplete and r.status == INCOMPLETE)]
     ours = any(r.status == INTERNAL for r in results)
@@ -736,9 +736,9 @@ def _check(args, argv) -> int:
 
 def _compare(args) -> int:
     check_timeout(args)
-    from ddg_oracle.compare import format_comparisons, load_all, compare_mesh
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    from ddg_oracle.implementations import available
+    from .compare import format_comparisons, load_all, compare_mesh
+    from ..oracles.exact_reference import ReferenceImplementation
+    from .implementations import available
 
     meshes = load_all(args.mesh, warn=warn)
     if not meshes:
@@ -759,11 +759,11 @@ def _compare(args) -> int:
 
 
 def _survey(args) -> int:
-    """``ddg-oracle survey``: compare over a corpus, aggregated (:mod:`ddg_oracle.survey`)."""
+    """``ddg-oracle survey``: compare over a corpus, aggregated (:mod:`ddg_oracle.application.survey`)."""
     if args.resume and (args.mesh or args.impl or args.report):
         raise UsageError("survey --resume DIR takes no mesh, --impl or --report: the "
                          "interrupted run's are read from DIR/run.json")
-    from ddg_oracle import survey
+    from . import survey
     if args.resume:
         # the interrupted run's own options (its run.json), in the directory as it is now
         stored = survey.command_of(args.resume)
@@ -776,7 +776,7 @@ def _survey(args) -> int:
 
 
 def _vectors(args) -> int:
-    from ddg_oracle import vectors
+    from . import vectors
     written = vectors.write(args.out)
     corpus = vectors.load(args.out)
     n = sum(len(f["cases"]) for f in corpus.values())
@@ -788,8 +788,8 @@ def _vectors(args) -> int:
 def _verify(args) -> int:
     check_timeout(args)
     import json
-    from ddg_oracle import vectors
-    from ddg_oracle.properties.protocol import FLOAT64_EPSILON, implementation_name, machine_epsilon
+    from . import vectors
+    from ..protocol.methods import FLOAT64_EPSILON, implementation_name, machine_epsilon
 
     corpus = vectors.load(args.corpus)
     if (args.answers is None) == (args.impl is None):
@@ -799,7 +799,7 @@ def _verify(args) -> int:
     float32 = args.float32
     conventions = ()
     if args.impl:
-        from ddg_oracle.properties.conventions import declared
+        from ..properties.conventions import declared
         started = start_implementations([args.impl], args.timeout)
         impl = started[args.impl]
         warn_near_misses([impl])

@@ -2,7 +2,7 @@
 the handshake, each method's request and each method's answer.
 
 ``docs/protocol.schema.json`` is :func:`schema` written by ``python -m
-ddg_oracle.oracles.protocol_schema docs/protocol.schema.json``; a test keeps the two
+ddg_oracle.protocol.schema docs/protocol.schema.json``; a test keeps the two
 equal and validates real traffic (every request ddg-oracle sends, every answer of the
 reference served through the protocol) against it.  ``"$defs"`` holds, per method
 ``M``, ``request.M`` and ``answer.M``; ``hello.request``, ``hello.answer`` and
@@ -17,7 +17,7 @@ from __future__ import annotations
 import json
 import sys
 
-from ddg_oracle.properties.protocol import METHODS
+from .methods import METHODS
 
 VERSION = 1
 
@@ -35,7 +35,7 @@ def _array(items: dict, length: int | None = None) -> dict:
 _EDGE_VALUE = {"type": "array", "prefixItems": [_INDEX, _INDEX, _NUMBER], "minItems": 3,
                "maxItems": 3}
 
-#: the ``value`` of an answer, by the method's kind (and element: properties.protocol.Method)
+#: the ``value`` of an answer, by the method's kind (and element: protocol.methods.Method)
 _VALUE_OF_KIND = {
     "integer": {"type": "integer"},
     "boolean": {"type": "boolean"},

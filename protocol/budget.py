@@ -7,7 +7,7 @@ per task.  A task runs under :func:`task_budget`:
 - ``seconds``: wall-clock time for the whole task, shrinking included.  A call
   of an isolated implementation waits at most the time left (a call cut short
   is a hang of the implementation, reported with its input), and the example
-  time limit (:func:`~.profiles.example_time_limit`) is at most the time left;
+  time limit (:func:`ddg_oracle.properties.profiles.example_time_limit`) is at most the time left;
   when nothing is left, :class:`BudgetExceeded` stops the search.
 - ``shrink``: wall-clock time for shrinking, counted from the first failure,
   crash or shrunk tie on (the task's deadline moves closer then, never further):
@@ -18,7 +18,7 @@ per task.  A task runs under :func:`task_budget`:
   property failures).  Deterministic, unlike time: after this many, the search
   stops and the smallest crashing input seen so far is the result.
 
-The runner (:func:`~.runner.run_property`) catches :class:`BudgetExceeded` and
+The runner (:func:`ddg_oracle.properties.runner.run_property`) catches :class:`BudgetExceeded` and
 reports the smallest failing or crashing example it has seen, noting that
 shrinking stopped early.  Budgets per profile: :data:`BUDGETS`.
 """

@@ -1,7 +1,7 @@
 """What the commands share: the usage error (exit 2), the options every command checks
 the same way, notes and warnings on stderr, and starting the implementations to check.
 
-A layer below :mod:`ddg_oracle.cli` and the commands' own modules (:mod:`.report`,
+A layer below :mod:`ddg_oracle.application.cli` and the commands' own modules (:mod:`.report`,
 :mod:`.survey`): they raise and use these without importing the command line.
 """
 
@@ -11,7 +11,7 @@ import concurrent.futures as cf
 import os
 import sys
 
-from ddg_oracle.reference.errors import InputError
+from ..reference.errors import InputError
 
 #: pool workers of check, compare and survey by default (fewer on a one-core machine)
 DEFAULT_WORKERS = 2
@@ -39,7 +39,7 @@ def warn(message: str) -> None:
 def warn_near_misses(impls) -> None:
     """A warning per implementation with a method that looks like a protocol method it
     lacks (a misnamed ``cotmatrix``): its properties would be silently not applicable."""
-    from ddg_oracle.properties.protocol import near_miss_warning
+    from ..protocol.methods import near_miss_warning
     for impl in impls:
         said = near_miss_warning(impl)
         if said:
@@ -49,8 +49,8 @@ def warn_near_misses(impls) -> None:
 def start_implementations(specs, timeout):
     """{spec: implementation}: the reference in this process, the others isolated, started
     in parallel; an unloadable spec raises ImplementationNotFound (exit 2)."""
-    from ddg_oracle.implementations import load_implementation
-    from ddg_oracle.isolation import Isolated
+    from .implementations import load_implementation
+    from .isolation import Isolated
 
     def one(spec):
         return load_implementation(spec) if spec == "reference" else Isolated(spec, timeout=timeout)
@@ -66,7 +66,7 @@ def start_implementations(specs, timeout):
     if error is not None:
         for impl in started.values():
             getattr(impl, "close", lambda: None)()
-        from ddg_oracle.isolation import ImplementationCrashed
+        from .isolation import ImplementationCrashed
         if isinstance(error, ImplementationCrashed):   # it died or hung while loading
             raise UsageError(f"cannot load {error.implementation}: it {error.how}") from None
         raise error

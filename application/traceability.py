@@ -1,15 +1,15 @@
 """The traceability table: catalog ID -> reference function, property, tests, status.
 
-The table is ``ddg_oracle/traceability.toml`` (package data, so an installed
+The table is ``application/traceability.toml`` (package data, so an installed
 copy checks itself).  :func:`check` verifies that it is true: every named
 function and property exists, every row of a claimed chapter is verified (or
 an erratum listed in the errata, ``docs/errata.md``, installed as
-``ddg_oracle/data/errata.md``), every row says in words what its check covers
+``application/data/errata.md``), every row says in words what its check covers
 (``covers``) and what it cannot (``limits``); where the repository is at hand (a
 checkout, or an editable install) also every named test exists and every row of the
 catalog ``../shared/THEOREMS.md`` is present.
 
-The notes table ``ddg_oracle/notes.toml`` lists every numbered item of chapters 1-4
+The notes table ``application/notes.toml`` lists every numbered item of chapters 1-4
 of the notes with its line and a status (:data:`NOTE_STATUSES`); :func:`check_notes`
 verifies it, against the notes' text where it is at hand (``$DDG_NOTES``, else
 ``../shared/seed/*.txt`` beside the repository): every heading of the text is an
@@ -223,7 +223,7 @@ def _untraced_properties(entries, properties=None) -> list[str]:
     """A registered property that no row names (by its function or its catalog ID): a
     made-up catalog ID would otherwise check something nobody can trace to the notes."""
     if properties is None:
-        from ddg_oracle.properties.registry import all_properties
+        from ..properties.registry import all_properties
         properties = all_properties()
     named = {n.split(":")[-1].split(".")[-1] for e in entries for n in e.property}
     ids = {e.id for e in entries}
@@ -324,12 +324,12 @@ def note_heading_problems(path: Path) -> list[str]:
         m = ANY_HEADING.match(line)
         if m and m.group(1) not in KINDS + ("Figure",):
             problems.append(f"line {n} of the notes: '{m.group(1)} {m.group(2)}' is a numbered "
-                            "heading of a kind ddg_oracle/traceability.py does not know (KINDS)")
+                            "heading of a kind application/traceability.py does not know (KINDS)")
     refs = set(ALGORITHM_REFERENCE.findall(text))
     for ref in sorted(refs, key=lambda x: tuple(map(int, x.split(".")))):
         if f"Algorithm {ref}" not in found:
             problems.append(f"Algorithm {ref} is referred to in the notes but no algorithm figure "
-                            f"{ref} was found (ddg_oracle/traceability.py, FIGURE)")
+                            f"{ref} was found (application/traceability.py, FIGURE)")
     return problems
 
 
@@ -362,7 +362,7 @@ def check_notes(path: Path | None = None, entries=None) -> list[str]:
         named = {it.name for it in items}
         for name, n in headings.items():
             if name not in named:
-                problems.append(f"{name} (line {n} of the notes) is not in ddg_oracle/notes.toml")
+                problems.append(f"{name} (line {n} of the notes) is not in application/notes.toml")
         for it in items:
             if it.name in headings and headings[it.name] != it.line:
                 problems.append(f"{it.name}: line {it.line}, but the notes have it at line "

@@ -6,15 +6,15 @@ reference, differ, crashed or were not applicable, the worst error in units of t
 derived bound (and on which mesh) and the median of each mesh's worst error.
 
 The unit of work is one mesh: every implementation answers on it
-(:func:`ddg_oracle.compare.compare_mesh`, the exact values computed by a pool of
+(:func:`ddg_oracle.application.compare.compare_mesh`, the exact values computed by a pool of
 workers), and its rows are appended to ``DIR/results.jsonl`` as one JSON line the moment
-it finishes (:class:`SurveyStream`, a :class:`~ddg_oracle.report.ResultStream` whose unit
+it finishes (:class:`SurveyStream`, a :class:`~ddg_oracle.application.report.ResultStream` whose unit
 is a mesh).  An interrupted survey keeps its finished meshes; ``--resume DIR`` runs
 only the others.  The scoreboard is written as ``DIR/results.json``, ``DIR/survey.md``
 (a markdown table) and ``DIR/survey.html`` (a heatmap, one self-contained SVG).
 
 With ``--scheduler ADDRESS`` the meshes are tasks of a ``dask.distributed`` cluster
-(:func:`ddg_oracle.cluster.map_on_cluster`): each worker process starts the
+(:func:`ddg_oracle.application.cluster.map_on_cluster`): each worker process starts the
 implementations once per run (:func:`survey_mesh_in_worker`) and compares one mesh at a
 time; finished meshes arrive in any order and the scoreboard is the local run's.
 """
@@ -28,7 +28,7 @@ import statistics
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ddg_oracle.report import ResultStream
+from .report import ResultStream
 
 #: the statuses a scoreboard counts, in its order ("skipped" counts as not applicable;
 #: "undecided": the exact reference gave up on the mesh, which says nothing of the library)
@@ -61,8 +61,8 @@ def _float(x):
 
 
 def record(row, spec: str) -> dict:
-    """One compare row (:class:`~ddg_oracle.compare.Comparison`) as plain JSON values."""
-    from ddg_oracle.compare import value_text
+    """One compare row (:class:`~ddg_oracle.application.compare.Comparison`) as plain JSON values."""
+    from .compare import value_text
     return {"quantity": row.quantity, "implementation": row.implementation, "spec": spec,
             "status": row.status, "worst": _number(row.worst), "error": _number(row.error),
             "bound": _number(row.bound), "where": row.where,
@@ -133,12 +133,12 @@ class SurveyStream(ResultStream):
     """``DIR/results.jsonl`` of a survey: one line per finished mesh
     (:meth:`MeshResult.to_json`), flushed as it finishes; ``DIR/run.json``: the command
     line.  The report directory's handling (created, a FIFO refused, appended to) is
-    :class:`~ddg_oracle.report.ResultStream`'s; only what a line holds differs."""
+    :class:`~ddg_oracle.application.report.ResultStream`'s; only what a line holds differs."""
 
     def finished(self) -> dict:
         """{mesh name: MeshResult} of the lines already there (the meshes of this run
         only); a damaged line, other than a last one cut short, is a usage error."""
-        from ddg_oracle.commands import UsageError
+        from .commands import UsageError
         wanted = set(self.tasks)
         out = {}
         for n, entry in self.entries():
@@ -158,7 +158,7 @@ class SurveyStream(ResultStream):
 
 def command_of(directory) -> dict:
     """The run.json of a survey's report directory (a usage error if it is not one)."""
-    from ddg_oracle.commands import UsageError
+    from .commands import UsageError
     if not (Path(directory) / ResultStream.RUN).is_file():
         raise UsageError(f"--resume {directory}: no {ResultStream.RUN} there (not the report "
                          "directory of an interrupted ddg-oracle survey --report run)")
@@ -213,7 +213,7 @@ def scoreboard(done: list[MeshResult], implementations: list[str] | None = None)
     """A :class:`Score` per implementation and quantity it provides, over ``done`` (in
     mesh order, so a resumed survey scores as an undisturbed one); implementations in
     the order given (else first seen), quantities in the protocol's order."""
-    from ddg_oracle.properties.protocol import METHODS
+    from ..protocol.methods import METHODS
     scores: dict = {}
     for m in done:
         for r in m.rows:
@@ -287,7 +287,7 @@ def heatmap_html(scores: list[Score], title: str) -> str:
     """A self-contained HTML page: one SVG, a row per implementation, a column per
     quantity, each cell coloured by the fraction of the meshes (where the quantity
     applies) on which the implementation agrees; its counts in the cell's tooltip."""
-    from ddg_oracle.properties.protocol import METHODS
+    from ..protocol.methods import METHODS
     impls = list(dict.fromkeys(s.implementation for s in scores))
     present = {s.quantity for s in scores}
     quantities = [q for q in METHODS if q in present] + sorted(present - set(METHODS))
@@ -385,11 +385,11 @@ def _argv(args, specs: list[str]) -> list[str]:
 
 def survey_mesh(mesh, started: dict, specs: list[str], reference, workers: int) -> MeshResult:
     """One mesh's :class:`MeshResult`: every started implementation (spec -> object)
-    compared with the exact reference on it (:func:`~ddg_oracle.compare.compare_mesh`,
+    compared with the exact reference on it (:func:`~ddg_oracle.application.compare.compare_mesh`,
     ``workers`` processes computing its exact values)."""
     import time
-    from ddg_oracle.compare import compare_mesh
-    from ddg_oracle.properties.protocol import implementation_name
+    from .compare import compare_mesh
+    from ..protocol.methods import implementation_name
     t = time.perf_counter()
     rows = compare_mesh(mesh, [started[s] for s in specs], reference, workers=workers)
     spec_of: dict = {}
@@ -409,8 +409,8 @@ def survey_mesh_in_worker(run, mesh) -> dict:
     """:func:`survey_mesh` in a dask worker (``--scheduler``), as JSON: the run's
     implementations (``run``: token, specs, timeout) are started once per worker process
     and kept until the next run or :func:`close_in_worker`."""
-    from ddg_oracle import commands
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from . import commands
+    from ..oracles.exact_reference import ReferenceImplementation
     token, specs, timeout = run
     if _IN_WORKER.get("token") != token:
         close_in_worker()
@@ -431,7 +431,7 @@ def _lost_mesh(mesh, specs: list[str], why: str) -> MeshResult:
     """The result of a mesh the cluster could not finish (its workers died): a crash of
     every implementation on it, said as such (quantity ``*``: not one of them in
     particular)."""
-    from ddg_oracle.compare import Comparison
+    from .compare import Comparison
     return MeshResult(mesh.name, len(mesh.V), len(mesh.F),
                       [record(Comparison("*", s, "crashed", note=why), s) for s in specs],
                       0.0, mesh.note)
@@ -445,11 +445,11 @@ def run(args) -> int:
     import sys
     import time
     import uuid
-    from ddg_oracle import commands
-    from ddg_oracle.compare import load_all
-    from ddg_oracle.implementations import available
-    from ddg_oracle.jobs import stopped_by_signals
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+    from . import commands
+    from .compare import load_all
+    from .implementations import available
+    from .jobs import stopped_by_signals
+    from ..oracles.exact_reference import ReferenceImplementation
 
     workers = args.workers
     if workers is not None and workers < 1:
@@ -465,7 +465,7 @@ def run(args) -> int:
     seen: set = set()
     meshes = [m for m in meshes if not (m.name in seen or seen.add(m.name))]   # each name once
     if not meshes:
-        from ddg_oracle.reference.errors import InputError
+        from ..reference.errors import InputError
         raise InputError("no usable mesh among " + ", ".join(args.mesh))
     specs = list(dict.fromkeys(args.impl or [s for s in available() if s != "reference"]))
     argv = _argv(args, specs)
@@ -504,7 +504,7 @@ def run(args) -> int:
                 for impl in started.values():
                     getattr(impl, "close", lambda: None)()
                 started = {}
-                from ddg_oracle import cluster as dask
+                from . import cluster as dask
                 client, cluster_ = dask.connect(args.scheduler)
                 print(f"ddg-oracle: {len(todo)} meshes on {dask.n_workers(client)} workers of "
                       f"{args.scheduler}", file=sys.stderr, flush=True)

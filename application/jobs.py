@@ -6,7 +6,7 @@ Each task is independent: a property's Hypothesis run on one implementation
 process runs it), or every applicable property on one mesh file.  With
 ``workers > 1`` tasks go to a pool of spawned processes; in every process the
 exact reference runs in-process and each other implementation in its own
-isolated worker (:class:`ddg_oracle.isolation.Isolated`: a crash or a hang is a
+isolated worker (:class:`ddg_oracle.application.isolation.Isolated`: a crash or a hang is a
 reported result), created once per process and reused.  Results come back in
 completion order; :func:`run_tasks` returns them in task order, so the report
 does not depend on scheduling.
@@ -18,9 +18,9 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from ddg_oracle.containment import (LIBRARY_PRELOAD, forkserver_in_use,
+from .containment import (LIBRARY_PRELOAD, forkserver_in_use,
                                     start_workers_from_a_forkserver, stopped, worker_context)
-from ddg_oracle.oracles.processes import exit_text
+from ..protocol.processes import exit_text
 
 IN_PROCESS = ("reference",)      # specs run in the checking process itself
 
@@ -32,7 +32,7 @@ class Options:
     timeout: float = 60.0
     expect_conventions: bool = False
     only: frozenset | None = None
-    budget: object = None           # properties.budget.Budget of each task; None: the profile's
+    budget: object = None           # protocol.budget.Budget of each task; None: the profile's
     examples: int | None = None     # examples per property (check --examples); None: the profile's
 
 
@@ -78,10 +78,10 @@ def implementation(spec: str, timeout: float):
     impls = _HERE.impls
     if spec not in impls:
         if spec in IN_PROCESS:
-            from ddg_oracle.implementations import load_implementation
+            from .implementations import load_implementation
             impls[spec] = load_implementation(spec)
         else:
-            from ddg_oracle.isolation import Isolated
+            from .isolation import Isolated
             impls[spec] = Isolated(spec, timeout=timeout)
     return impls[spec]
 
@@ -101,8 +101,8 @@ def close_all() -> None:
 
 def _counterpart(impl):
     """(the counterpart, what differs) that ``impl`` declares (its ``conventions``:
-    properties.protocol.declared_conventions), with --expect-conventions; else (None, None)."""
-    from ddg_oracle.properties.protocol import declared_conventions
+    protocol.methods.declared_conventions), with --expect-conventions; else (None, None)."""
+    from ..protocol.methods import declared_conventions
     opts = _HERE.options
     found = declared_conventions(impl) if opts.expect_conventions else None
     if found is None:
@@ -117,14 +117,14 @@ def run_task(task: Task) -> list:
     try:
         return _run_task(task)
     except Exception as e:  # noqa: BLE001  (ours: reported as such, the run goes on)
-        from ddg_oracle.properties.runner import INTERNAL, _internal_text
+        from ..properties.runner import INTERNAL, _internal_text
         return crashed(task, _internal_text(e), status=INTERNAL)
 
 
 def _run_task(task: Task) -> list:
-    from ddg_oracle.properties.profiles import profile, profile_budget
-    from ddg_oracle.properties.registry import PROPERTIES, all_properties
-    from ddg_oracle.properties.runner import run_property
+    from ..properties.profiles import profile, profile_budget
+    from ..properties.registry import PROPERTIES, all_properties
+    from ..properties.runner import run_property
 
     opts = _HERE.options
     all_properties()
@@ -143,10 +143,10 @@ def _run_task(task: Task) -> list:
         r = run_property(p, impl, settings, opts.seed,
                          counterpart=counterpart, convention=convention, budget=budget)
         return [with_diagnosis(r, p, impl)]
-    from ddg_oracle.compare import MeshExamples, as_read_by, run_mesh_properties
-    from ddg_oracle.properties.precision import format_of
-    from ddg_oracle.properties.protocol import machine_epsilon
-    from ddg_oracle.reference.errors import InputError
+    from .compare import MeshExamples, as_read_by, run_mesh_properties
+    from ..properties.precision import format_of
+    from ..protocol.methods import machine_epsilon
+    from ..reference.errors import InputError
     only = opts.only if task.property_id is None else frozenset([task.property_id])
     examples = _HERE.examples
     # the mesh as this implementation reads it (a float32 one: rounded to float32), its
@@ -160,8 +160,8 @@ def _run_task(task: Task) -> list:
         except InputError as e:          # the rounding collapsed a face: nothing to check
             examples[key] = e
     if isinstance(examples[key], InputError):
-        from ddg_oracle.compare import file_properties
-        from ddg_oracle.properties.runner import NOT_APPLICABLE, Result
+        from .compare import file_properties
+        from ..properties.runner import NOT_APPLICABLE, Result
         return [Result(p.id, p.name, task.spec, NOT_APPLICABLE, source=_HERE.meshes[task.mesh].name,
                        note=str(examples[key])) for p in file_properties(only)]
     return run_mesh_properties(examples[key], impl, only, counterpart, convention)
@@ -171,11 +171,11 @@ def with_diagnosis(r, p, impl):
     """``r`` with, when it is a failure on a small generated counterexample, how each
     protocol method the property calls answers there (``compare.diagnose``): the report
     names the wrong method from it.  Our own trouble diagnosing never changes the result."""
-    from ddg_oracle.properties.runner import FAILED
+    from ..properties.runner import FAILED
     if r.status != FAILED or r.source != "generated" or r.mesh is None:
         return r
     try:
-        from ddg_oracle.compare import diagnose
+        from .compare import diagnose
         r.diagnosis = diagnose(r.mesh, impl, p.methods) or None
     except Exception:  # noqa: BLE001  (a diagnosis is extra; the verdict stands without it)
         r.diagnosis = None
@@ -185,8 +185,8 @@ def with_diagnosis(r, p, impl):
 def crashed(task: Task, why: str, status: str | None = None) -> list:
     """The one result of a task that could not run: ``crashed`` (the implementation), or
     the given ``status``."""
-    from ddg_oracle.properties import PROPERTIES
-    from ddg_oracle.properties.runner import CRASHED, Result
+    from ..properties import PROPERTIES
+    from ..properties.runner import CRASHED, Result
     p = PROPERTIES.get(task.property_id)
     return [Result(task.property_id or "-", p.name if p else "-", task.spec, status or CRASHED,
                    error=why, source="generated" if task.mesh is None else f"mesh {task.mesh}")]
@@ -294,7 +294,7 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
     every worker and library process is gone.  ``remote``: runs the tasks elsewhere instead
     (``workers`` unused), called as ``remote(tasks, todo, options, meshes, finish, check)``:
     ``finish(k, results)`` as each task ends, ``check()`` at least twice a second (it raises
-    on a signal); the command line passes a dask cluster's (:func:`ddg_oracle.cluster.
+    on a signal); the command line passes a dask cluster's (:func:`ddg_oracle.application.cluster.
     run_on_cluster`), so this module knows nothing of dask."""
     import signal
 
@@ -334,7 +334,7 @@ def run_tasks(tasks: list[Task], options: Options, meshes: list, workers: int = 
         else:
             _run_pool(tasks, todo, options, meshes, workers, finish, check)
     except (KeyboardInterrupt, Interrupted) as e:
-        from ddg_oracle.containment import kill_descendants
+        from .containment import kill_descendants
         kill_descendants()
         signum = e.signal if isinstance(e, Interrupted) else signal.SIGINT
         raise Interrupted(signum, [r for k in sorted(out) for r in out[k]]) from None
@@ -382,7 +382,7 @@ def needs_of(group) -> frozenset:
     generated examples, which differ per property."""
     if not isinstance(group, tuple):
         return frozenset()
-    from ddg_oracle.properties.registry import PROPERTIES
+    from ..properties.registry import PROPERTIES
     p = PROPERTIES.get(group[2])
     return p.methods if p is not None else frozenset()
 
@@ -391,7 +391,7 @@ def _wedge_limit(options) -> float | None:
     """Seconds after which a generated-example task still running is taken for a wedged
     worker: four times the task's budget plus two call timeouts (a budget bounds the
     task, shrinking and a cut-short call included); None without a budget (thorough)."""
-    from ddg_oracle.properties.profiles import profile_budget
+    from ..properties.profiles import profile_budget
     budget = options.budget if options.budget is not None else profile_budget(options.profile)
     if budget.seconds is None:
         return None

@@ -26,11 +26,11 @@ import tempfile
 import time
 import traceback
 
-from ddg_oracle.containment import worker_context
-from ddg_oracle.oracles.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
+from .containment import worker_context
+from ..protocol.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
                                           rows_of, stderr_tail)
-from ddg_oracle.properties.budget import check_time_left, cut_short, time_left
-from ddg_oracle.properties.protocol import (METHODS, NotAnImplementation, OutsideDomain,
+from ..protocol.budget import check_time_left, cut_short, time_left
+from ..protocol.methods import (METHODS, NotAnImplementation, OutsideDomain,
                                            declared_conventions, machine_epsilon, near_misses,
                                            require_protocol)
 
@@ -70,7 +70,7 @@ def memory_limit(spec: str | None = None) -> int | None:
     except ValueError:
         n = -1
     if not n > 0:
-        from ddg_oracle.reference.errors import InputError
+        from ..reference.errors import InputError
         raise InputError(f"memory limit {raw!r}: use a positive size such as 4G, 512M or "
                          f"1073741824 bytes, or none (from {MEMORY_ENV} or Isolated(memory=...))")
     return int(n)
@@ -89,8 +89,8 @@ def _worker(spec: str, memory_bytes: int | None, conn, stderr_path: str | None =
         os.close(fd)
     if memory_bytes:
         resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
-    from ddg_oracle.implementations import ImplementationNotFound, load_implementation
-    from ddg_oracle.properties.conventions import declared
+    from .implementations import ImplementationNotFound, load_implementation
+    from ..properties.conventions import declared
     try:
         impl = load_implementation(spec)
         methods = sorted(require_protocol(impl))
@@ -183,7 +183,7 @@ class Isolated:
             self._kill()
             raise NotAnImplementation(payload)
         if status != "ready":
-            from ddg_oracle.implementations import ImplementationNotFound
+            from .implementations import ImplementationNotFound
             self._kill()
             raise ImplementationNotFound(payload)
         self.methods = frozenset(payload)
@@ -215,7 +215,7 @@ class Isolated:
         return stderr_tail(self._stderr)
 
     def call(self, method: str, *args):
-        # inside a check task, wait at most what its budget has left (properties.budget)
+        # inside a check task, wait at most what its budget has left (protocol.budget)
         check_time_left(f"{self.name}.{method}")
         left = time_left()
         limit = call_limit(self.timeout, rows_of(args))

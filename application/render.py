@@ -3,7 +3,7 @@
 matplotlib with the Agg backend (no display needed), a 3D view of the faces (a
 planar mesh: 2-D axes);
 the element -- a vertex, an edge, a face or a corner, see
-:func:`ddg_oracle.causes.element_ids` -- is drawn in red.  Small meshes get vertex
+:func:`ddg_oracle.application.causes.element_ids` -- is drawn in red.  Small meshes get vertex
 numbers.  A large mesh is cut down to the faces within two rings of the
 element, so the picture shows where the problem is.
 """

@@ -7,7 +7,7 @@ mesh file's failing element) and every script and style are inlined.  The page:
 
 - a header naming the run: profile, seed, implementations, meshes, the command line,
   the counts;
-- the root causes first (:func:`ddg_oracle.causes.root_causes`: the failures of one
+- the root causes first (:func:`ddg_oracle.application.causes.root_causes`: the failures of one
   implementation that one protocol method explains, with its wrong answer; crashes
   with one message), each a link to its smallest counterexample;
 - a heatmap, property x implementation, one coloured cell per result;
@@ -522,7 +522,7 @@ def neighbourhood(V, F, element_ids: dict | None) -> dict | None:
 def _statements() -> tuple[dict, dict]:
     """({catalog ID part: [{"id", "statement", "erratum"}]}, {erratum ID: its text}) from the
     traceability table and docs/errata.md (both installed as package data)."""
-    from ddg_oracle import traceability
+    from . import traceability
     _, entries = traceability.load()
     by_id = {e.id: {"id": e.id, "statement": e.statement, "erratum": e.erratum}
              for e in entries}
