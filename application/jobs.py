@@ -117,8 +117,8 @@ def run_task(task: Task) -> list:
     try:
         return _run_task(task)
     except Exception as e:  # noqa: BLE001  (ours: reported as such, the run goes on)
-        from ..properties.runner import INTERNAL, _internal_text
-        return crashed(task, _internal_text(e), status=INTERNAL)
+        from ..properties.runner import INTERNAL, internal_text
+        return crashed(task, internal_text(e), status=INTERNAL)
 
 
 def _run_task(task: Task) -> list:

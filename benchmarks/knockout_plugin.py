@@ -211,12 +211,12 @@ def _swapped_labels(t):
 
 def _reversed_last_face(t):
     """Its last face's corner order reversed, ``(a, b, c) -> (a, c, b)``, its gluings'
-    reversed flags toggled to match (the reference's own face reversal, ``_Builder``):
+    reversed flags toggled to match (the reference's own face reversal, ``TriangulationBuilder``):
     the same surface, one face oriented against its neighbours (an orientation bug)."""
-    from ddg_oracle.reference.combinatorics import _Builder
+    from ddg_oracle.reference.combinatorics import TriangulationBuilder
     if not t._faces:
         raise NotApplicable("no face")
-    b = _Builder(t)
+    b = TriangulationBuilder(t)
     b.reverse_faces({len(t._faces) - 1})
     return _checked(b.build())
 

@@ -202,7 +202,7 @@ def _crash_text(e: BaseException) -> str:
     return f"{name}: {text}" if text else name
 
 
-def _internal_text(e: BaseException) -> str:
+def internal_text(e: BaseException) -> str:
     """Our own exception, with where it was raised (the last frames of its traceback) and a
     request for a bug report: the implementation is not to blame."""
     import traceback
@@ -247,7 +247,7 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dic
             and e not in crashes]
     ties = [e for e in errors if isinstance(e, TieDisagreement)]
     if ours and not failures:
-        return dict(status=INTERNAL, error=_internal_text(ours[0]),
+        return dict(status=INTERNAL, error=internal_text(ours[0]),
                     mesh=example_mesh(state["last"]))
     if failures:
         f = failures[0]
@@ -375,7 +375,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     _note_outside(r, state)
     _judge_completeness(r, state)
     if state["internal"] is not None and r.status != INTERNAL:
-        r.note = _joined(r.note, "then " + _internal_text(state["internal"][0]))
+        r.note = _joined(r.note, "then " + internal_text(state["internal"][0]))
     r.spec = implementation_spec(impl)
     _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
     if r.status == FAILED and counterpart is not None:

@@ -289,7 +289,7 @@ def _parse_faces(faces, n_vertices, allow_repeats: bool):
     return tuple(out), n
 
 
-def _index(i, size: int, what: str, allow_negative: bool = False) -> int:
+def checked_index(i, size: int, what: str, allow_negative: bool = False) -> int:
     if not _is_int(i):
         raise NonIntegerIndex(f"{what} index {_short(i)} is not an integer")
     i = int(i)
@@ -608,7 +608,7 @@ class Triangulation:
     def _fan(self, v: int):
         fan = self._fans.get(v)
         if fan is None:
-            v = _index(v, self._n, "vertex")
+            v = checked_index(v, self._n, "vertex")
             fan = self._fans[v] = _walk_fan(self._twin, self._rev, self._vcorner[v])
         return fan
 
@@ -793,13 +793,13 @@ class Triangulation:
         >>> t.faces, t.edge_vertices(0)
         (((2, 3, 1), (3, 2, 0)), (2, 3))
         """
-        e = _index(e, len(self._edges), "edge")
+        e = checked_index(e, len(self._edges), "edge")
         h, t = self._edges[e]
         if t < 0:
             raise NotFlippable(f"edge {e} is a boundary edge")
         if h // 3 == t // 3:
             raise NotFlippable(f"edge {e} has face {h // 3} on both sides")
-        b = _Builder(self)
+        b = TriangulationBuilder(self)
         b.flip(e)
         return b.build()
 
@@ -814,10 +814,10 @@ class Triangulation:
         to ``m``; the other half and the new interior edges get ids from
         ``n_edges`` on.  Returns ``(triangulation, m)``.
         """
-        e = _index(e, len(self._edges), "edge")
+        e = checked_index(e, len(self._edges), "edge")
         h, t = self._edges[e]
         r = self._rev[h]
-        b = _Builder(self)
+        b = TriangulationBuilder(self)
         m = b.n
         b.n += 1
         x1, x2, moved = b.split_halfedge(h, m)
@@ -919,7 +919,7 @@ class Triangulation:
         left unused, EmptyMesh for the last face.
         """
         F = len(self._faces)
-        f = _index(f, F, "face")
+        f = checked_index(f, F, "face")
         if F == 1:
             raise EmptyMesh("removing the only face would leave no faces")
         lo, hi = 3 * f, 3 * f + 3
@@ -976,8 +976,8 @@ class Triangulation:
         Gluings of a reversed face with a non-reversed one toggle their reversed
         flag, so the surface is the same; only the orientation of those faces changes.
         """
-        fs = {_index(f, len(self._faces), "face") for f in face_indices}
-        b = _Builder(self)
+        fs = {checked_index(f, len(self._faces), "face") for f in face_indices}
+        b = TriangulationBuilder(self)
         b.reverse_faces(fs)
         return b.build()
 
@@ -1052,7 +1052,7 @@ def _split_gluings(tri: Triangulation, first, second):
     return out
 
 
-class _Builder:
+class TriangulationBuilder:
     """Mutable copy of a triangulation for local surgery (flip, split, reversal).
 
     It also reads like a :class:`Triangulation` (``tail``, ``head``,
@@ -1305,8 +1305,8 @@ def connected_sum(a, b, face_a: int = -1, face_b: int = -1) -> Triangulation:
     3
     """
     a, b = _combinatorics_of(a, "a"), _combinatorics_of(b, "b")
-    fa = _index(face_a, a.n_faces, "face", allow_negative=True)
-    fb = _index(face_b, b.n_faces, "face", allow_negative=True)
+    fa = checked_index(face_a, a.n_faces, "face", allow_negative=True)
+    fb = checked_index(face_b, b.n_faces, "face", allow_negative=True)
     for name, tri, f in (("a", a, fa), ("b", b, fb)):
         x = tri.faces[f]
         if len(set(x)) < 3:

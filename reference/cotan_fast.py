@@ -25,7 +25,7 @@ from itertools import accumulate, chain
 from math import isqrt
 
 from .combinatorics import face_of, next_corner
-from .cotangents import CotanSum, FaceData, _lengths_data, face_data
+from .cotangents import CotanSum, FaceData, lengths_data, face_data
 from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 from .sparse import SparseMatrix
@@ -146,7 +146,7 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     sq, eo = m.squared_lengths, t.edge_of
     left_out = {f for f in range(t.n_faces)
                 if not all(isinstance(sq[eo(3 * f + k)], Fraction) for k in range(3))}
-    part = _laplacian(m, _lengths_data(m, left_out), left_out)
+    part = _laplacian(m, lengths_data(m, left_out), left_out)
     rows = {i: dict(r) for i, r in part._rows.items()}
     n = t.n_vertices
     for f in sorted(left_out):

@@ -35,7 +35,7 @@ How, exactly at every step:
      ``sin(alpha + beta) / (sin alpha sin beta) > 0``), so it is irrational unless
      every ``G_f`` is a square.  Squares are excluded by the power of 2 and the
      residues of the odd part modulo ``2^6 * 3 * 5 * ... * 37`` (:func:`_odd_residue`,
-     :func:`_maybe_square`: about 1 odd non-square in 3,000 passes), then by
+     :func:`maybe_square`: about 1 odd non-square in 3,000 passes), then by
      :func:`math.isqrt`.  Values that may be rational take the canonical route at once
      (step 3);
    * the *sign*: the signs of the ``n``, or for two terms of opposite signs
@@ -70,14 +70,15 @@ from math import gcd, isqrt, lcm, prod
 from .combinatorics import next_corner
 from .exact.rationals import (points_on_common_denominator, shared_denominator,
                               shared_denominator_of_fractions)
-from .exact.surds import Surd, _SMALL_SQUARES, _make, _refine, _reexpress, simplest
+from .exact.surds import Surd, from_terms, simplest
+from .exact.terms import SMALL_SQUARES, reexpress, refine
 from .metric import PiecewiseFlatSurface, degenerate_face
 from .polyhedral import PolyhedralSurface
 
 __all__ = ["applies", "FaceData", "CotanSum", "face_data", "face_cotangents"]
 
 _ZERO = Fraction(0)
-_PRIMES = tuple(p for p, _ in _SMALL_SQUARES)                   # the primes below 100
+_PRIMES = tuple(p for p, _ in SMALL_SQUARES)                   # the primes below 100
 _ODD_PRIMES = _PRIMES[1:]
 _ODD_PRIMORIAL = prod(_ODD_PRIMES)
 
@@ -110,7 +111,7 @@ _SQ1, _SQ2, _SQ3 = _square_residues(_M1), _square_residues(_M2), _square_residue
 _RESIDUE_MODULUS = 64 * _M1 * _M2 * _M3
 
 
-def _maybe_square(r: int) -> bool:
+def maybe_square(r: int) -> bool:
     """False if ``r`` (an integer, or its residue modulo :data:`_RESIDUE_MODULUS`, or a
     product of such residues) is certainly no perfect square; True if it may be one.
     Meant for odd numbers (a multiple of 64 passes the first test)."""
@@ -120,7 +121,7 @@ def _maybe_square(r: int) -> bool:
 def _odd_residue(n: int) -> tuple[int, int]:
     """``(r, p)``: the odd part of ``n > 0`` modulo :data:`_RESIDUE_MODULUS` and the
     parity of the power of 2 in ``n``.  ``n`` can be a square only if ``p == 0`` and
-    ``_maybe_square(r)``; about 1 odd non-square in 3,000 passes."""
+    ``maybe_square(r)``; about 1 odd non-square in 3,000 passes."""
     v = (n & -n).bit_length() - 1
     return (n >> v) % _RESIDUE_MODULUS, v & 1
 
@@ -128,7 +129,7 @@ def _odd_residue(n: int) -> tuple[int, int]:
 def _is_square(n: int) -> bool:
     """Whether the integer ``n > 0`` is a perfect square (residues first)."""
     r, p = _odd_residue(n)
-    return not p and _maybe_square(r) and isqrt(n) ** 2 == n
+    return not p and maybe_square(r) and isqrt(n) ** 2 == n
 
 
 # --- step 1: integers per face, from lengths ------------------------------------------------
@@ -165,7 +166,7 @@ class FaceData:
         """``G_f G_g`` is certainly no square (from residues), so a cotan weight (3.3)
         ``1/2 (n_1 / sqrt(G_f) + n_2 / sqrt(G_g))`` with both numerators nonzero is
         irrational; exact (a residue that is no square mod m proves it).  False means
-        "maybe a square": the caller then decides with ``isqrt``.  (:func:`_maybe_square`
+        "maybe a square": the caller then decides with ``isqrt``.  (:func:`maybe_square`
         written out: this runs for every edge of a mesh.)"""
         if self.twos[f] != self.twos[g]:
             return True
@@ -174,7 +175,7 @@ class FaceData:
 
     def is_square(self, f: int) -> bool:
         """Whether ``G[f]`` is a perfect square (the face's cotangents are rational)."""
-        return (not self.twos[f] and _maybe_square(self.residue[f])
+        return (not self.twos[f] and maybe_square(self.residue[f])
                 and isqrt(self.G[f]) ** 2 == self.G[f])
 
     def root(self, f: int) -> tuple:
@@ -236,11 +237,11 @@ class FaceData:
                 if not n:
                     return _ZERO
                 q = Fraction(n, d1 if d1 == d2 else d1 * d2)
-                return q if m1 == 1 else _make((m1,), {m1: q}, prune=False)
+                return q if m1 == 1 else from_terms((m1,), {m1: q}, prune=False)
             base = _pair_base(m1, m2, self.parts)
             if base is None:
                 return _refined(self.terms(raw), self.parts)
-            return _make(base, {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
+            return from_terms(base, {m1: Fraction(n1 * k1, d1), m2: Fraction(n2 * k2, d2)},
                          prune=False)
         return _value(self.terms(raw), self.parts)
 
@@ -359,7 +360,7 @@ def _degenerate(surface: PolyhedralSurface, f: int):
     raise degenerate_face(surface.triangulation, f, surface.positions)   # pragma: no cover
 
 
-def _lengths_data(m: PiecewiseFlatSurface, left_out=()) -> FaceData:
+def lengths_data(m: PiecewiseFlatSurface, left_out=()) -> FaceData:
     """Step 1 from rational squared lengths (one denominator per face); the faces in
     ``left_out`` (irrational squared lengths: :func:`cotan_laplacian_mixed`) get
     numerators 0, so they contribute nothing."""
@@ -382,7 +383,7 @@ def face_data(surface) -> FaceData:
     :class:`~ddg_oracle.reference.errors.DegenerateFace` at a face of zero area."""
     if isinstance(surface, PolyhedralSurface):
         return _positions_data(surface)
-    return _lengths_data(surface)
+    return lengths_data(surface)
 
 
 # --- step 2: the value kept as it comes -----------------------------------------------------
@@ -544,10 +545,10 @@ def _value(terms: dict, parts):
         if not terms:
             return _ZERO
         (m, q), = terms.items()
-        return q if m == 1 else _make((m,), terms, prune=False)
+        return q if m == 1 else from_terms((m,), terms, prune=False)
     if len(terms) == 2:                 # an edge: two faces, the common case
         base = _pair_base(*terms, parts)
-        return _refined(terms, parts) if base is None else _make(base, terms, prune=False)
+        return _refined(terms, parts) if base is None else from_terms(base, terms, prune=False)
     if not _coprime_large_parts(terms, parts):
         return _refined(terms, parts)
     # The coarsest coprime base: one element per set of radicands a factor divides.
@@ -563,7 +564,7 @@ def _value(terms: dict, parts):
     group: dict[int, int] = {}
     for x, key in pattern.items():
         group[key] = group.get(key, 1) * x
-    return _make(tuple(sorted(group.values())), terms, prune=False)
+    return from_terms(tuple(sorted(group.values())), terms, prune=False)
 
 
 def _refined(terms: dict, parts):
@@ -576,8 +577,8 @@ def _refined(terms: dict, parts):
         factors.update(_small_primes(s))
         if M != 1:
             factors.add(M)
-    base = _refine(list(factors))
-    return simplest(_make(base, _reexpress(terms, base)))
+    base = refine(list(factors))
+    return simplest(from_terms(base, reexpress(terms, base)))
 
 
 # --- the public function -----------------------------------------------------------------

@@ -47,9 +47,9 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .cotangents import _maybe_square, applies, face_data
+from .cotangents import maybe_square, applies, face_data
 from .exact import Angle, corner_angle
-from .exact.angles import _arccot_bounds
+from .exact.angles import arccot_bounds
 
 __all__ = ["applies", "angle_sums_fast", "corner_angles_fast", "gauss_bonnet_holds_fast",
            "CornerSum"]
@@ -74,7 +74,7 @@ def angle_sums_fast(surface) -> list[Angle]:
 def _special(residue: int) -> bool:
     """Whether a face's corners may be multiples of pi / 24 (k G a square for k = 1, 2, 3
     or 6: odd part 1 or 3; see the module docstring): they take the definition's route."""
-    return _maybe_square(residue) or _maybe_square(3 * residue)
+    return maybe_square(residue) or maybe_square(3 * residue)
 
 
 def corner_angles_fast(surface) -> list[tuple[Angle, Angle, Angle]]:
@@ -195,7 +195,7 @@ class CornerSum(Angle):
         lazy, raw = self._src.lazy_slice, self._corners
         lo = hi = 0
         for i in range(0, len(raw), 2):
-            a, b = _arccot_bounds(lazy(raw, i, i + 2), bits)
+            a, b = arccot_bounds(lazy(raw, i, i + 2), bits)
             lo += a
             hi += b
         return (lo, hi) if self._s > 0 else (-hi, -lo)

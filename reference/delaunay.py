@@ -33,7 +33,7 @@ from collections import deque
 
 from .errors import DDGError, InputError
 from . import cotangents
-from .intrinsic import IntrinsicTriangulation, _metric, _obstruction, unfold
+from .intrinsic import IntrinsicTriangulation, surface_metric, flip_obstruction, unfold
 from .laplacian import cotan_laplacian, cotan_weights
 from .exact import sign
 from .metric import PiecewiseFlatSurface
@@ -63,7 +63,7 @@ def is_delaunay_edge(surface, e: int) -> bool:
     >>> [is_delaunay_edge(s, e) for e in range(5)]
     [True, True, True, True, True]
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     h, t = m.triangulation.edge_halfedges(e)
     if t < 0:
         return True
@@ -133,7 +133,7 @@ def in_circumcircle(surface, e: int) -> int:
     >>> in_circumcircle(surfaces.grid(1, 1).metric(), 2)     # cocircular square
     0
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     h, t = m.triangulation.edge_halfedges(e)
     if t < 0:
         return -1
@@ -143,7 +143,7 @@ def in_circumcircle(surface, e: int) -> int:
 
 def non_delaunay_edges(surface) -> list[int]:
     """The edges failing the angle criterion (D4.4), in increasing order."""
-    m = _metric(surface)
+    m = surface_metric(surface)
     return [e for e in range(m.triangulation.n_edges) if not is_delaunay_edge(m, e)]
 
 
@@ -160,7 +160,7 @@ def _face_data(m, f: int):
 
 def face_harmonic_index(surface, f: int):
     """D4.7: ``(a^2 + b^2 + c^2) / A`` of face ``f`` (squared side lengths over area)."""
-    s, A = _face_data(_metric(surface), f)
+    s, A = _face_data(surface_metric(surface), f)
     return simplest(s / A)
 
 
@@ -175,7 +175,7 @@ def harmonic_index(surface):
     >>> harmonic_index(surfaces.grid(1, 1))       # two right isosceles: (1 + 1 + 2) / (1/2) each
     Fraction(16, 1)
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     # a balanced sum: one term per face, each with its own square root on surfaces from R^3
     return simplest(exact_sum(face_harmonic_index(m, f) for f in range(m.triangulation.n_faces)))
 
@@ -303,7 +303,7 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
     >>> is_delaunay(d), len(log)
     (True, 0)
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     history = _History(m)
     # each edge's test on the input, by integers where the squared lengths are rational;
     # an edge keeps its answer until a flip changes one of its faces (then UNKNOWN)
@@ -320,7 +320,7 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
             continue
         if max_flips is not None and len(log) >= max_flips:
             raise DelaunayError(f"more than max_flips = {max_flips} flips needed")
-        u, reason = _obstruction(m, e)
+        u, reason = flip_obstruction(m, e)
         if reason is not None:
             raise DelaunayError(f"L4.11 violated: edge {e} {tri.edge_vertices(e)} "
                                 "is not Delaunay but cannot be flipped")
@@ -389,7 +389,7 @@ def delaunay_tessellation_edges(surface) -> set[int]:
     weight 0 means the two triangles are inscribed in one circle, so the edge
     only splits a cell of the tessellation).
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     bad = non_delaunay_edges(m)
     if bad:
         raise InputError(f"not a Delaunay triangulation: edges {bad[:10]} fail the angle "

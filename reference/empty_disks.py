@@ -39,7 +39,7 @@ from dataclasses import dataclass
 
 from .errors import InputError, TermLimitExceeded
 from .exact.surds import sign, simplest
-from .intrinsic import _metric
+from .intrinsic import surface_metric
 from .combinatorics import corner_of, face_of, next_corner, prev_corner
 
 __all__ = ["ImmersedDisk", "circumdisk", "empty_disk_cells", "DevelopmentLimitExceeded"]
@@ -100,7 +100,7 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
     >>> d.empty, len(d.on_circle), sorted(d.cell_faces)
     (True, 3, [0])
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     t = m.triangulation
     boundary = [e for e in range(t.n_edges) if t.is_boundary_edge(e)]
     if boundary:
@@ -186,7 +186,7 @@ def empty_disk_cells(surface, limit: int = 20_000) -> list[frozenset]:
     ``phi(conv phi^-1(V))`` of its own disk.  Raises :class:`InputError` if some face's
     circumdisk is not empty (the triangulation is not Delaunay, T4.7), naming the face and
     the vertex inside."""
-    m = _metric(surface)
+    m = surface_metric(surface)
     cells = {}
     for f in range(m.triangulation.n_faces):
         d = circumdisk(m, f, limit)

@@ -66,7 +66,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 
-from .combinatorics import Triangulation, _Builder, _index, face_of, opposite_corner
+from .combinatorics import Triangulation, TriangulationBuilder, checked_index, face_of, opposite_corner
 from .errors import InputError, NotFlippable, TermLimitExceeded
 from .exact import Surd, sign
 from .exact.surds import simplest
@@ -76,7 +76,7 @@ __all__ = ["Unfolding", "unfold", "is_flippable", "flip", "IntrinsicTriangulatio
            "cot_sum", "regular_tetrahedron_flip"]
 
 
-def _metric(surface) -> PiecewiseFlatSurface:
+def surface_metric(surface) -> PiecewiseFlatSurface:
     if isinstance(surface, (PiecewiseFlatSurface, IntrinsicTriangulation)):
         return surface
     metric = getattr(surface, "metric", None)
@@ -180,9 +180,9 @@ def unfold(surface, e: int) -> Unfolding:
     >>> u.scaled_points()[2:]                          # k and l, scaled by |ij| = sqrt(2)
     ((Fraction(1, 1), Fraction(1, 1)), (Fraction(1, 1), Fraction(-1, 1)))
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     tri = m.triangulation
-    e = _index(e, tri.n_edges, "edge")
+    e = checked_index(e, tri.n_edges, "edge")
     h, t = tri.edge_halfedges(e)
     i, j = tri.tail(h), tri.head(h)
     if t < 0:
@@ -202,10 +202,10 @@ def unfold(surface, e: int) -> Unfolding:
                      simplest(m.areas[f]), simplest(m.areas[g]))
 
 
-def _obstruction(m: PiecewiseFlatSurface, e: int):
+def flip_obstruction(m: PiecewiseFlatSurface, e: int):
     """``(unfolding, None)`` if ``e`` is flippable, else ``(unfolding or None, reason)``."""
     tri = m.triangulation
-    e = _index(e, tri.n_edges, "edge")
+    e = checked_index(e, tri.n_edges, "edge")
     h, t = tri.edge_halfedges(e)
     i, j = tri.tail(h), tri.head(h)
     if t < 0:
@@ -246,8 +246,8 @@ def is_flippable(surface, e: int) -> bool:
     >>> is_flippable(PiecewiseFlatSurface(t, [1, 1, 1, 1, 1]), 1)      # boundary edge
     False
     """
-    m = _metric(surface)
-    return _obstruction(m, e)[1] is None
+    m = surface_metric(surface)
+    return flip_obstruction(m, e)[1] is None
 
 
 def flip(surface, e: int) -> PiecewiseFlatSurface:
@@ -277,7 +277,7 @@ def flip(surface, e: int) -> PiecewiseFlatSurface:
     >>> r.triangulation.faces, r.squared_lengths[0], r.areas
     (((2, 3, 1), (3, 2, 0)), Fraction(3, 1), (Surd('1/4*sqrt(3)'), Surd('1/4*sqrt(3)')))
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     if isinstance(m, IntrinsicTriangulation):
         m = m.surface()                  # flip() never changes its argument
     u = _flippable_unfolding(m, e)
@@ -296,7 +296,7 @@ def flip(surface, e: int) -> PiecewiseFlatSurface:
 
 def _flippable_unfolding(m, e: int) -> Unfolding:
     """The unfolding of ``e``, or :class:`NotFlippable` saying why not."""
-    u, reason = _obstruction(m, e)
+    u, reason = flip_obstruction(m, e)
     if reason is not None:
         raise NotFlippable(reason)
     return u
@@ -340,10 +340,10 @@ class IntrinsicTriangulation:
     __slots__ = ("triangulation", "squared_lengths", "areas", "__weakref__")   # weakref: as metric.py
 
     def __init__(self, surface):
-        m = _metric(surface)
+        m = surface_metric(surface)
         if isinstance(m, IntrinsicTriangulation):
             m = m.surface()
-        self.triangulation = _Builder(m.triangulation)
+        self.triangulation = TriangulationBuilder(m.triangulation)
         self.squared_lengths = list(m.squared_lengths)
         self.areas = list(m.areas)
 
@@ -361,7 +361,7 @@ class IntrinsicTriangulation:
 
     def is_flippable(self, e: int) -> bool:
         """L2.8, exactly as :func:`is_flippable`."""
-        return _obstruction(self, e)[1] is None
+        return flip_obstruction(self, e)[1] is None
 
     def flip(self, e: int) -> None:
         """Flip edge ``e`` in place, exactly as :func:`flip` (same errors)."""
@@ -398,9 +398,9 @@ def cot_sum(surface, e: int):
     >>> cot_sum(surfaces.grid(1, 1).metric(), 2)          # the diagonal: two right angles
     Fraction(0, 1)
     """
-    m = _metric(surface)
+    m = surface_metric(surface)
     tri = m.triangulation
-    e = _index(e, tri.n_edges, "edge")
+    e = checked_index(e, tri.n_edges, "edge")
     h, t = tri.edge_halfedges(e)
     total = m.corner_cot(face_of(h), opposite_corner(h))
     if t >= 0:

@@ -650,10 +650,10 @@ def test_halfedge_helpers_are_the_numbering():
 def test_triangulation_and_its_builder_read_alike(name):
     """The builder an IntrinsicTriangulation flips in place answers every HalfedgeMesh
     question as the frozen Triangulation does, before and after flips."""
-    from ddg_oracle.reference.combinatorics import HalfedgeMesh, _Builder, face_of
+    from ddg_oracle.reference.combinatorics import HalfedgeMesh, TriangulationBuilder, face_of
     t = getattr(surfaces, name)()
     t = getattr(t, "triangulation", t)          # some constructors give the combinatorics only
-    b = _Builder(t)
+    b = TriangulationBuilder(t)
     e = next(e for e in range(t.n_edges) if not t.is_boundary_edge(e)
              and len({face_of(x) for x in t.edge_halfedges(e)}) == 2)
     b.flip(e)

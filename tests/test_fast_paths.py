@@ -372,9 +372,9 @@ def test_lazy_values_on_the_benchmark_icosphere():
 def test_residue_test_never_rejects_a_square(x, y):
     M = cotangents._RESIDUE_MODULUS
     (rx, px), (ry, py) = cotangents._odd_residue(x * x), cotangents._odd_residue(y * y)
-    assert px == py == 0 and cotangents._maybe_square(rx)
-    assert cotangents._maybe_square(rx * ry)                    # G1 G2 from residues
-    assert cotangents._maybe_square(x * x) and cotangents._maybe_square(x * x % M)
+    assert px == py == 0 and cotangents.maybe_square(rx)
+    assert cotangents.maybe_square(rx * ry)                    # G1 G2 from residues
+    assert cotangents.maybe_square(x * x) and cotangents.maybe_square(x * x % M)
     assert cotangents._is_square(x * x) and not cotangents._is_square(x * x + 2 * x + 2)
     fd = cotangents.FaceData([x * x + 1, y * y], [1, 1], [1] * 6)
     assert fd.is_square(1) and not fd.is_square(0)
@@ -384,7 +384,7 @@ def test_residue_test_rejects_almost_every_non_square():
     """The claim of the module docstring: about 1 odd non-square in 3,000 gets through."""
     rng = random.Random(7)
     xs = [rng.getrandbits(200) | 1 for _ in range(30000)]
-    assert sum(cotangents._maybe_square(x) for x in xs) < 30
+    assert sum(cotangents.maybe_square(x) for x in xs) < 30
 
 
 # --- exact angle sums, defects and the Gauss-Bonnet decision ---------------------------------

@@ -196,3 +196,16 @@ def test_the_cycle_check_sees_a_lazy_cycle():
     graph = _module_graph()
     assert "ddg_oracle.reference.exact.rationals" in graph["ddg_oracle.reference.exact.surds"]
     assert "ddg_oracle.application.causes" in graph["ddg_oracle.application.html_report"]
+
+
+def test_no_private_name_is_imported_across_modules():
+    """Issue 43: a name one module keeps private (``_refine``) is no other module's to
+    import; what modules share has a public name, the term algebra its own module
+    (reference/exact/terms.py).  Attribute reads of private names are not covered."""
+    private = [f"{path.relative_to(ROOT)}:{node.lineno}: {a.name}"
+               for path, _, _ in _files()
+               for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+               if isinstance(node, ast.ImportFrom) and node.module != "__future__"
+               for a in node.names
+               if a.name.startswith("_") and not a.name.startswith("__")]
+    assert private == []

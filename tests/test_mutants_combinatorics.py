@@ -427,13 +427,13 @@ def test_gluings_build_the_same_as_from_faces():
 
 
 def test_index_checks():
-    assert C._index(-1, 5, "face", allow_negative=True) == 4
-    assert C._index(-5, 5, "face", allow_negative=True) == 0
+    assert C.checked_index(-1, 5, "face", allow_negative=True) == 4
+    assert C.checked_index(-5, 5, "face", allow_negative=True) == 0
     for i, err in ((-6, NegativeIndex), (5, IndexOutOfRange), (1.0, NonIntegerIndex), (True, NonIntegerIndex)):
         with pytest.raises(err):
-            C._index(i, 5, "face", allow_negative=True)
+            C.checked_index(i, 5, "face", allow_negative=True)
     with pytest.raises(NegativeIndex):
-        C._index(-1, 5, "face")
+        C.checked_index(-1, 5, "face")
     t = T(surfaces.tetrahedron())
     for bad in (-1, 6):
         with pytest.raises(InputError):
@@ -451,7 +451,7 @@ def test_builder_reads_like_the_triangulation_it_builds():
     # reading agrees with the frozen triangulation, on closed and bordered surfaces
     rng = random.Random(8)
     for t in (T(surfaces.torus(4, 3)), surfaces.klein_bottle(3, 3), T(surfaces.disk(6))):
-        b = C._Builder(t)
+        b = C.TriangulationBuilder(t)
         twin_zero = False
         for _ in range(60):
             e = rng.randrange(b.n_edges)

@@ -223,8 +223,8 @@ def test_regular_tetrahedron_flip_X2_5():
 
 def test_metric_of_other_inputs():
     s = jittered(surfaces.octahedron(), 2, Fraction(1, 4))
-    assert I._metric(s) is s.metric()
+    assert I.surface_metric(s) is s.metric()
     w = I.IntrinsicTriangulation(s)
-    assert I._metric(w) is w
+    assert I.surface_metric(w) is w
     with pytest.raises(InputError):
-        I._metric([1, 2, 3])
+        I.surface_metric([1, 2, 3])

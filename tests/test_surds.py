@@ -18,7 +18,7 @@ from hypothesis import assume, given, settings as hsettings, strategies as st
 
 from ddg_oracle.reference.errors import (ExactArithmeticLimit, InputError, NonFiniteValue,
                               NotANumber, TermLimitExceeded)
-from ddg_oracle.reference.exact import surds as surds_module
+from ddg_oracle.reference.exact import terms as terms_module
 from ddg_oracle.reference.exact.surds import Surd, limits, settings, sqrt
 
 # --- independent reference evaluation -------------------------------------------
@@ -154,10 +154,10 @@ def test_refine_many_elements_is_the_coprime_base_merged_one_by_one(factor_lists
     base so far); merged one at a time they take the gcd per element.  Both give the
     same base: pairwise coprime, every element a product of powers of it."""
     elements = [math.prod(f) for f in factor_lists]
-    base = surds_module._refine(elements, coprime=tuple(coprime))
+    base = terms_module.refine(elements, coprime=tuple(coprime))
     one_by_one = tuple(coprime)
     for n in elements:
-        one_by_one = surds_module._refine([n], coprime=one_by_one)
+        one_by_one = terms_module.refine([n], coprime=one_by_one)
     assert base == one_by_one
     assert all(math.gcd(a, b) == 1 for i, a in enumerate(base) for b in base[:i])
     for n in elements + list(coprime):
@@ -172,8 +172,8 @@ def test_refine_many_coprime_elements_costs_one_gcd_each(monkeypatch):
     product of the base so far, not one per element of it (780 for 40)."""
     primes = [p for p in range(10**6, 10**6 + 600) if all(p % q for q in range(2, 1001))][:40]
     calls = []
-    monkeypatch.setattr(surds_module, "gcd", lambda a, b: calls.append(1) or math.gcd(a, b))
-    assert surds_module._refine(primes) == tuple(primes)
+    monkeypatch.setattr(terms_module, "gcd", lambda a, b: calls.append(1) or math.gcd(a, b))
+    assert terms_module.refine(primes) == tuple(primes)
     assert len(calls) == len(primes)
 
 
@@ -348,8 +348,8 @@ def test_signs_beyond_enclosure_filters(digits, monkeypatch):
     """x - (x rounded to `digits` decimals) is tiny: 330 digits force the exact recursion
     (the enclosures stop at 1,024 bits below the largest term, about 308 digits here)."""
     splits = []
-    real_split = surds_module._t_split
-    monkeypatch.setattr(surds_module, "_t_split",
+    real_split = terms_module.t_split
+    monkeypatch.setattr(terms_module, "t_split",
                         lambda t, p: splits.append(p) or real_split(t, p))
     for x in [sqrt(2) + sqrt(3) + sqrt(5),
               sqrt(5) + sqrt(6) + sqrt(7) - sqrt(11),
@@ -619,9 +619,9 @@ def test_strip_small_squares_keeps_the_value_and_strips_only_small_prime_squares
     primes stay (the gcd shortcut must neither miss a small prime nor strip a large one)."""
     from math import prod
     n = m * prod(p * p for p in squares)
-    c, rest = surds_module._strip_small_squares(n)
+    c, rest = terms_module.strip_small_squares(n)
     assert c * c * rest == n
-    assert all(rest % (p * p) for p, _ in surds_module._SMALL_SQUARES)
+    assert all(rest % (p * p) for p, _ in terms_module.SMALL_SQUARES)
     assert rest % 101 ** (2 * squares.count(101)) == 0 and rest % 193 ** (2 * squares.count(193)) == 0
 
 
@@ -652,14 +652,14 @@ _BIG_FRACTIONS = st.builds(Fraction, st.integers(-2 ** 300, 2 ** 300), st.intege
 def test_term_product_equals_the_fraction_products(ta, tb):
     # equal denominators and different ones meet in one output term (radicand 1 collects
     # r * r from every pair of equal radicands); zero sums drop out
-    got = surds_module._t_mul(ta, tb)
+    got = terms_module.t_mul(ta, tb)
     assert got == _naive_product(ta, tb)
     assert all(type(q) is Fraction and q.denominator > 0 for q in got.values())
 
 
 @given(_term_dicts(st.integers(-10, 10)), _term_dicts(st.integers(-10, 10)))
 def test_term_product_of_integers_stays_integer(ta, tb):
-    got = surds_module._t_mul(ta, tb)
+    got = terms_module.t_mul(ta, tb)
     assert got == _naive_product(ta, tb)
     assert all(type(q) is int for q in got.values())
 
@@ -669,12 +669,12 @@ def test_term_product_of_integers_stays_integer(ta, tb):
 def test_term_product_of_a_mix_is_exact_whichever_way_it_takes(ta, tb):
     # the first coefficients pick the way (integers as they are, or integer pairs): any
     # mix behind them still gives the exact product
-    assert surds_module._t_mul(ta, tb) == _naive_product(ta, tb)
+    assert terms_module.t_mul(ta, tb) == _naive_product(ta, tb)
 
 
 def test_term_product_cancels_to_nothing():
     # (sqrt2 + sqrt3)(sqrt2 - sqrt3) = 2 - 3: the sqrt6 terms cancel, and are dropped
-    assert surds_module._t_mul({2: 1, 3: 1}, {2: 1, 3: -1}) == {1: -1}
+    assert terms_module.t_mul({2: 1, 3: 1}, {2: 1, 3: -1}) == {1: -1}
     half = Fraction(1, 2)
-    assert surds_module._t_mul({2: half, 3: Fraction(1, 3)},
+    assert terms_module.t_mul({2: half, 3: Fraction(1, 3)},
                                {2: half, 3: Fraction(-1, 3)}) == {1: Fraction(1, 2) - Fraction(1, 3)}

@@ -50,7 +50,8 @@ from ..errors import InputError, Undecidable
 from . import arccots
 from .arccots import ArccotSum
 from .rationals import rational
-from .surds import Surd, _refine, _reexpress, _t_add, _t_mul, _t_scale, _t_sign
+from .surds import Surd
+from .terms import reexpress, refine, t_add, t_mul, t_scale, t_sign
 
 _Number = (int, Fraction, float)
 _ZERO = Fraction(0)
@@ -216,7 +217,7 @@ class Angle(ArccotSum):
         ``bits`` bits."""
         lo = hi = 0
         for c, m in self._parts.items():
-            a, b = _arccot_bounds(c, bits)
+            a, b = arccot_bounds(c, bits)
             if m > 0:
                 lo += m * a
                 hi += m * b
@@ -230,7 +231,7 @@ class Angle(ArccotSum):
         integers: a float view costs one such enclosure, no Fraction)."""
         lo, hi = self._arccots_scaled(bits)
         if self._pi:
-            a, b = _pi_bounds(bits)
+            a, b = pi_bounds(bits)
             n, d = self._pi.numerator, self._pi.denominator
             if n > 0:
                 lo += n * a // d
@@ -377,15 +378,15 @@ def _pi24_multiple(parts: dict) -> int | None:
     >>> _pi24_multiple({Surd(2): 1}) is None
     True
     """
-    base = _refine([b for c in parts for b in c.base])
+    base = refine([b for c in parts for b in c.base])
     bits: dict[int, int] = {}                       # radicand -> bit mask over base
     factors: dict[int, list] = {}                   # S (mask) -> [(e_S(u_c), m_c, d_c, key)]
     for c, m in parts.items():
-        terms = c._terms if all(b in base for b in c.base) else _reexpress(c._terms, base)
+        terms = c._terms if all(b in base for b in c.base) else reexpress(c._terms, base)
         # u_c = (c + i)^2 / (c^2 + 1): kept, like everything below, only up to a positive
         # real factor (integer coefficients, no Fraction arithmetic); see the test below
-        c2 = _t_mul(terms, terms)
-        w = _primitive((_t_add(c2, {1: -1})[0], _t_scale(terms, 2)))
+        c2 = t_mul(terms, terms)
+        w = _primitive((t_add(c2, {1: -1})[0], t_scale(terms, 2)))
         basis = _f2_basis([_mask(r, base, bits) for r in terms if r != 1])
         items = [(w, 0)]
         for v, pivot in basis:
@@ -406,7 +407,7 @@ def _pi24_multiple(parts: dict) -> int | None:
             by_key.setdefault(key, []).append(_tpow(w, m << (top - d)))
         # X_S times a positive real: X_S^24 == 1 iff that power is a positive real
         x, y = _tpow(_tprod([_tprod(ws) for ws in by_key.values()]), 24)
-        if y or _t_sign(x, ()) <= 0:
+        if y or t_sign(x, ()) <= 0:
             return None
     return _nearest_pi24(Angle._raw(parts, Fraction(0)))
 
@@ -419,7 +420,7 @@ def _nearest_pi24(a: Angle) -> int:
     bits = 40 + size
     while True:
         lo, hi = a._scaled(bits)                    # lo <= a 2^bits <= hi
-        plo, phi = _pi_bounds(bits)                 # plo <= pi 2^bits <= phi, plo > 0
+        plo, phi = pi_bounds(bits)                 # plo <= pi 2^bits <= phi, plo > 0
         first = -(-24 * lo // (plo if lo < 0 else phi))     # ceil of the least 24 a / pi
         last = 24 * hi // (phi if hi < 0 else plo)          # floor of the largest
         if first == last:
@@ -489,8 +490,8 @@ def _split(w, s: int, b: int, v: int):
 def _tmul(z, w):
     """Complex product of (real, imaginary) term dicts over one base, made primitive."""
     (a, b), (c, d) = z, w
-    return _primitive((_t_add(_t_mul(a, c), _t_mul(b, d), negate=True)[0],
-                       _t_add(_t_mul(a, d), _t_mul(b, c))[0]))
+    return _primitive((t_add(t_mul(a, c), t_mul(b, d), negate=True)[0],
+                       t_add(t_mul(a, d), t_mul(b, c))[0]))
 
 
 def _tpow(z, n: int):
@@ -547,7 +548,7 @@ def _atan_eighth(k: int, bits: int) -> tuple[int, int]:
 
 
 @lru_cache(maxsize=64)
-def _pi_bounds(bits: int) -> tuple[int, int]:
+def pi_bounds(bits: int) -> tuple[int, int]:
     """Bounds (lo, hi) of pi * 2**bits, from pi = 4 atan(1)."""
     lo, hi = _atan_series(1, 1, bits)
     return 4 * lo, 4 * hi
@@ -561,7 +562,7 @@ def _atan_bounds(p: int, q: int, bits: int) -> tuple[int, int]:
         return -hi, -lo
     if p > q:
         # atan(s) = pi/2 - atan(1/s)
-        plo, phi = _pi_bounds(bits)
+        plo, phi = pi_bounds(bits)
         lo, hi = _atan_bounds(q, p, bits)
         return plo // 2 - hi, -(-phi // 2) - lo
     if 16 * p <= q:
@@ -574,7 +575,7 @@ def _atan_bounds(p: int, q: int, bits: int) -> tuple[int, int]:
     return alo + tlo, ahi + thi
 
 
-def _arccot_bounds(c: Surd, bits: int) -> tuple[int, int]:
+def arccot_bounds(c: Surd, bits: int) -> tuple[int, int]:
     """Bounds (lo, hi) of arccot(c) * 2**bits, arccot in (0, pi): pi/2 - atan(c).
 
     Not cached: each cotangent of a mesh is enclosed about once per precision, and a
@@ -584,7 +585,7 @@ def _arccot_bounds(c: Surd, bits: int) -> tuple[int, int]:
     last enclosure)."""
     k = bits + 2 + (2 * c._bound_count() + 1).bit_length()
     clo, chi = c._bounds(k)             # clo <= c 2^k <= chi, chi - clo <= 2^(k - bits - 2)
-    plo, phi = _pi_bounds(bits)
+    plo, phi = pi_bounds(bits)
     # atan is increasing and 1-Lipschitz: atan(clo) <= atan(c) <= atan(clo) + (chi - clo) 2^-k,
     # one series instead of one per end
     alo, ahi = _atan_bounds(clo, 1 << k, bits)

@@ -53,10 +53,11 @@ from fractions import Fraction
 
 from ..errors import InputError, Undecidable
 from . import arccots
-from .angles import Angle, _arccot_bounds, _pi_bounds
+from .angles import Angle, arccot_bounds, pi_bounds
 from .arccots import ArccotSum
 from .rationals import rational
-from .surds import Surd, _refine, _reexpress
+from .surds import Surd
+from .terms import reexpress, refine
 
 __all__ = ["AngleLength"]
 
@@ -163,11 +164,11 @@ class AngleLength(ArccotSum):
         if not self._parts:
             return not self._pi
         coefficients = list(self._parts.values()) + [self._pi]
-        base = _refine([b for s in coefficients for b in s.base])
+        base = refine([b for s in coefficients for b in s.base])
         by_radicand: dict[int, tuple[dict, Fraction]] = {}
         items = list(self._parts.items()) + [(None, self._pi)]
         for c, s in items:
-            for r, q in _reexpress(s._terms, base).items():
+            for r, q in reexpress(s._terms, base).items():
                 parts, p = by_radicand.get(r, ({}, Fraction(0)))
                 if c is None:
                     p += q
@@ -215,9 +216,9 @@ class AngleLength(ArccotSum):
         """Integers lo <= x * 2**(2 bits) <= hi: every coefficient and every arccot (or pi)
         bounded at the scale 2**bits, the products by interval arithmetic on integers."""
         lo = hi = 0
-        terms = [(s, _arccot_bounds(c, bits)) for c, s in self._parts.items()]
+        terms = [(s, arccot_bounds(c, bits)) for c, s in self._parts.items()]
         if self._pi:
-            terms.append((self._pi, _pi_bounds(bits)))
+            terms.append((self._pi, pi_bounds(bits)))
         for s, (alo, ahi) in terms:
             slo, shi = s.scaled_bounds(bits)
             if alo >= 0:                    # an angle's lower bound; 0 <= floor always
