@@ -63,7 +63,7 @@ from .precision import inputs_at
 from ..protocol.methods import (OutsideDomain, capabilities, implementation_name, machine_epsilon,
                        near_miss_warning, require_protocol)
 from .registry import Property, PropertyFailure, TieDisagreement, select_properties
-from .stream import same_stream
+from .stream import generated_seed, keyed, same_stream, with_database
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
 TIE, CONVENTION, UNDECIDED = "tie disagreement", "convention", "undecided"
@@ -356,7 +356,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     # a failing example saved for one library replayed on the others).  Hypothesis derives
     # both from the test function, the same `body` for every property; this is the hook
     # its pytest plugin uses for parametrized tests (no public API exists for it)
-    body._hypothesis_internal_add_digest = p.id.encode()
+    keyed(body, p.id.encode())
     t0 = state["t0"] = time.perf_counter()
     # examples drawn in the implementation's own input format (float32 ones for a float32
     # implementation): it receives exactly the numbers the reference computes with
@@ -457,8 +457,7 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
             # Hypothesis's @seed turns the example database off; a chosen database must
             # still replay saved failures first and save new ones (the same key for every
             # implementation of the property), seed or not
-            run._hypothesis_internal_use_settings = Settings(
-                run._hypothesis_internal_use_settings, database=settings.database)
+            run = with_database(run, settings.database)
     try:
         # the property's stream, whatever this process loaded; Hypothesis's own reports
         # ("You can reproduce this failure by adding @seed...", falsifying examples) are not
@@ -523,8 +522,7 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
         shrink_from_now(state["shrink"] + time.perf_counter() - state["t0"])
     # the seed Hypothesis generated for the first pass: no public API exposes it (it is
     # printed only with a failure), and this pass must replay that very stream
-    seed = seed if seed is not None else getattr(run, "_hypothesis_internal_use_generated_seed",
-                                                 None)
+    seed = seed if seed is not None else generated_seed(run)
     state["ties_raise"] = True
     try:
         # the first pass's examples that ran (declined ones are drawn past, as there)

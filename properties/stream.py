@@ -1,6 +1,20 @@
-"""One example stream per property, the same in every process.
+"""One example stream per property, the same in every process: every use of Hypothesis's
+internals by ddg-oracle, in this one module.
 
-Hypothesis (6.131 on) draws about 5% of its integers, floats and strings from
+Hypothesis has no public API for four things the runner needs; each is reached here and
+nowhere else, and tests/test_stream.py fails on a Hypothesis where one of them no longer
+works (pyproject.toml pins the range it was tested on: 6.132.0, 6.150.0, 6.170.27):
+
+- :func:`keyed`: each property its own example-database key and derandomized stream,
+  whatever the test function (``_hypothesis_internal_add_digest``, the hook Hypothesis's
+  pytest plugin uses for parametrized tests);
+- :func:`with_database`: a seeded run still replays and saves failures in the chosen
+  database (``@seed`` turns it off; ``_hypothesis_internal_use_settings``);
+- :func:`generated_seed`: the seed Hypothesis drew for an unseeded run, so that a second
+  pass replays that very stream (``_hypothesis_internal_use_generated_seed``);
+- :func:`same_stream`: no constants of the process's local modules in the draws (below).
+
+Hypothesis (6.132 on) draws about 5% of its integers, floats and strings from
 pools of "interesting" constants: its own, and those found in the source of
 every *local* module loaded in the process (not the standard library, not
 site-packages, not test files).  Which local modules are loaded depends on the
@@ -72,3 +86,25 @@ def same_stream():
                 providers._get_local_constants = _saved
                 _saved = None
                 _clear_cache(providers)
+
+
+def keyed(test, key: bytes):
+    """``test`` (a function Hypothesis will wrap) with ``key`` in its database key and
+    derandomized seed: one example stream per property, the same test function for all."""
+    test._hypothesis_internal_add_digest = key
+    return test
+
+
+def with_database(run, database):
+    """The seeded Hypothesis test ``run`` with ``database`` used again (replayed first,
+    failures saved), which ``@seed`` turned off."""
+    from hypothesis import settings
+    run._hypothesis_internal_use_settings = settings(run._hypothesis_internal_use_settings,
+                                                     database=database)
+    return run
+
+
+def generated_seed(run):
+    """The seed Hypothesis generated for the last unseeded run of ``run``, or None."""
+    return getattr(run, "_hypothesis_internal_use_generated_seed", None)
+

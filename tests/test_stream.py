@@ -110,3 +110,72 @@ def test_the_pool_is_restored_for_the_users_own_tests():
     own = providers._get_local_constants
     _stream()
     assert providers._get_local_constants is own
+
+
+def _failing_test():
+    """A fresh test function that fails on every integer above 10 (the same code each
+    time: its database key is then the digest's alone)."""
+    def test(x):
+        assert x <= 10
+    return test
+
+
+def _run(test):
+    try:
+        test()
+    except AssertionError:
+        return
+    raise AssertionError("the test did not fail")
+
+
+def test_the_hypothesis_internals_we_use_still_work(tmp_path):
+    """Each of properties/stream.py's hooks into Hypothesis's internals still does what
+    the runner relies on: fails loudly on a Hypothesis outside the tested range (then pin
+    it in pyproject.toml, or move the hook to the new internals)."""
+    from hypothesis import seed
+    from hypothesis.database import DirectoryBasedExampleDatabase
+    from ddg_oracle.properties.stream import generated_seed, keyed, with_database
+
+    assert _providers() is not None, "Hypothesis no longer has the local constants pool"
+    db_path = tmp_path / "db"
+    quick = settings(max_examples=50, database=DirectoryBasedExampleDatabase(db_path),
+                     deadline=None, phases=[Phase.generate, Phase.shrink, Phase.reuse])
+
+    def keys():
+        return {p.name for p in db_path.iterdir()} if db_path.exists() else set()
+
+    # keyed: the digest is part of the database key (one key per property)
+    _run(quick(given(st.integers())(keyed(_failing_test(), b"D1.6"))))
+    first = keys()
+    assert first
+    _run(quick(given(st.integers())(keyed(_failing_test(), b"D1.6"))))
+    assert keys() == first                                  # the same key again
+    _run(quick(given(st.integers())(keyed(_failing_test(), b"D2.2"))))
+    assert keys() > first                                   # another property, another key
+
+    # with_database: @seed turns the database off, with_database turns it back on
+    seeded = tmp_path / "seeded"
+    s = settings(quick, database=DirectoryBasedExampleDatabase(seeded))
+    _run(seed(7)(s(given(st.integers())(keyed(_failing_test(), b"T3.6")))))
+    assert not seeded.exists() or not any(seeded.iterdir())
+    _run(with_database(seed(7)(s(given(st.integers())(keyed(_failing_test(), b"T3.6")))),
+                       s.database))
+    assert any(seeded.iterdir())
+
+    # generated_seed: the seed of an unseeded run, which replays the same stream
+    unseeded = settings(quick, database=None)(given(st.integers())(_failing_test()))
+    _run(unseeded)
+    assert isinstance(generated_seed(unseeded), int)
+
+
+def test_no_other_module_reaches_into_hypothesis_internals():
+    """Issue 43: every use of Hypothesis's internals is in properties/stream.py, where the
+    test above checks it."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parent.parent
+    users = sorted(str(p.relative_to(root))
+                   for folder in ("reference", "protocol", "properties", "oracles", "application")
+                   for p in (root / folder).rglob("*.py")
+                   if ("_hypothesis_internal" in (text := p.read_text(encoding="utf-8"))
+                       or "hypothesis.internal" in text))
+    assert users == ["properties/stream.py"]
