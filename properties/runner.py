@@ -212,29 +212,52 @@ def internal_text(e: BaseException) -> str:
             "this is a bug of ddg-oracle; please report it with this example")
 
 
-def _keep_smallest(state: dict, key: str, e: BaseException, example) -> None:
+@dataclass
+class _Search:
+    """What one property's search on one implementation has seen so far: written by the
+    checked body as examples run, read to make the :class:`Result`."""
+    wanted: int = 0                 # examples the profile asks for
+    shrink: float | None = None     # the budget's shrink seconds (None: no limit)
+    t0: float = 0.0                 # when the search started (perf_counter)
+    n: int = 0                      # examples drawn, declined ones included
+    last: object = None             # the last example drawn
+    outside: int = 0                # examples the implementation declined as outside its domain
+    why: str | None = None          # the first reason it gave
+    ties: int = 0                   # tie disagreements seen
+    tie: tuple | None = None        # (the smallest tie, its example)
+    ties_raise: bool = False        # the second pass: a tie stops the search, to be shrunk
+    failure: tuple | None = None    # (exception, example, mesh) of the smallest failure
+    crash: tuple | None = None      # the same for the smallest crash
+    crashes: int = 0                # crashes seen
+    abort: bool = False             # stop: every later example is rejected
+    stopped: str | None = None      # why the budget stopped the search
+    refused: bool = False           # stopped because the implementation declines nearly all
+    internal: tuple | None = None   # (our own exception, its example): a bug of ddg-oracle
+
+
+def _keep_smallest(state: _Search, key: str, e: BaseException, example) -> None:
     """Remember the smallest failing (``key="failure"``) or crashing example seen, in case
     the budget stops the search before Hypothesis has replayed its shrunk one.  The first
     one starts the shrinking, and its budget (:func:`_start_shrinking`)."""
     _start_shrinking(state)
     mesh = getattr(e, "mesh", None) or example_mesh(example)
-    best = state[key]
+    best = getattr(state, key)
     if best is None or _size(mesh) <= _size(best[2]):
-        state[key] = (e, example, mesh)
+        setattr(state, key, (e, example, mesh))
 
 
-def _start_shrinking(state: dict) -> None:
+def _start_shrinking(state: _Search) -> None:
     """The first failure or crash (Hypothesis shrinks from here): the rest of the task
     gets at most the budget's shrink seconds."""
-    if state["failure"] is None and state["crash"] is None:
-        shrink_from_now(state["shrink"])
+    if state.failure is None and state.crash is None:
+        shrink_from_now(state.shrink)
 
 
 def _size(mesh) -> int:
     return len(mesh[1]) if mesh is not None else 1 << 30
 
 
-def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dict:
+def _outcome(p: Property, impl, errors: list[BaseException], state: _Search) -> dict:
     """Status and details from what the run raised (several if Hypothesis found several)."""
     failures = [e for e in errors if isinstance(e, PropertyFailure)
                 and not isinstance(e, TieDisagreement)]
@@ -248,20 +271,20 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: dict) -> dic
     ties = [e for e in errors if isinstance(e, TieDisagreement)]
     if ours and not failures:
         return dict(status=INTERNAL, error=internal_text(ours[0]),
-                    mesh=example_mesh(state["last"]))
+                    mesh=example_mesh(state.last))
     if failures:
         f = failures[0]
-        return dict(status=FAILED, failure=f, mesh=f.mesh or example_mesh(state["last"]),
+        return dict(status=FAILED, failure=f, mesh=f.mesh or example_mesh(state.last),
                     also=[str(e) for e in failures[1:]] + [_crash_text(e) for e in crashes])
     if crashes:
         return dict(status=CRASHED, error=_crash_text(crashes[0]),
-                    mesh=example_mesh(state["last"]), also=[_crash_text(e) for e in crashes[1:]])
+                    mesh=example_mesh(state.last), also=[_crash_text(e) for e in crashes[1:]])
     if limits:
         return dict(status=UNDECIDED, error=_crash_text(limits[0]),
-                    mesh=example_mesh(state["last"]))
-    if ties or state["tie"] is not None:
-        t = ties[0] if ties else state["tie"][0]
-        return dict(status=TIE, failure=t, mesh=t.mesh or example_mesh(state["tie"][1]))
+                    mesh=example_mesh(state.last))
+    if ties or state.tie is not None:
+        t = ties[0] if ties else state.tie[0]
+        return dict(status=TIE, failure=t, mesh=t.mesh or example_mesh(state.tie[1]))
     return dict(status=PASSED)
 
 
@@ -288,11 +311,8 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         return Result(p.id, p.name, name, NOT_APPLICABLE,
                       note=f"lacks {p.lacks(capabilities(impl))} (protocol methods this "
                            "property needs)")
-    state = {"n": 0, "last": None, "ties": 0, "tie": None, "ties_raise": False, "outside": 0,
-             "why": None, "abort": False, "failure": None, "crash": None, "crashes": 0,
-             "stopped": None, "refused": False, "internal": None,
-             "shrink": budget.shrink if budget is not None else None,
-             "wanted": settings.max_examples}
+    state = _Search(wanted=settings.max_examples,
+                    shrink=budget.shrink if budget is not None else None)
     max_crashes = budget.crashes if budget is not None else None
     watched = Watched(impl, p.id)
     # examples the implementation declines are counted, not checked; the check is wrapped
@@ -300,24 +320,24 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     prop, p = p, replace(p, check=_in_domain(p.check, state))
 
     def body(example):
-        if state["abort"]:
+        if state.abort:
             return
         # Hypothesis replays the shrunk example last, so "last" is minimal.
-        state["n"] += 1
-        state["last"] = example
-        declined = state["outside"]
+        state.n += 1
+        state.last = example
+        declined = state.outside
         try:
             p.check(watched, example)
         except TieDisagreement as t:
             # keep the smallest tie of either pass
-            if state["tie"] is None or _size(t.mesh) < _size(state["tie"][0].mesh):
-                state["tie"] = (t, example)
-            if state["ties_raise"]:
+            if state.tie is None or _size(t.mesh) < _size(state.tie[0].mesh):
+                state.tie = (t, example)
+            if state.ties_raise:
                 raise                               # the second pass: shrink the tie
             # not an error: keep going (a tie never hides a failure)
-            state["ties"] += 1
+            state.ties += 1
         except PropertyFailure as e:
-            if not state["ties_raise"]:
+            if not state.ties_raise:
                 _keep_smallest(state, "failure", e, example)
             raise
         except (BudgetExceeded, UnsatisfiedAssumption):
@@ -326,28 +346,28 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
             if not isinstance(e, (KeyboardInterrupt, SystemExit, ExactArithmeticLimit,
                                   ImplementationHang)) and not raised_by_implementation(e):
                 # not the implementation's: ddg-oracle's own code raised
-                state["internal"] = (e, example)
+                state.internal = (e, example)
                 raise _InternalError() from e
-            if not state["ties_raise"]:
+            if not state.ties_raise:
                 if not isinstance(e, (KeyboardInterrupt, SystemExit)):
                     _keep_smallest(state, "crash", e, example)
-                    state["crashes"] += 1
-                    if max_crashes is not None and state["crashes"] > max_crashes:
+                    state.crashes += 1
+                    if max_crashes is not None and state.crashes > max_crashes:
                         raise BudgetExceeded(f"{max_crashes} crashes or hangs of the "
                                              "implementation") from None
                 raise
             # the second pass only shrinks a tie: a crash or hang on one of its simpler
             # candidates is not chased (each hang costs the call timeout); stop here, the
             # smallest tie seen so far stands
-            state["abort"] = True
-        if state["outside"] > declined:
+            state.abort = True
+        if state.outside > declined:
             # declined (OutsideDomain): not an example of its domain, so Hypothesis draws
             # another in its place (and the shrinker never steps into the declined part);
             # while no failure is found, an implementation that declines nearly
             # everything stops the search
-            if state["failure"] is None and state["crash"] is None and _futile(state):
-                state["refused"] = True
-                raise BudgetExceeded(f"the implementation declined {state['outside']} "
+            if state.failure is None and state.crash is None and _futile(state):
+                state.refused = True
+                raise BudgetExceeded(f"the implementation declined {state.outside} "
                                      f"examples as outside its domain")
             reject()
 
@@ -357,7 +377,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
     # both from the test function, the same `body` for every property; this is the hook
     # its pytest plugin uses for parametrized tests (no public API exists for it)
     keyed(body, p.id.encode())
-    t0 = state["t0"] = time.perf_counter()
+    t0 = state.t0 = time.perf_counter()
     # examples drawn in the implementation's own input format (float32 ones for a float32
     # implementation): it receives exactly the numbers the reference computes with
     with task_budget(budget.seconds if budget is not None else None), \
@@ -365,25 +385,25 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         errors, run = _search(body, p, settings, seed, state=state)
         # the second pass only shrinks: without the shrink phase it would replay, up to the
         # first tie, examples the first pass ran already
-        if not errors and state["tie"] is not None and state["stopped"] is None \
+        if not errors and state.tie is not None and state.stopped is None \
                 and Phase.shrink in settings.phases:
             errors = _shrink_tie(body, p, settings, seed, run, state)
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=state["n"] - state["outside"],
+    r = Result(p.id, p.name, name, examples=state.n - state.outside,
                wanted=settings.max_examples, seconds=time.perf_counter() - t0,
-               ties=state["ties"], example=state["last"], **out)
+               ties=state.ties, example=state.last, **out)
     _note_outside(r, state)
     _judge_completeness(r, state)
-    if state["internal"] is not None and r.status != INTERNAL:
-        r.note = _joined(r.note, "then " + internal_text(state["internal"][0]))
+    if state.internal is not None and r.status != INTERNAL:
+        r.note = _joined(r.note, "then " + internal_text(state.internal[0]))
     r.spec = implementation_spec(impl)
-    _attach_counterexample(r, impl, state["tie"][1] if r.status == TIE else state["last"])
+    _attach_counterexample(r, impl, state.tie[1] if r.status == TIE else state.last)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, prop, counterpart, convention)
     return r
 
 
-def _futile(state: dict) -> bool:
+def _futile(state: _Search) -> bool:
     """Whether the search should stop drawing in place of declined examples.
 
     Declines are replaced, but not without end.  Up to 8 per wanted example the search
@@ -394,35 +414,35 @@ def _futile(state: dict) -> bool:
     oriented and touching draws of D2.2, about 12 in 13; a fixed cap of 8 ended its runs
     ``incomplete`` on some seeds).  Hypothesis's own limit is 458 + 100 per valid example.
     """
-    outside, wanted = state["outside"], state["wanted"]
-    accepted = state["n"] - outside
+    outside, wanted = state.outside, state.wanted
+    accepted = state.n - outside
     if outside < 8 * wanted:
         return False
     return accepted <= 0 or outside >= 32 * wanted or outside > 32 * accepted
 
 
-def _judge_completeness(r: Result, state: dict) -> None:
+def _judge_completeness(r: Result, state: _Search) -> None:
     """A search that found nothing wrong but ran fewer examples than the profile asks
     for is ``incomplete`` (or ``not applicable`` if the implementation declined them
     all), whether the budget or the implementation's refusals stopped it; one that
     Hypothesis ended by itself with fewer (every example the strategy can draw was run,
     none declined) is a pass.  A failure or crash keeps its status, with a note."""
-    stopped = state["stopped"]
+    stopped = state.stopped
     if r.status in (FAILED, CRASHED, INTERNAL):
         if stopped is not None and stopped not in (r.error or ""):
             r.note = _joined(r.note, f"shrinking stopped early: {stopped}")
         return
     if r.status not in (PASSED, TIE) or r.examples >= r.wanted:
         return
-    draws = state["n"]
-    if stopped is None and not (state["outside"] and draws >= r.wanted):
+    draws = state.n
+    if stopped is None and not (state.outside and draws >= r.wanted):
         return                       # Hypothesis exhausted the strategy: every example ran
-    if r.examples == 0 and state["outside"] and (state["refused"] or stopped is None):
+    if r.examples == 0 and state.outside and (state.refused or stopped is None):
         r.status = NOT_APPLICABLE
         return
-    why = stopped if stopped is not None and not state["refused"] else \
-        f"the implementation declined {state['outside']} examples as outside its domain " \
-        f"({state['why']})"
+    why = stopped if stopped is not None and not state.refused else \
+        f"the implementation declined {state.outside} examples as outside its domain " \
+        f"({state.why})"
     r.note = f"{r.examples} of {r.wanted} examples ran: {why}"
     r.status = INCOMPLETE
 
@@ -436,7 +456,7 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
 
     A :class:`~.budget.BudgetExceeded` or an :class:`~.budget.ImplementationHang` stops
     the search: what it raised is then the smallest failure (else crash, the hang
-    included) ``state`` recorded, and ``state["stopped"]`` says why."""
+    included) ``state`` recorded, and ``state.stopped`` says why."""
     # one failure per property, the shrunk one: several distinct failures would come
     # back as an ExceptionGroup and read as a crash.  No explain phase: its report is not
     # ours to print, and on Python < 3.12 it runs the failing example under sys.settrace,
@@ -467,21 +487,21 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
     except _STOPS as e:
         if state is None:
             raise
-        state["stopped"] = str(e)
-        best = state["failure"] or state["crash"]
+        state.stopped = str(e)
+        best = state.failure or state.crash
         if best is None:
             return [], run
-        state["last"] = best[1]
+        state.last = best[1]
         return [best[0]], run
     except _InternalError:
         if state is None:
             raise
-        e, example = state["internal"]
-        best = state["failure"] or state["crash"]
+        e, example = state.internal
+        best = state.failure or state.crash
         if best is None:                     # our bug on this example: that is the result
-            state["last"] = example
+            state.last = example
             return [e], run
-        state["last"] = best[1]
+        state.last = best[1]
         return [best[0]], run
     except Unsatisfiable:
         return [], run                 # every example declined: judged from the counts
@@ -509,21 +529,21 @@ def derandomized_seed(property_id: str) -> int:
 def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list:
     """Tie disagreements do not stop the search, so Hypothesis does not shrink them.
     Second pass: the same example stream (the same seed, or the same derandomized
-    digest), this time with ties raising, so the first tie is shrunk; ``state["tie"]``
+    digest), this time with ties raising, so the first tie is shrunk; ``state.tie``
     ends as the smallest tie of both passes (if the stream differs, e.g. after a
     database replay, the first pass's stands).  A crash or hang of the implementation
     on a candidate of this pass stops it (not chased: each hang costs the timeout).
     Returns a real failure this pass found on a simpler example, if any."""
-    n, ties, outside = state["n"], state["ties"], state["outside"]
+    n, ties, outside = state.n, state.ties, state.outside
     # this pass replays at most the first pass's examples, then shrinks: it gets the first
     # pass's time plus the shrink budget (body's source stays as it is: it seeds the
     # derandomized example stream)
-    if state["shrink"] is not None:
-        shrink_from_now(state["shrink"] + time.perf_counter() - state["t0"])
+    if state.shrink is not None:
+        shrink_from_now(state.shrink + time.perf_counter() - state.t0)
     # the seed Hypothesis generated for the first pass: no public API exposes it (it is
     # printed only with a failure), and this pass must replay that very stream
     seed = seed if seed is not None else generated_seed(run)
-    state["ties_raise"] = True
+    state.ties_raise = True
     try:
         # the first pass's examples that ran (declined ones are drawn past, as there)
         errors, _ = _search(body, p, settings, seed, database=None,
@@ -531,8 +551,9 @@ def _shrink_tie(body, p: Property, settings: Settings, seed, run, state) -> list
     except (*_STOPS, _InternalError):
         errors = []                      # out of time: the smallest tie so far stands
     finally:
-        state.update(n=n, ties=ties, outside=outside, ties_raise=False, abort=False)
-    state["last"] = state["tie"][1]                 # body kept the smallest tie of both passes
+        state.n, state.ties, state.outside, state.ties_raise, state.abort = \
+            n, ties, outside, False, False
+    state.last = state.tie[1]                 # body kept the smallest tie of both passes
     # a real failure on a simpler example the first pass missed is a result too
     return [e for e in errors if isinstance(e, PropertyFailure)
             and not isinstance(e, TieDisagreement)]
@@ -566,22 +587,22 @@ def _attach_counterexample(r: Result, impl, example) -> None:
         r.replay = None
 
 
-def _in_domain(check, state: dict):
+def _in_domain(check, state: _Search):
     """``check`` that counts an OutsideDomain of the implementation instead of raising it."""
     def check_in_domain(impl, example):
         try:
             check(impl, example)
         except OutsideDomain as o:
-            state["outside"] += 1
-            state["why"] = state["why"] or str(o)
+            state.outside += 1
+            state.why = state.why or str(o)
     return check_in_domain
 
 
-def _note_outside(r: Result, state: dict) -> None:
+def _note_outside(r: Result, state: _Search) -> None:
     """Examples the implementation declined (OutsideDomain): a note; all of them: not applicable."""
-    if not state["outside"]:
+    if not state.outside:
         return
-    r.note = f"{state['outside']} example(s) outside its domain: {state['why']}"
+    r.note = f"{state.outside} example(s) outside its domain: {state.why}"
     if r.status == PASSED and r.examples == 0:
         r.status = NOT_APPLICABLE
 
@@ -609,21 +630,21 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     if not p.applies_to(capabilities(impl)):
         return Result(p.id, p.name, name, NOT_APPLICABLE, source=source,
                       note=f"lacks {p.lacks(capabilities(impl))}")
-    state = {"n": 1, "last": example, "ties": 0, "tie": None, "outside": 0, "why": None}
+    state = _Search(n=1, last=example)
     t0 = time.perf_counter()
     try:
         p.check(Watched(impl, p.id), example)
         errors = []
     except OutsideDomain as o:
-        state["outside"], state["why"], errors = 1, str(o), []
+        state.outside, state.why, errors = 1, str(o), []
     except BaseException as e:  # noqa: BLE001
         if isinstance(e, (KeyboardInterrupt, SystemExit)):
             raise
         errors = [e]
-        state["ties"] = int(isinstance(e, TieDisagreement))
+        state.ties = int(isinstance(e, TieDisagreement))
     out = _outcome(p, impl, errors, state)
-    r = Result(p.id, p.name, name, examples=1 - state["outside"], seconds=time.perf_counter() - t0,
-               ties=state["ties"], example=example, source=source, **out)
+    r = Result(p.id, p.name, name, examples=1 - state.outside, seconds=time.perf_counter() - t0,
+               ties=state.ties, example=example, source=source, **out)
     _note_outside(r, state)
     _attach_counterexample(r, impl, example)
     if r.status == FAILED and counterpart is not None:
