@@ -26,6 +26,7 @@ from fractions import Fraction
 from ..reference.combinatorics import Triangulation, cyclic, face_of, opposite_corner
 from ..reference.exact.rationals import on_common_denominator
 from ..reference.polyhedral import PolyhedralSurface
+from ..reference.linear import cross
 
 __all__ = ["relabelled", "permuted", "reversed_faces", "with_sliver", "slivers", "disjoint_union",
            "union_of", "fan", "bipyramid", "circle_point", "is_degenerate", "degenerate_faces",
@@ -85,10 +86,6 @@ def union_of(t: Triangulation, other: Triangulation) -> Triangulation:
     return Triangulation.from_faces(faces, n_vertices=n + other.n_vertices)
 
 
-def _cross(u, v):
-    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-
-
 def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
                 lift: int | None = None) -> PolyhedralSurface:
     """Face f = face_of(halfedge) split 1-to-3 at a new point p, with (a, b) the edge of that
@@ -118,7 +115,7 @@ def with_sliver(s: PolyhedralSurface, halfedge: int, kind: str, k: int,
     else:
         raise ValueError(f"unknown sliver kind {kind!r}")
     if lift is not None:
-        nrm = _cross([x[b][i] - x[a][i] for i in range(3)], [x[c][i] - x[a][i] for i in range(3)])
+        nrm = cross([x[b][i] - x[a][i] for i in range(3)], [x[c][i] - x[a][i] for i in range(3)])
         p = [p[i] + t * Fraction(1, 2 ** lift) * nrm[i] for i in range(3)]
     q = s.n_vertices
     faces[f] = (a, b, q)
@@ -240,7 +237,7 @@ def degenerate_faces(positions, faces) -> bool:
     for a, b, c in faces:
         u = [x[b][i] - x[a][i] for i in range(3)]
         v = [x[c][i] - x[a][i] for i in range(3)]
-        if not any(_cross(u, v)):
+        if not any(cross(u, v)):
             return True
     return False
 
@@ -261,7 +258,7 @@ def has_fold(s: PolyhedralSurface) -> bool:
         # with n = d x u and m = d x w: p, q and the edge are coplanar iff n . w = 0, and
         # then on the same side iff n . m = |d|^2 (u' . w') > 0 (u', w': the parts of u, w
         # perpendicular to d), the projection test without a division
-        n, m = _cross(d, u), _cross(d, w)
+        n, m = cross(d, u), cross(d, w)
         if not sum(c * k for c, k in zip(n, w)) and sum(c * k for c, k in zip(n, m)) > 0:
             return True
     return False

@@ -34,6 +34,7 @@ from .metric import heron16
 from .polyhedral import PolyhedralSurface
 from .exact.surds import exact_sum, rounded_root_sum, simplest
 from .combinatorics import next_corner, prev_corner
+from .linear import cross, dot, sub
 
 __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",
            "heron_partial_derivatives", "area_length_derivatives", "area_gradient_cotan",
@@ -41,17 +42,6 @@ __all__ = ["triangle_area_heron", "triangle_cotangents", "area_from_cotangents",
            "area_gradient", "area_gradient_floats", "laplacian_of_positions"]
 
 _ZERO = Fraction(0)
-
-
-def _sub(p, q):
-    return tuple(x - y for x, y in zip(p, q))
-
-
-def _dot(u, v):
-    acc = _ZERO
-    for x, y in zip(u, v):
-        acc = acc + x * y
-    return acc
 
 
 def _triangle(points) -> tuple:
@@ -89,9 +79,9 @@ def triangle_cotangents(points) -> tuple[Surd, Surd, Surd]:
     p = _triangle(points)
     out = []
     for i in range(3):
-        u, v = _sub(p[next_corner(i)], p[i]), _sub(p[prev_corner(i)], p[i])
-        uv = _dot(u, v)
-        w2 = _dot(u, u) * _dot(v, v) - uv * uv
+        u, v = sub(p[next_corner(i)], p[i]), sub(p[prev_corner(i)], p[i])
+        uv = dot(u, v)
+        w2 = dot(u, u) * dot(v, v) - uv * uv
         if w2 <= 0:
             raise DegenerateFace(f"degenerate triangle {p}: its vertices are collinear")
         out.append(uv / sqrt(w2))
@@ -170,9 +160,9 @@ def area_gradient_direct(points, i: int) -> tuple:
     """
     p = _triangle(points)
     j, k = next_corner(i), prev_corner(i)
-    a, w = _sub(p[i], p[j]), _sub(p[k], p[j])
-    aw, ww = _dot(a, w), _dot(w, w)
-    four_a2 = _dot(a, a) * ww - aw * aw
+    a, w = sub(p[i], p[j]), sub(p[k], p[j])
+    aw, ww = dot(a, w), dot(w, w)
+    four_a2 = dot(a, a) * ww - aw * aw
     if four_a2 <= 0:
         raise DegenerateFace(f"degenerate triangle {p}: its vertices are collinear")
     inv = 1 / (2 * sqrt(four_a2))               # 1 / (4 A)
@@ -186,13 +176,13 @@ def area_gradient_cross(points, i: int) -> tuple:
     if len(p[0]) != 3:
         raise BadShape("the cross-product formula needs points of R^3")
     j, k = next_corner(i), prev_corner(i)
-    u, v = _sub(p[j], p[i]), _sub(p[k], p[i])
-    n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-    nn = _dot(n, n)
+    u, v = sub(p[j], p[i]), sub(p[k], p[i])
+    n = cross(u, v)
+    nn = dot(n, n)
     if not nn:
         raise DegenerateFace(f"degenerate triangle {p}: its vertices are collinear")
-    w = _sub(p[k], p[j])
-    c = (n[1] * w[2] - n[2] * w[1], n[2] * w[0] - n[0] * w[2], n[0] * w[1] - n[1] * w[0])
+    w = sub(p[k], p[j])
+    c = cross(n, w)
     inv = 1 / (2 * sqrt(nn))
     return tuple(simplest(x * inv) for x in c)
 
@@ -222,7 +212,7 @@ def area_as_dirichlet_energy(surface: PolyhedralSurface):
     """
     s = _positions(surface)
     p = s.positions
-    terms = [w * _dot(_sub(p[i], p[j]), _sub(p[i], p[j]))
+    terms = [w * dot(sub(p[i], p[j]), sub(p[i], p[j]))
              for i, j, w in cotan_weighted_edges(s) if i != j]
     return simplest(exact_sum(terms) / 2)
 

@@ -48,6 +48,7 @@ from .exact.surds import exact_sum
 from .metric import as_metric
 from .polyhedral import PolyhedralSurface
 from .combinatorics import corner_of, cyclic, face_of, opposite_corner
+from .linear import cross, det3, dot, sub
 
 __all__ = [
     "corner_angles", "corner_angles_from_cotangents", "angle_sums", "angle_sums_from_corners",
@@ -74,22 +75,6 @@ def _in_r3(surface, what: str) -> PolyhedralSurface:
         raise InputError(f"{what} needs a surface in R^3, got dimension {surface.dimension}")
     surface.metric()                  # raises DegenerateFace naming a zero-area face
     return surface
-
-
-def _sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _det(a, b, c):
-    return _dot(a, _cross(b, c))
 
 
 def _sum_angles(angles) -> Angle:
@@ -288,7 +273,7 @@ def _star(surface, v: int, what: str):
         raise InputError(f"{what}: vertex {v} is a boundary vertex; Lemma 2.4 is about "
                          "interior vertices")
     p = s.positions[v]
-    return [_sub(s.positions[w], p) for w in t.neighbours(v)]
+    return [sub(s.positions[w], p) for w in t.neighbours(v)]
 
 
 def _rank(vectors) -> int:
@@ -315,13 +300,13 @@ def _turns(d, axis) -> int:
     half-open (d_i, d_(i+1)], that contain the direction of d_0 (seen along
     the axis): exact, with rational triple and dot products.
     """
-    aa = _dot(axis, axis)
+    aa = dot(axis, axis)
     d0 = d[0]
     n = 0
     for a, b in zip(d, d[1:] + d[:1]):
-        if _det(axis, a, d0) > 0 and _det(axis, d0, b) > 0:
+        if det3(axis, a, d0) > 0 and det3(axis, d0, b) > 0:
             n += 1
-        elif _det(axis, d0, b) == 0 and _dot(d0, b) * aa - _dot(d0, axis) * _dot(b, axis) > 0:
+        elif det3(axis, d0, b) == 0 and dot(d0, b) * aa - dot(d0, axis) * dot(b, axis) > 0:
             n += 1                      # d_0 points along b (projected)
     return n
 
@@ -337,11 +322,11 @@ def is_planar_star(surface, v: int) -> bool:
     triple products.  Then K(p) = 0 (Lemma 2.4).
     """
     d = _star(surface, v, "is_planar_star")
-    normal = _cross(d[0], d[1])
-    if any(_dot(normal, x) != 0 for x in d):
+    normal = cross(d[0], d[1])
+    if any(dot(normal, x) != 0 for x in d):
         return False
     sectors = zip(d, d[1:] + d[:1])
-    if any(_det(normal, a, b) <= 0 for a, b in sectors):
+    if any(det3(normal, a, b) <= 0 for a, b in sectors):
         return False
     return _turns(d, normal) == 1
 
@@ -367,14 +352,14 @@ def is_convex_star(surface, v: int) -> bool:
     are not used.
     """
     d = _star(surface, v, "is_convex_star")
-    normals = [_cross(a, b) for a, b in zip(d, d[1:] + d[:1])]
-    signs = {sign(_dot(nv, x)) for nv in normals for x in d} - {0}
+    normals = [cross(a, b) for a, b in zip(d, d[1:] + d[:1])]
+    signs = {sign(dot(nv, x)) for nv in normals for x in d} - {0}
     if len(signs) != 1:
         return False                          # both sides (not convex) or planar
     if _rank(normals) < 3:
         return False
     axis = tuple(sum(x[k] for x in d) for k in range(3))
-    turn = {sign(_det(axis, a, b)) for a, b in zip(d, d[1:] + d[:1])}
+    turn = {sign(det3(axis, a, b)) for a, b in zip(d, d[1:] + d[:1])}
     if len(turn) != 1 or 0 in turn:
         return False
     if turn == {-1}:
@@ -401,11 +386,11 @@ def is_saddle_star(surface, v: int) -> bool:
     found_plane = False
     for i in range(len(d)):
         for k in range(i + 1, len(d)):
-            c = _cross(d[i], d[k])
+            c = cross(d[i], d[k])
             if not any(c):
                 continue
             found_plane = True
-            signs = {sign(_dot(c, x)) for x in d}
+            signs = {sign(dot(c, x)) for x in d}
             if 1 not in signs or -1 not in signs:
                 return False
     return found_plane
@@ -470,12 +455,12 @@ def _dihedral_angles_and_lengths(surface, what: str):
             xi, xj, xk, xl = P[i], P[j], P[k], P[l_]
         else:
             (xi, xj, xk, xl), D = points_on_common_denominator(x[i], x[j], x[k], x[l_])
-        edge = _sub(xj, xi)
-        nf = _cross(edge, _sub(xk, xi))
-        ng = _cross(_sub(xi, xj), _sub(xl, xj))
-        height = _dot(nf, _sub(xl, xi))
-        cos_part = _dot(nf, ng)
-        E = _dot(edge, edge)
+        edge = sub(xj, xi)
+        nf = cross(edge, sub(xk, xi))
+        ng = cross(sub(xi, xj), sub(xl, xj))
+        height = dot(nf, sub(xl, xi))
+        cos_part = dot(nf, ng)
+        E = dot(edge, edge)
         root = sqrt(E)                                  # D l(e)
         length = root * Fraction(1, D)
         if height == 0:
@@ -576,14 +561,14 @@ def push_vertex_in(surface: PolyhedralSurface, v: int) -> PolyhedralSurface:
     s = _in_r3(surface, "push_vertex_in")
     x = s.positions
     q = [x[w] for w in dict.fromkeys(s.triangulation.neighbours(v))]
-    normal = next((n for n in (_cross(_sub(q[1], q[0]), _sub(r, q[0])) for r in q[2:]) if any(n)),
+    normal = next((n for n in (cross(sub(q[1], q[0]), sub(r, q[0])) for r in q[2:]) if any(n)),
                   None)
     if normal is None:
         raise InputError(f"push_vertex_in: the neighbours of vertex {v} are collinear; they span "
                          "no plane")
-    if any(_dot(normal, _sub(r, q[0])) != 0 for r in q):
+    if any(dot(normal, sub(r, q[0])) != 0 for r in q):
         raise InputError(f"push_vertex_in: the neighbours of vertex {v} are not coplanar (X2.3 "
                          "reflects a star whose neighbours lie in a plane)")
-    k = 2 * _dot(normal, _sub(x[v], q[0])) / _dot(normal, normal)
+    k = 2 * dot(normal, sub(x[v], q[0])) / dot(normal, normal)
     moved = tuple(a - k * n for a, n in zip(x[v], normal))
     return s.with_positions([moved if w == v else p for w, p in enumerate(x)])

@@ -41,6 +41,7 @@ from .errors import InputError, TermLimitExceeded
 from .exact.surds import sign, simplest
 from .intrinsic import surface_metric
 from .combinatorics import corner_of, face_of, next_corner, prev_corner
+from .linear import cross2, dot, sub
 
 __all__ = ["ImmersedDisk", "circumdisk", "empty_disk_cells", "DevelopmentLimitExceeded"]
 
@@ -74,18 +75,6 @@ class ImmersedDisk:
         return frozenset(g for g, _ in self.cell)
 
 
-def _sub(p, q):
-    return (p[0] - q[0], p[1] - q[1])
-
-
-def _dot(p, q):
-    return p[0] * q[0] + p[1] * q[1]
-
-
-def _cross(p, q):
-    return p[0] * q[1] - p[1] * q[0]
-
-
 def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
     """D4.2 / D4.3: the circumdisk of ``face`` developed as an immersed disk, exact.
 
@@ -116,13 +105,13 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
 
     def power(p):
         """sign(|p - c|^2 - R^2) times y2 > 0: y2 |p|^2 - y2 e p_x - n_centre p_y."""
-        return simplest(y2 * _dot(p, p) - y2 * e * p[0] - n_centre * p[1])
+        return simplest(y2 * dot(p, p) - y2 * e * p[0] - n_centre * p[1])
 
     def meets_disk(p, q) -> bool:
         """The open segment pq meets the open disk (p, q not strictly inside)."""
-        d = _sub(q, p)
-        alpha = y2 * _dot(d, d)
-        beta = simplest(2 * y2 * _dot(p, d) - y2 * e * d[0] - n_centre * d[1])
+        d = sub(q, p)
+        alpha = y2 * dot(d, d)
+        beta = simplest(2 * y2 * dot(p, d) - y2 * e * d[0] - n_centre * d[1])
         gamma = power(p)
         # the minimum of alpha t^2 + beta t + gamma lies in (0, 1) and is negative
         return 0 < -beta < 2 * alpha and beta * beta > 4 * alpha * gamma
@@ -156,10 +145,10 @@ def circumdisk(surface, face: int, limit: int = 20_000) -> ImmersedDisk:
             sq_pq = simplest(m.squared_length(th))
             sq_px = simplest(m.squared_length(3 * g2 + prev_corner(c2)))   # X -> tail
             sq_qx = simplest(m.squared_length(3 * g2 + next_corner(c2)))   # head -> X
-            d = _sub(head, tail)
+            d = sub(head, tail)
             along = simplest((sq_pq + sq_px - sq_qx) / (2 * sq_pq))
             height = simplest(2 * m.area(g2) / sq_pq)
-            if sign(_cross(d, _sub(w, tail))) > 0:      # X on the other side of the edge
+            if sign(cross2(d, sub(w, tail))) > 0:      # X on the other side of the edge
                 height = -height
             x = (simplest(tail[0] + along * d[0] - height * d[1]),
                  simplest(tail[1] + along * d[1] + height * d[0]))

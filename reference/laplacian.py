@@ -45,6 +45,7 @@ from .polyhedral import PolyhedralSurface
 from .exact.surds import exact_sum, rounded_root_sum, simplest
 from .sparse import SparseMatrix, exact_number
 from .combinatorics import face_of, opposite_corner
+from .linear import dot, sub
 
 __all__ = ["graph_laplacian", "dirichlet_energy", "cotan_weights", "cotan_weights_from_corners", "cotan_weighted_edges",
            "cotan_laplacian", "cotan_laplacian_from_weights", "dirichlet_energy_pl",
@@ -237,9 +238,8 @@ def _face_gram(surface, f: int):
     if isinstance(surface, PolyhedralSurface):
         p = surface.positions
         a, b, c = surface.triangulation.faces[f]
-        u = tuple(y - x for x, y in zip(p[a], p[b]))
-        v = tuple(y - x for x, y in zip(p[a], p[c]))
-        return u, v, (_dot(u, u), _dot(u, v), _dot(v, v))
+        u, v = sub(p[b], p[a]), sub(p[c], p[a])
+        return u, v, (dot(u, u), dot(u, v), dot(v, v))
     m = metric_of_surface(surface)
     l0, l1, l2 = m.face_squared_lengths(f)   # |01|^2, |12|^2, |20|^2
     return None, None, (l0, (l0 + l2 - l1) / 2, l2)
@@ -249,13 +249,6 @@ def _triangulation(surface):
     if isinstance(surface, PolyhedralSurface):
         return surface.triangulation
     return metric_of_surface(surface).triangulation
-
-
-def _dot(u, v):
-    acc = _ZERO
-    for x, y in zip(u, v):
-        acc = acc + x * y
-    return acc
 
 
 def gradient_pl(surface: PolyhedralSurface, f: Sequence, face: int) -> tuple:
@@ -302,13 +295,13 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
         if u is not None:
             gf = gradient_pl(surface, f, face)
             gg = gf if g is f else gradient_pl(surface, g, face)
-            dot = _dot(gf, gg)
+            inner = dot(gf, gg)
         else:
             df1, df2 = f[b] - f[a], f[c] - f[a]
             dg1, dg2 = g[b] - g[a], g[c] - g[a]
-            dot = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
-        if dot:
-            terms.append(area * dot)
+            inner = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
+        if inner:
+            terms.append(area * inner)
     return exact_sum(terms)
 
 

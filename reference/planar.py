@@ -71,6 +71,7 @@ from .laplacian import cotan_laplacian
 from .polyhedral import PolyhedralSurface, orientation3d
 from .sparse import SparseMatrix
 from .combinatorics import face_of, next_corner, opposite_corner
+from .linear import cross2, dot, sub
 
 __all__ = ["as_point", "as_point_set", "orientation", "in_circle", "circle_position", "cocircular_cells",
            "circumcircle", "planar_triangulation", "straight_line_flip", "planar_flip_to_delaunay", "delaunay_triangulation",
@@ -791,18 +792,6 @@ def laplacian_difference(surface, other) -> SparseMatrix:
 # --- circles, the Voronoi-Delaunay quad tessellation, the sphere (L4.8, R4.1, R4.2) --------
 
 
-def _sub(p, q):
-    return (p[0] - q[0], p[1] - q[1])
-
-
-def _dot2(u, v):
-    return u[0] * v[0] + u[1] * v[1]
-
-
-def _det2(u, v):
-    return u[0] * v[1] - u[1] * v[0]
-
-
 def inscribed_angle_cot(b, s, c) -> Fraction:
     """L4.8: ``cot`` of the inscribed angle ``alpha = angle BSC`` at ``s``, exact
     (``cot = (u . v) / |u x v|`` for ``u = b - s``, ``v = c - s``; an angle in
@@ -812,10 +801,10 @@ def inscribed_angle_cot(b, s, c) -> Fraction:
     Fraction(0, 1)
     """
     b, s, c = as_point(b, "B"), as_point(s, "S"), as_point(c, "C")
-    u, v = _sub(b, s), _sub(c, s)
-    if not _det2(u, v):
+    u, v = sub(b, s), sub(c, s)
+    if not cross2(u, v):
         raise CollinearPoints(f"B, S, C = {b}, {s}, {c} are collinear: no angle BSC in (0, pi)")
-    return _dot2(u, v) / abs(_det2(u, v))
+    return dot(u, v) / abs(cross2(u, v))
 
 
 def tangent_chord_cot(b, s, c) -> Fraction:
@@ -830,13 +819,13 @@ def tangent_chord_cot(b, s, c) -> Fraction:
     """
     b, s, c = as_point(b, "B"), as_point(s, "S"), as_point(c, "C")
     o, _ = circumcircle(b, s, c)
-    r = _sub(b, o)
+    r = sub(b, o)
     t = (-r[1], r[0])
-    chord = _sub(c, b)
+    chord = sub(c, b)
     # the tangent ray on the other side of the line BC than S
-    if sign(_det2(chord, t)) == sign(_det2(chord, _sub(s, b))):
+    if sign(cross2(chord, t)) == sign(cross2(chord, sub(s, b))):
         t = (-t[0], -t[1])
-    return _dot2(t, chord) / abs(_det2(t, chord))
+    return dot(t, chord) / abs(cross2(t, chord))
 
 
 def quad_tessellation_faces(points) -> list[dict]:
@@ -868,21 +857,21 @@ def quad_tessellation_faces(points) -> list[dict]:
         pi_, pj = pts[i], pts[j]
         q, r = centres[cs[0][0]], centres[cs[1][0]]
         mid = ((pi_[0] + pj[0]) / 2, (pi_[1] + pj[1]) / 2)
-        qr = _sub(r, q)
+        qr = sub(r, q)
 
         def opposite_cot(cell_ring):
             k = next(v for v in cell_ring if v not in e)
-            return _dot2(_sub(pi_, pts[k]), _sub(pj, pts[k]))   # the sign of cot at k
+            return dot(sub(pi_, pts[k]), sub(pj, pts[k]))   # the sign of cot at k
 
-        crossing = (sign(_det2(qr, _sub(pi_, q))) * sign(_det2(qr, _sub(pj, q))) <= 0
-                    and sign(_det2(_sub(pj, pi_), _sub(q, pi_)))
-                    * sign(_det2(_sub(pj, pi_), _sub(r, pi_))) <= 0)
+        crossing = (sign(cross2(qr, sub(pi_, q))) * sign(cross2(qr, sub(pj, q))) <= 0
+                    and sign(cross2(sub(pj, pi_), sub(q, pi_)))
+                    * sign(cross2(sub(pj, pi_), sub(r, pi_))) <= 0)
         out.append({
             "edge": (i, j), "voronoi": (q, r),
-            "orthogonal": _dot2(qr, _sub(pj, pi_)) == 0,
-            "bisected": _det2(qr, _sub(mid, q)) == 0,
-            "kite": (_dot2(_sub(q, pi_), _sub(q, pi_)) == _dot2(_sub(q, pj), _sub(q, pj))
-                     and _dot2(_sub(r, pi_), _sub(r, pi_)) == _dot2(_sub(r, pj), _sub(r, pj))),
+            "orthogonal": dot(qr, sub(pj, pi_)) == 0,
+            "bisected": cross2(qr, sub(mid, q)) == 0,
+            "kite": (dot(sub(q, pi_), sub(q, pi_)) == dot(sub(q, pj), sub(q, pj))
+                     and dot(sub(r, pi_), sub(r, pi_)) == dot(sub(r, pj), sub(r, pj))),
             "crossing": crossing,
             "acute": all(opposite_cot(ring) >= 0 for _, ring in cs),
         })

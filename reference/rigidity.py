@@ -34,13 +34,10 @@ from fractions import Fraction
 from .errors import InputError
 from .polyhedral import PolyhedralSurface, orientation3d
 from .sparse import rank
+from .linear import sub
 
 __all__ = ["rigidity_matrix", "infinitesimal_motions", "is_infinitesimally_rigid",
            "is_convex_surface", "capped", "popped_vertex", "is_congruent"]
-
-
-def _sub(p, q):
-    return tuple(a - b for a, b in zip(p, q))
 
 
 def rigidity_matrix(surface: PolyhedralSurface) -> dict[int, dict[int, Fraction]]:
@@ -55,7 +52,7 @@ def rigidity_matrix(surface: PolyhedralSurface) -> dict[int, dict[int, Fraction]
         i, j = t.edge_vertices(e)
         row: dict[int, Fraction] = {}
         for a, b in ((i, j), (j, i)):
-            for k, x in enumerate(_sub(p[a], p[b])):
+            for k, x in enumerate(sub(p[a], p[b])):
                 if x:
                     row[3 * a + k] = row.get(3 * a + k, 0) + x
         rows[e] = {c: x for c, x in row.items() if x}
@@ -98,7 +95,7 @@ def capped(surface: PolyhedralSurface, face: int) -> PolyhedralSurface:
     height starts at the face's size and is halved until the result is convex."""
     t, p = surface.triangulation, list(surface.positions)
     a, b, c = (p[v] for v in t.faces[face])
-    u, w = _sub(b, a), _sub(c, a)
+    u, w = sub(b, a), sub(c, a)
     normal = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
     centroid = tuple((x + y + z) / 3 for x, y, z in zip(a, b, c))
     faces = [f for g, f in enumerate(t.faces) if g != face]
@@ -126,9 +123,9 @@ def popped_vertex(surface: PolyhedralSurface, v: int) -> PolyhedralSurface:
     if len(ring) != 3 or t.valence(v) != 3:
         raise InputError(f"vertex {v} has valence {t.valence(v)}, not 3")
     a, b, c = (p[x] for x in ring)
-    u, w = _sub(b, a), _sub(c, a)
+    u, w = sub(b, a), sub(c, a)
     normal = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
-    d = _sub(p[v], a)
+    d = sub(p[v], a)
     s = 2 * sum(x * y for x, y in zip(d, normal)) / sum(x * x for x in normal)
     p[v] = tuple(x - s * m for x, m in zip(p[v], normal))
     return surface.with_positions(p)
@@ -143,6 +140,6 @@ def is_congruent(a: PolyhedralSurface, b: PolyhedralSurface) -> bool:
         return False
 
     def d2(p, i, j):
-        return sum(x * x for x in _sub(p[i], p[j]))
+        return sum(x * x for x in sub(p[i], p[j]))
 
     return all(d2(pa, i, j) == d2(pb, i, j) for i in range(len(pa)) for j in range(i))

@@ -209,3 +209,19 @@ def test_no_private_name_is_imported_across_modules():
                for a in node.names
                if a.name.startswith("_") and not a.name.startswith("__")]
     assert private == []
+
+
+def test_vector_helpers_live_in_one_module():
+    """Issue 43: differences, inner and cross products of coordinate tuples are
+    reference/linear.py's (they were written out in seven modules); a function of two
+    vectors by one of those names anywhere else is a second copy.  The exact number types
+    (reference/exact/: a Surd's own subtraction, an Interval's inner product) are other
+    ideas."""
+    names = {"sub", "dot", "cross", "det", "det2", "det3", "dot2", "cross2"}
+    copies = [f"{path.relative_to(ROOT)}:{node.lineno}: {node.name}"
+              for path, _, _ in _files()
+              if path != ROOT / "reference" / "linear.py" and "exact" not in path.parts
+              for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+              if isinstance(node, ast.FunctionDef) and node.name.lstrip("_") in names
+              and len(node.args.args) == 2 and node.args.args[0].arg != "self"]
+    assert copies == []
