@@ -134,7 +134,8 @@ def parser() -> argparse.ArgumentParser:
                         "meshes; 'pymeshlab:' = every sample mesh PyMeshLab ships, "
                         "'pymeshlab:NAME' one of them; 'cgal:' = every mesh of the CGAL "
                         "corpus, 'cgal:NAME' one of them (fetched once by: python -m "
-                        "ddg_oracle.application.corpus fetch)")
+                        "ddg_oracle.application.corpus fetch); 'pyvista:' and 'compas:' "
+                        "the meshes those wheels ship (fetch pyvista, fetch compas)")
     c.add_argument("--report", metavar="DIR",
                    help="write results.json, summary.md, timings.json and, per failure, the "
                         "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
@@ -184,7 +185,7 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("mesh", nargs="+", metavar="MESH",
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes), "
                         "'cgal:' / 'cgal:NAME' (the CGAL corpus: python -m ddg_oracle.application.corpus "
-                        "fetch)")
+                        "fetch), 'pyvista:', 'compas:' (fetch pyvista, fetch compas)")
     m.add_argument("--impl", action="append", metavar="SPEC",
                    help="implementation to compare (repeatable; default: every installed one): "
                         "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")

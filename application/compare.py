@@ -86,7 +86,7 @@ def resolve(args: list[str]) -> list[tuple[str, Path, bool]]:
                 names = ", ".join(str(q.relative_to(d)) for q in sample_meshes())
                 raise MeshFileError(f"{a}: no such sample mesh (PyMeshLab ships {names})")
             out.append((a, p, True))
-        elif a.startswith(corpus.PREFIX):
+        elif a.startswith(corpus.PREFIXES):
             out += corpus.resolve(a)                # cgal: every corpus mesh, cgal:NAME one
         elif Path(a).is_dir():
             # a corpus: every mesh file below it, sorted; one that cannot be read is
@@ -114,12 +114,12 @@ class MeshInput:
 
 def load(name: str, path: Path) -> MeshInput:
     """Read and validate for the reference (typed InputError naming the problem).  A corpus
-    mesh (``cgal:``) has its polygons triangulated (``corpus.triangulate_polygon``), with a
+    mesh (``cgal:``, ``pyvista:``, ``compas:``) has its polygons triangulated (``corpus.triangulate_polygon``), with a
     note.  A file whose reading and validation would not fit in the memory left is refused
     first (:data:`LOAD_PEAK`)."""
     from .files import require_memory
     require_memory(path, LOAD_PEAK, "reading it and validating it for the exact reference")
-    if name.startswith(corpus.PREFIX):
+    if name.startswith(corpus.PREFIXES):
         V, F, polygons = corpus.read_triangulated(path)
     else:
         (V, F), polygons = read_mesh(path), None

@@ -15,9 +15,19 @@ files intact and downloads nothing.  Nothing of it is in git.
 fan-triangulated (:func:`read_triangulated`, with a note): the readers of
 :mod:`ddg_oracle.application.meshfiles` reject polygons, a user's file is never triangulated.
 
-``python -m ddg_oracle.application.corpus list`` prints the corpus's meshes, ``path`` its directory.
-Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the package cannot be
-downloaded, the directory is not a corpus).
+Two more corpora come from Python wheels on PyPI, fetched the same way (``pip download
+--no-deps`` of a pinned version, the mesh files of one folder of the wheel kept, nothing
+installed): ``pyvista:`` (the meshes PyVista ships in ``pyvista/examples``) and
+``compas:`` (COMPAS's ``compas/data/samples``: quad and polygon meshes, triangulated as
+CGAL's are).  ``fetch pyvista``, ``fetch compas`` or ``fetch all``; each in its own
+cache directory (``$DDG_ORACLE_CORPUS_PYVISTA``, ..., else
+``${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/NAME``).  Files of those folders that are not
+triangle meshes (PyVista's structured grids in legacy VTK, COMPAS's line sets) are left
+out by suffix, or skipped with a note when read.
+
+``python -m ddg_oracle.application.corpus list [NAME]`` prints a corpus's meshes, ``path
+[NAME]`` its directory.  Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the
+package cannot be downloaded, the directory is not a corpus).
 """
 
 from __future__ import annotations
@@ -33,6 +43,7 @@ import sys
 import tarfile
 import tempfile
 import time
+import zipfile
 from fractions import Fraction
 from pathlib import Path, PurePosixPath
 
@@ -45,17 +56,38 @@ MANIFEST = "manifest.json"
 SUFFIXES = (".obj", ".off", ".ply", ".stl")
 FETCH_COMMAND = "python -m ddg_oracle.application.corpus fetch"
 
+#: the corpora: where each one's meshes come from.  ``deb``: a Debian package (apt-get
+#: download, every mesh below a ``meshes`` folder); ``wheel``: a pinned PyPI wheel (pip
+#: download, the mesh files below ``folder``)
+SOURCES = {
+    "cgal": dict(kind="deb", package=PACKAGE, what="the CGAL mesh corpus",
+                 name="the CGAL corpus"),
+    "pyvista": dict(kind="wheel", package="pyvista", version="0.49.2",
+                    folder="pyvista/examples", what="the meshes PyVista's wheel ships",
+                    name="PyVista's meshes"),
+    "compas": dict(kind="wheel", package="compas", version="2.15.1",
+                   folder="compas/data/samples", what="the meshes COMPAS's wheel ships",
+                   name="COMPAS's meshes"),
+}
+PREFIXES = tuple(f"{name}:" for name in SOURCES)
+
+
+def _fetch_command(name: str) -> str:
+    return FETCH_COMMAND if name == "cgal" else f"{FETCH_COMMAND} {name}"
+
 
 class CorpusError(InputError):
     """The corpus cannot be fetched or is not there (a one-line message; exit 2)."""
 
 
-def corpus_dir() -> Path:
-    """``$DDG_ORACLE_CORPUS``, else ``${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal``."""
-    if os.environ.get(ENV):
-        return Path(os.environ[ENV]).expanduser()
+def corpus_dir(name: str = "cgal") -> Path:
+    """``$DDG_ORACLE_CORPUS`` (``$DDG_ORACLE_CORPUS_PYVISTA``, ... for the others), else
+    ``${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/NAME``."""
+    env = ENV if name == "cgal" else f"{ENV}_{name.upper()}"
+    if os.environ.get(env):
+        return Path(os.environ[env]).expanduser()
     cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(cache) / "ddg-oracle" / "cgal"
+    return Path(cache) / "ddg-oracle" / name
 
 
 def _sha256(path: Path) -> str:
@@ -66,20 +98,20 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def read_manifest(d: Path | None = None) -> dict:
+def read_manifest(d: Path | None = None, name: str = "cgal") -> dict:
     """The manifest of the corpus in ``d`` (CorpusError saying how to fetch it if absent)."""
-    d = corpus_dir() if d is None else d
+    d = corpus_dir(name) if d is None else d
     m = d / MANIFEST
     if not m.is_file():
-        raise CorpusError(f"{PREFIX} the CGAL mesh corpus is not fetched (no {m}); "
-                          f"fetch it with: {FETCH_COMMAND}")
+        raise CorpusError(f"{name}: {SOURCES[name]['what']} is not fetched (no {m}); "
+                          f"fetch it with: {_fetch_command(name)}")
     try:
         manifest = json.loads(m.read_text())
         manifest["meshes"] = [dict(name=e["name"], size=int(e["size"]), sha256=e["sha256"])
                               for e in manifest["meshes"]]
     except (ValueError, KeyError, TypeError) as e:
         raise CorpusError(f"{m}: not a corpus manifest ({e}); fetch it again with: "
-                          f"{FETCH_COMMAND} --force") from None
+                          f"{_fetch_command(name)} --force") from None
     return manifest
 
 
@@ -122,18 +154,21 @@ def _run(cmd: list[str], cwd: Path, what: str) -> None:
         raise CorpusError(f"{what} failed (exit {r.returncode}): {last.strip()}{hint}")
 
 
-def fetch(d: Path | None = None, force: bool = False, log=print) -> dict:
-    """Fetch the corpus into ``d`` (default :func:`corpus_dir`) unless it is there intact;
-    returns the manifest plus ``downloaded`` (False: nothing was fetched)."""
-    d = corpus_dir() if d is None else d
+def fetch(d: Path | None = None, force: bool = False, log=print, name: str = "cgal") -> dict:
+    """Fetch the corpus ``name`` into ``d`` (default :func:`corpus_dir`) unless it is there
+    intact; returns the manifest plus ``downloaded`` (False: nothing was fetched)."""
+    d = corpus_dir(name) if d is None else d
+    source = SOURCES[name]
     if not force and intact(d):
-        manifest = read_manifest(d)
-        log(f"the CGAL mesh corpus is already in {d}: {len(manifest['meshes'])} meshes "
-            f"({PACKAGE} {manifest.get('version', '?')}); nothing downloaded")
+        manifest = read_manifest(d, name)
+        log(f"{source['what']} is already in {d}: {len(manifest['meshes'])} meshes "
+            f"({source['package']} {manifest.get('version', '?')}); nothing downloaded")
         return {**manifest, "downloaded": False}
     if d.exists() and not (d / MANIFEST).is_file() and any(d.iterdir()):
         raise CorpusError(f"{d}: not empty and not a corpus (no {MANIFEST}); set {ENV} to a "
                           f"new or empty directory")
+    if source["kind"] == "wheel":
+        return _fetch_wheel(d, name, log)
     for tool in ("apt-get", "dpkg"):
         if shutil.which(tool) is None:
             raise CorpusError(f"{tool} not found: the CGAL corpus comes from Debian's {PACKAGE} "
@@ -175,6 +210,56 @@ def fetch(d: Path | None = None, force: bool = False, log=print) -> dict:
     return {**manifest, "downloaded": True}
 
 
+def _fetch_wheel(d: Path, name: str, log) -> dict:
+    """``pip download`` the pinned wheel of the corpus ``name``, keep the mesh files below
+    its folder (their path from there), with a manifest."""
+    source = SOURCES[name]
+    package, version, folder = source["package"], source["version"], source["folder"]
+    t0 = time.perf_counter()
+    d.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="ddg-oracle-corpus-") as tmp:
+        tmp = Path(tmp)
+        _run([sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:",
+              "--disable-pip-version-check", "-q", "-d", str(tmp), f"{package}=={version}"],
+             tmp, f"pip download {package}=={version}")
+        wheels = sorted(tmp.glob("*.whl"))
+        if not wheels:
+            raise CorpusError(f"pip download {package}=={version} left no wheel in {tmp}")
+        wheel = wheels[0]
+        entries = []
+        stage = Path(tempfile.mkdtemp(prefix=f".{d.name}.", dir=d.parent))
+        try:
+            with zipfile.ZipFile(wheel) as z:
+                for info in sorted(z.infolist(), key=lambda i: i.filename):
+                    p = PurePosixPath(info.filename)
+                    if info.is_dir() or p.is_absolute() or ".." in p.parts \
+                            or p.suffix.lower() not in SUFFIXES \
+                            or not info.filename.startswith(folder + "/"):
+                        continue
+                    rel = PurePosixPath(info.filename[len(folder) + 1:])
+                    data = z.read(info)
+                    (stage / rel).parent.mkdir(parents=True, exist_ok=True)
+                    (stage / rel).write_bytes(data)
+                    entries.append(dict(name=str(rel), size=len(data),
+                                        sha256=hashlib.sha256(data).hexdigest()))
+            if not entries:
+                raise CorpusError(f"{wheel.name}: no mesh file below {folder}/")
+            manifest = dict(source=f"PyPI wheel {package}=={version} ({folder}/)",
+                            package=package, version=version, wheel=wheel.name,
+                            wheel_size=wheel.stat().st_size, wheel_sha256=_sha256(wheel),
+                            fetched=time.strftime("%Y-%m-%d"), meshes=entries)
+            (stage / MANIFEST).write_text(json.dumps(manifest, indent=1) + "\n")
+            if d.exists():
+                shutil.rmtree(d)
+            stage.rename(d)
+        finally:
+            if stage.exists():
+                shutil.rmtree(stage)
+    log(f"fetched {package} {version} ({manifest['wheel_size'] / 1e6:.1f} MB): "
+        f"{len(entries)} meshes into {d} in {time.perf_counter() - t0:.1f} s")
+    return {**manifest, "downloaded": True}
+
+
 def _copy_meshes(root: Path, dest: Path) -> list[dict]:
     """Every mesh of the unpacked package ``root`` (loose, or in a tarball) into ``dest``."""
     entries: dict[str, dict] = {}
@@ -206,25 +291,28 @@ def _copy_meshes(root: Path, dest: Path) -> list[dict]:
 # --- the meshes -----------------------------------------------------------------------------------
 
 
-def meshes(d: Path | None = None) -> list[tuple[str, Path]]:
+def meshes(d: Path | None = None, name: str = "cgal") -> list[tuple[str, Path]]:
     """(display name ``cgal:FILE``, path) of every mesh of the corpus, sorted by path (the
     path in the corpus names a mesh whose file name is not unique)."""
-    d = corpus_dir() if d is None else d
-    names = sorted(e["name"] for e in read_manifest(d)["meshes"])
+    d = corpus_dir(name) if d is None else d
+    names = sorted(e["name"] for e in read_manifest(d, name)["meshes"])
     base = [PurePosixPath(n).name for n in names]
-    return [(PREFIX + (b if base.count(b) == 1 else n), d / n) for n, b in zip(names, base)]
+    return [(f"{name}:" + (b if base.count(b) == 1 else n), d / n)
+            for n, b in zip(names, base)]
 
 
 def resolve(arg: str) -> list[tuple[str, Path, bool]]:
     """``cgal:`` (every mesh, skipped with a note when unusable) or ``cgal:NAME`` (one, whose
-    problems are errors), as :func:`ddg_oracle.application.compare.resolve` returns them."""
-    name = arg[len(PREFIX):]
-    d = corpus_dir()
-    every = meshes(d)
+    problems are errors), as :func:`ddg_oracle.application.compare.resolve` returns them;
+    ``pyvista:`` and ``compas:`` the same."""
+    corpus, _, name = arg.partition(":")
+    prefix = f"{corpus}:"
+    d = corpus_dir(corpus)
+    every = meshes(d, corpus)
     if not name:
         return [(n, p, False) for n, p in every]
     rel = {str(p.relative_to(d)): (n, p) for n, p in every}
-    by_name = {n[len(PREFIX):]: (n, p) for n, p in every}
+    by_name = {n[len(prefix):]: (n, p) for n, p in every}
     hit = by_name.get(name) or rel.get(name)
     if hit is None:
         known = list(by_name)
@@ -234,8 +322,8 @@ def resolve(arg: str) -> list[tuple[str, Path, bool]]:
         close = [k for s in difflib.get_close_matches(PurePosixPath(name).stem, stems, n=5,
                                                       cutoff=0.6) for k in stems[s]][:5]
         hint = f"close names: {', '.join(close)}" if close else \
-            f"e.g. {', '.join(known[:5])}; {PREFIX} for all {len(known)}"
-        raise CorpusError(f"{arg}: no such mesh in the CGAL corpus ({hint})")
+            f"e.g. {', '.join(known[:5])}; {prefix} for all {len(known)}"
+        raise CorpusError(f"{arg}: no such mesh in {SOURCES[corpus]['name']} ({hint})")
     return [(hit[0], hit[1], True)]
 
 
@@ -405,26 +493,39 @@ def _split_obj(text: str):
 
 
 def main(argv: list[str] | None = None) -> int:
+    names = list(SOURCES)
     ap = argparse.ArgumentParser(
         prog="python -m ddg_oracle.application.corpus",
-        description=f"The CGAL mesh corpus (Debian's {PACKAGE}) in ${ENV}, else "
-                    "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal; used as 'cgal:' and "
-                    "'cgal:NAME' by ddg-oracle check --mesh and ddg-oracle compare.")
+        description=f"The mesh corpora: CGAL's (Debian's {PACKAGE}) in ${ENV}, else "
+                    "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal, used as 'cgal:' and "
+                    "'cgal:NAME' by ddg-oracle check --mesh, compare and survey; PyVista's "
+                    "and COMPAS's (their wheels' meshes) as 'pyvista:' and 'compas:'.")
     sub = ap.add_subparsers(dest="command", required=True)
-    f = sub.add_parser("fetch", help=f"apt-get download {PACKAGE} and keep its meshes "
-                                     "(nothing downloaded when already there)")
+    f = sub.add_parser("fetch", help="download the corpora and keep their meshes (nothing "
+                                     "downloaded when already there)")
+    f.add_argument("corpora", nargs="*", default=None,
+                   metavar="NAME", help=f"{', '.join(names)} or all (default: cgal)")
     f.add_argument("--force", action="store_true", help="fetch again even when intact")
-    sub.add_parser("list", help="the meshes of the corpus (name, bytes)")
-    sub.add_parser("path", help="the corpus directory")
+    for command, what in (("list", "the meshes of a corpus (name, bytes)"),
+                          ("path", "a corpus's directory")):
+        c = sub.add_parser(command, help=what)
+        c.add_argument("corpus", nargs="?", choices=names, default="cgal", metavar="NAME",
+                       help=f"{', '.join(names)} (default: cgal)")
     args = ap.parse_args(argv)
+    unknown = [c for c in (getattr(args, "corpora", None) or []) if c not in names + ["all"]]
+    if unknown:              # (argparse's choices reject an empty nargs="*" on Python 3.11)
+        ap.error(f"argument NAME: invalid choice: {unknown[0]!r} (choose from "
+                 f"{', '.join(repr(c) for c in names + ['all'])})")
     try:
         if args.command == "fetch":
-            fetch(force=args.force)
+            chosen = args.corpora or ["cgal"]
+            for name in names if "all" in chosen else dict.fromkeys(chosen):
+                fetch(force=args.force, name=name)
         elif args.command == "list":
-            for name, path in meshes():
+            for name, path in meshes(name=args.corpus):
                 print(f"{name}\t{path.stat().st_size if path.is_file() else 'missing'}")
         else:
-            print(corpus_dir())
+            print(corpus_dir(args.corpus))
     except (InputError, OSError) as e:
         print(f"ddg-oracle corpus: error: {e}", file=sys.stderr)
         return 2

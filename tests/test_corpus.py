@@ -1,10 +1,11 @@
-"""The CGAL mesh corpus (application/corpus.py): ``cgal:`` and ``cgal:NAME`` beside ``pymeshlab:``.
+"""The mesh corpora (application/corpus.py): ``cgal:``, ``pyvista:``, ``compas:`` beside ``pymeshlab:``.
 
 The resolution, polygon and error tests run on a small corpus written here (a manifest and a
 few OFF files).  The fetch tests run ``apt-get download libcgal-demo`` into a fresh directory
 (about 24 MB): without ``apt-get``, or when the package cannot be downloaded (no network,
 no package lists), they are skipped, unless DDG_ORACLE_REQUIRE_CORPUS=1 (set by .ci/run,
-which fetches the corpus before the tests): then they fail.
+which fetches the corpora before the tests): then they fail.  The same holds for the wheel
+corpora's tests, which ``pip download`` the pinned PyVista and COMPAS wheels (about 5 MB).
 """
 
 from __future__ import annotations
@@ -304,3 +305,75 @@ def test_check_on_a_small_corpus_mesh_exits_0(fetched, tmp_path):
                        cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "exit 0: no failure" in r.stdout
+
+
+# --- the wheel corpora (pip download of a pinned PyVista and COMPAS) -------------------------------
+
+
+def test_a_wheel_corpus_resolves_by_its_own_prefix(tmp_path, monkeypatch):
+    d = _write_corpus(tmp_path / "pyvista", {"sphere.off": TETRA, "quads.off": CUBE_QUADS})
+    monkeypatch.setenv(f"{corpus.ENV}_PYVISTA", str(d))
+    assert corpus.corpus_dir("pyvista") == d
+    assert resolve(["pyvista:"]) == [("pyvista:quads.off", d / "quads.off", False),
+                                     ("pyvista:sphere.off", d / "sphere.off", False)]
+    notes = []
+    [cube] = load_all(["pyvista:quads.off"], warn=notes.append)
+    assert len(cube.F) == 12 and "fan-triangulated" in notes[0]
+    with pytest.raises(CorpusError, match="no such mesh in PyVista's meshes"):
+        resolve(["pyvista:spere.off"])
+    monkeypatch.setenv(f"{corpus.ENV}_COMPAS", str(tmp_path / "none"))
+    with pytest.raises(CorpusError, match=r"fetch it with: python -m ddg_oracle\.application"
+                                          r"\.corpus fetch compas"):
+        resolve(["compas:"])
+
+
+def test_an_unknown_corpus_is_a_usage_error(capsys):
+    with pytest.raises(SystemExit) as e:
+        corpus.main(["fetch", "thingi10k"])
+    assert e.value.code == 2 and "invalid choice: 'thingi10k'" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def wheel_corpora(tmp_path_factory):
+    """PyVista's and COMPAS's meshes fetched into a fresh cache (pip download, ~5 MB)."""
+    cache = tmp_path_factory.mktemp("xdg")
+    out = {}
+    for name in ("pyvista", "compas"):
+        said = []
+        try:
+            manifest = corpus.fetch(cache / name, log=said.append, name=name)
+        except CorpusError as e:
+            _unavailable(f"cannot download the {name} wheel: {e}")
+        out[name] = (cache / name, manifest, said)
+    return out
+
+
+def test_the_wheel_corpora_keep_the_mesh_files_of_their_folder(wheel_corpora):
+    d, manifest, said = wheel_corpora["pyvista"]
+    assert manifest["downloaded"] and said[0].startswith("fetched pyvista 0.49.2 ")
+    names = sorted(e["name"] for e in manifest["meshes"])
+    assert names == ["airplane.ply", "ant.ply", "nut.ply", "sphere.ply"]   # no .vtk grids
+    assert manifest["wheel"].startswith("pyvista-0.49.2-") and len(manifest["wheel_sha256"]) == 64
+    d, manifest, _ = wheel_corpora["compas"]
+    names = {e["name"] for e in manifest["meshes"]}
+    assert {"faces.obj", "tubemesh.off", "cube_binary.stl"} <= names and len(names) > 20
+    assert not any(n.endswith(".json") for n in names)
+    again = corpus.fetch(d, log=lambda s: None, name="compas")
+    assert again["downloaded"] is False
+
+
+def test_check_runs_on_both_wheel_corpora_and_skips_what_is_no_mesh(wheel_corpora, tmp_path):
+    env = {**os.environ, f"{corpus.ENV}_PYVISTA": str(wheel_corpora["pyvista"][0]),
+           f"{corpus.ENV}_COMPAS": str(wheel_corpora["compas"][0]), "TMPDIR": str(tmp_path),
+           "DDG_HYPOTHESIS_DATABASE": "none"}
+    r = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--mesh", "pyvista:",
+                        "compas:", "--impl", "reference", "--only", "D1.6", "--workers", "1"],
+                       cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "exit 0: no failure" in r.stdout
+    # COMPAS's line sets are no surfaces, PyVista's airplane has a non-manifold edge: notes
+    assert "note: skipped compas:lines.obj:" in r.stderr and "no faces" in r.stderr
+    assert "note: skipped pyvista:airplane.ply: non-manifold edge" in r.stderr
+    assert "note: compas:tubemesh.off: 171 polygon faces" in r.stderr
+    checked = int(r.stdout.split(" checks in ")[0].rsplit("\n", 1)[-1])
+    assert checked >= 10
