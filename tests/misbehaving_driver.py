@@ -9,7 +9,8 @@ prints a line that is not JSON; ``wrong-shape`` answers a list for the matrix;
 ``wrong-id`` answers another request's id; ``outside`` declines (outside_domain);
 ``fails`` reports an error; ``flaky`` dies on every other request; ``hangs-later``
 answers three requests, then never answers; ``half-line`` writes the start of an answer
-and no end of line; ``huge-line`` streams an answer line of 100 MB.
+and no end of line; ``huge-line`` streams an answer line of 100 MB; ``slow-hello`` takes a
+second to answer the handshake, then answers as ``ok``.
 """
 
 import json
@@ -23,6 +24,8 @@ count = 0
 for line in sys.stdin:
     request = json.loads(line)
     if request["method"] == "hello":
+        if MODE == "slow-hello":
+            time.sleep(1)
         print(json.dumps({"name": f"misbehaving-{MODE}",
                           "methods": ["euler_characteristic", "cotan_laplacian"]}), flush=True)
         continue

@@ -7,6 +7,8 @@ developer actually writes; ``planted`` names the protocol methods it changes
 
 import math
 
+import time
+
 import numpy as np
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
@@ -21,6 +23,20 @@ class ChiIgnoresBoundary(ReferenceImplementation):
 
     def euler_characteristic(self, V, F):
         return len(V) - (3 * len(F)) // 2 + len(F)
+
+
+class SlowOnCubes(ReferenceImplementation):
+    """No bug: the reference, but a second slow on the Euler characteristic of a 12-face
+    mesh (the cube).  A survey of tetrahedron, disk and cube (tests/test_survey.py) is then
+    still running after its first meshes are recorded, however fast the machine, so that
+    an interrupt reliably finds meshes left to do."""
+
+    name = "slow-on-cubes"
+
+    def euler_characteristic(self, V, F):
+        if len(F) == 12:
+            time.sleep(1)
+        return super().euler_characteristic(V, F)
 
 
 class AlwaysOrientable(ReferenceImplementation):

@@ -1,9 +1,11 @@
 """``ddg-oracle survey``: the scoreboard over a corpus, its files, interrupt and resume.
 
 Three small meshes written as OBJ files (a tetrahedron and a cube, closed; a disk, with a
-boundary), the exact reference (honest: everything agrees) and two planted bugs of
+boundary), the exact reference (honest: everything agrees), two planted bugs of
 tests/planted_bugs.py: ChiIgnoresBoundary (wrong Euler characteristic on the disk only)
-and Float32Defects (angle defects off by ~1e-7, beyond the float64 bound).
+and Float32Defects (angle defects off by ~1e-7, beyond the float64 bound), and
+SlowOnCubes (honest, a second slow on the cube: the last mesh is still running when the
+first ones are recorded, which the interrupt test needs on a fast machine).
 """
 
 from __future__ import annotations
@@ -26,7 +28,9 @@ from ddg_oracle.reference import surfaces
 
 ROOT = Path(__file__).resolve().parent.parent
 IMPLS = ["--impl", "reference", "--impl", "tests.planted_bugs:ChiIgnoresBoundary",
-         "--impl", "tests.planted_bugs:Float32Defects"]
+         "--impl", "tests.planted_bugs:Float32Defects",
+         # honest, but a second slow on the cube: an interrupt finds meshes left to do
+         "--impl", "tests.planted_bugs:SlowOnCubes"]
 
 
 @pytest.fixture(scope="module")
