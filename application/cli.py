@@ -43,6 +43,21 @@ exit codes:
   3  ddg-oracle itself failed (traceback; please report it)"""
 
 
+def exit_codes(one: str | None) -> str:
+    """:data:`EXIT_CODES` of another command: exit 1 means ``one`` (None: it has no exit 1),
+    and the check-only remark goes."""
+    out = []
+    for line in EXIT_CODES.splitlines():
+        if line.startswith("     (check:"):
+            continue
+        if line.startswith("  1 "):
+            if one is None:
+                continue
+            line = f"  1  {one}"
+        out.append(line)
+    return "\n".join(out)
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage errors in one line, as every other error of ours (no usage block)."""
 
@@ -133,9 +148,9 @@ def parser() -> argparse.ArgumentParser:
                    help="check on these mesh files (OBJ, OFF, PLY, STL) instead of generated "
                         "meshes; 'pymeshlab:' = every sample mesh PyMeshLab ships, "
                         "'pymeshlab:NAME' one of them; 'cgal:' = every mesh of the CGAL "
-                        "corpus, 'cgal:NAME' one of them (fetched once by: python -m "
-                        "ddg_oracle.application.corpus fetch); 'pyvista:' and 'compas:' "
-                        "the meshes those wheels ship (fetch pyvista, fetch compas)")
+                        "corpus, 'cgal:NAME' one of them (fetched once by: ddg-oracle corpus "
+                        "fetch); 'pyvista:' and 'compas:' the meshes those wheels ship "
+                        "(ddg-oracle corpus fetch pyvista compas)")
     c.add_argument("--report", metavar="DIR",
                    help="write results.json, summary.md, timings.json and, per failure, the "
                         "mesh (OBJ), a picture (PNG) and a reproducing snippet into DIR "
@@ -179,13 +194,11 @@ def parser() -> argparse.ArgumentParser:
             ddg-oracle compare bunny.obj
             ddg-oracle compare pymeshlab:bunny10k_textured.obj --impl libigl
             ddg-oracle compare a.off b.ply --impl mymodule:MyImpl --impl 'exec:./my_driver'""",
-                       EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "an implementation differs or crashed"),
-                       specs=True))
+                       exit_codes("an implementation differs or crashed"), specs=True))
     m.add_argument("mesh", nargs="+", metavar="MESH",
                    help="mesh file, or 'pymeshlab:' / 'pymeshlab:NAME' (sample meshes), "
-                        "'cgal:' / 'cgal:NAME' (the CGAL corpus: python -m ddg_oracle.application.corpus "
-                        "fetch), 'pyvista:', 'compas:' (fetch pyvista, fetch compas)")
+                        "'cgal:' / 'cgal:NAME' (the CGAL corpus: ddg-oracle corpus fetch), "
+                        "'pyvista:', 'compas:' (ddg-oracle corpus fetch pyvista compas)")
     m.add_argument("--impl", action="append", metavar="SPEC",
                    help="implementation to compare (repeatable; default: every installed one): "
                         "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
@@ -207,8 +220,7 @@ def parser() -> argparse.ArgumentParser:
             ddg-oracle survey pymeshlab:
             ddg-oracle survey meshes/ --impl libigl --impl trimesh --report out/
             ddg-oracle survey --resume out/""",
-                       EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "an implementation differs or crashed")
+                       exit_codes("an implementation differs or crashed")
                        + "\n  130, 143  interrupted by SIGINT, SIGTERM (--resume DIR finishes it)",
                        specs=True))
     s.add_argument("mesh", nargs="*", metavar="MESH",
@@ -244,8 +256,7 @@ def parser() -> argparse.ArgumentParser:
                     "language.  Deterministic: the same ddg-oracle writes the same bytes.",
         epilog=_epilog("""
             ddg-oracle vectors --out vectors/
-            ddg-oracle verify vectors/ my_answers.jsonl""", EXIT_CODES.replace(
-            "  1  a property failed or a checked implementation crashed\n", "")))
+            ddg-oracle verify vectors/ my_answers.jsonl""", exit_codes(None)))
     v.add_argument("--out", required=True, metavar="DIR", help="directory to write (created)")
 
     w = sub.add_parser(
@@ -259,8 +270,7 @@ def parser() -> argparse.ArgumentParser:
             ddg-oracle verify vectors/ answers.jsonl
             ddg-oracle verify vectors/ answers.jsonl --float32
             ddg-oracle verify vectors/ --impl 'exec:./my_driver' --write-answers answers.jsonl""",
-                       EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "a case failed"), specs=True))
+                       exit_codes("a case failed"), specs=True))
     w.add_argument("corpus", metavar="DIR", help="a directory written by 'ddg-oracle vectors'")
     w.add_argument("answers", nargs="?", metavar="ANSWERS", help="the answers file (JSON Lines)")
     w.add_argument("--impl", metavar="SPEC",
@@ -283,12 +293,24 @@ def parser() -> argparse.ArgumentParser:
         epilog=_epilog("""
             ddg-oracle methods
             ddg-oracle methods --impl mymodule:MyImpl   which of them it defines
-            ddg-oracle methods | grep cotan""", EXIT_CODES.replace(
-            "  1  a property failed or a checked implementation crashed\n", "")))
+            ddg-oracle methods | grep cotan""", exit_codes(None)))
     m.add_argument("--impl", metavar="SPEC",
                    help="an implementation (as for check): the methods it defines, its declared "
                         "precision and conventions, and names that look like a method it lacks")
     m.add_argument("--timeout", type=float, default=60.0, help=argparse.SUPPRESS)
+
+    from . import corpus
+    k = sub.add_parser(
+        "corpus", formatter_class=fmt, help="fetch and list the mesh corpora (cgal:, pyvista:, "
+                                            "compas:)",
+        description=corpus.DESCRIPTION,
+        epilog=_epilog("""
+            ddg-oracle corpus fetch              CGAL's meshes (apt-get download libcgal-demo)
+            ddg-oracle corpus fetch all          CGAL's, PyVista's and COMPAS's
+            ddg-oracle corpus list pyvista
+            ddg-oracle check --mesh cgal: --impl libigl""",
+            exit_codes(None)))
+    corpus.add_arguments(k)
 
     t = sub.add_parser(
         "theorems", formatter_class=fmt, help="print the traceability table and the notes' items",
@@ -299,8 +321,7 @@ def parser() -> argparse.ArgumentParser:
         epilog=_epilog("""
             ddg-oracle theorems
             ddg-oracle theorems --check""",
-                       EXIT_CODES.replace("a property failed or a checked implementation "
-                                          "crashed", "--check: the table is not true")))
+                       exit_codes("--check: the table is not true")))
     t.add_argument("--check", action="store_true",
                    help="exit 1 unless every named function, property and test exists, "
                         "every row of a claimed chapter is verified, and every numbered "
@@ -346,6 +367,9 @@ def _main(args, argv) -> int:
             return _verify(args)
         if args.command == "methods":
             return _methods(args)
+        if args.command == "corpus":
+            from . import corpus
+            return corpus.run(args)
         return _theorems(args)
     except (InputError, ImplementationNotFound, NotAnImplementation) as e:
         print(f"ddg-oracle: error: {e}", file=sys.stderr)

@@ -14,7 +14,7 @@ derived bound, and where.  Both take the same mesh arguments:
 * ``pymeshlab:`` -- every sample mesh shipped inside the installed PyMeshLab
   package (``pymeshlab/tests/sample_meshes``), or ``pymeshlab:NAME`` one of them;
 * ``cgal:`` -- every mesh of the CGAL corpus (CGAL's ``data/meshes`` from Debian's
-  ``libcgal-demo``, fetched once by ``python -m ddg_oracle.application.corpus fetch``, see
+  ``libcgal-demo``, fetched once by ``ddg-oracle corpus fetch``, see
   :mod:`ddg_oracle.application.corpus`), or ``cgal:NAME`` one of them (its file name or its path in
   the corpus).  Their polygon faces are triangulated, with a note.
 

