@@ -37,6 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..protocol.methods import WHERE
 from ..reference.errors import ExactArithmeticLimit, InputError
 
 from . import corpus
@@ -661,13 +662,6 @@ def derived_bound(method: str, ex: MeshExamples, want=None):
     return all_quantities()[method].bound(ex.example(), want)
 
 
-#: where an element of a "numbers" answer is, by the quantity's element
-_WHERE = {"corner": lambda k: f"face {k[0]}, corner {k[1]}",
-          "vertex": lambda k: f"vertex {k[0]}",
-          "vertex coordinate": lambda k: f"vertex {k[0]}, coordinate {k[1]}",
-          "total": lambda k: "total"}
-
-
 def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
     """One answer against ``want`` by its quantity's kind (``bound``: its derived bound,
     computed here if None)."""
@@ -709,10 +703,10 @@ def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
     if q.kind == "matrix":
         return _matrix(method, name, got, want, bound)
     if q.element == "total":
-        return _numeric(method, name, [float(got)], [float(want)], bound, _WHERE["total"])
+        return _numeric(method, name, [float(got)], [float(want)], bound, WHERE["total"])
     shape = np.shape(want)
     return _numeric(method, name, np.asarray(got, dtype=np.float64).reshape(shape), want, bound,
-                    _WHERE[q.element])
+                    WHERE[q.element])
 
 
 def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:

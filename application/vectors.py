@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..protocol.methods import FLOAT64_EPSILON, METHODS, OutsideDomain, at_machine_epsilon
+from ..protocol.methods import (FLOAT64_EPSILON, ISOLATED_VERTEX, METHODS, WHERE, OutsideDomain,
+                                at_machine_epsilon)
 
 from .files import read_text
 from ..reference.errors import InputError
@@ -273,27 +274,36 @@ class _NotApplicable(Exception):
 
 
 def _request(method: str, case: Case, rng: random.Random) -> dict:
-    """The protocol request fields of ``case`` for ``method``."""
-    if method == "planar_delaunay":
-        if not case.planar:
-            raise _NotApplicable
-        used = range(len(case.V)) if case.invalid else sorted({v for f in case.F for v in f})
-        return {"P": [case.V[v][:2] for v in used]}
-    req = {"V": case.V, "F": case.F}
-    if method == "genus" and "isolated-vertex" in case.flags:
-        raise _NotApplicable              # a surface and a point: no genus (two components)
-    if method == "planar_flip_to_delaunay" and not case.planar:
-        raise _NotApplicable
-    if method == "solve_dirichlet":
-        if case.invalid or not case.planar:
-            raise _NotApplicable          # the reference solves exactly on planar meshes only
-        from ..reference.combinatorics import Triangulation
-        t = Triangulation.from_faces(case.F, n_vertices=len(case.V))
-        boundary = sorted({v for loop in t.boundary_loops() for v in loop})
-        if not boundary or len(boundary) == len(case.V):
-            raise _NotApplicable          # nothing to solve for
-        req["boundary"] = boundary
-        req["values"] = [rng.randint(-64, 64) / 16 for _ in boundary]
+    """The protocol request fields of ``case`` for ``method``: its arguments, read from the
+    case (``V``, ``F``; planar points ``P``) or drawn on it (a ``boundary`` set: every
+    boundary vertex; its ``values``)."""
+    from ..properties.registry import all_quantities
+    q = all_quantities()[method]
+    arguments = METHODS[method].arguments
+    if q.planar and not case.planar:
+        raise _NotApplicable              # the reference answers in the plane z = 0 only
+    if "connected" in q.requires and "isolated-vertex" in case.flags:
+        raise _NotApplicable              # a surface and a point: two components
+    req = {}
+    for a in arguments:
+        if a == "P":
+            used = range(len(case.V)) if case.invalid else sorted({v for f in case.F for v in f})
+            req["P"] = [case.V[v][:2] for v in used]
+        elif a in ("V", "F"):
+            req[a] = getattr(case, a)
+        elif case.invalid:
+            raise _NotApplicable          # nothing to draw on a bad mesh
+        elif a == "boundary":
+            from ..reference.combinatorics import Triangulation
+            t = Triangulation.from_faces(case.F, n_vertices=len(case.V))
+            boundary = sorted({v for loop in t.boundary_loops() for v in loop})
+            if not boundary or len(boundary) == len(case.V):
+                raise _NotApplicable      # nothing to solve for
+            req["boundary"] = boundary
+        elif a == "values":
+            req["values"] = [rng.randint(-64, 64) / 16 for _ in req["boundary"]]
+        else:
+            raise AssertionError(f"{method}: no way to draw its argument {a!r}")
     return req
 
 
@@ -329,13 +339,13 @@ def _nested(a) -> list:
     return np.asarray(a, dtype=np.float64).tolist()
 
 
-def _bounds(method: str, ex, want=None) -> dict:
-    """{"64": bound, "32": bound}: :func:`derived_bound` at each machine epsilon."""
-    from .compare import derived_bound
+def _bounds(q, example, want=None) -> dict:
+    """{"64": bound, "32": bound}: the quantity ``q``'s derived bound on ``example`` at each
+    machine epsilon (as ``compare`` derives it)."""
     out = {}
     for k, e in EPSILONS.items():
         with at_machine_epsilon(e):
-            out[k] = derived_bound(method, ex, want)
+            out[k] = q.bound(example, want)
     return out
 
 
@@ -359,19 +369,23 @@ def _matrix_expected(M_exact, Ls, bounds, n: int, keep) -> dict:
     return out
 
 
+#: the exact value of what a method answers at a vertex used by no face (ISOLATED_VERTEX)
+_ISOLATED_TEXT = {0.0: "0", math.tau: "2*pi"}
+
+
 def expected(method: str, case: Case, req: dict) -> dict:
     """The ``expected`` object of ``method`` on ``case`` (:class:`_NotApplicable` if the
-    reference has no value there)."""
+    reference has no value there): by the answer's kind and element, the values from the
+    method's quantity (``exact``, ``bound``)."""
     from .compare import MeshExamples, MeshInput
+    from ..properties.registry import all_quantities
     from ..protocol.arrays import Referenced
-    from ..reference import curvature, delaunay, laplacian
-    from ..reference.areas import area_gradient
-    from ..reference.exact import exact_sum
 
     try:
         answer = _reference_answer(method, req)
     except (OutsideDomain, NotImplementedError):
         raise _NotApplicable from None
+    q = all_quantities()[method]
     kind = kind_of(method)
     if kind in ("integer", "boolean"):
         return {"value": answer}
@@ -382,64 +396,48 @@ def expected(method: str, case: Case, req: dict) -> dict:
         return {"boundary": [list(e) for e in sorted(_boundary_edges(faces))],
                 "one_answer": faces}
     r = Referenced(req["V"], req["F"])
+    drawn = {a: tuple(req[a]) for a in METHODS[method].arguments if a not in ("V", "F")}
+    if drawn and r.isolated:
+        raise _NotApplicable              # drawn vertex indices: of the mesh's surface only
     keep = r.keep
     ex = MeshExamples(MeshInput(case.name, r.V.tolist(), r.F.tolist()))
-    s = ex.surface
+    example = ex.example().with_data(**drawn) if drawn else ex.example()
     n = len(req["V"])
-
-    def per_vertex(values: dict, fill: str) -> list:
-        out = [fill] * n
-        for v, x in values.items():
-            out[int(keep[v])] = exact_text(x)
-        return out
-
-    if method == "corner_angles":
-        exact = [[exact_text(a) for a in f] for f in curvature.corner_angles(s)]
-        return _numbers(exact, _nested(answer), {k: _nested(b) for k, b in _bounds(method, ex).items()})
-    if method == "angle_defects":
-        values = {**curvature.angle_defects(s), **curvature.turning_angles(s)}
-        # a vertex used by no face has 2 pi, which a float32 code can only round to float32
-        b = {k: _scatter(v, keep, n, EPSILONS[k] * 2 * math.pi)
-             for k, v in _bounds(method, ex).items()}
-        return _numbers(per_vertex(values, "2*pi"), _nested(answer), b)
-    if method == "area":
-        return _numbers(exact_text(exact_sum(s.metric().areas)), float(answer),
-                        {k: float(v) for k, v in _bounds(method, ex).items()})
-    if method == "edge_mean_curvature":
-        t = s.triangulation
-        exact = {tuple(sorted(int(keep[v]) for v in t.edge_vertices(e))): h
-                 for e, h in curvature.mean_curvature(s).items()}
+    if kind == "flags":
+        return _flags_expected(answer, _bounds(q, example))
+    if kind == "intrinsic_triangulation":
+        return _intrinsic_expected(all_quantities()[q.via], req, answer, ex, r)
+    if kind == "matrix":
+        return _matrix_expected(q.exact(example), answer.tocsr(),
+                                _embedded(_bounds(q, example), r), n, keep)
+    exact = q.exact(example)
+    if kind == "edges":
+        exact = {tuple(sorted(int(keep[v]) for v in e)): h for e, h in exact.items()}
         edges = sorted(exact)
         compact = {int(w): v for v, w in enumerate(keep)}
         b = {k: [float(v[tuple(sorted(compact[x] for x in e))]) for e in edges]
-             for k, v in _bounds(method, ex).items()}
+             for k, v in _bounds(q, example).items()}
         out = {"edges": [list(e) for e in edges]}
         out.update(_numbers([exact_text(exact[e]) for e in edges],
                             [float(answer[e]) for e in edges], b))
         return out
-    if method == "area_gradient":
-        exact = [["0"] * 3 for _ in range(n)]                  # no face: no gradient
-        for v, g in enumerate(area_gradient(s)):
-            exact[int(keep[v])] = [exact_text(x) for x in g]
-        return _numbers(exact, _nested(answer),
-                        {k: _scatter(b, keep, n, 0.0) for k, b in _bounds(method, ex).items()})
-    if method in ("vertex_areas_barycentric", "vertex_areas_voronoi"):
-        values = dict(enumerate(getattr(laplacian, method)(s)))
-        b = {k: _scatter(v, keep, n, 0.0) for k, v in _bounds(method, ex).items()}
-        return _numbers(per_vertex(values, "0"), _nested(answer), b)
-    if method == "cotan_laplacian":
-        return _matrix_expected(laplacian.cotan_laplacian(s), answer.tocsr(),
-                                _embedded(_bounds(method, ex), r), n, keep)
-    if method == "intrinsic_delaunay_laplacian":
-        return _matrix_expected(delaunay.laplace_beltrami(s), answer.tocsr(),
-                                _embedded(_bounds(method, ex), r), n, keep)
-    if method == "intrinsic_delaunay_triangulation":
-        return _intrinsic_expected(case, req, answer, ex, r)
-    if method == "solve_dirichlet":
-        return _dirichlet_expected(req, answer, ex, r)
-    if method == "is_locally_delaunay":
-        return _flags_expected(answer, ex)
-    raise AssertionError(method)
+    element = METHODS[method].element
+    u = np.asarray(answer, dtype=np.float64)
+    bounds = _bounds(q, example, u if drawn else None)
+    if element == "total":
+        return _numbers(exact_text(exact), float(answer), {k: float(v) for k, v in bounds.items()})
+    if element == "corner":
+        return _numbers([[exact_text(a) for a in f] for f in exact], _nested(answer),
+                        {k: _nested(b) for k, b in bounds.items()})
+    # per vertex (or vertex coordinate): a vertex used by no face has the protocol's value
+    isolated = ISOLATED_VERTEX.get(method, 0.0)
+    values = exact.items() if isinstance(exact, dict) else enumerate(exact)
+    fill = _ISOLATED_TEXT[isolated]
+    texts = [fill if element == "vertex" else [fill] * 3 for _ in range(n)]
+    for v, x in values:
+        texts[int(keep[v])] = exact_text(x) if element == "vertex" else [exact_text(c) for c in x]
+    return _numbers(texts, u.tolist(),
+                    {k: _scatter(b, keep, n, EPSILONS[k] * isolated) for k, b in bounds.items()})
 
 
 def _scatter(values, keep, n, fill) -> list:
@@ -460,40 +458,24 @@ def _boundary_edges(F) -> set:
     return {e for e in directed if e[::-1] not in directed}
 
 
-def _flags_expected(answer, ex) -> dict:
+def _flags_expected(answer, ties: dict) -> dict:
     out = {"value": np.asarray(answer, dtype=bool).tolist()}
-    for k, ties in _bounds("is_locally_delaunay", ex).items():   # either answer agrees there
-        out[f"either{k}"] = np.argwhere(ties).tolist()
+    for k, t in ties.items():                   # either answer agrees there
+        out[f"either{k}"] = np.argwhere(t).tolist()
     return out
 
 
-def _dirichlet_expected(req, answer, ex, r) -> dict:
-    from ..properties.harness import Exact
-    from ..reference.dirichlet import solve_dirichlet
-    if r.isolated:
-        raise _NotApplicable
-    exact = solve_dirichlet(ex.surface, {v: Fraction(c) for v, c in
-                                         zip(req["boundary"], req["values"])})
-    u = np.asarray(answer, dtype=np.float64)
-    b = {}
-    for k, e in EPSILONS.items():
-        with at_machine_epsilon(e):
-            b[k] = Exact.of(ex.example()).dirichlet_solution_bound(req["boundary"], u).tolist()
-    return _numbers([exact_text(x) for x in exact], u.tolist(), b)
-
-
-def _intrinsic_expected(case, req, answer, ex, r) -> dict:
+def _intrinsic_expected(q, req, answer, ex, r) -> dict:
     """The Laplace-Beltrami operator (the same for every intrinsic Delaunay triangulation,
-    R4.9) and the total area, which any answer's (F2, l2) must reproduce."""
-    from ..reference import delaunay
+    R4.9: the values of quantity ``q``) and the total area, which any answer's (F2, l2)
+    must reproduce."""
     from ..reference.exact import exact_sum
     from ..properties.delaunay import DelaunayExact
     F2, l2 = answer
-    amp = max(DelaunayExact.of(ex.example()).amplification)   # flips' amplification
-    lap = _matrix_expected(delaunay.laplace_beltrami(ex.surface),
-                           _reference_answer("intrinsic_delaunay_laplacian", req).tocsr(),
-                           _embedded(_bounds("intrinsic_delaunay_laplacian", ex), r),
-                           len(req["V"]), r.keep)
+    example = ex.example()
+    amp = max(DelaunayExact.of(example).amplification)   # flips' amplification
+    lap = _matrix_expected(q.exact(example), _reference_answer(q.method, req).tocsr(),
+                           _embedded(_bounds(q, example), r), len(req["V"]), r.keep)
     total = exact_sum(ex.surface.metric().areas)
     area = _numbers(exact_text(total), float_view(total),
                     {k: _intrinsic_area_bound(l2, amp, e) for k, e in EPSILONS.items()})
@@ -518,6 +500,8 @@ def build() -> dict[str, dict]:
     """{file name: JSON object} of the corpus (deterministic)."""
     from ddg_oracle import __version__
     from ..oracles.executable import PROTOCOL_VERSION
+    from ..properties.registry import all_quantities
+    quantities = all_quantities()
     all_cases = cases()
     files = {}
     total = 0
@@ -545,9 +529,10 @@ def build() -> dict[str, dict]:
             except _NotApplicable:
                 continue
             except InputError:
-                # no value: the genus of a disconnected mesh, signed dihedral angles on a
-                # non-orientable one (as in compare); anything else is a bug of ours
-                if method in ("genus", "edge_mean_curvature"):
+                # no value where the quantity's requirements fail (as in compare): the genus
+                # of a disconnected mesh, signed dihedral angles on a non-orientable one;
+                # anything else is a bug of ours
+                if quantities[method].requires:
                     continue
                 raise
             entry["result"] = "valid"
@@ -922,8 +907,8 @@ def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None
     from ..oracles.executable import DriverFailed, decode_value
     inp = _unportable(c["input"])
     want = c["expected"]
-    n = len(inp["P"]) if method == "planar_delaunay" else len(inp["V"])
-    m = 0 if method == "planar_delaunay" else len(inp["F"])
+    n = len(inp["P"]) if "P" in inp else len(inp["V"])
+    m = len(inp["F"]) if "F" in inp else 0
     try:
         got = decode_value(method, _unportable(value), n, m)
     except (DriverFailed, ValueError, TypeError) as e:
@@ -939,10 +924,7 @@ def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None
         if len(got) != len(want["value"]) or loop_edges(got) != loop_edges(want["value"]):
             raise _Wrong(f"loops {_short(got)}, expected {_short(want['value'])}")
     elif kind == "numbers":
-        label = {"corner_angles": lambda k: f"face {k[0]}, corner {k[1]}",
-                 "area_gradient": lambda k: f"vertex {k[0]}, coordinate {k[1]}",
-                 "area": lambda k: "total"}.get(method, lambda k: f"vertex {k[0]}")
-        _elementwise(got, want, bits, label)
+        _elementwise(got, want, bits, WHERE[METHODS[method].element])
     elif kind == "edges":
         keys = [tuple(e) for e in want["edges"]]
         if set(got) != set(keys):
@@ -971,7 +953,7 @@ def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None
             raise _Wrong(f"its cotan Laplacian is not the Laplace-Beltrami operator: {e}") from None
         _elementwise(float(np.sum(area)), want["area"], bits, lambda k: "total area")
     elif kind == "planar_triangulation":
-        pts = inp["P"] if method == "planar_delaunay" else [p[:2] for p in inp["V"]]
+        pts = inp["P"] if "P" in inp else [p[:2] for p in inp["V"]]
         _planar_check(np.asarray(got), pts, want, EPSILONS[bits])
     else:
         raise AssertionError(kind)

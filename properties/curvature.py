@@ -25,6 +25,7 @@ from hypothesis import assume, strategies as st
 from ..reference import curvature as ref
 from ..reference import surfaces
 from ..reference.combinatorics import Triangulation
+from ..reference.exact import exact_sum
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -702,9 +703,20 @@ def _area_bound(example: Example, want) -> float:
     return area_tolerance(example) + total_area_view(example.surface.metric())[1]
 
 
-quantity("corner_angles", bound=lambda example, want: corner_tolerances(example))
+def _mean_curvature_by_pair(example: Example) -> dict:
+    t = example.surface.triangulation
+    return {tuple(sorted(t.edge_vertices(e))): h
+            for e, h in ref.mean_curvature(example.surface).items()}
+
+
+quantity("corner_angles", bound=lambda example, want: corner_tolerances(example),
+         exact=lambda example: ref.corner_angles(example.surface))
 quantity("angle_defects",
-         bound=lambda example, want: vertex_tolerances(example, corner_tolerances(example)))
+         bound=lambda example, want: vertex_tolerances(example, corner_tolerances(example)),
+         exact=lambda example: {**ref.angle_defects(example.surface),
+                                **ref.turning_angles(example.surface)})
 quantity("edge_mean_curvature", requires=("oriented",),
-         bound=lambda example, want: edge_mean_curvature_tolerances(example))
-quantity("area", bound=_area_bound)
+         bound=lambda example, want: edge_mean_curvature_tolerances(example),
+         exact=_mean_curvature_by_pair)
+quantity("area", bound=_area_bound,
+         exact=lambda example: exact_sum(example.surface.metric().areas))

@@ -44,7 +44,8 @@ import numpy as np
 from hypothesis import strategies as st
 
 from ..reference.curvature import corner_angles
-from ..reference.delaunay import flip_to_delaunay, harmonic_index, is_delaunay_edge
+from ..reference.delaunay import (flip_to_delaunay, harmonic_index, is_delaunay_edge,
+                                  laplace_beltrami)
 from ..reference.intrinsic import IntrinsicTriangulation
 from ..reference.polyhedral import PolyhedralSurface
 
@@ -1121,10 +1122,11 @@ def delaunay_ties(example: Example, want=None) -> np.ndarray:
 quantity("is_locally_delaunay", bound=delaunay_ties)
 quantity("intrinsic_delaunay_laplacian",
          bound=lambda example, want: DelaunayExact.of(example).Bs,
-         expected=lambda example, reference: DelaunayExact.of(example).Ls)
-quantity("intrinsic_delaunay_triangulation",
+         expected=lambda example, reference: DelaunayExact.of(example).Ls,
+         exact=lambda example: laplace_beltrami(example.surface))
+quantity("intrinsic_delaunay_triangulation", via="intrinsic_delaunay_laplacian",
          not_on_a_mesh="not unique: checked by A4.13 and D4.8 / R4.9")
-quantity("planar_flip_to_delaunay",
+quantity("planar_flip_to_delaunay", planar=True,
          not_on_a_mesh="not unique, and needs a planar triangulation: checked by L4.3 / P4.4")
-quantity("planar_delaunay",
+quantity("planar_delaunay", planar=True,
          not_on_a_mesh="takes planar points, not a mesh: checked by T4.1 and D4.1")

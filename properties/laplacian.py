@@ -27,6 +27,7 @@ from fractions import Fraction
 import numpy as np
 from hypothesis import strategies as st
 
+from ..reference import areas, laplacian as ref
 from ..reference.dirichlet import directional_derivative
 from ..reference.laplacian import (dirichlet_energy_pl, dirichlet_energy_gradient_pl,
                                             weight_signs_by_angles)
@@ -555,17 +556,28 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
 # --- how the chapter-3 methods' answers compare on a given mesh (compare, vectors) ------------
 # (Exact.of: the exact values, float views and bounds, once per mesh and machine epsilon)
 
+def _dirichlet_solution(example: Example) -> list:
+    from ..reference.dirichlet import solve_dirichlet
+    return solve_dirichlet(example.surface, {v: Fraction(c) for v, c in
+                                             zip(example.boundary, example.values)})
+
+
 quantity("cotan_laplacian", bound=lambda example, want: Exact.of(example).Bs,
-         expected=lambda example, reference: Exact.of(example).Ls)
+         expected=lambda example, reference: Exact.of(example).Ls,
+         exact=lambda example: ref.cotan_laplacian(example.surface))
 quantity("area_gradient",
          bound=lambda example, want: Exact.of(example).area_gradient_bound(example.arrays()[0])[1],
          expected=lambda example, reference: Exact.of(example).area_gradient_bound(
-             example.arrays()[0])[0])
-quantity("solve_dirichlet",
+             example.arrays()[0])[0],
+         exact=lambda example: areas.area_gradient(example.surface))
+quantity("solve_dirichlet", planar=True,
          not_on_a_mesh="needs a boundary set and its values: checked by T3.2 and C3.4 / T3.5",
          bound=lambda example, want: Exact.of(example).dirichlet_solution_bound(
-             example.boundary, want))
+             example.boundary, want),
+         exact=_dirichlet_solution)
 quantity("vertex_areas_barycentric",
-         bound=lambda example, want: Exact.of(example).vertex_area_bounds[1])
+         bound=lambda example, want: Exact.of(example).vertex_area_bounds[1],
+         exact=lambda example: ref.vertex_areas_barycentric(example.surface))
 quantity("vertex_areas_voronoi",
-         bound=lambda example, want: Exact.of(example).vertex_area_bounds[0])
+         bound=lambda example, want: Exact.of(example).vertex_area_bounds[0],
+         exact=lambda example: ref.vertex_areas_voronoi(example.surface))

@@ -233,6 +233,15 @@ class Quantity:
     answer (:mod:`.bounds`), ``want`` what it is compared with; ``expected(example,
     reference)``: the values to compare with when not the reference's answer itself
     (``reference()`` gives that), e.g. a float view kept with the bounds.
+
+    ``exact(example)``: the exact values of a numeric answer on the example's surface
+    (its vertices are the ones a face uses), in the method's shape: per face its 3 corner
+    values (``corner``), a sequence or {vertex: value} (``vertex``), per vertex 3 values
+    (``vertex coordinate``), one value (``total``), {(i, j) with i < j: value}
+    (``edges``), a sparse exact matrix (``matrix``); the test vectors print them.
+    ``planar``: the reference answers only for points in the plane z = 0.  ``via``: the
+    method whose values an answer of this one is compared through (an intrinsic
+    triangulation is not unique, its Laplace-Beltrami operator is).
     """
 
     method: str
@@ -240,6 +249,9 @@ class Quantity:
     not_on_a_mesh: str | None = None
     bound: Callable | None = field(default=None, repr=False)
     expected: Callable | None = field(default=None, repr=False)
+    exact: Callable | None = field(default=None, repr=False)
+    planar: bool = False
+    via: str | None = None
 
     @property
     def kind(self) -> str:
@@ -266,9 +278,13 @@ def quantity(method: str, **how) -> Quantity:
     unknown = set(how.get("requires", ())) - set(REQUIREMENTS)
     if unknown:
         raise ValueError(f"{method}: unknown mesh requirements {sorted(unknown)}")
-    if how.get("bound") is None and how.get("not_on_a_mesh") is None and \
-            METHODS[method].kind in ("numbers", "edges", "matrix"):
+    numeric = METHODS[method].kind in ("numbers", "edges", "matrix")
+    if how.get("bound") is None and how.get("not_on_a_mesh") is None and numeric:
         raise ValueError(f"{method}: a numeric answer needs its derived bound")
+    if how.get("exact") is None and numeric:
+        raise ValueError(f"{method}: a numeric answer needs its exact values (exact=)")
+    if how.get("via") is not None and how["via"] not in METHODS:
+        raise ValueError(f"{method}: via {how['via']!r} is not a protocol method")
     QUANTITIES[method] = q = Quantity(method, **how)
     return q
 

@@ -46,6 +46,11 @@ class Method:
 KINDS = ("integer", "boolean", "loops", "numbers", "edges", "matrix", "flags",
          "intrinsic triangulation", "planar triangulation")
 ELEMENTS = ("corner", "vertex", "vertex coordinate", "total")
+#: where an element of a "numbers" answer is, by its ``element`` and its index (reports)
+WHERE = {"corner": lambda k: f"face {k[0]}, corner {k[1]}",
+         "vertex": lambda k: f"vertex {k[0]}",
+         "vertex coordinate": lambda k: f"vertex {k[0]}, coordinate {k[1]}",
+         "total": lambda k: "total"}
 
 # name -> Method; the single source of the protocol's method names, contracts and shapes.
 METHODS: dict[str, Method] = {

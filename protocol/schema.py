@@ -135,6 +135,52 @@ def text() -> str:
     return json.dumps(schema(), indent=2, sort_keys=True) + "\n"
 
 
+#: an answer's ``value`` in words, by the method's kind (and element), for the method table
+_VALUE_IN_WORDS = {
+    "integer": "integer", "boolean": "`true` / `false`",
+    "loops": "list of lists of vertex indices",
+    "edges": "list of `[i, j, x]`, i < j",
+    "matrix": 'sparse n x n: `{"shape": [n, n], "rows": [...], "cols": [...], '
+              '"values": [...]}` (duplicates are summed)',
+    "flags": "m x 3 booleans",
+    "intrinsic triangulation": '`{"F": m x 3 integers, "l2": m x 3 numbers}`',
+    "planar triangulation": "m x 3 integers",
+    "corner": "m x 3 numbers", "vertex": "n numbers", "vertex coordinate": "n x 3 numbers",
+    "total": "number"}
+
+#: the lines around the method table in docs/protocol.md (:func:`with_method_table`)
+TABLE_START = ("<!-- the method table: generated from protocol/methods.py by "
+               "`python -m ddg_oracle.protocol.schema --table docs/protocol.md` -->")
+TABLE_END = "<!-- end of the method table -->"
+
+
+def method_table() -> str:
+    """The protocol's methods as a Markdown table: arguments, the answer's ``value`` (its
+    kind and element) and the contract, one row per method of :data:`.methods.METHODS`."""
+    rows = ["| method | request fields | `value` | answer |", "|---|---|---|---|"]
+    for name, m in METHODS.items():
+        words = _VALUE_IN_WORDS[m.element if m.kind == "numbers" else m.kind]
+        fields = ", ".join(f"`{a}`" for a in m.arguments)
+        rows.append(f"| `{name}` | {fields} | {words} | {m.contract.replace('|', '/')} |")
+    return "\n".join(rows) + "\n"
+
+
+def with_method_table(markdown: str) -> str:
+    """``markdown`` with the text between :data:`TABLE_START` and :data:`TABLE_END` replaced
+    by :func:`method_table`."""
+    head, found, rest = markdown.partition(TABLE_START + "\n")
+    _, found_end, tail = rest.partition(TABLE_END)
+    if not (found and found_end):
+        raise ValueError("no method table markers in the document")
+    return head + TABLE_START + "\n" + method_table() + TABLE_END + tail
+
+
 if __name__ == "__main__":
-    with open(sys.argv[1], "w", encoding="utf-8") as out:
-        out.write(text())
+    if sys.argv[1:2] == ["--table"]:
+        with open(sys.argv[2], encoding="utf-8") as f:
+            doc = with_method_table(f.read())
+        with open(sys.argv[2], "w", encoding="utf-8") as out:
+            out.write(doc)
+    else:
+        with open(sys.argv[1], "w", encoding="utf-8") as out:
+            out.write(text())

@@ -38,6 +38,16 @@ def test_the_committed_schema_is_the_generated_one_and_valid():
     assert {f"answer.{m}" for m in METHODS} | {f"request.{m}" for m in METHODS} <= set(SCHEMA["$defs"])
 
 
+def test_the_method_table_of_the_manual_is_the_generated_one():
+    doc = (ROOT / "docs" / "protocol.md").read_text(encoding="utf-8")
+    assert protocol_schema.with_method_table(doc) == doc, \
+        "regenerate: python -m ddg_oracle.protocol.schema --table docs/protocol.md"
+    table = doc.split(protocol_schema.TABLE_START)[1].split(protocol_schema.TABLE_END)[0]
+    assert [line.split("`")[1] for line in table.strip().splitlines()[2:]] == list(METHODS)
+    with pytest.raises(ValueError, match="no method table markers"):
+        protocol_schema.with_method_table("# a page without the table\n")
+
+
 def test_every_request_and_answer_of_a_run_validates(tmp_path):
     counts = tmp_path / "counts.json"
     impl = Executable([sys.executable, str(ROOT / "tests" / "schema_checked_driver.py"),
