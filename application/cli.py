@@ -597,7 +597,7 @@ def _check(args, argv) -> int:
         refuse_used_report_dir(args.report)             # before the run, not after it
     meshes = []
     if args.mesh:
-        from .compare import file_properties, load_all
+        from .meshes import file_properties, load_all
         meshes = load_all(args.mesh, warn=warn)
         if not meshes:
             raise InputError("no usable mesh among " + ", ".join(args.mesh))
@@ -761,7 +761,8 @@ def _check(args, argv) -> int:
 
 def _compare(args) -> int:
     check_timeout(args)
-    from .compare import format_comparisons, load_all, compare_mesh
+    from .compare import format_comparisons, compare_mesh
+    from .meshes import load_all
     from ..oracles.exact_reference import ReferenceImplementation
     from .implementations import available
 

@@ -303,7 +303,7 @@ def meshes(d: Path | None = None, name: str = "cgal") -> list[tuple[str, Path]]:
 
 def resolve(arg: str) -> list[tuple[str, Path, bool]]:
     """``cgal:`` (every mesh, skipped with a note when unusable) or ``cgal:NAME`` (one, whose
-    problems are errors), as :func:`ddg_oracle.application.compare.resolve` returns them;
+    problems are errors), as :func:`ddg_oracle.application.meshes.resolve` returns them;
     ``pyvista:`` and ``compas:`` the same."""
     corpus, _, name = arg.partition(":")
     prefix = f"{corpus}:"

@@ -143,7 +143,7 @@ def _run_task(task: Task) -> list:
         r = run_property(p, impl, settings, opts.seed,
                          counterpart=counterpart, convention=convention, budget=budget)
         return [with_diagnosis(r, p, impl)]
-    from .compare import MeshExamples, as_read_by, run_mesh_properties
+    from .meshes import MeshExamples, as_read_by, run_mesh_properties
     from ..properties.precision import format_of
     from ..protocol.methods import machine_epsilon
     from ..reference.errors import InputError
@@ -160,7 +160,7 @@ def _run_task(task: Task) -> list:
         except InputError as e:          # the rounding collapsed a face: nothing to check
             examples[key] = e
     if isinstance(examples[key], InputError):
-        from .compare import file_properties
+        from .meshes import file_properties
         from ..properties.runner import NOT_APPLICABLE, Result
         return [Result(p.id, p.name, task.spec, NOT_APPLICABLE, source=_HERE.meshes[task.mesh].name,
                        note=str(examples[key])) for p in file_properties(only)]

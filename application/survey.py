@@ -446,7 +446,7 @@ def run(args) -> int:
     import time
     import uuid
     from . import commands
-    from .compare import load_all
+    from .meshes import load_all
     from .implementations import available
     from .jobs import stopped_by_signals
     from ..oracles.exact_reference import ReferenceImplementation

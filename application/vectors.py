@@ -377,7 +377,7 @@ def expected(method: str, case: Case, req: dict) -> dict:
     """The ``expected`` object of ``method`` on ``case`` (:class:`_NotApplicable` if the
     reference has no value there): by the answer's kind and element, the values from the
     method's quantity (``exact``, ``bound``)."""
-    from .compare import MeshExamples, MeshInput
+    from .meshes import MeshExamples, MeshInput
     from ..properties.registry import all_quantities
     from ..protocol.arrays import Referenced
 

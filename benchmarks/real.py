@@ -44,7 +44,7 @@ def _fans(mode: Mode):
 def _samples(mode: Mode):
     import pymeshlab
     from pathlib import Path
-    from ddg_oracle.application.compare import load
+    from ddg_oracle.application.meshes import load
     root = Path(pymeshlab.__file__).parent / "tests" / "sample_meshes"
     for name in QUICK_SAMPLES if mode.quick else SAMPLES:
         path = root / name

@@ -46,7 +46,7 @@ def _faces(name: str, path: Path) -> int | str:
     """The number of (triangulated) faces of a corpus mesh as survey reads and validates
     it, or why it cannot be surveyed (a mesh with no faces, a degenerate or non-manifold
     one): named one by one, survey would stop at it."""
-    from ddg_oracle.application.compare import load
+    from ddg_oracle.application.meshes import load
     from ddg_oracle.reference.errors import InputError
     try:
         return len(load(name, path).F)
@@ -68,7 +68,7 @@ def corpus_sets() -> list[str]:
 
 def choose(sets: list[str], max_faces: int) -> tuple[list[tuple[str, int]], list]:
     """(the meshes to survey, those left out (too large, too slow or unreadable)), each (name, faces)."""
-    from ddg_oracle.application.compare import resolve
+    from ddg_oracle.application.meshes import resolve
     chosen, left = [], []
     for name, path, _ in resolve(sets):
         n = _faces(name, path)

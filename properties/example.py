@@ -140,7 +140,7 @@ class Example:
     @property
     def surface(self) -> PolyhedralSurface:
         """The exact surface, built once per content in this process (:data:`.memo.DRAWN`; a
-        mesh file's is put there by ``compare.MeshExamples``, which built it already)."""
+        mesh file's is put there by ``application.meshes.MeshExamples``, which built it already)."""
         s = self._cache.get("surface")
         if s is None:
             if self._given is not None:

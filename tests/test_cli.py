@@ -311,7 +311,7 @@ def test_sample_meshes_of_pymeshlab(capsys):
     rc, out, err = _run(capsys, "check", "--mesh", "pymeshlab:cube.obj", "--impl", "reference",
                         "--only", "D2.2", "--only", "X1.4", "--wide")
     assert rc == 0 and "property on pymeshlab:cube.obj" in out
-    from ddg_oracle.application.compare import resolve
+    from ddg_oracle.application.meshes import resolve
     everything = [name for name, _, _ in resolve(["pymeshlab:"])]
     assert "pymeshlab:cube.obj" in everything and "pymeshlab:bunny.obj" in everything
     rc, _, err = _run(capsys, "check", "--mesh", "pymeshlab:no-such.obj")
@@ -358,7 +358,7 @@ def test_unreferenced_vertices_are_removed_with_a_note(capsys, tmp_path):
 
 
 def test_run_on_example_uses_the_property_check_once():
-    from ddg_oracle.application.compare import MeshExamples, MeshInput
+    from ddg_oracle.application.meshes import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D2.2"], ReferenceImplementation(), ex.example(), "cube")
@@ -395,7 +395,7 @@ def test_undecided_when_the_exact_reference_hits_a_guard(monkeypatch):
     class Limited(ReferenceImplementation):
         def euler_characteristic(self, V, F):
             raise TermLimitExceeded("a square-root number would have too many terms")
-    from ddg_oracle.application.compare import MeshExamples, MeshInput
+    from ddg_oracle.application.meshes import MeshExamples, MeshInput
     V, F = surfaces.cube().to_arrays()
     ex = MeshExamples(MeshInput("cube", V, F))
     r = run_on_example(PROPERTIES["D1.6"], Limited(), ex.example(), "cube")

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 from ddg_oracle.application.cli import main
-from ddg_oracle.application.compare import MeshInput, compare_mesh
+from ddg_oracle.application.compare import compare_mesh
+from ddg_oracle.application.meshes import MeshInput
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.conventions import (PRESETS, VOCABULARY, barycentric_areas,

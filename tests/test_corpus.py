@@ -22,7 +22,7 @@ import pytest
 
 from ddg_oracle.application import corpus
 from ddg_oracle.application.cli import main
-from ddg_oracle.application.compare import load, load_all, resolve
+from ddg_oracle.application.meshes import load, load_all, resolve
 from ddg_oracle.application.corpus import CorpusError, FETCH_COMMAND
 from ddg_oracle.application.meshfiles import MeshFileError
 

@@ -520,7 +520,8 @@ def test_compare_accepts_either_answer_on_an_exact_tie():
     differs on an exact tie DIFFERS: thousands per CAD mesh of the CGAL corpus (squares
     split by a diagonal) for libigl and MeshLib, which decide ties in float.  The property
     D4.4 and the test vectors always accepted either answer there."""
-    from ddg_oracle.application.compare import MeshInput, compare_mesh
+    from ddg_oracle.application.compare import compare_mesh
+    from ddg_oracle.application.meshes import MeshInput
     from ddg_oracle.reference import surfaces
     g = surfaces.grid(3, 2)                        # every diagonal an exact tie
     V = [[float(x) for x in p] for p in g.positions]
@@ -546,7 +547,8 @@ def test_a_quantity_without_an_exact_value_on_a_mesh_is_not_applicable_and_the_r
     """survey stopped with exit 2 at cgal:corner_poly.off (a folded edge: no dihedral angle,
     no mean curvature), dropping every mesh after it: compare now says the quantity has
     no value there and compares the others."""
-    from ddg_oracle.application.compare import MeshInput, compare_mesh
+    from ddg_oracle.application.compare import compare_mesh
+    from ddg_oracle.application.meshes import MeshInput
     V = [[0, 0, 0], [1, 0, 0], [0.25, 1, 0], [0.5, 0.5, 0]]     # face 1 folded onto face 0
     mesh = MeshInput("folded", V, [[0, 1, 2], [1, 0, 3]])
     rows = {c.quantity: c for c in compare_mesh(mesh, [ZeroMeanCurvature()],
@@ -561,7 +563,7 @@ def _far_mesh():
     """A closed float64 mesh far from the origin relative to its size (an icosahedron of
     radius 1 moved by 3000 with float64 jitter): float32 holds none of its coordinates, and
     their rounding alone moves its angles by thousands of float32 ulps."""
-    from ddg_oracle.application.compare import MeshInput
+    from ddg_oracle.application.meshes import MeshInput
     from ddg_oracle.reference import surfaces
     s = surfaces.icosahedron()
     rng = np.random.default_rng(7)
@@ -576,7 +578,8 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
     (against the exact values of the float32-rounded coordinates: 1e-7).  An honest
     float32 implementation now agrees; its float64 twin is compared on the mesh as given."""
     from tests.honest_panel import Atan2Cross, Atan2Cross32
-    from ddg_oracle.application.compare import as_read_by, compare_mesh
+    from ddg_oracle.application.compare import compare_mesh
+    from ddg_oracle.application.meshes import as_read_by
     mesh = _far_mesh()
     assert as_read_by(mesh, 2.0 ** -23) is not mesh and as_read_by(mesh, 2.0 ** -52) is mesh
     from dataclasses import replace
