@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ..reference import delaunay, laplacian
-from ..reference.combinatorics import Triangulation, next_corner
+from ..reference.combinatorics import Triangulation, next_corner, opposite_halfedge
 from ..reference.exact import rounded_sum
 from ..reference.polyhedral import PolyhedralSurface
 
@@ -179,7 +179,7 @@ class ReferenceImplementation:
         m = self._s(V, F).metric()
         t = m.triangulation
         flags = memo.of(_delaunay_flags, m)        # once per edge, not per side
-        return np.array([[flags[t.edge_of(3 * f + next_corner(c))] for c in range(3)]
+        return np.array([[flags[t.edge_of(opposite_halfedge(f, c))] for c in range(3)]
                          for f in range(t.n_faces)], dtype=bool)
 
     def intrinsic_delaunay_laplacian(self, V, F):

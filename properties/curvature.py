@@ -26,6 +26,7 @@ from ..reference import curvature as ref
 from ..reference import surfaces
 from ..reference.combinatorics import Triangulation
 from ..reference.exact import exact_sum
+from ..reference.linear import cross, det3, dot, sub
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -123,7 +124,7 @@ def vertex_stars(draw, kind: str | None = None):
             half.append(math.pi * float(acc) / total)
             acc += g
         base = [(*circle_point(a), Fraction(z)) for a, z in zip(half, heights)]
-        if _dot3(base[0], _cross3(base[1], base[2])) == 0:
+        if det3(base[0], base[1], base[2]) == 0:
             # coplanar: lift the third; its foot is off the line of the first two, so det != 0
             base[2] = (*base[2][:2], base[2][2] + 1)
             heights[2] += 1
@@ -589,33 +590,21 @@ def convex_hull_surface(points) -> PolyhedralSurface | None:
     faces = []
     for s in hull.simplices:
         a, b, c = (pts[int(i)] for i in s)
-        n = _cross3(_sub3(b, a), _sub3(c, a))
-        side = _dot3(n, _sub3(centre, a))
+        n = cross(sub(b, a), sub(c, a))
+        side = dot(n, sub(centre, a))
         if side == 0:
             return None
         face = [index[int(i)] for i in s]
         if side > 0:
             face[1], face[2] = face[2], face[1]
             n = tuple(-x for x in n)
-        if any(_dot3(n, _sub3(p, a)) > 0 for p in pts):
+        if any(dot(n, sub(p, a)) > 0 for p in pts):
             return None
         faces.append(face)
     try:
         return PolyhedralSurface(Triangulation.from_faces(faces), [pts[v] for v in used])
     except Exception:
         return None
-
-
-def _sub3(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _dot3(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _cross3(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 @st.composite

@@ -61,7 +61,7 @@ from .precision import representable
 from ..protocol.methods import eps
 from .registry import PropertyFailure, TieDisagreement, faces_text, prop, quantity
 from ..reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
-                                                opposite_corner, prev_corner)
+                                                opposite_corner, opposite_halfedge, prev_corner)
 
 
 # --- the exact Delaunay operator on a case, with its error model ---------------------------------
@@ -427,7 +427,7 @@ def locally_delaunay_edges(impl, case: Example):
     tie = None
     for f in range(t.n_faces):
         for c in range(3):
-            h = 3 * f + next_corner(c)                 # the halfedge opposite corner c
+            h = opposite_halfedge(f, c)
             e = t.edge_of(h)
             want = is_delaunay_edge(X.metric, e)
             if bool(got[f, c]) == want:
@@ -1115,7 +1115,7 @@ def delaunay_ties(example: Example, want=None) -> np.ndarray:
     for e in range(t.n_edges):
         s, bound = cot_sum_with_bound(X, e)
         tie[e] = abs(s) <= bound
-    return np.array([[tie[t.edge_of(3 * f + next_corner(c))] for c in range(3)]
+    return np.array([[tie[t.edge_of(opposite_halfedge(f, c))] for c in range(3)]
                      for f in range(t.n_faces)], dtype=bool).reshape(t.n_faces, 3)
 
 

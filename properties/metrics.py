@@ -22,7 +22,7 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
-from ..reference.combinatorics import Triangulation, next_corner
+from ..reference.combinatorics import Triangulation, halfedge, next_corner
 from ..reference.intrinsic import flip, is_flippable
 from ..reference.metric import PiecewiseFlatSurface
 from ..reference.polyhedral import PolyhedralSurface
@@ -57,7 +57,7 @@ def flat_torus(m: int, n: int, u=(1, 0), v=(0, 1)) -> PiecewiseFlatSurface:
             (a, b), (x, y) = p[c], p[next_corner(c)]
             dx, dy = x - a, y - b
             w = (dx * u[0] + dy * v[0], dx * u[1] + dy * v[1])
-            sq[t.edge_of(3 * f + c)] = w[0] ** 2 + w[1] ** 2
+            sq[t.edge_of(halfedge(f, c))] = w[0] ** 2 + w[1] ** 2
     return PiecewiseFlatSurface(t, sq, [area] * t.n_faces)
 
 

@@ -13,6 +13,7 @@ from fractions import Fraction
 
 from hypothesis import strategies as st
 
+from ..reference.combinatorics import halfedge
 from ..reference.planar import orientation
 
 from .precision import representable
@@ -162,7 +163,7 @@ def planar_triangulations(draw, max_points: int = 12):
     on_hull = True
     if t.n_faces > 1 and draw(st.booleans()):
         f = draw(st.integers(0, t.n_faces - 1))
-        if any(t.is_boundary_edge(t.edge_of(3 * f + c)) for c in range(3)):
+        if any(t.is_boundary_edge(t.edge_of(halfedge(f, c))) for c in range(3)):
             try:
                 t = t.remove_face(f)
                 on_hull = False

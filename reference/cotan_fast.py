@@ -145,6 +145,7 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     t = m.triangulation
     sq, eo = m.squared_lengths, t.edge_of
     left_out = {f for f in range(t.n_faces)
+                # inline halfedge(f, c): hot
                 if not all(isinstance(sq[eo(3 * f + k)], Fraction) for k in range(3))}
     part = _laplacian(m, lengths_data(m, left_out), left_out)
     rows = {i: dict(r) for i, r in part._rows.items()}
@@ -152,6 +153,7 @@ def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     for f in sorted(left_out):
         c0, c1, c2 = m.face_cots(f)
         # halfedge 3f + k is opposite corner k + 2 (mod 3); its edge gets half that cotangent
+        # inline halfedge(f, c): hot
         for h, half in ((3 * f, c2 / 2), (3 * f + 1, c0 / 2), (3 * f + 2, c1 / 2)):
             i, j = t.tail(h), t.head(h)
             if i == j or not half:
@@ -181,7 +183,7 @@ def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:
     for f, (a, b, c) in enumerate(faces):
         if f in left_out:
             continue
-        n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]
+        n2, n0, n1 = N[3 * f], N[3 * f + 1], N[3 * f + 2]  # inline halfedge(f, c): hot
         if a != b and b != c and a != c:
             # corner a: halfedges a->b (opposite corner 2) and c->a (opposite corner 1)
             p = pos[a]

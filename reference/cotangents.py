@@ -371,6 +371,7 @@ def lengths_data(m: PiecewiseFlatSurface, left_out=()) -> FaceData:
             per_face.append((1, 1, 1))
             S.append(1)
             continue
+        # inline halfedge(f, c): hot
         l0, l1, l2 = sq[eo(3 * f)], sq[eo(3 * f + 1)], sq[eo(3 * f + 2)]
         D = lcm(l0.denominator, l1.denominator, l2.denominator)
         per_face.append(tuple(x.numerator * (D // x.denominator) for x in (l0, l1, l2)))
@@ -596,5 +597,6 @@ def face_cotangents(surface) -> list[tuple]:
     """
     fd = face_data(surface)
     N = fd.N
+    # inline halfedge(f, c): hot
     return [tuple(fd.value((f, 2 * N[3 * f + next_corner(c)])) for c in range(3))
             for f in range(len(fd.G))]

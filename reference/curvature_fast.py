@@ -93,7 +93,7 @@ def corner_angles_fast(surface) -> list[tuple[Angle, Angle, Angle]]:
     out = []
     for f in range(len(fd.G)):
         special = _special(residue[f])
-        k = 3 * f
+        k = 3 * f  # inline halfedge(f, c): hot
         # corners 0, 1, 2 are opposite the halfedges 3f + 1, 3f + 2, 3f
         out.append(tuple(corner_angle(value((f, n))) if special or not n
                          else Angle._raw({lazy((f, n)): 1}, _ZERO)
@@ -112,7 +112,7 @@ def _angle_sums(surface) -> list[Angle]:
     pis = [_ZERO] * t.n_vertices
     for f, face in enumerate(t.faces):
         special = _special(residue[f])
-        k = 3 * f
+        k = 3 * f  # inline halfedge(f, c): hot
         # corners 0, 1, 2 with the halfedges opposite them, 3f + 1, 3f + 2, 3f
         # (opposite_halfedge(f, c), written out: this loop runs over every corner)
         for v, h in zip(face, (k + 1, k + 2, k)):

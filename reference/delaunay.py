@@ -39,7 +39,7 @@ from .exact import sign
 from .metric import PiecewiseFlatSurface
 from .exact.intervals import Interval
 from .exact.surds import Surd, exact_sum, simplest
-from .combinatorics import corner_of, face_of
+from .combinatorics import corner_of, face_of, halfedge
 
 __all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_delaunay",
            "non_delaunay_edges",
@@ -273,7 +273,7 @@ class FlipRecord:
 
 
 def _edges_of_face(tri, f: int):
-    return [tri.edge_of(3 * f + c) for c in range(3)]
+    return [tri.edge_of(halfedge(f, c)) for c in range(3)]
 
 
 def flip_to_delaunay(surface, max_flips: int | None = None):

@@ -354,7 +354,7 @@ class IntrinsicTriangulation:
     def face_squared_lengths(self, f: int):
         """Squared lengths of halfedges 3f, 3f+1, 3f+2 (opposite corners 2, 0, 1)."""
         eid, sq = self.triangulation.eid, self.squared_lengths
-        return sq[eid[3 * f]], sq[eid[3 * f + 1]], sq[eid[3 * f + 2]]
+        return sq[eid[3 * f]], sq[eid[3 * f + 1]], sq[eid[3 * f + 2]]  # inline halfedge(f, c): hot
 
     def area(self, f: int):
         return self.areas[f]

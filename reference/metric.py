@@ -21,7 +21,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Protocol, Sequence, runtime_checkable
 
-from .combinatorics import HalfedgeMesh, Triangulation
+from .combinatorics import HalfedgeMesh, Triangulation, halfedge
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
 from .exact.rationals import points_on_common_denominator, shared_denominator
@@ -159,7 +159,7 @@ class PiecewiseFlatSurface:
         """Squared lengths of halfedges 3f, 3f+1, 3f+2 (opposite corners 2, 0, 1)."""
         e = self.triangulation.edge_of
         sq = self.squared_lengths
-        return sq[e(3 * f)], sq[e(3 * f + 1)], sq[e(3 * f + 2)]
+        return sq[e(3 * f)], sq[e(3 * f + 1)], sq[e(3 * f + 2)]  # inline halfedge(f, c): hot
 
     def area(self, f: int) -> Surd:
         """Area of face f (exact)."""
@@ -177,7 +177,7 @@ class PiecewiseFlatSurface:
         """
         if self._cots is None:
             self._cots = self._all_cots()
-        return self._cots[3 * f + c]
+        return self._cots[3 * f + c]  # inline halfedge(f, c): hot
 
     def corner_angle(self, f: int, c: int) -> Angle:
         """The angle at corner c of face f, an exact angle in (0, pi)."""
@@ -187,7 +187,7 @@ class PiecewiseFlatSurface:
         """The cotangents of corners 0, 1, 2 of face f (as :meth:`corner_cot`), computed for
         this face alone unless every face's are known already."""
         if self._cots is not None:
-            return tuple(self._cots[3 * f:3 * f + 3])
+            return tuple(self._cots[3 * f:3 * f + 3])  # inline halfedge(f, c): hot
         kept = self._face_cots.get(f)
         if kept is None:
             l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
@@ -296,7 +296,7 @@ def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:
     (named by the edge between them, when ``positions`` are given) or three collinear ones."""
     if positions is not None:
         for c in range(3):
-            e = t.edge_of(3 * f + c)
+            e = t.edge_of(halfedge(f, c))
             i, j = t.edge_vertices(e)
             if positions[i] == positions[j]:
                 return DegenerateFace(f"edge {e} between vertices {i} and {j} has length zero "

@@ -217,7 +217,8 @@ def test_vector_helpers_live_in_one_module():
     vectors by one of those names anywhere else is a second copy.  The exact number types
     (reference/exact/: a Surd's own subtraction, an Interval's inner product) are other
     ideas."""
-    names = {"sub", "dot", "cross", "det", "det2", "det3", "dot2", "cross2"}
+    names = {"sub", "dot", "cross", "det", "det2", "det3", "sub2", "sub3", "dot2", "dot3",
+             "cross2", "cross3", "minus", "inner", "outer"}
     copies = [f"{path.relative_to(ROOT)}:{node.lineno}: {node.name}"
               for path, _, _ in _files()
               if path != ROOT / "reference" / "linear.py" and "exact" not in path.parts
@@ -225,3 +226,19 @@ def test_vector_helpers_live_in_one_module():
               if isinstance(node, ast.FunctionDef) and node.name.lstrip("_") in names
               and len(node.args.args) == 2 and node.args.args[0].arg != "self"]
     assert copies == []
+
+
+def test_halfedge_numbers_come_from_the_combinatorics_helpers():
+    """Issue 43: ``3 f + c`` is computed by reference/combinatorics.py's helpers
+    (``halfedge``, ``opposite_halfedge``, ``face_of``, ``corner_of``); the few per-face hot
+    paths that write it out say so on the line or the line before (``inline halfedge``)."""
+    import re
+    written = []
+    for path, _, _ in _files():
+        if path == ROOT / "reference" / "combinatorics.py":
+            continue
+        lines = path.read_text(encoding="utf-8").split("\n")
+        written += [f"{path.relative_to(ROOT)}:{k + 1}" for k, line in enumerate(lines)
+                    if re.search(r"\b3 \* (f|face)\b", line.split("#")[0])
+                    and "inline halfedge" not in line + lines[k - 1]]
+    assert written == []
