@@ -470,7 +470,7 @@ def _intrinsic_expected(q, req, answer, ex, r) -> dict:
     R4.9: the values of quantity ``q``) and the total area, which any answer's (F2, l2)
     must reproduce."""
     from ..reference.exact import exact_sum
-    from ..properties.delaunay import DelaunayExact
+    from ..properties.delaunay_exact import DelaunayExact
     F2, l2 = answer
     example = ex.example()
     amp = max(DelaunayExact.of(example).amplification)   # flips' amplification
@@ -484,9 +484,9 @@ def _intrinsic_expected(q, req, answer, ex, r) -> dict:
 
 
 def _intrinsic_area_bound(l2, amp: float, e: float) -> float:
-    """A4.13's bound (:func:`ddg_oracle.properties.delaunay.total_area_bound`) on the total
+    """A4.13's bound (:func:`ddg_oracle.properties.delaunay_exact.total_area_bound`) on the total
     area recomputed from the squared lengths ``l2`` of a triangulation after flips."""
-    from ..properties.delaunay import angles_from_squared_lengths, total_area_bound
+    from ..properties.delaunay_exact import angles_from_squared_lengths, total_area_bound
     _, area = angles_from_squared_lengths(np.asarray(l2, dtype=np.float64))
     rho = np.asarray(l2).max(axis=1) / (2 * area)
     with at_machine_epsilon(e):
@@ -862,7 +862,7 @@ def _cotan_from_lengths(F2, l2, n: int):
     """The cotan Laplacian (protocol sign) of faces F2 with squared lengths l2 (column c:
     the edge opposite corner c): float64, Kahan's stable Heron as in A4.13."""
     import scipy.sparse as sp
-    from ..properties.delaunay import angles_from_squared_lengths
+    from ..properties.delaunay_exact import angles_from_squared_lengths
     ang, area = angles_from_squared_lengths(l2)
     rows, cols, vals = [], [], []
     for c in range(3):

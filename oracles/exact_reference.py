@@ -16,10 +16,9 @@ from ..reference.combinatorics import Triangulation, next_corner, opposite_halfe
 from ..reference.exact import rounded_sum
 from ..reference.polyhedral import PolyhedralSurface
 
-from ..properties import curvature as views, memo
-from ..properties.delaunay import delaunay_of
+from ..properties import memo, views
+from ..properties.delaunay_exact import delaunay_of
 from ..properties.example import surface_key
-from ..properties.harness import laplacian_view
 from ..protocol.methods import ISOLATED_VERTEX, OutsideDomain
 
 from ..protocol.arrays import Referenced
@@ -121,7 +120,7 @@ class ReferenceImplementation:
 
     # chapter 3
     def cotan_laplacian(self, V, F):
-        return Referenced(V, F).embed(laplacian_view(self._s(V, F)).copy())
+        return Referenced(V, F).embed(views.laplacian_view(self._s(V, F)).copy())
 
     def area_gradient(self, V, F):
         from ..reference.areas import area_gradient_floats
@@ -185,7 +184,7 @@ class ReferenceImplementation:
     def intrinsic_delaunay_laplacian(self, V, F):
         # delaunay.laplace_beltrami, with the flips and the matrix the properties' (once)
         d, _ = delaunay_of(self._s(V, F).metric())
-        return Referenced(V, F).embed(laplacian_view(d).copy())
+        return Referenced(V, F).embed(views.laplacian_view(d).copy())
 
     def intrinsic_delaunay_triangulation(self, V, F):
         d, _ = delaunay_of(self._s(V, F).metric())

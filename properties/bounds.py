@@ -324,7 +324,7 @@ class EntryBounds:
     """Float views of the exact cotan corners of a metric and the entry bounds ``B`` of its
     Laplacian (module docstring); ``amplification[f]`` scales the length perturbation
     of face f (1 for lengths computed from coordinates; more after float flips, see
-    :mod:`ddg_oracle.properties.delaunay`).  ``B`` and ``adjacent`` (the pairs of vertices
+    :mod:`ddg_oracle.properties.delaunay_exact`).  ``B`` and ``adjacent`` (the pairs of vertices
     joined by an edge, and each such vertex with itself) are sparse (scipy CSR): a real
     mesh's n x n arrays would not fit; ``.toarray()`` for a small case."""
 

@@ -30,6 +30,7 @@ from ..reference.linear import cross, det3, dot, sub
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
+from .views import corner_angle_views, defect_views, mean_curvature_views, turning_views
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, total_area_view, vertex_tolerances)
 from .conventions import declared, widened
@@ -148,39 +149,6 @@ def vertex_stars(draw, kind: str | None = None):
 
 
 # --- reference values and tolerances --------------------------------------------------------------
-
-
-def defect_views(surface) -> dict:
-    """{v: float(K(v))}: the correctly rounded exact angle defects (D2.2) of the interior
-    vertices of ``surface``, once per surface object (:func:`.memo.of`: the reference
-    adapter answers with these)."""
-    return memo.of(_defect_views, surface)
-
-
-def _defect_views(surface) -> dict:
-    return {v: float(k) for v, k in ref.angle_defects(surface.metric()).items()}
-
-
-def turning_views(surface) -> dict:
-    """{v: float(kappa(v))}: the correctly rounded exact turning angles (R2.4) of the
-    boundary vertices, once per surface object."""
-    return memo.of(_turning_views, surface)
-
-
-def _turning_views(surface) -> dict:
-    return {v: float(k) for v, k in ref.turning_angles(surface.metric()).items()}
-
-
-def mean_curvature_views(surface) -> dict:
-    """{(i, j): float(H(e))} (i < j) of the exact D2.3 values over the interior edges,
-    correctly rounded, once per surface object."""
-    return memo.of(_mean_curvature_views, surface)
-
-
-def _mean_curvature_views(surface) -> dict:
-    t = surface.triangulation
-    return {tuple(sorted(t.edge_vertices(e))): float(h)
-            for e, h in ref.mean_curvature(surface).items()}
 
 
 def _reference(case: Example, what: str) -> dict:
@@ -451,19 +419,6 @@ def star_kind_decides_curvature_sign(impl, star: Example):
         raise TieDisagreement("L2.4", impl, "exactly flat vertex (K = 0) given a nonzero K "
                               "within the float bound", mesh=star.mesh, element="vertex 0",
                               expected=0.0, observed=K, bound=tol)
-
-
-def corner_angle_views(surface) -> np.ndarray:
-    """(m, 3) float views of the exact corner angles of the piecewise flat metric of
-    ``surface`` (D2.6), once per surface object.  The metric's cotangents are functions of
-    the squared edge lengths and the face areas, and its areas are Heron's of the lengths
-    identically (``reference.metric.metric_of``): these are the angles the lengths alone
-    determine (tests/test_curvature.py checks them against a metric built from lengths)."""
-    return memo.of(_corner_angle_views, surface)
-
-
-def _corner_angle_views(surface) -> np.ndarray:
-    return np.array([[float(a) for a in face] for face in ref.corner_angles(surface.metric())])
 
 
 @prop("D2.6", "the corner angles are those of the triangles with the mesh's edge lengths "

@@ -16,7 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from ..reference.areas import area_gradient_floats
-from ..reference.laplacian import cotan_laplacian, vertex_areas_floats
+from ..reference.laplacian import vertex_areas_floats
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
@@ -24,8 +24,9 @@ from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_prod
 from .example import Example
 from ..protocol.methods import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
+from .views import exact_laplacian, laplacian_view
 
-__all__ = ["Exact", "exact_laplacian", "laplacian_view", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
+__all__ = ["Exact", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve"]
 
 
@@ -84,23 +85,6 @@ def record(pid: str, err, bound) -> float:
 
 
 # --- the exact reference on an example ------------------------------------------------------------
-
-
-def exact_laplacian(surface):
-    """The exact cotan Laplacian (D3.1) of ``surface`` (a surface or a metric), once per
-    object (:func:`.memo.of`: the properties' reference values and the reference adapter's
-    answer on a mesh file are one computation); read-only."""
-    return memo.of(cotan_laplacian, surface)
-
-
-def laplacian_view(surface):
-    """The float view (scipy CSR, each entry correctly rounded) of :func:`exact_laplacian`,
-    once per object; read-only (copy before changing it)."""
-    return memo.of(_laplacian_view, surface)
-
-
-def _laplacian_view(surface):
-    return exact_laplacian(surface).to_scipy()
 
 
 class Exact:

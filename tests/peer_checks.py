@@ -21,7 +21,7 @@ import numpy as np
 from ddg_oracle.properties.bounds import (area_tolerance, corner_tolerances,
                                           edge_mean_curvature_tolerances, vertex_tolerances)
 from ddg_oracle.properties.strategies import floated
-from ddg_oracle.properties.delaunay import DelaunayExact
+from ddg_oracle.properties.delaunay_exact import DelaunayExact
 from ddg_oracle.properties.harness import Exact
 from ddg_oracle.properties.strategies import Example
 from ddg_oracle.reference import surfaces

@@ -27,8 +27,7 @@ from ddg_oracle.properties.bounds import (K_COT, _conditioning, corner_tolerance
                                           gamma, heron_condition, heron_product,
                                           total_area_view,
                                           vertex_tolerances)
-from ddg_oracle.properties.curvature import (corner_angle_views, defect_views,
-                                             mean_curvature_views)
+from ddg_oracle.properties.views import corner_angle_views, defect_views, mean_curvature_views
 from ddg_oracle.properties import variants
 from ddg_oracle.properties.example import Example
 from ddg_oracle.properties.precision import FORMATS
@@ -465,8 +464,8 @@ def test_total_area_bound_covers_the_reference_on_flips_into_caps():
     :func:`~ddg_oracle.properties.delaunay.total_area_bound`, which the bound of before
     (K_COT eps rho A amp per face) misses by orders of magnitude."""
     from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    from ddg_oracle.properties.delaunay import (DelaunayExact, angles_from_squared_lengths,
-                                                total_area_bound)
+    from ddg_oracle.properties.delaunay_exact import (DelaunayExact, angles_from_squared_lengths,
+                                                      total_area_bound)
     from ddg_oracle.properties.strategies import mesh_case
     ref = ReferenceImplementation()
     rng = np.random.default_rng(11)
@@ -586,7 +585,7 @@ def test_flip_amplification_covers_float_flips_of_caps(name):
     triangles laid out, their heights from Kahan's Heron) is that ill-conditioned, and the
     intrinsic Delaunay operator's bound (the flips' amplification, _flipped_error) covers
     it, where the bound of before (the areas' error like the lengths') was short by 1,600."""
-    from ddg_oracle.properties.delaunay import DelaunayExact
+    from ddg_oracle.properties.delaunay_exact import DelaunayExact
     fmt, dtype, e, panel = PRECISIONS[name]
     base = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
     F = np.array([[0, 2, 6], [0, 5, 2], [0, 4, 3], [0, 3, 5], [1, 4, 2], [1, 2, 5],

@@ -21,6 +21,7 @@ from hypothesis import HealthCheck, Phase, given, settings, strategies as st
 
 from ddg_oracle.properties import PROPERTIES, triangulated_surfaces
 from ddg_oracle.properties import curvature as P
+from ddg_oracle.properties.views import corner_angle_views
 from ddg_oracle.properties.variants import circle_point
 from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, PASSED, TIE, run_property
@@ -136,7 +137,7 @@ def test_D2_6_corner_angle_views_are_those_of_the_lengths_alone(case):
     s = case.surface
     flat = PiecewiseFlatSurface(s.triangulation, s.metric().squared_lengths)
     assert C.corner_angles(flat) == C.corner_angles(s.metric())
-    assert P.corner_angle_views(s).tolist() == [[float(a) for a in f] for f in C.corner_angles(flat)]
+    assert corner_angle_views(s).tolist() == [[float(a) for a in f] for f in C.corner_angles(flat)]
 
 
 def test_T2_6_gauss_bonnet_decision_is_not_vacuous():

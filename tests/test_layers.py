@@ -242,3 +242,29 @@ def test_halfedge_numbers_come_from_the_combinatorics_helpers():
                     if re.search(r"\b3 \* (f|face)\b", line.split("#")[0])
                     and "inline halfedge" not in line + lines[k - 1]]
     assert written == []
+
+
+def test_expected_values_are_not_read_from_check_modules():
+    """Issue 43, point 3: the float views and exact expected values live in modules of
+    their own (properties/views.py, harness.py, delaunay_exact.py); the reference adapter,
+    the protocol and every module of properties but the chapter check modules import no
+    check module (the registry loads them by name)."""
+    from ddg_oracle.properties.registry import PROPERTY_MODULES
+    checks = set(PROPERTY_MODULES)
+    readers = [p for p in sorted((ROOT / "properties").glob("*.py")) if p.stem not in checks]
+    readers += sorted((ROOT / "oracles").glob("*.py")) + sorted((ROOT / "protocol").glob("*.py"))
+    found = []
+    for path in readers:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom):
+                # the module's name below ddg_oracle: the folder is the layer's package
+                base = [path.parent.name][:max(0, 2 - node.level)] if node.level else []
+                target = base + [m for m in (node.module or "").split(".") if m]
+                if target[:1] == ["ddg_oracle"]:
+                    target = target[1:]
+                names = {a.name for a in node.names}
+                if target[:1] == ["properties"] and (
+                        (len(target) > 1 and target[1] in checks) or
+                        (len(target) == 1 and names & checks)):
+                    found.append(f"{path.relative_to(ROOT)}:{node.lineno}")
+    assert found == []

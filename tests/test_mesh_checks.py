@@ -102,7 +102,7 @@ def test_the_intrinsic_delaunay_laplacian_is_a_mesh_file_check():
     # weights without their 1/2 fail (the check was not run on mesh files before)
     V, F = _bumpy_grid(10, seed=5)
     ex = MeshExamples(MeshInput("small bumpy grid", V.tolist(), F.tolist()))
-    from ddg_oracle.properties.delaunay import DelaunayExact
+    from ddg_oracle.properties.delaunay_exact import DelaunayExact
     assert DelaunayExact.of(ex.example()).log          # not Delaunay as given
     r, = run_mesh_properties(ex, Libigl(), only={"D4.8 / R4.9"})
     assert r.status == PASSED, (r.note, r.error)

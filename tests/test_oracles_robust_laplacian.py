@@ -19,7 +19,7 @@ rl = pytest.importorskip("robust_laplacian")
 from ddg_oracle.protocol.arrays import boundary_edges  # noqa: E402
 from ddg_oracle.oracles.robust_laplacian import RobustLaplacian  # noqa: E402
 from ddg_oracle.properties import PROPERTIES  # noqa: E402
-from ddg_oracle.properties.delaunay import DelaunayExact, flip_amplification  # noqa: E402
+from ddg_oracle.properties.delaunay_exact import DelaunayExact, flip_amplification  # noqa: E402
 from ddg_oracle.properties.bounds import entry_bounds  # noqa: E402
 from ddg_oracle.protocol.budget import Budget  # noqa: E402
 from ddg_oracle.properties.harness import Exact  # noqa: E402

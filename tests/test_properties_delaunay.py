@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-from ddg_oracle.properties.delaunay import flip_amplification
+from ddg_oracle.properties.delaunay_exact import flip_amplification
 from tests.property_checks import assert_caught, assert_passes_well_inside
 from ddg_oracle.properties.registry import PROPERTIES, all_properties
 from ddg_oracle.reference import surfaces
@@ -109,7 +109,8 @@ def test_other_diagonals_of_cocircular_cells_are_within_the_D4_8_bound():
     # reference keeps; both are Delaunay (R4.9), the weights there are exactly 0 either way
     import numpy as np
     from ddg_oracle.oracles.libigl import Libigl
-    from ddg_oracle.properties.delaunay import DelaunayExact, laplace_beltrami_operator
+    from ddg_oracle.properties.delaunay import laplace_beltrami_operator
+    from ddg_oracle.properties.delaunay_exact import DelaunayExact
     from ddg_oracle.properties.strategies import Example
     s = surfaces.torus(5, 4)
     case = Example.of_mesh(tuple(tuple(p) for p in s.positions), tuple(tuple(f) for f in s.faces), "torus")

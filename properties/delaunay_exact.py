@@ -1,0 +1,292 @@
+"""The exact intrinsic Delaunay operator on an example (A4.13, D4.8 / R4.9) with its float
+view, entry bounds and the error model of float flips; the total-area bound of a
+triangulation given by squared lengths.  Expected values and bounds only: the chapter-4
+checks are :mod:`.delaunay`'s.
+
+Error model, derived and stated.  For the input triangulation: the corner bound
+``beta = K_COT eps (1 + cot^2) rho`` of :mod:`ddg_oracle.properties.bounds`.  A float
+implementation that flips edges computes each new squared diagonal from the
+five squared lengths and two areas of its quadrilateral, in the reference's
+notation ``b + c - (e+b-a)(e+c-d)/(2e) + 8 A1 A2 / e``; its error is at most
+theta times the summed magnitudes of the polynomial terms, theta the largest
+relative error of its inputs (+ a few roundings), plus the error of the areas,
+each from its lengths off by min(2 theta W, sqrt(2 theta P)) (W = sum l |cot| / 4:
+the area itself without an obtuse angle, about A / (alpha gamma) on a cap of small
+angles alpha, gamma;
+:func:`_flipped_error`).
+Replaying the reference's flip log gives each face of the Delaunay
+triangulation an amplification ``1 + sum of those chains`` that multiplies its
+corner bounds (:func:`flip_amplification`).  The implementation's own flip
+path may differ from the reference's at ties; there the two paths cross
+cocircular configurations, where the operator is continuous, so the model
+stays first-order right.  Each check reports its error in units of the bound.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+
+from ..reference.delaunay import flip_to_delaunay
+from ..reference.intrinsic import IntrinsicTriangulation
+
+from . import memo
+from .bounds import entry_bounds, gamma, heron_product
+from .views import exact_laplacian, laplacian_view
+from .harness import Exact, entries_at
+from .example import Example
+from ..protocol.methods import eps
+from ..reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
+                                       opposite_corner, prev_corner)
+
+
+# --- the exact Delaunay operator on a case, with its error model ---------------------------------
+
+
+def _magnitude(m, e: int):
+    """The closed flip formula for edge ``e`` of metric ``m`` (module doc), as floats: (Mp,
+    (A1, A2), (P1, P2), e2, (f, g)) with Mp the summed magnitudes of its polynomial terms,
+    A1, A2 the two faces' areas, P1, P2 their :func:`~.bounds.heron_product`, e2 the
+    squared length of the edge."""
+    t = m.triangulation
+    h, tw = t.edge_halfedges(e)
+    f, g = face_of(h), face_of(tw)
+    Lf, Lg = m.face_squared_lengths(f), m.face_squared_lengths(g)
+    e2, a, b = (float(x) for x in cyclic(Lf, corner_of(h)))
+    _, c, d = (float(x) for x in cyclic(Lg, corner_of(tw)))
+    A1, A2 = float(m.areas[f]), float(m.areas[g])
+    P1, P2 = (float(heron_product([[float(x) for x in L]])[0]) for L in (Lf, Lg))
+    Mp = b + c + abs((e2 + b - a) * (e2 + c - d)) / (2 * e2)
+    return Mp, (A1, A2), (P1, P2), e2, (f, g)
+
+
+def _flipped_error(Mp, areas, products, e2, theta: float) -> float:
+    """Bound on |new~ - new| for the squared diagonal new = b + c - (e+b-a)(e+c-d)/(2e) +
+    8 A1 A2 / e computed from squared lengths with relative errors up to ``theta`` (the
+    formula's own roundings included): theta Mp for the polynomial terms (first order), and
+    for the product of the areas 8 / e (dA1 A2 + A1 dA2 + dA1 dA2), each area from its
+    lengths off by dA <= min(2 theta W, sqrt(2 theta P)) (W = P / A;
+    :func:`~.bounds.face_area_tolerances`' derivation: |A~ - A| <= |A~^2 - A^2| / A with
+    |16 A~^2 - 16 A^2| <= 32 theta P).  On a face without an obtuse angle W = A and the
+    area term is about 32 theta A1 A2 / e (the magnitude 8 A1 A2 / e of before, times
+    4); on a cap (small angles alpha, gamma) W ~ A / (alpha gamma): a float flip of a cap's
+    long edge is
+    that ill-conditioned (the test vectors' 2**-30 cap: a layout flip with Heron areas off
+    by 2.8e-10 relative, against the bound of before, 4.9e-13)."""
+    (A1, A2), (P1, P2) = areas, products
+
+    def dA(A, P):
+        return min(2 * theta * P / A if A > 0 else math.inf, math.sqrt(2 * theta * P))
+    d1, d2 = dA(A1, P1), dA(A2, P2)
+    return theta * Mp + 8 * (d1 * A2 + A1 * d2 + d1 * d2) / e2
+
+
+def flip_amplification(metric, log):
+    """Replay a flip log of :func:`flip_to_delaunay`; return ``(delaunay, amplification)``
+    with ``amplification[f]`` the factor of face f's length perturbation (module doc):
+    1 + the largest relative error, in units of eps, of its squared lengths, each flipped
+    one's propagated by :func:`_flipped_error` from its inputs' (+ 4 roundings)."""
+    # in place (O(1) per flip): immutable flips copy the whole surface per flip, 2,065
+    # times on bunny10k
+    m = IntrinsicTriangulation(metric)
+    t = m.triangulation                          # a live view: changes with every flip
+    rel = [0.0] * t.n_edges                      # relative error of each squared length, in eps
+    for rec in log:
+        e = rec.edge
+        Mp, areas, products, e2, (f, g) = _magnitude(m, e)
+        inputs = {t.edge_of(halfedge(x, c)) for x in (f, g) for c in range(3)}
+        m.flip(e)
+        theta = (max(rel[x] for x in inputs) + 4) * eps()
+        rel[e] = _flipped_error(Mp, areas, products, e2, theta) / (
+            float(m.squared_lengths[e]) * eps())
+    amp = [1 + max(rel[t.edge_of(halfedge(f, c))] for c in range(3)) for f in range(t.n_faces)]
+    return m.surface(), amp
+
+
+def delaunay_of(metric):
+    """``flip_to_delaunay(metric)`` (A4.13: the Delaunay metric and the flip log), once per
+    metric object (:func:`.memo.of`: the property's reference values and the reference
+    adapter's answer on a mesh file are one run); read-only."""
+    return memo.of(flip_to_delaunay, metric)
+
+
+class DelaunayExact:
+    """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds:
+    sparse (``Ls``, ``Bs``, ``interior_s``: scipy CSR on the case's vertices, any mesh size),
+    dense arrays ``Lf``, ``B``, ``interior_pairs`` built only if a check of a small example
+    asks for them."""
+
+    of = classmethod(Exact.of.__func__)      # once per case content, read-only (.memo)
+
+    def __init__(self, case: Example):
+        import scipy.sparse as sp
+        self.X = X = Exact.of(case)
+        self.delaunay, self.log = delaunay_of(X.metric)
+        d, self.amplification = flip_amplification(X.metric, self.log)
+        assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
+        t = self.delaunay.triangulation
+        k = t.n_vertices
+        self.L = exact_laplacian(self.delaunay)
+        self.bounds = entry_bounds(self.delaunay, k, self.amplification)
+        self.Ls = X.embed(laplacian_view(self.delaunay).copy())
+        self.Bs = X.embed(self._widen_on_cocircular_cells(self.bounds.B))
+        # P4.10 / R4.9 speak of interior edges: a boundary edge opposite an obtuse angle has
+        # the weight 1/2 cot < 0 in every triangulation (docs/errata.md, SC-1)
+        pairs = {False: set(), True: set()}
+        for e in range(t.n_edges):
+            i, j = t.edge_vertices(e)
+            if i != j:                              # a loop (after flips) has no off-diagonal
+                pairs[t.is_boundary_edge(e)].update(((i, j), (j, i)))
+        inner = sorted(pairs[False] - pairs[True])
+        rows = np.array([p[0] for p in inner], dtype=np.int64)
+        cols = np.array([p[1] for p in inner], dtype=np.int64)
+        self.interior_s = X.embed(sp.csr_matrix((np.ones(len(inner), dtype=bool), (rows, cols)),
+                                                shape=(k, k)))
+
+    @cached_property
+    def Lf(self) -> np.ndarray:
+        return self.Ls.toarray()
+
+    @cached_property
+    def B(self) -> np.ndarray:
+        return self.Bs.toarray()
+
+    @cached_property
+    def interior_pairs(self) -> np.ndarray:
+        return self.interior_s.toarray()
+
+    def _weight_floats(self) -> dict:
+        """{edge: float of its exact cotan weight} of the Delaunay triangulation, correctly
+        rounded: minus the float view of L's entry where one edge joins its two vertices
+        (the entry is that weight), else from the exact corner cotangents."""
+        t, m = self.delaunay.triangulation, self.delaunay
+        ends = [t.edge_vertices(e) for e in range(t.n_edges)]
+        count: dict = {}
+        for i, j in ends:
+            key = (min(i, j), max(i, j))
+            count[key] = count.get(key, 0) + 1
+        L = self.L
+        out = {}
+        for e, (i, j) in enumerate(ends):
+            if i != j and count[(min(i, j), max(i, j))] == 1:
+                out[e] = -float(L[i, j])
+            else:                               # a multi-edge or a loop: the edge's own
+                w = 0
+                for h in t.edge_halfedges(e):
+                    if h >= 0:
+                        w = w + m.face_cots(face_of(h))[opposite_corner(h)] / 2
+                out[e] = float(w)
+        return out
+
+    def _widen_on_cocircular_cells(self, B):
+        """R4.9: on a cell of cocircular triangles (joined across edges of weight exactly 0)
+        every choice of diagonals is Delaunay and gives the same operator, so an
+        implementation that chose other diagonals has weights exactly 0 (in floats: about
+        eps) at vertex pairs that are no edge here, where the bound would be 0.  Those
+        pairs get the largest bound of the cell's own zero-weight edges: the same corners'
+        conditioning, a weight that is 0 either way.  Weights within their bound of 0 count
+        as 0: there rounding decides which diagonal is Delaunay.  ``B``: the entry bounds
+        (sparse, the Delaunay triangulation's vertices); returns them widened."""
+        import scipy.sparse as sp
+        t = self.delaunay.triangulation
+        w = self._weight_floats()
+        root = list(range(t.n_faces))
+
+        def find(f):
+            while root[f] != f:
+                root[f] = root[root[f]]
+                f = root[f]
+            return f
+
+        # exactly 0, or within the entry's float bound of 0 (the input's floats made an
+        # exactly cocircular quadrilateral nearly so: rounding may choose either diagonal)
+        inner = [e for e in range(t.n_edges) if not t.is_boundary_edge(e)]
+        if not inner:
+            return B
+        ends = np.array([t.edge_vertices(e) for e in inner], dtype=np.int64).reshape(-1, 2)
+        b = entries_at(B, ends[:, 0], ends[:, 1])
+        zero = [(e, float(be)) for e, be in zip(inner, b) if abs(w[e]) <= be]
+        for e, _ in zero:
+            h, tw = t.edge_halfedges(e)
+            root[find(face_of(h))] = find(face_of(tw))
+        bound: dict[int, float] = {}
+        for e, be in zero:
+            r = find(face_of(t.edge_halfedges(e)[0]))
+            bound[r] = max(bound.get(r, 0.0), be)
+        cells: dict[int, set] = {}
+        for f in range(t.n_faces):
+            if find(f) in bound:
+                cells.setdefault(find(f), set()).update(t.faces[f])
+        rows, cols, vals = [], [], []
+        for r, vs in cells.items():
+            vs = sorted(vs)
+            I = np.repeat(vs, len(vs))
+            J = np.tile(vs, len(vs))
+            off = I != J
+            I, J = I[off], J[off]
+            have = entries_at(B, I, J)
+            new = have == 0
+            rows.extend(I[new])
+            cols.extend(J[new])
+            vals.extend([bound[r]] * int(new.sum()))
+        if not rows:
+            return B
+        return sp.csr_matrix(B + sp.csr_matrix((vals, (rows, cols)), shape=B.shape))
+
+
+def angles_from_squared_lengths(l2):
+    """Corner angles (law of cosines in atan2 form, stable) and doubled areas per face."""
+    # Kahan's stable Heron (lengths sorted a >= b >= c, parentheses as written): the
+    # textbook s(s-a)(s-b)(s-c) loses about rho digits on a cap, more than the bound allows
+    a, b, c = np.sort(np.sqrt(l2), axis=1)[:, ::-1].T
+    out = np.zeros_like(l2)
+    area = 0.25 * np.sqrt(np.maximum((a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c)),
+                                     0))
+    for c in range(3):
+        o, p, q = l2[:, c], l2[:, next_corner(c)], l2[:, prev_corner(c)]
+        out[:, c] = np.arctan2(4 * area, p + q - o)
+    return out, area
+
+
+#: relative error, in units of eps, of a squared length computed from float coordinates
+#: (three differences, three squares, two additions: gamma_5(u) = 2.5 eps; squaring a
+#: length computed with a square root: 3.5 eps), rounded up: the base the flips' chain
+#: amplification ``amp`` multiplies (:func:`flip_amplification`)
+LENGTH_ERROR = 4.0
+
+
+def total_area_bound(area, rho, amp: float, l2=None) -> float:
+    """Bound on |sum of the face areas recomputed from a triangulation's float squared
+    lengths - its exact total area| (A4.13).
+
+    Heron: 16 A^2 = P(l) = 2 (l_a l_b + l_b l_c + l_c l_a) - (l_a^2 + l_b^2 + l_c^2), and
+    dP/dl_c = 2 n_c with n_c = l_a + l_b - l_c (= 4 A cot_c).  Squared lengths with relative
+    errors up to theta = (LENGTH_ERROR amp + 1) eps (the implementation's, after its
+    flips, and the square roots this check takes of them) move 16 A^2 by at most D = 2
+    theta sum_c l_c |n_c| + theta^2 (sum l)^2 (P is quadratic; the sum as
+    :func:`~.bounds.heron_product`, which covers the float cancellation in n_c).  Then
+    |A~ - A| = |A~^2 - A^2| / (A~ + A) <= min(D / (16 A~), sqrt(D / 16)), A~ the computed
+    area (both from the float lengths alone: no conditioning factor to estimate).  To
+    first order D / (16 A) = 2 theta W_f, W_f = sum_c l_c |cot_c| / 4
+    (:func:`~.bounds.heron_condition`): W_f = A on a face without an obtuse angle, but
+    about A / (alpha gamma) on a cap (small angles alpha, gamma; A rho^2 / 4 when they are
+    equal), where a bound linear in rho (K_COT eps rho A, before issue 40) is short: the
+    flip of a planar quadrilateral into two thin triangles with an angle near pi was off
+    by 2.1e-12 against 1.55e-13.  Kahan's Heron in float64 adds at most 7 units of 2**-53 of A~ (3.5 eps A~),
+    and the sum gamma_m sum A~.  ``l2`` (m, 3): the squared lengths; without them (an
+    older caller) W_f <= 3 l_max rho / 4 = 1.5 A rho^2 stands in."""
+    area = np.asarray(area, dtype=np.float64)
+    theta = (LENGTH_ERROR * amp + 1) * eps()          # + 1: the check's own square roots
+    if l2 is None:
+        per_face = 2 * theta * 1.5 * area * np.asarray(rho, dtype=np.float64) ** 2
+    else:
+        l2 = np.asarray(l2, dtype=np.float64).reshape(-1, 3)
+        total = l2.sum(axis=1)
+        D16 = 2 * theta * heron_product(l2) + theta * theta * total * total / 16
+        with np.errstate(divide="ignore", invalid="ignore"):
+            first = np.where(area > 0, D16 / area, np.inf)
+        per_face = np.minimum(first, np.sqrt(D16))
+    return (float(per_face.sum()) + 3.5 * eps() * float(area.sum())
+            + gamma(len(area)) * float(area.sum()))

@@ -1,0 +1,84 @@
+"""Float views of the exact reference: the correctly rounded values the checks compare
+implementations with and the reference adapter answers with, each computed once per
+surface object (:func:`.memo.of`), read-only.
+
+Corner angles (D2.6), angle defects (D2.2), turning angles (R2.4), mean curvature per
+edge (D2.3) and the cotan Laplacian (D3.1) with its exact matrix.  Exact values are
+rounded once (``float()`` of an exact number is correctly rounded); the derived bounds
+they are compared within are :mod:`.bounds`'.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..reference import curvature as ref
+from ..reference.laplacian import cotan_laplacian
+
+from . import memo
+
+__all__ = ["corner_angle_views", "defect_views", "turning_views", "mean_curvature_views",
+           "exact_laplacian", "laplacian_view"]
+
+
+def corner_angle_views(surface) -> np.ndarray:
+    """(m, 3) float views of the exact corner angles of the piecewise flat metric of
+    ``surface`` (D2.6), once per surface object.  The metric's cotangents are functions of
+    the squared edge lengths and the face areas, and its areas are Heron's of the lengths
+    identically (``reference.metric.metric_of``): these are the angles the lengths alone
+    determine (tests/test_curvature.py checks them against a metric built from lengths)."""
+    return memo.of(_corner_angle_views, surface)
+
+
+def _corner_angle_views(surface) -> np.ndarray:
+    return np.array([[float(a) for a in face] for face in ref.corner_angles(surface.metric())])
+
+
+def defect_views(surface) -> dict:
+    """{v: float(K(v))}: the correctly rounded exact angle defects (D2.2) of the interior
+    vertices of ``surface``, once per surface object (:func:`.memo.of`: the reference
+    adapter answers with these)."""
+    return memo.of(_defect_views, surface)
+
+
+def _defect_views(surface) -> dict:
+    return {v: float(k) for v, k in ref.angle_defects(surface.metric()).items()}
+
+
+def turning_views(surface) -> dict:
+    """{v: float(kappa(v))}: the correctly rounded exact turning angles (R2.4) of the
+    boundary vertices, once per surface object."""
+    return memo.of(_turning_views, surface)
+
+
+def _turning_views(surface) -> dict:
+    return {v: float(k) for v, k in ref.turning_angles(surface.metric()).items()}
+
+
+def mean_curvature_views(surface) -> dict:
+    """{(i, j): float(H(e))} (i < j) of the exact D2.3 values over the interior edges,
+    correctly rounded, once per surface object."""
+    return memo.of(_mean_curvature_views, surface)
+
+
+def _mean_curvature_views(surface) -> dict:
+    t = surface.triangulation
+    return {tuple(sorted(t.edge_vertices(e))): float(h)
+            for e, h in ref.mean_curvature(surface).items()}
+
+
+def exact_laplacian(surface):
+    """The exact cotan Laplacian (D3.1) of ``surface`` (a surface or a metric), once per
+    object (:func:`.memo.of`: the properties' reference values and the reference adapter's
+    answer on a mesh file are one computation); read-only."""
+    return memo.of(cotan_laplacian, surface)
+
+
+def laplacian_view(surface):
+    """The float view (scipy CSR, each entry correctly rounded) of :func:`exact_laplacian`,
+    once per object; read-only (copy before changing it)."""
+    return memo.of(_laplacian_view, surface)
+
+
+def _laplacian_view(surface):
+    return exact_laplacian(surface).to_scipy()
