@@ -98,51 +98,25 @@ def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,
     formats: dict = {}
     for impl in impls:
         formats.setdefault(format_of(machine_epsilon(impl)).bits, []).append(impl)
-    if set(formats) != {53}:
-        rows = []
-        for group in formats.values():
-            try:
-                read = as_read_by(mesh, machine_epsilon(group[0]))
-            except InputError as e:
-                rows += [Comparison(m, implementation_name(i), "not applicable", note=str(e))
-                         for i in group for m in METHODS if m in capabilities(i)
-                         and (methods is None or m in methods)]
-                continue
-            rows += _compare_read(read, group, reference, workers, methods, explain)
-        order = {implementation_name(i): k for k, i in enumerate(impls)}
-        return sorted(rows, key=lambda r: order.get(r.implementation, len(order)))
-    return _compare_read(mesh, impls, reference, workers, methods, explain)
-
-
-def _compare_read(mesh: MeshInput, impls, reference, workers, methods, explain):
-    """:func:`compare_mesh` of implementations that all read ``mesh`` as it is."""
-    from ..protocol.methods import (METHODS, capabilities, implementation_name,
-                                                machine_epsilon)
-    from ..properties.conventions import declared, widened
-    from ..properties.registry import all_quantities, unmet
-
-    quantities = all_quantities()
-    ex = MeshExamples(mesh)
-    V = np.array(mesh.V, dtype=np.float64)
-    F = np.array(mesh.F, dtype=np.int64)
-    asked: dict = {}                    # method -> the machine epsilons of its bounds
-    todo = []
-    for impl in impls:
-        caps = capabilities(impl)
-        for method in METHODS:
-            if methods is not None and method not in methods:
-                continue
-            q = quantities[method]
-            why = ("not provided" if method not in caps else q.not_on_a_mesh
-                   or unmet(q.requires, ex.facts))
-            todo.append((impl, method, why))
-            if not why:
-                asked.setdefault(method, set()).add(machine_epsilon(impl))
-    pending = _expected_in_workers(mesh, asked, workers) if workers > 1 and asked else None
+    rows, plans = [], []
+    for group in formats.values():
+        try:
+            read = as_read_by(mesh, machine_epsilon(group[0]))
+        except InputError as e:
+            rows += [Comparison(m, implementation_name(i), "not applicable", note=str(e))
+                     for i in group for m in METHODS if m in capabilities(i)
+                     and (methods is None or m in methods)]
+            continue
+        plans.append(_Plan.of(read, group, methods))
+    # one pool for every reading: a float32 reading's exact values are computed beside the
+    # float64 one's, not after them (two exact intrinsic flips that each ran to the time
+    # limit took 2 x 20 s per mesh of the CGAL corpus, one after the other)
+    asked = [(plan.mesh, plan.asked) for plan in plans]
+    pending = _expected_in_workers(asked, workers) \
+        if workers > 1 and any(a for _, a in asked) else None
     try:
-        answers = _answers(todo, V, F)
-        expected = pending() if pending is not None else \
-            _ExpectedValues(ex, lambda method: getattr(reference, method)(V, F))
+        answers = [_answers(plan.todo, plan.V, plan.F) for plan in plans]
+        done = pending() if pending is not None else None
     except BaseException:
         # a signal or an error while the library answers: the pool is stopped here, not
         # left to the interpreter's exit (whose Pool.__del__ then writes to pipes of killed
@@ -150,6 +124,59 @@ def _compare_read(mesh: MeshInput, impls, reference, workers, methods, explain):
         if pending is not None:
             pending.close()
         raise
+    for k, plan in enumerate(plans):
+        expected = done(k) if done is not None else _ExpectedValues(
+            plan.ex, lambda method, plan=plan: getattr(reference, method)(plan.V, plan.F))
+        rows += _rows(plan, answers[k], expected, explain)
+    if len(formats) == 1:
+        return rows
+    order = {implementation_name(i): k for k, i in enumerate(impls)}
+    return sorted(rows, key=lambda r: order.get(r.implementation, len(order)))
+
+
+@dataclass
+class _Plan:
+    """What :func:`compare_mesh` asks on one reading of the mesh: (impl, method, why not
+    applicable) per pair, and the machine epsilons of each asked method's bounds."""
+
+    mesh: MeshInput
+    ex: MeshExamples
+    V: np.ndarray
+    F: np.ndarray
+    todo: list
+    asked: dict
+
+    @classmethod
+    def of(cls, mesh: MeshInput, impls, methods) -> "_Plan":
+        from ..protocol.methods import METHODS, capabilities, machine_epsilon
+        from ..properties.registry import all_quantities, unmet
+        quantities = all_quantities()
+        ex = MeshExamples(mesh)
+        asked: dict = {}                    # method -> the machine epsilons of its bounds
+        todo = []
+        for impl in impls:
+            caps = capabilities(impl)
+            for method in METHODS:
+                if methods is not None and method not in methods:
+                    continue
+                q = quantities[method]
+                why = ("not provided" if method not in caps else q.not_on_a_mesh
+                       or unmet(q.requires, ex.facts))
+                todo.append((impl, method, why))
+                if not why:
+                    asked.setdefault(method, set()).add(machine_epsilon(impl))
+        return cls(mesh, ex, np.array(mesh.V, dtype=np.float64),
+                   np.array(mesh.F, dtype=np.int64), todo, asked)
+
+
+def _rows(plan: _Plan, answers, expected, explain) -> list:
+    """The comparisons of one reading's answers with its expected values."""
+    from ..protocol.methods import implementation_name, machine_epsilon
+    from ..properties.conventions import declared, widened
+    from ..properties.registry import all_quantities
+
+    quantities = all_quantities()
+    ex, V, F = plan.ex, plan.V, plan.F
     rows = []
     for impl, method, got in answers:
         if isinstance(got, Comparison):
@@ -260,47 +287,54 @@ def _bound_of(q, ex: "MeshExamples", want):
 
 
 class _Worker:
-    """What a compare worker process keeps between its methods: the mesh's examples and the
-    reference (one per process, set by the pool's initializer, read only in this module)."""
+    """What a compare worker process keeps between its methods: each reading's mesh and
+    examples, and the reference (one per process, set by the pool's initializer, read only
+    in this module)."""
 
-    mesh = examples = reference = None
+    meshes = examples = reference = None
 
 
-def _start_worker(mesh: MeshInput) -> None:
+def _start_worker(meshes: list) -> None:
     from ..oracles.exact_reference import ReferenceImplementation
-    _Worker.mesh, _Worker.examples = mesh, MeshExamples(mesh)
+    _Worker.meshes = meshes
+    _Worker.examples = [MeshExamples(m) for m in meshes]
     _Worker.reference = ReferenceImplementation()
 
 
 def _expected_in_worker(job):
-    """(method, the pickle of {epsilon: (want, bound)}) in a worker; an exception comes back
-    as a value.  Pickled here and unpickled by the caller: the pool's result thread would
-    otherwise import the values' modules (scipy.sparse, ours) while the main thread may be
-    importing them too, and two threads importing one package's circular modules deadlock
-    (the main thread's reference raised ``_DeadlockError``, reported as its crash)."""
+    """(reading, method, the pickle of {epsilon: (want, bound)}) in a worker; an exception
+    comes back as a value.  Pickled here and unpickled by the caller: the pool's result
+    thread would otherwise import the values' modules (scipy.sparse, ours) while the main
+    thread may be importing them too, and two threads importing one package's circular
+    modules deadlock (the main thread's reference raised ``_DeadlockError``, reported as
+    its crash)."""
     import pickle
     from ..properties.registry import all_quantities
-    method, epsilons = job
-    V = np.array(_Worker.mesh.V, dtype=np.float64)
-    F = np.array(_Worker.mesh.F, dtype=np.int64)
-    values = _ExpectedValues(_Worker.examples,
+    k, method, epsilons = job
+    V = np.array(_Worker.meshes[k].V, dtype=np.float64)
+    F = np.array(_Worker.meshes[k].F, dtype=np.int64)
+    values = _ExpectedValues(_Worker.examples[k],
                              lambda m: getattr(_Worker.reference, m)(V, F))
     q = all_quantities()[method]
     try:
         got = {e: values(q, e) for e in sorted(epsilons)}
     except Exception as e:  # noqa: BLE001  (raised again in the parent, where it is asked for)
         got = e
-    return method, pickle.dumps(got)
+    return k, method, pickle.dumps(got)
 
 
-def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
-    """Start computing every asked method's values and bounds in ``workers`` worker
-    processes; returns a function that waits for them and answers as :class:`_ExpectedValues`."""
+def _expected_in_workers(readings: list, workers: int):
+    """Start computing every asked method's values and bounds of each reading ((mesh,
+    {method: epsilons}) pairs) in ``workers`` worker processes; returns a function that
+    waits for them and gives, per reading, a function answering as :class:`_ExpectedValues`."""
     from ..protocol.methods import METHODS
-    # the later chapters hold the costly quantities (curvature, Laplacians, Delaunay): first
-    jobs = [(m, asked[m]) for m in reversed(METHODS) if m in asked]
+    # the later chapters hold the costly quantities (curvature, Laplacians, Delaunay): first,
+    # each reading's in turn
+    jobs = [(k, m, asked[m]) for m in reversed(METHODS)
+            for k, (_, asked) in enumerate(readings) if m in asked]
     from .containment import worker_context
-    pool = worker_context().Pool(min(workers, len(jobs)), _start_worker, (mesh,))
+    pool = worker_context().Pool(min(workers, len(jobs)), _start_worker,
+                                 ([mesh for mesh, _ in readings],))
     running = pool.imap_unordered(_expected_in_worker, jobs)
 
     def close():
@@ -310,16 +344,18 @@ def _expected_in_workers(mesh: MeshInput, asked: dict, workers: int):
     def wait():
         import pickle
         try:
-            done = {method: pickle.loads(got) for method, got in running}   # in this thread
+            done = {(k, method): pickle.loads(got) for k, method, got in running}   # here
         finally:
             close()
 
-        def expected(q, epsilon):
-            got = done[q.method]
-            if isinstance(got, BaseException):
-                raise got           # for this method's rows only: the others stand
-            return got[epsilon]
-        return expected
+        def reading(k):
+            def expected(q, epsilon):
+                got = done[k, q.method]
+                if isinstance(got, BaseException):
+                    raise got       # for this method's rows only: the others stand
+                return got[epsilon]
+            return expected
+        return reading
     wait.close = close
     return wait
 

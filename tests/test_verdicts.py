@@ -595,6 +595,12 @@ def test_a_float32_implementation_is_compared_on_the_input_it_reads():
     bad = [(r.implementation, r.quantity, r.worst) for r in rows if r.status != "agrees"]
     assert not bad and len(rows) == 6, bad
     assert [r.implementation for r in rows][:3] == ["honest-atan2-cross-f32"] * 3
+    # both readings' exact values computed in one pool of two workers: the same rows
+    # (the survey's float32 and float64 readings of a mesh ran one pool after the other)
+    pooled = compare_mesh(mesh, [Atan2Cross32(), Atan2Cross()], ReferenceImplementation(),
+                          methods=["corner_angles", "angle_defects", "cotan_laplacian"],
+                          workers=2)
+    assert [vars(r) for r in pooled] == [vars(r) for r in rows]
 
 
 def test_check_mesh_gives_a_float32_implementation_the_input_it_reads(tmp_path, capsys):
