@@ -252,14 +252,19 @@ class _ExpectedValues:
 
     def __call__(self, q, epsilon: float):
         """(want, bound); the exact reference's giving up (its time limit per example,
-        ``DDG_EXAMPLE_TIME_LIMIT``, or its precision limit) raised as
-        :class:`~ddg_oracle.reference.errors.ExactArithmeticLimit`, once per method."""
+        ``DDG_EXAMPLE_TIME_LIMIT`` seconds of CPU time, or its precision limit) raised as
+        :class:`~ddg_oracle.reference.errors.ExactArithmeticLimit`, once per method.  CPU
+        time, not wall-clock: whether the reference decides a quantity on a mesh does not
+        depend on what else runs (the survey computes two readings' values side by side;
+        with a wall-clock limit they shared the cores and two of MeshLib's intrinsic
+        Delaunay rows became undecided)."""
         from ..properties.profiles import example_time_limit
         from ..reference.errors import ExactArithmeticLimit
         if q.method in self.gave_up:
             raise self.gave_up[q.method]
         try:
-            with example_time_limit(f"[{q.method}] the exact reference on this mesh"):
+            with example_time_limit(f"[{q.method}] the exact reference on this mesh",
+                                    cpu=True):
                 return self._values(q, epsilon)
         except ExactArithmeticLimit as e:
             self.gave_up[q.method] = e

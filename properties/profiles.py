@@ -273,9 +273,11 @@ def time_limit_seconds() -> float | None:
 
 
 @contextmanager
-def example_time_limit(what: str, seconds: float | None = -1.0):
+def example_time_limit(what: str, seconds: float | None = -1.0, cpu: bool = False):
     """Raise :class:`~ddg_oracle.reference.errors.TimeLimitExceeded` if the block runs over
-    ``seconds``.
+    ``seconds``: of wall-clock time, or with ``cpu`` of this process's CPU time (for a
+    block that runs only our own computation: its verdict then does not depend on what
+    else the machine runs; a hang that uses no CPU is not caught so).
 
     ``what`` names the property and implementation in the message; ``seconds``
     defaults to :func:`time_limit_seconds`, None means no limit.  Inside a task
@@ -301,7 +303,10 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
             or threading.current_thread() is not threading.main_thread()):
         yield
         return
-    outer = signal.getitimer(signal.ITIMER_REAL)
+    # a task budget is wall-clock time: the budget's limit is measured as it is
+    clock, alarm, now = (signal.ITIMER_PROF, signal.SIGPROF, time.process_time) \
+        if cpu and not by_budget else (signal.ITIMER_REAL, signal.SIGALRM, time.monotonic)
+    outer = signal.getitimer(clock)
     if outer[0] and outer[0] <= seconds:     # someone else's timer fires first: leave it
         yield
         return
@@ -321,7 +326,8 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
                                   "outside the implementation's calls")
         return TimeLimitExceeded(
             f"{what}: the exact reference did not finish one example within the time limit "
-            f"of {seconds:g} s per property example. If it is just slow, raise the limit "
+            f"of {seconds:g} s{' of CPU time' if clock == signal.ITIMER_PROF else ''} per "
+            f"property example. If it is just slow, raise the limit "
             f"with the environment variable {TIME_LIMIT_ENV}=SECONDS (0: no limit)")
 
     fired = []
@@ -330,17 +336,17 @@ def example_time_limit(what: str, seconds: float | None = -1.0):
         fired.append(signum)
         raise error()
 
-    previous = signal.signal(signal.SIGALRM, overrun)
-    start = time.monotonic()
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    previous = signal.signal(alarm, overrun)
+    start = now()
+    signal.setitimer(clock, seconds)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(clock, 0)
+        signal.signal(alarm, previous)
         if outer[0]:                         # give an outer timer what it has left
-            left = outer[0] - (time.monotonic() - start)
-            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-3), outer[1])
+            left = outer[0] - (now() - start)
+            signal.setitimer(clock, max(left, 1e-3), outer[1])
     if fired:
         # the timer fired, yet the block ended normally: the signal arrived inside a
         # finalizer or garbage-collector callback, where Python prints an exception and
