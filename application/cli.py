@@ -226,6 +226,8 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("mesh", nargs="*", metavar="MESH",
                    help="mesh files, directories of them, or mesh sets ('pymeshlab:', any set "
                         "compare takes)")
+    s.add_argument("--mesh", dest="mesh_option", action="extend", nargs="+", metavar="MESH",
+                   help="the same, as check --mesh takes them (added to the MESH arguments)")
     s.add_argument("--impl", action="append", metavar="SPEC",
                    help="implementation to survey (repeatable; default: every installed one): "
                         "NAME, module:object, exec:COMMAND or exec:FILE.json (below)")
@@ -786,6 +788,7 @@ def _compare(args) -> int:
 
 def _survey(args) -> int:
     """``ddg-oracle survey``: compare over a corpus, aggregated (:mod:`ddg_oracle.application.survey`)."""
+    args.mesh = list(args.mesh) + list(args.mesh_option or [])
     if args.resume and (args.mesh or args.impl or args.report):
         raise UsageError("survey --resume DIR takes no mesh, --impl or --report: the "
                          "interrupted run's are read from DIR/run.json")
@@ -795,6 +798,7 @@ def _survey(args) -> int:
         stored = survey.command_of(args.resume)
         workers, scheduler, report = args.workers, args.scheduler, stored["report"]
         args = parser().parse_args(["survey", *stored["argv"]])
+        args.mesh = list(args.mesh) + list(args.mesh_option or [])
         args.report, args.resume, args.workers, args.scheduler = report, report, workers, \
             scheduler
     check_timeout(args)

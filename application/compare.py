@@ -412,16 +412,6 @@ def loop_edges(loops) -> list:
                   for a, b in zip(loop, list(loop[1:]) + list(loop[:1])))
 
 
-def derived_bound(method: str, ex: MeshExamples, want=None):
-    """The derived bound on |implementation - exact| for each element of ``method``'s
-    answer on ``ex``'s mesh, at the current machine epsilon (:func:`_epsilon_of`): the
-    method's quantity's ``bound`` (an array of the answer's shape, a scipy matrix, or
-    {edge: bound}); ``want``: what the answer is compared with.  Used by ``compare`` and
-    by the test vectors (:mod:`ddg_oracle.application.vectors`)."""
-    from ..properties.registry import all_quantities
-    return all_quantities()[method].bound(ex.example(), want)
-
-
 def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
     """One answer against ``want`` by its quantity's kind (``bound``: its derived bound,
     computed here if None)."""

@@ -8,8 +8,9 @@ is bad, the answer must be an error; ``acceptable``: outside the notes' domain, 
 passes) and the expected answer: for numbers the exact value
 (an expression in integers, ``sqrt``, ``pi`` and ``arccot``), its correctly rounded float64
 and the derived tolerances for float64 and float32 implementations (the bounds ``check``
-uses, :func:`ddg_oracle.application.compare.derived_bound`).  ``DIR/README.md`` says how to use it
-without Python; ``DIR/schema.json`` is its JSON Schema (:func:`schema`).
+uses: each method's quantity's ``bound``, :mod:`ddg_oracle.properties.registry`).
+``DIR/README.md`` says how to use it without Python; ``DIR/schema.json`` is its JSON
+Schema (:func:`schema`).
 
 ``ddg-oracle verify DIR ANSWERS`` checks an answers file (JSON Lines, one
 ``{"id", "value"}`` or ``{"id", "error"}`` per case, values encoded as in the executable
@@ -432,7 +433,10 @@ def expected(method: str, case: Case, req: dict) -> dict:
     # per vertex (or vertex coordinate): a vertex used by no face has the protocol's value
     isolated = ISOLATED_VERTEX.get(method, 0.0)
     values = exact.items() if isinstance(exact, dict) else enumerate(exact)
-    fill = _ISOLATED_TEXT[isolated]
+    fill = _ISOLATED_TEXT.get(isolated)
+    if fill is None:
+        raise ValueError(f"{method}: ISOLATED_VERTEX value {isolated!r} has no exact text "
+                         "in vectors._ISOLATED_TEXT")
     texts = [fill if element == "vertex" else [fill] * 3 for _ in range(n)]
     for v, x in values:
         texts[int(keep[v])] = exact_text(x) if element == "vertex" else [exact_text(c) for c in x]

@@ -274,3 +274,14 @@ def test_the_exact_reference_giving_up_is_undecided_not_a_verdict(tmp_path, work
     assert undecided and all("gave up" in r["note"] for r in undecided)
     assert not any(r["status"] in ("DIFFERS", "crashed") for r in rows)
     assert sum(s["undecided"] for s in doc["scoreboard"]) == len(undecided)
+
+
+def test_survey_takes_meshes_as_check_does_with_mesh(corpus, tmp_path):
+    """`survey --mesh A B` (as `check --mesh` takes them) is `survey A B`; both may be
+    mixed.  docs/corpus.md showed `survey --mesh pyvista: compas:`, which was a usage error."""
+    out = _survey(corpus[0], "--mesh", corpus[1], corpus[2], "--impl", "reference",
+                  "--workers", "1", "--report", str(tmp_path / "r"))
+    assert out.returncode == 0, out.stdout + out.stderr
+    run = json.loads((tmp_path / "r" / "run.json").read_text())
+    assert run["argv"][:3] == corpus
+    assert "3 of 3 meshes" in out.stdout
