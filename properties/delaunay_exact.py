@@ -35,7 +35,7 @@ from ..reference.intrinsic import IntrinsicTriangulation
 from . import memo
 from .bounds import entry_bounds, gamma, heron_product
 from .views import exact_laplacian, laplacian_view
-from .harness import Exact, entries_at
+from .harness import DenseViews, Exact, entries_at
 from .example import Example
 from ..protocol.methods import eps
 from ..reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
@@ -112,7 +112,7 @@ def delaunay_of(metric):
     return memo.of(flip_to_delaunay, metric)
 
 
-class DelaunayExact:
+class DelaunayExact(DenseViews):
     """The exact Laplace-Beltrami operator of a case's metric, float view and entry bounds:
     sparse (``Ls``, ``Bs``, ``interior_s``: scipy CSR on the case's vertices, any mesh size),
     dense arrays ``Lf``, ``B``, ``interior_pairs`` built only if a check of a small example
@@ -144,14 +144,6 @@ class DelaunayExact:
         cols = np.array([p[1] for p in inner], dtype=np.int64)
         self.interior_s = X.embed(sp.csr_matrix((np.ones(len(inner), dtype=bool), (rows, cols)),
                                                 shape=(k, k)))
-
-    @cached_property
-    def Lf(self) -> np.ndarray:
-        return self.Ls.toarray()
-
-    @cached_property
-    def B(self) -> np.ndarray:
-        return self.Bs.toarray()
 
     @cached_property
     def interior_pairs(self) -> np.ndarray:

@@ -26,7 +26,7 @@ from ..protocol.methods import ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
 from .views import exact_laplacian, laplacian_view
 
-__all__ = ["Exact", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
+__all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve"]
 
 
@@ -87,7 +87,20 @@ def record(pid: str, err, bound) -> float:
 # --- the exact reference on an example ------------------------------------------------------------
 
 
-class Exact:
+class DenseViews:
+    """Dense arrays ``Lf`` and ``B`` of an operator's sparse float view ``Ls`` and entry
+    bounds ``Bs``, built only if a check of a small example asks for them."""
+
+    @cached_property
+    def Lf(self) -> np.ndarray:
+        return self.Ls.toarray()
+
+    @cached_property
+    def B(self) -> np.ndarray:
+        return self.Bs.toarray()
+
+
+class Exact(DenseViews):
     """The exact reference on the floats of a case, with float views and entry bounds.
     ``Exact.of(case)``: the same, computed once per case content and machine epsilon (the
     bounds are the checked implementation's: float64 or float32) in this process
@@ -121,14 +134,6 @@ class Exact:
     @property
     def n(self) -> int:
         return self.case.n
-
-    @cached_property
-    def Lf(self) -> np.ndarray:
-        return self.Ls.toarray()
-
-    @cached_property
-    def B(self) -> np.ndarray:
-        return self.Bs.toarray()
 
     @cached_property
     def adjacent(self) -> np.ndarray:
