@@ -648,6 +648,7 @@ def _area_bound(example: Example, want) -> float:
 
 
 def _mean_curvature_by_pair(example: Example) -> dict:
+    """D2.3: {(i, j) with i < j: H(e)} exactly, keyed by the edge's vertices."""
     t = example.surface.triangulation
     return {tuple(sorted(t.edge_vertices(e))): h
             for e, h in ref.mean_curvature(example.surface).items()}

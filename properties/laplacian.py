@@ -557,6 +557,8 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
 # (Exact.of: the exact values, float views and bounds, once per mesh and machine epsilon)
 
 def _dirichlet_solution(example: Example) -> list:
+    """C3.4 / T3.5: the exact solution with the example's boundary set and values (the
+    floats taken exactly)."""
     from ..reference.dirichlet import solve_dirichlet
     return solve_dirichlet(example.surface, {v: Fraction(c) for v, c in
                                              zip(example.boundary, example.values)})

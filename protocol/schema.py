@@ -66,6 +66,23 @@ def value_schema(method: str) -> dict:
     return _VALUE_OF_ELEMENT[m.element] if m.kind == "numbers" else _VALUE_OF_KIND[m.kind]
 
 
+def _declaration(counterpart: str, counterpart_schema: dict) -> dict:
+    """What a program declares of itself, in its handshake answer or in a manifest: a name,
+    its methods, its machine epsilon and its conventions (a preset, or what it follows and
+    how its counterpart is started: ``counterpart`` names that field, which differs)."""
+    return {
+        "name": {"type": "string"},
+        "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
+                    "items": {"enum": list(METHODS)}},
+        "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
+        "conventions": {"anyOf": [
+            _PRESET,
+            {"type": "object",
+             "properties": {
+                 "follows": {"type": "object", "additionalProperties": {"type": "string"}},
+                 counterpart: counterpart_schema}}]}}
+
+
 def schema() -> dict:
     """The protocol's schemas, one JSON document."""
     defs: dict[str, dict] = {
@@ -79,33 +96,12 @@ def schema() -> dict:
                                          "method": {"const": "hello"}}},
         "hello.answer": {
             "type": "object", "required": ["methods"],
-            "properties": {
-                "name": {"type": "string"},
-                "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
-                            "items": {"enum": list(METHODS)}},
-                "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
-                "conventions": {"anyOf": [
-                    _PRESET,
-                    {"type": "object",
-                     "properties": {
-                         "follows": {"type": "object",
-                                     "additionalProperties": {"type": "string"}},
-                         "counterpart_arguments": _array({"type": "string"})}}]}}},
+            "properties": _declaration("counterpart_arguments", _array({"type": "string"}))},
         "manifest": {
             "type": "object", "required": ["command", "methods"],
             "properties": {
                 "command": {"type": "array", "minItems": 1, "items": {"type": "string"}},
-                "name": {"type": "string"},
-                "methods": {"type": "array", "minItems": 1, "uniqueItems": True,
-                            "items": {"enum": list(METHODS)}},
-                "machine_epsilon": {"type": "number", "exclusiveMinimum": 0},
-                "conventions": {"anyOf": [
-                    _PRESET,
-                    {"type": "object",
-                     "properties": {
-                         "follows": {"type": "object",
-                                     "additionalProperties": {"type": "string"}},
-                         "counterpart": {"type": "string"}}}]}}},
+                **_declaration("counterpart", {"type": "string"})}},
         "error.answer": {
             "type": "object", "required": ["id", "error"], "additionalProperties": False,
             "properties": {"id": {"type": "integer"},
