@@ -97,7 +97,7 @@ from fractions import Fraction
 import numpy as np
 
 from ..reference.combinatorics import face_of, next_corner, opposite_corner, prev_corner
-from ..reference.exact import rounded_sum
+from ..reference.exact import Quotient, rounded_sum
 from ..reference.exact.rationals import on_common_denominator
 from ..reference.metric import heron16
 
@@ -387,7 +387,9 @@ def _conditioning(metric, f: int) -> tuple[float, list[float]]:
     squared lengths l on one common denominator (integers L) and H = 16 A^2 (Heron) in the
     same units, rho = max l / (2 A) = sqrt(4 max L^2 / H) and cot = n / (4 A) = sign(n)
     sqrt(n^2 / H), n = a + b - o: integer quotients (correctly rounded), one float square
-    root.  Irrational lengths (after intrinsic flips) take the exact cotangents."""
+    root.  Irrational lengths (after intrinsic flips): the same ratios as exact quotients,
+    correctly rounded without dividing (an area with hundreds of square roots has a costly
+    exact inverse)."""
     sq = metric.face_squared_lengths(f)                   # opposite corners 2, 0, 1
     if all(type(x) is Fraction for x in sq):
         L, _ = on_common_denominator(sq)                 # the scale cancels in each ratio
@@ -399,7 +401,9 @@ def _conditioning(metric, f: int) -> tuple[float, list[float]]:
                     [math.copysign(math.sqrt(x * x / H), x) for x in n])
         except OverflowError:
             pass                            # beyond the float range: as the exact route says
-    return (float(max(sq) / (2 * metric.area(f))), [float(c) for c in metric.face_cots(f)])
+    A = metric.area(f)
+    return (float(Quotient(max(sq), 2 * A)),
+            [float(Quotient(n, 4 * A)) for n in metric.face_cot_numerators(f)])
 
 
 def total_area_view(metric) -> tuple[float, float]:

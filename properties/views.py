@@ -10,10 +10,15 @@ they are compared within are :mod:`.bounds`'.
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 
 from ..reference import curvature as ref
+from ..reference.cotan_fast import laplacian_parts
+from ..reference.exact.surds import Quotient, rounded_sum, sum_is_zero
 from ..reference.laplacian import cotan_laplacian
+from ..reference.metric import PiecewiseFlatSurface
 
 from . import memo
 
@@ -81,4 +86,55 @@ def laplacian_view(surface):
 
 
 def _laplacian_view(surface):
+    if isinstance(surface, PiecewiseFlatSurface) and not all(
+            type(x) is Fraction for x in surface.squared_lengths):
+        return _flipped_laplacian_view(surface)
     return exact_laplacian(surface).to_scipy()
+
+
+def _flipped_laplacian_view(m):
+    """:func:`laplacian_view` of a metric with irrational squared lengths (after intrinsic
+    flips), equal entry by entry and in its structure (exact zeros left out) to
+    ``exact_laplacian(m).to_scipy()`` without that matrix: a flipped face's cotangent
+    n / (4 A) has an area A with up to hundreds of square roots, whose exact inverse takes
+    seconds; each entry is the correctly rounded sum of the exact rational faces' part and
+    the flipped faces' half cotangents as quotients n / (8 A)
+    (:func:`~ddg_oracle.reference.exact.rounded_sum`: enclosures, no division; an exact
+    zero decided by cross-multiplying)."""
+    import scipy.sparse as sp
+    part, halves = laplacian_parts(m)
+    terms: dict = {}
+    for (i, row) in part._rows.items():
+        for j, v in row.items():
+            terms[i, j] = [v]
+    quotients: dict = {}
+    for i, j, f, c in halves:
+        q = quotients.get(f)
+        if q is None:                       # a face's three corners share its 8 A
+            d = 8 * m.areas[f]
+            q = quotients[f] = [Quotient(n, d) if n else None
+                                for n in m.face_cot_numerators(f)]
+        q = q[c]
+        if q is None:
+            continue                        # a right angle: cot 0
+        for key, sign in (((i, j), -1), ((j, i), -1), ((i, i), 1), ((j, j), 1)):
+            terms.setdefault(key, []).append((sign, q))
+    rows, cols, vals = [], [], []
+    for (i, j), ts in sorted(terms.items()):
+        if len(ts) == 1 and not isinstance(ts[0], tuple):
+            x, zero = float(ts[0]), False   # the exact part alone (nonzero: zeros are left out)
+        elif i == j:                          # a diagonal: every quotient added
+            plus = [t if not isinstance(t, tuple) else t[1] for t in ts]
+            x = rounded_sum(plus)
+            zero = x == 0 and sum_is_zero(plus)
+        else:                               # off the diagonal: minus the quotients' sum
+            minus = [-t if not isinstance(t, tuple) else t[1] for t in ts]
+            x = rounded_sum(minus)
+            zero = x == 0 and sum_is_zero(minus)
+            x = -x if x else 0.0
+        if not zero:
+            rows.append(i)
+            cols.append(j)
+            vals.append(x)
+    n = m.triangulation.n_vertices
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n), dtype=float)

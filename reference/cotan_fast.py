@@ -134,35 +134,49 @@ def partly_applies(surface) -> bool:
 def cotan_laplacian_mixed(m: PiecewiseFlatSurface) -> SparseMatrix:
     """D3.2 on a piecewise flat surface some of whose squared lengths are irrational (a
     float mesh after intrinsic flips): the faces with three rational squared lengths by
-    the integers of this module (the numerators of the others set to 0, so that
-    :func:`_laplacian` adds their part alone), then each other face's three half
+    the integers of this module (:func:`laplacian_parts`), then each other face's three half
     cotangents (:meth:`~ddg_oracle.reference.metric.PiecewiseFlatSurface.face_cots`, the
     definition's formula, exact Surds) added to the four entries of the edge opposite
     each corner.  Equal (``==``) to :func:`~ddg_oracle.reference.laplacian.
     cotan_laplacian_from_weights` entry by entry: the same exact terms, summed in another
     order.
     """
+    part, halves = laplacian_parts(m)
+    rows = {i: dict(r) for i, r in part._rows.items()}
+    for i, j, f, c in halves:
+        half = m.face_cots(f)[c] / 2
+        if not half:
+            continue
+        ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
+        for r, b, w in ((ri, j, -half), (rj, i, -half), (ri, i, half), (rj, j, half)):
+            r[b] = r[b] + w if b in r else w
+    return SparseMatrix(part.shape, rows)
+
+
+def laplacian_parts(m: PiecewiseFlatSurface) -> tuple[SparseMatrix, list]:
+    """D3.2 in two parts: ``(part, halves)``, ``part`` the exact Laplacian of the faces whose
+    three squared lengths are rational (this module's integers), ``halves`` for every other
+    face ``f`` and each of its halfedges ``i -> j`` with ``i != j`` (a loop adds nothing, as
+    in the definition) a tuple ``(i, j, f, c)``: half the cotangent of corner ``c`` of face
+    ``f`` (the corner opposite that halfedge) is added to ``(i, i)`` and ``(j, j)`` and
+    subtracted from ``(i, j)`` and ``(j, i)``.  The Laplacian is ``part`` plus those terms
+    (:func:`cotan_laplacian_mixed` adds them exactly; the float view of a flipped metric
+    rounds their sums without dividing, ``ddg_oracle.properties.views``)."""
     t = m.triangulation
     sq, eo = m.squared_lengths, t.edge_of
     left_out = {f for f in range(t.n_faces)
                 # inline halfedge(f, c): hot
                 if not all(isinstance(sq[eo(3 * f + k)], Fraction) for k in range(3))}
     part = _laplacian(m, lengths_data(m, left_out), left_out)
-    rows = {i: dict(r) for i, r in part._rows.items()}
-    n = t.n_vertices
+    halves = []
     for f in sorted(left_out):
-        c0, c1, c2 = m.face_cots(f)
         # halfedge 3f + k is opposite corner k + 2 (mod 3); its edge gets half that cotangent
         # inline halfedge(f, c): hot
-        for h, half in ((3 * f, c2 / 2), (3 * f + 1, c0 / 2), (3 * f + 2, c1 / 2)):
+        for h, c in ((3 * f, 2), (3 * f + 1, 0), (3 * f + 2, 1)):
             i, j = t.tail(h), t.head(h)
-            if i == j or not half:
-                continue                           # a loop adds nothing (as the definition)
-            ri, rj = rows.setdefault(i, {}), rows.setdefault(j, {})
-            for r, a, b, w in ((ri, i, j, -half), (rj, j, i, -half), (ri, i, i, half),
-                               (rj, j, j, half)):
-                r[b] = r[b] + w if b in r else w
-    return SparseMatrix((n, n), rows)
+            if i != j:
+                halves.append((i, j, f, c))
+    return part, halves
 
 
 def _laplacian(surface, fd=None, left_out=()) -> SparseMatrix:

@@ -190,11 +190,16 @@ class PiecewiseFlatSurface:
             return tuple(self._cots[3 * f:3 * f + 3])  # inline halfedge(f, c): hot
         kept = self._face_cots.get(f)
         if kept is None:
-            l0, l1, l2 = self.face_squared_lengths(f)   # opposite corners 2, 0, 1
             inv = 1 / (4 * self.areas[f])
-            kept = self._face_cots[f] = ((l0 + l2 - l1) * inv, (l0 + l1 - l2) * inv,
-                                         (l1 + l2 - l0) * inv)
+            kept = self._face_cots[f] = tuple(n * inv for n in self.face_cot_numerators(f))
         return kept
+
+    def face_cot_numerators(self, f: int) -> tuple:
+        """``(a + b - o)`` of corners 0, 1, 2 of face f (a, b the squared lengths of the sides
+        at the corner, o the opposite one): cot = n / (4 A), exact.  Enclosures of the
+        cotangents need no division (:class:`~ddg_oracle.reference.exact.Quotient`)."""
+        l0, l1, l2 = self.face_squared_lengths(f)       # opposite corners 2, 0, 1
+        return l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0
 
     def _all_cots(self) -> list[Surd]:
         cots = []

@@ -32,7 +32,8 @@ from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corne
                                             corner_angles_from_cotangents, gauss_bonnet_holds,
                                             gauss_bonnet_holds_by_faces, turning_angles)
 from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
-from ddg_oracle.reference.errors import DegenerateFace, NotFlippable
+from ddg_oracle.reference.errors import (DegenerateFace, InputError, NotFlippable,
+                                         TermLimitExceeded)
 from ddg_oracle.reference.curvature_fast import CornerSum
 from ddg_oracle.reference.exact import Angle, Surd, angles, pi, sqrt
 from ddg_oracle.reference.intrinsic import IntrinsicTriangulation, flip, is_flippable
@@ -128,6 +129,81 @@ def test_mixed_route_on_a_metric_with_every_length_irrational():
     m = PiecewiseFlatSurface(t, [side2] * t.n_edges,
                              areas=[sqrt(3) * side2 / 4] * t.n_faces)
     assert cotan_laplacian_mixed(m) == cotan_laplacian_from_weights(m)
+
+
+def assert_same_view(d):
+    """The float view of a flipped metric (quotients, no division) == the exact matrix's
+    float view: every entry correctly rounded, exact zeros left out the same way."""
+    from ddg_oracle.properties.views import _flipped_laplacian_view, exact_laplacian
+    assert not all(isinstance(x, Fraction) for x in d.squared_lengths)
+    got, want = _flipped_laplacian_view(d), exact_laplacian(d).to_scipy()
+    got.sort_indices()
+    want.sort_indices()
+    assert (got.indptr == want.indptr).all() and (got.indices == want.indices).all()
+    assert got.data.tobytes() == want.data.tobytes()         # bit for bit, signs of 0 too
+
+
+@settings(max_examples=25)
+@given(closed_meshes(), st.data())
+def test_filtered_view_of_flipped_metrics_is_the_exact_view(case, data):
+    # issue 46: float meshes flipped to Delaunay (irrational squared lengths on some faces)
+    # and the same metric flipped at random first (irrational lengths on most draws)
+    s = jittered(case, data.draw, [4, 8, 20])
+    m = random_flips(s.metric(), random.Random(data.draw(st.integers(0, 2 ** 32))), 12)
+    checked = 0
+    for x in (flip_to_delaunay(s.metric())[0], m, flip_to_delaunay(m)[0]):
+        if not all(isinstance(y, Fraction) for y in x.squared_lengths):
+            assert_same_view(x)
+            checked += 1
+    assume(checked)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_filtered_view_on_random_flips_with_loops_and_zero_weights(seed):
+    # metrics flipped at random (not Delaunay: negative weights, loops on the tori), and a
+    # grid's cocircular squares: exact zero weights between irrational faces are left out
+    rng = random.Random(seed)
+    for name in ("flat torus", "icosahedron", "Klein bottle"):
+        m = random_flips(_BASES[name](), rng, 40)
+        if not all(isinstance(x, Fraction) for x in m.squared_lengths):
+            assert_same_view(m)
+    grid = surfaces.grid(4, 3).metric()
+    m = random_flips(PiecewiseFlatSurface(grid.triangulation,
+                                          [x * (2 + sqrt(2)) for x in grid.squared_lengths],
+                                          areas=[a * (2 + sqrt(2)) for a in grid.areas]),
+                     rng, 30)
+    assert_same_view(m)
+    assert any(w == 0 for w in cotan_weights(m).values())
+
+
+def test_rounded_sums_of_quotients_at_ties_tiny_scales_and_exact_zeros():
+    from ddg_oracle.reference.exact import Quotient, limits, rounded_sum
+    from ddg_oracle.reference.exact.surds import sum_is_zero
+    r = sqrt(2) + sqrt(3) + sqrt(5)
+    q = Quotient(sqrt(7) - 1, r)
+    assert float(q) == float((sqrt(7) - 1) / r)
+    tiny = Quotient((sqrt(7) - 1) / 2 ** 1200, r)               # far below 2**-64
+    assert float(tiny) == float((sqrt(7) - 1) / r / 2 ** 1200)
+    # exactly 0 with two denominators (cross-multiplied) and with three (divided)
+    a, b = Quotient(sqrt(3), r), Quotient(-2 * sqrt(3), 2 * r + 0)
+    assert rounded_sum([a, b]) == 0.0 and sum_is_zero([a, b])
+    c = Quotient(1, sqrt(11) + 1)
+    assert rounded_sum([a, c, Quotient(-1, sqrt(11) + 1), b]) == 0.0
+    # a rounding tie: 1 + 2**-53 lies halfway between two floats (round half to even)
+    half = Fraction(1, 2 ** 53)
+    assert rounded_sum([1, Quotient(half * r, r)]) == 1.0
+    assert rounded_sum([1 + 2 * half, Quotient(half * r, r)]) == 1 + 4 * float(half)
+    # signs as in float(): -x rounds to -float(x)
+    assert rounded_sum([Quotient(1 - sqrt(7), r)]) == -float(q)
+    with pytest.raises(InputError, match="positive denominator"):
+        Quotient(1, sqrt(2) - sqrt(3))
+    # products beyond the term limit: undecided when cheap (the caller refines), else raised
+    wide = [Quotient(sqrt(3) + sqrt(7), r), Quotient(1, sqrt(11) + sqrt(13) + 1)]
+    with limits(term_limit=4):
+        assert sum_is_zero(wide, cheap=True) is None
+        with pytest.raises(TermLimitExceeded):
+            sum_is_zero(wide)
+    assert sum_is_zero(wide) is False
 
 
 @settings(max_examples=30)

@@ -7,7 +7,8 @@ True
 
 from .angles import Angle, corner_angle, direction_angle, pi
 from .rationals import rational
-from .surds import Surd, exact_sum, limits, rounded_sum, settings, sign, simplest, sqrt
+from .surds import (Quotient, Surd, exact_sum, limits, rounded_sum, settings, sign, simplest,
+                    sqrt)
 
-__all__ = ["Angle", "Surd", "corner_angle", "direction_angle", "exact_sum", "limits", "pi",
-           "rational", "rounded_sum", "settings", "sign", "simplest", "sqrt"]
+__all__ = ["Angle", "Quotient", "Surd", "corner_angle", "direction_angle", "exact_sum", "limits",
+           "pi", "rational", "rounded_sum", "settings", "sign", "simplest", "sqrt"]
