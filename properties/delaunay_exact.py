@@ -31,7 +31,6 @@ import numpy as np
 
 from ..reference.delaunay import flip_to_delaunay
 from ..reference.exact import Quotient, rounded_sum
-from ..reference.intrinsic import IntrinsicTriangulation
 
 from . import memo
 from .bounds import entry_bounds, gamma, heron_product
@@ -39,28 +38,24 @@ from .views import exact_laplacian, laplacian_view
 from .harness import DenseViews, Exact, entries_at
 from .example import Example
 from ..protocol.methods import eps
-from ..reference.combinatorics import (corner_of, cyclic, face_of, halfedge, next_corner,
+from ..reference.combinatorics import (TriangulationBuilder, face_of, halfedge, next_corner,
                                        opposite_corner, prev_corner)
 
 
 # --- the exact Delaunay operator on a case, with its error model ---------------------------------
 
 
-def _magnitude(m, e: int):
-    """The closed flip formula for edge ``e`` of metric ``m`` (module doc), as floats: (Mp,
-    (A1, A2), (P1, P2), e2, (f, g)) with Mp the summed magnitudes of its polynomial terms,
-    A1, A2 the two faces' areas, P1, P2 their :func:`~.bounds.heron_product`, e2 the
-    squared length of the edge."""
-    t = m.triangulation
-    h, tw = t.edge_halfedges(e)
-    f, g = face_of(h), face_of(tw)
-    Lf, Lg = m.face_squared_lengths(f), m.face_squared_lengths(g)
-    e2, a, b = (float(x) for x in cyclic(Lf, corner_of(h)))
-    _, c, d = (float(x) for x in cyclic(Lg, corner_of(tw)))
-    A1, A2 = float(m.areas[f]), float(m.areas[g])
-    P1, P2 = (float(heron_product([[float(x) for x in L]])[0]) for L in (Lf, Lg))
+def _magnitude(u):
+    """The closed flip formula for the quadrilateral ``u`` (an
+    :class:`~ddg_oracle.reference.intrinsic.Unfolding`; module doc), as floats: (Mp, (A1,
+    A2), (P1, P2), e2) with Mp the summed magnitudes of its polynomial terms, A1, A2 the two
+    faces' areas, P1, P2 their :func:`~.bounds.heron_product`, e2 the squared length of the
+    edge."""
+    e2, a, b, c, d = (float(x) for x in (u.sq_ij, u.sq_jk, u.sq_ki, u.sq_il, u.sq_lj))
+    A1, A2 = float(u.area_ijk), float(u.area_jil)
+    P1, P2 = (float(heron_product([L])[0]) for L in ((e2, a, b), (e2, c, d)))
     Mp = b + c + abs((e2 + b - a) * (e2 + c - d)) / (2 * e2)
-    return Mp, (A1, A2), (P1, P2), e2, (f, g)
+    return Mp, (A1, A2), (P1, P2), e2
 
 
 def _flipped_error(Mp, areas, products, e2, theta: float) -> float:
@@ -84,26 +79,26 @@ def _flipped_error(Mp, areas, products, e2, theta: float) -> float:
     return theta * Mp + 8 * (d1 * A2 + A1 * d2 + d1 * d2) / e2
 
 
-def flip_amplification(metric, log):
-    """Replay a flip log of :func:`flip_to_delaunay`; return ``(delaunay, amplification)``
-    with ``amplification[f]`` the factor of face f's length perturbation (module doc):
-    1 + the largest relative error, in units of eps, of its squared lengths, each flipped
-    one's propagated by :func:`_flipped_error` from its inputs' (+ 4 roundings)."""
-    # in place (O(1) per flip): immutable flips copy the whole surface per flip, 2,065
-    # times on bunny10k
-    m = IntrinsicTriangulation(metric)
-    t = m.triangulation                          # a live view: changes with every flip
+def flip_amplification(metric, log) -> list[float]:
+    """``amplification[f]`` for each face f of the triangulation after the flips of ``log``
+    (from :func:`flip_to_delaunay` on ``metric``): the factor of face f's length
+    perturbation (module doc), 1 + the largest relative error, in units of eps, of its
+    squared lengths, each flipped one's propagated by :func:`_flipped_error` from its
+    inputs' (+ 4 roundings).  The flips' quadrilaterals are the log's (exact values the
+    flips computed: floats of them, no exact arithmetic again); only the combinatorics are
+    replayed, for the ids of each quadrilateral's edges."""
+    t = TriangulationBuilder(metric.triangulation)   # flipped in place, O(1) per flip
     rel = [0.0] * t.n_edges                      # relative error of each squared length, in eps
     for rec in log:
-        e = rec.edge
-        Mp, areas, products, e2, (f, g) = _magnitude(m, e)
-        inputs = {t.edge_of(halfedge(x, c)) for x in (f, g) for c in range(3)}
-        m.flip(e)
+        u, e = rec.unfolding, rec.edge
+        Mp, areas, products, e2 = _magnitude(u)
+        inputs = {t.edge_of(halfedge(x, c)) for x in u.faces for c in range(3)}
+        t.flip(e)
         theta = (max(rel[x] for x in inputs) + 4) * eps()
         rel[e] = _flipped_error(Mp, areas, products, e2, theta) / (
-            float(m.squared_lengths[e]) * eps())
-    amp = [1 + max(rel[t.edge_of(halfedge(f, c))] for c in range(3)) for f in range(t.n_faces)]
-    return m.surface(), amp
+            float(u.new_squared_length) * eps())
+    return [1 + max(rel[t.edge_of(halfedge(f, c))] for c in range(3))
+            for f in range(t.n_faces)]
 
 
 def delaunay_of(metric):
@@ -125,8 +120,7 @@ class DelaunayExact(DenseViews):
         import scipy.sparse as sp
         self.X = X = Exact.of(case)
         self.delaunay, self.log = delaunay_of(X.metric)
-        d, self.amplification = flip_amplification(X.metric, self.log)
-        assert d.squared_lengths == self.delaunay.squared_lengths   # the replay is the run
+        self.amplification = flip_amplification(X.metric, self.log)
         t = self.delaunay.triangulation
         k = t.n_vertices
         self.bounds = entry_bounds(self.delaunay, k, self.amplification)

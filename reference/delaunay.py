@@ -234,7 +234,8 @@ def _decrease_sign(out, into) -> int:
 
 
 class FlipRecord:
-    """One flip of :func:`flip_to_delaunay`: the edge id and the exact change of h(T).
+    """One flip of :func:`flip_to_delaunay`: the edge id, the exact change of h(T), and the
+    quadrilateral that was flipped (``unfolding``).
 
     ``change`` = h(T) after - h(T) before, from the flip's two faces alone (two out, two
     in); C4.19 says it is < 0, and the loop checks its sign exactly.  ``change``,
@@ -244,10 +245,13 @@ class FlipRecord:
     unless asked.
     """
 
-    __slots__ = ("edge", "_history", "_index")
+    __slots__ = ("edge", "unfolding", "_history", "_index")
 
-    def __init__(self, edge: int, history: _History, index: int):
+    def __init__(self, edge: int, history: _History, index: int, unfolding=None):
         self.edge, self._history, self._index = edge, history, index
+        #: the flip's quadrilateral before the flip (:class:`~ddg_oracle.reference.intrinsic.
+        #: Unfolding`: its five squared lengths, two areas and the new diagonal, exact)
+        self.unfolding = unfolding
 
     @property
     def change(self):
@@ -335,7 +339,7 @@ def flip_to_delaunay(surface, max_flips: int | None = None):
                                 f"harmonic index (faces {f}, {g}: (a^2 + b^2 + c^2, A) "
                                 f"{out} -> {into})")
         history.faces.append((out, into))
-        log.append(FlipRecord(e, history, len(log)))
+        log.append(FlipRecord(e, history, len(log), u))
         for x in _edges_of_face(tri, f) + _edges_of_face(tri, g):
             known[x] = _UNKNOWN
             if x != e and not queued[x]:

@@ -102,7 +102,7 @@ def test_tufted_cover_is_half_the_folded_operator_of_the_double(name):
     n, N = len(V), len(fold)
     delaunay, log = flip_to_delaunay(D.metric())
     Ld = np.array(cotan_laplacian(delaunay).to_dense_floats(), dtype=float).reshape(N, N)
-    _, amp = flip_amplification(D.metric(), log)
+    amp = flip_amplification(D.metric(), log)
     Bd = entry_bounds(delaunay, N, amp).B.toarray()
     P = np.zeros((N, n))
     P[np.arange(N), fold] = 1

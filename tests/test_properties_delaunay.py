@@ -12,7 +12,7 @@ from tests.property_checks import assert_caught, assert_passes_well_inside
 from ddg_oracle.properties.registry import PROPERTIES, all_properties
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
-from ddg_oracle.reference.intrinsic import flip
+from ddg_oracle.reference.intrinsic import flip, flip_obstruction
 from ddg_oracle.reference.laplacian import cotan_weights
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
@@ -73,16 +73,36 @@ def test_SC1_boundary_weight_of_a_delaunay_triangle_is_negative():
     assert cotan_weights(s)[long_edge] == Fraction(-3, 8)
 
 
-def test_flip_amplification_replays_the_log():
-    m = surfaces.grid(3, 3).metric()
+def test_flip_amplification_reads_the_logged_quadrilaterals():
+    # the log's quadrilaterals are those an exact replay of its flips meets (so the
+    # amplification needs no exact arithmetic again), on an orientable grid and on a
+    # Moebius strip (reversed gluings: c and d trade places in the unfolding)
+    import random
+    from ddg_oracle.reference.intrinsic import IntrinsicTriangulation, unfold
+    from tests.test_delaunay import random_flips
+    grid = surfaces.grid(3, 3).metric()
     for e in (5, 9, 14):
-        if not m.triangulation.is_boundary_edge(e):
-            m = flip(m, e)
-    d, log = flip_to_delaunay(m)
-    replayed, amp = flip_amplification(m, log)
-    assert replayed.squared_lengths == d.squared_lengths
-    assert len(amp) == d.triangulation.n_faces and min(amp) >= 1
-    assert (max(amp) > 1) == bool(log)                      # only flipped faces are amplified
+        if flip_obstruction(grid, e)[1] is None:
+            grid = flip(grid, e)
+    # seed 8: one of the 7 flips to Delaunay is across a reversed gluing
+    strip = random_flips(surfaces.mobius_strip(6).metric(), random.Random(8), 15)
+    reversed_flips = 0
+    for m in (grid, strip):
+        d, log = flip_to_delaunay(m)
+        w = IntrinsicTriangulation(m)
+        for rec in log:
+            reversed_flips += w.triangulation.reversed_gluing(
+                w.triangulation.edge_halfedges(rec.edge)[0])
+            u, v = rec.unfolding, unfold(w, rec.edge)
+            assert (u.sq_ij, u.sq_jk, u.sq_ki, u.sq_il, u.sq_lj, u.area_ijk, u.area_jil,
+                    u.faces) == (v.sq_ij, v.sq_jk, v.sq_ki, v.sq_il, v.sq_lj, v.area_ijk,
+                                 v.area_jil, v.faces)
+            w.flip(rec.edge)
+        assert w.surface().squared_lengths == d.squared_lengths
+        amp = flip_amplification(m, log)
+        assert len(amp) == d.triangulation.n_faces and min(amp) >= 1
+        assert (max(amp) > 1) == bool(log)                  # only flipped faces are amplified
+    assert reversed_flips
 
 
 def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points():
