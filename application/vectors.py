@@ -122,7 +122,7 @@ def _obtuse_fan():
 
 
 def _x42():
-    from ..properties.delaunay import X42
+    from ..properties.flipped import X42
     from ..reference.polyhedral import PolyhedralSurface
     return PolyhedralSurface.from_arrays(*X42)
 

@@ -1,5 +1,13 @@
 """Hypothesis strategies of meshes and implementation-agnostic properties, one per catalog ID.
 
+Modules by kind: the strategies (:mod:`.strategies`, the shared ones; :mod:`.stars`,
+:mod:`.flipped`, :mod:`.metrics` and :mod:`.planar_points`, those of one chapter); the
+check modules (:mod:`.topology`, :mod:`.curvature`, :mod:`.laplacian`, :mod:`.delaunay`:
+the ``@prop`` checks and the ``quantity`` declarations only); the expected values and
+bounds (:mod:`.views`, :mod:`.harness`, :mod:`.bounds`, :mod:`.delaunay_exact`,
+:mod:`.curvature_exact`, :mod:`.ties`).  Data flows one way: no strategy or expected-value
+module imports a check module.
+
 Importing this package registers our properties in our own registry and
 nothing else: no Hypothesis profile is loaded or registered (see
 :mod:`.profiles`), so a user's own ``@given`` tests keep their settings.
@@ -22,8 +30,9 @@ or draw meshes for your own properties::
         V, F = case.arrays()                          # float64 n x 3, int64 m x 3
 """
 
-#: public name -> the module defining it (strategies that live beside the properties they
-#: serve: star kinds, Delaunay flips, flat tori, planar point sets)
+#: public name -> the module defining it (the strategies of one chapter's properties live in
+#: strategy modules of their own, never in a check module: star kinds and rigid motions in
+#: stars, Delaunay flips in flipped, flat tori in metrics, planar point sets in planar_points)
 _PUBLIC = {
     **dict.fromkeys(["PROPERTIES", "Property", "PropertyFailure", "TieDisagreement",
                      "all_properties"], "registry"),
@@ -34,8 +43,8 @@ _PUBLIC = {
                      "named_surfaces", "obtuse_meshes", "planar_meshes", "scaled_meshes",
                      "single_triangles", "surface_meshes", "triangulated_surfaces",
                      "weighted_graphs", "with_functions", "with_isolated"], "strategies"),
-    **dict.fromkeys(["rational_motions", "vertex_stars"], "curvature"),
-    **dict.fromkeys(["delaunay_meshes", "flipped_meshes", "two_triangulations"], "delaunay"),
+    **dict.fromkeys(["rational_motions", "vertex_stars"], "stars"),
+    **dict.fromkeys(["delaunay_meshes", "flipped_meshes", "two_triangulations"], "flipped"),
     **dict.fromkeys(["flat_tori", "polycube_surfaces", "randomly_flipped"], "metrics"),
     **dict.fromkeys(["integer_point_sets", "integer_quadrilaterals", "rational_point_sets"],
                     "planar_points"),

@@ -5,7 +5,9 @@ Each property takes an implementation (see :mod:`ddg_oracle.protocol.methods`) a
 example drawn from its strategy.  Expected values come from the exact reference
 (:mod:`ddg_oracle.reference.curvature`) evaluated on *exactly the float coordinates the
 implementation receives* (every float is a rational), or from how the example
-was built (chi, the kind of a vertex star, a support-function integral).
+was built (chi, the kind of a vertex star, a support-function integral).  The examples
+are drawn by :mod:`.strategies` and :mod:`.stars`; the expected values beyond the float
+views (:mod:`.views`) are :mod:`.curvature_exact`'s.
 
 Tolerances are derived, never guessed: the error model of angles, angle defects,
 dihedral angles, mean curvature and areas computed from float points is
@@ -17,135 +19,25 @@ from __future__ import annotations
 
 import math
 
-from fractions import Fraction
-
 import numpy as np
 from hypothesis import assume, strategies as st
 
 from ..reference import curvature as ref
 from ..reference import surfaces
-from ..reference.combinatorics import Triangulation
 from ..reference.exact import exact_sum
-from ..reference.linear import cross, det3, dot, sub
-from ..reference.polyhedral import PolyhedralSurface
 
-from . import memo
 from .views import corner_angle_views, defect_views, mean_curvature_views, turning_views
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
-                     float_geometry, gamma, total_area_view, vertex_tolerances)
+                     float_geometry, gamma, vertex_tolerances)
 from .conventions import declared, widened
-from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
-from .registry import EXACT_SUM_LIMIT, PropertyFailure, TieDisagreement, prop, quantity
+from .curvature_exact import (area_bound, mean_curvature_by_pair, steiner_views,
+                              support_function_integral)
+from ..protocol.methods import ISOLATED_VERTEX, eps
+from .registry import PropertyFailure, TieDisagreement, prop, quantity
+from .stars import (convex_polyhedra, pushable_surfaces, rational_motions, relabel_surface,
+                    vertex_stars)
 from .strategies import Example, floated, jittered_surfaces
 from . import variants
-from .variants import circle_point
-
-
-# --- examples -------------------------------------------------------------------------------------
-
-
-def _relabel_surface(surface: PolyhedralSurface, key: int):
-    """(relabelled surface, perm) with vertex v renamed perm[v] (:func:`.variants.relabelled`)."""
-    t, positions, perm = variants.relabelled(surface.triangulation, surface.positions, key)
-    return PolyhedralSurface(t, positions), perm
-
-
-@st.composite
-def rational_motions(draw):
-    """(R, t): a rational rotation (Cayley transform of a rational skew matrix, T2.5) and a
-    translation with small rational entries."""
-    w = [Fraction(draw(st.integers(-4, 4)), draw(st.integers(1, 3))) for _ in range(3)]
-    tr = tuple(Fraction(draw(st.integers(-6, 6)), 2) for _ in range(3))
-    return ref.cayley_rotation(*w), tr
-
-
-def _signed_permutation(k: int):
-    """One of the 48 symmetries of the cube (exact on floats): a signed permutation matrix."""
-    perms = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
-    p, signs = perms[k % 6], k // 6
-    return [[(-1 if signs >> i & 1 else 1) if j == p[i] else 0 for j in range(3)]
-            for i in range(3)]
-
-
-def _star_surface(directions, kind, params, symmetry, shift):
-    """The star of vertex 0 at ``shift`` with neighbours 0 + d_j, faces (0, j, j+1)."""
-    n = len(directions)
-    faces = [(0, 1 + j, 1 + (j + 1) % n) for j in range(n)]
-    P = _signed_permutation(symmetry)
-    pts = [(0, 0, 0)] + list(directions)
-    pts = [tuple(sum(P[i][k] * p[k] for k in range(3)) + shift[i] for i in range(3))
-           for p in pts]
-    s = floated(PolyhedralSurface(Triangulation.from_faces(faces), pts))
-    return Example.of_surface(s, 1, f"{kind} star {params}, symmetry {symmetry}, shift {shift}",
-                         vertex=0, kind=kind, params=params)
-
-
-@st.composite
-def vertex_stars(draw, kind: str | None = None):
-    """The star of one interior vertex (a disk, chi = 1), built to be of a given kind (L2.4, R2.2).
-
-    * convex: rays of a pyramid over a convex polygon around the apex's foot,
-      each scaled by its own factor (the cone, hence convexity, is unchanged);
-    * planar: neighbours in the plane of p, all around it (sectors < pi);
-    * saddle: m >= 3 directions d and their opposites -d (scaled), spanning R^3
-      (p is then in the interior of the hull of its neighbours);
-    * folded: n = 2m neighbours on a unit circle, alternately at heights +h, -h
-      (K <= 2 pi - 2 n atan(h), unbounded below as n grows, R2.2).
-
-    Then one of the 48 symmetries of the cube and a dyadic translation, both
-    exact on floats, so the kind survives rounding to floats.
-    """
-    kind = kind or draw(st.sampled_from(["convex", "planar", "saddle", "folded"]))
-    symmetry = draw(st.integers(0, 47))
-    shift = tuple(Fraction(draw(st.integers(-8, 8)), 4) for _ in range(3))
-    scale = [Fraction(1, 2), Fraction(1), Fraction(3, 2), Fraction(2)]
-    if kind in ("convex", "planar"):
-        n = draw(st.integers(3, 8))
-        gaps = draw(st.lists(st.integers(1, 3), min_size=n, max_size=n))
-        assume(2 * max(gaps) < sum(gaps))              # every sector below pi
-        lam = draw(st.lists(st.sampled_from(scale), min_size=n, max_size=n))
-        steep = draw(st.sampled_from([Fraction(1, 4), Fraction(1), Fraction(3)]))
-        angles, acc = [], Fraction(1, 3)
-        for g in gaps:
-            angles.append(2 * math.pi * float(acc) / sum(gaps))
-            acc += g
-        dirs = []
-        for a, l in zip(angles, lam):
-            c, s = circle_point(a)
-            dirs.append((l * c, l * s, -l * steep if kind == "convex" else 0))
-        params = (n, tuple(gaps), str(steep)) if kind == "convex" else (n, tuple(gaps))
-    elif kind == "saddle":
-        m = draw(st.integers(3, 4))          # d and -d for m = 2 directions span a plane only
-        gaps = draw(st.lists(st.integers(1, 3), min_size=m, max_size=m))
-        heights = draw(st.lists(st.integers(-3, 3), min_size=m, max_size=m))
-        lam = draw(st.lists(st.sampled_from(scale), min_size=2 * m, max_size=2 * m))
-        total = sum(gaps) + 1
-        half, acc = [], Fraction(1, 2)
-        for g in gaps:
-            half.append(math.pi * float(acc) / total)
-            acc += g
-        base = [(*circle_point(a), Fraction(z)) for a, z in zip(half, heights)]
-        if det3(base[0], base[1], base[2]) == 0:
-            # coplanar: lift the third; its foot is off the line of the first two, so det != 0
-            base[2] = (*base[2][:2], base[2][2] + 1)
-            heights[2] += 1
-        dirs = [tuple(l * x for x in d) for d, l in zip(base, lam[:m])]
-        dirs += [tuple(-l * x for x in d) for d, l in zip(base, lam[m:])]
-        params = (m, tuple(gaps), tuple(heights))
-    elif kind == "folded":
-        m = draw(st.integers(2, 6))
-        h = draw(st.integers(1, 8))
-        n = 2 * m
-        dirs = []
-        for j in range(n):
-            c, s = circle_point(2 * math.pi * (j + Fraction(1, 3)) / n)
-            dirs.append((c, s, h if j % 2 == 0 else -h))
-        params = (n, h)
-    else:
-        raise ValueError(f"unknown star kind {kind!r}")
-    # built once per drawn star in this process: every implementation's task draws the same
-    return memo.DRAWN.shared(("star", tuple(dirs), kind, params, symmetry, shift),
-                             lambda: _star_surface(dirs, kind, params, symmetry, shift))
 
 
 # --- reference values and tolerances --------------------------------------------------------------
@@ -259,7 +151,7 @@ def gauss_bonnet(impl, case: Example):
       strategy=lambda: st.tuples(rational_motions(), st.integers(0, 1 << 16)))
 def cube_angle_defects(impl, example):
     (R, tr), key = example
-    moved, _ = _relabel_surface(ref.rigid_motion(surfaces.cube(), R, tr), key)
+    moved, _ = relabel_surface(ref.rigid_motion(surfaces.cube(), R, tr), key)
     case = Example.of_surface(floated(moved), 2, f"unit cube moved by {R}, {tr}, relabelled {key}")
     K = _defects(impl, case, "X2.1")
     tol = _defect_bounds(impl, case, K, corner_tolerances(case, input_rounding=True))
@@ -285,7 +177,7 @@ def angle_defects_are_invariant(impl, example):
     case, (R, tr), key = example
     motion = (tuple(map(tuple, R)), tuple(tr), key)
     moved, perm = case.derived(("moved", motion),
-                               lambda c: _relabel_surface(floated(ref.rigid_motion(c.surface, R, tr)), key))
+                               lambda c: relabel_surface(floated(ref.rigid_motion(c.surface, R, tr)), key))
     # rounding the moved points to floats may merge two of a cluster or a sliver's points
     # (a face of zero area, or two faces folded onto each other): then it is no surface,
     # and not an example (as the strategies reject such a rounding)
@@ -302,32 +194,6 @@ def angle_defects_are_invariant(impl, example):
             raise PropertyFailure("T2.5", impl, f"K changed under a rigid motion: {_units(err, bound)}",
                                   mesh=other.mesh, element=f"vertex {v} (now {w})",
                                   expected=float(K1[v]), observed=float(K2[w]), bound=bound)
-
-
-@st.composite
-def pushable_surfaces(draw):
-    """(case, v): a surface with a vertex v whose neighbours are coplanar (X2.3).
-
-    A bipyramid over a rational polygon in z = 0 (closed, chi 2) or a planar grid
-    with one interior vertex lifted (a disk); every coordinate a float.
-    """
-    if draw(st.booleans()):
-        n = draw(st.integers(3, 7))
-        top, bottom = Fraction(draw(st.integers(1, 8)), 4), Fraction(draw(st.integers(1, 8)), 4)
-        ring = [(*circle_point(2 * math.pi * (k + Fraction(1, 3)) / n), 0) for k in range(n)]
-        faces = [(0, 2 + k, 2 + (k + 1) % n) for k in range(n)]
-        faces += [(1, 2 + (k + 1) % n, 2 + k) for k in range(n)]
-        s = PolyhedralSurface(Triangulation.from_faces(faces),
-                              [(0, 0, top), (0, 0, -bottom)] + ring)
-        case = Example.of_surface(floated(s), 2, f"bipyramid n={n}, apexes {top}, -{bottom}")
-        return case, draw(st.sampled_from([0, 1]))
-    m, n = draw(st.integers(2, 4)), draw(st.integers(2, 4))
-    g = surfaces.grid(m, n)
-    i, j = draw(st.integers(1, m - 1)), draw(st.integers(1, n - 1))
-    v = i * (n + 1) + j
-    h = Fraction(draw(st.integers(1, 12)), 4)
-    pos = [(x, y, h if w == v else z) for w, (x, y, z) in enumerate(g.positions)]
-    return Example.of_surface(floated(g.with_positions(pos)), 1, f"grid {m}x{n}, vertex {v} at {h}"), v
 
 
 @prop("X2.3", "pushing a vertex in (reflecting it in the plane of its coplanar neighbours) "
@@ -473,113 +339,6 @@ def edge_mean_curvature_matches_reference(impl, case: Example):
                                   expected=h, observed=H[key], bound=tol[key])
 
 
-def support_function_integral(points, n_theta: int = 256) -> tuple[float, float]:
-    """(value, bound): the integral of h(u) = max_p <u, p> over the unit sphere, numerically.
-
-    For a convex polyhedron with vertices ``points`` this is H(S) (T2.7), i.e.
-    2 pi times the mean width.  Quadrature on the n_theta x 2 n_theta
-    longitude-latitude cells, after centring (the integral of <u, c> vanishes):
-    on a cell where one vertex p_i provably maximises <u, .> (its lead over every
-    p_j at the cell's centre exceeds |p_i - p_j| r, r a bound on the distance from
-    the centre to the cell), h = <u, p_i> is integrated in closed form; on the
-    other cells h(centre) times the cell's area is used, with error <= area R r
-    (h is R-Lipschitz, R = max |p|).  ``bound`` is the sum of those errors plus
-    the float rounding of the sums, gamma_(N + 16) sum |terms|.
-    """
-    P = np.asarray(points, dtype=np.float64)
-    P = P - P.mean(axis=0)
-    R = float(np.sqrt((P * P).sum(axis=1)).max())
-    n_phi = 2 * n_theta
-    th = np.linspace(0.0, np.pi, n_theta + 1)
-    ph = np.linspace(0.0, 2 * np.pi, n_phi + 1)
-    t0, t1, f0, f1 = th[:-1], th[1:], ph[:-1], ph[1:]
-    dth, dph = np.pi / n_theta, 2 * np.pi / n_phi
-    tc, fc = (t0 + t1) / 2, (f0 + f1) / 2
-    smax = np.where((t0 <= np.pi / 2) & (t1 >= np.pi / 2), 1.0, np.maximum(np.sin(t0), np.sin(t1)))
-    r = dth / 2 + smax * dph / 2          # geodesic (hence chordal) radius of a cell about its centre
-    sin2 = (t1 - t0) / 2 - (np.sin(2 * t1) - np.sin(2 * t0)) / 4      # integral of sin^2
-    sincos = (np.sin(t1) ** 2 - np.sin(t0) ** 2) / 2                  # integral of sin cos
-    U = np.stack([sin2[:, None] * (np.sin(f1) - np.sin(f0))[None, :],
-                  sin2[:, None] * (np.cos(f0) - np.cos(f1))[None, :],
-                  sincos[:, None] * np.full(n_phi, dph)[None, :]], axis=-1).reshape(-1, 3)
-    uc = np.stack([np.sin(tc)[:, None] * np.cos(fc)[None, :],
-                   np.sin(tc)[:, None] * np.sin(fc)[None, :],
-                   np.cos(tc)[:, None] * np.ones(n_phi)[None, :]], axis=-1).reshape(-1, 3)
-    rc = np.repeat(r, n_phi)
-    area = np.repeat((np.cos(t0) - np.cos(t1)) * dph, n_phi)
-    vals = uc @ P.T
-    top = vals.argmax(axis=1)
-    rows = np.arange(len(top))
-    best = vals[rows, top]
-    D = np.sqrt(((P[:, None, :] - P[None, :, :]) ** 2).sum(-1))
-    margin = best[:, None] - vals - D[top] * rc[:, None]
-    margin[rows, top] = np.inf
-    pure = (margin > 0).all(axis=1)
-    exact_part = (U[pure] * P[top[pure]]).sum(axis=1)
-    approx_part = best[~pure] * area[~pure]
-    value = float(exact_part.sum() + approx_part.sum())
-    bound = float((area[~pure] * R * rc[~pure]).sum())
-    # our own float64 sums: float64's gamma, whatever the checked implementation declares
-    bound += gamma(len(top) + 16, FLOAT64_EPSILON) * float(np.abs(exact_part).sum()
-                                                           + np.abs(approx_part).sum())
-    return value, bound
-
-
-def convex_hull_surface(points) -> PolyhedralSurface | None:
-    """The boundary of the convex hull of integer points, faces oriented outward, or None.
-
-    scipy's ConvexHull proposes the faces; orientation and convexity are then
-    checked exactly (every point weakly inside every face plane, the centroid
-    strictly inside); None if the hull is flat or the check fails.
-    """
-    from scipy.spatial import ConvexHull
-    from scipy.spatial import QhullError
-    pts = [tuple(Fraction(x) for x in p) for p in points]
-    try:
-        hull = ConvexHull(np.array(points, dtype=np.float64))
-    except (QhullError, ValueError):
-        return None
-    used = sorted({int(i) for s in hull.simplices for i in s})
-    index = {v: k for k, v in enumerate(used)}
-    centre = tuple(sum(pts[v][k] for v in used) / len(used) for k in range(3))
-    faces = []
-    for s in hull.simplices:
-        a, b, c = (pts[int(i)] for i in s)
-        n = cross(sub(b, a), sub(c, a))
-        side = dot(n, sub(centre, a))
-        if side == 0:
-            return None
-        face = [index[int(i)] for i in s]
-        if side > 0:
-            face[1], face[2] = face[2], face[1]
-            n = tuple(-x for x in n)
-        if any(dot(n, sub(p, a)) > 0 for p in pts):
-            return None
-        faces.append(face)
-    try:
-        return PolyhedralSurface(Triangulation.from_faces(faces), [pts[v] for v in used])
-    except Exception:
-        return None
-
-
-@st.composite
-def convex_polyhedra(draw):
-    """A convex polyhedron: the hull of 4..12 integer points near the sphere of radius 8.
-
-    Each point is a small integer direction (entries in -3..3) scaled to length
-    about 8 and rounded to integers, so coordinates are exact floats.
-    """
-    n = draw(st.integers(4, 12))
-    dirs = draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3), st.integers(-3, 3))
-                         .filter(any), min_size=n, max_size=n, unique=True))
-    pts = tuple(sorted({tuple(round(8 * x / math.sqrt(sum(y * y for y in d))) for x in d)
-                        for d in dirs}))
-    # the hull depends on the points alone: built once per point set in this process
-    s = memo.DRAWN.shared(("convex hull", pts), lambda: convex_hull_surface(pts))
-    assume(s is not None)
-    return Example.of_surface(s, 2, f"convex hull of {list(pts)}")
-
-
 @prop("T2.7", "total mean curvature of a convex polyhedron = integral of its support function over "
       "the unit sphere (2 pi x mean width), within quadrature plus float bounds",
       needs={"edge_mean_curvature"}, on_mesh=None, strategy=convex_polyhedra)
@@ -602,7 +361,7 @@ def total_mean_curvature_is_support_integral(impl, case: Example):
       on_mesh=("closed", "oriented"),
       strategy=lambda: jittered_surfaces(closed=True))
 def steiner_coefficients_match(impl, case: Example):
-    A_ref, err_A, twoH_ref, err_H = _steiner_views(case)
+    A_ref, err_A, twoH_ref, err_H = steiner_views(case)
     A = float(_call(impl, "area", case))
     bound_A = area_tolerance(case) + err_A
     if not abs(A - float(A_ref)) <= bound_A:
@@ -620,39 +379,7 @@ def steiner_coefficients_match(impl, case: Example):
     _check_total("R2.5", impl, case, K, _defect_bounds(impl, case, K, corner_tolerances(case)))
 
 
-def _steiner_views(case: Example) -> tuple[float, float, float, float]:
-    """(A, err_A, 2 H(S), err_H): R2.5's area and total mean curvature as floats within
-    err of the exact ones.  Up to EXACT_SUM_LIMIT faces the exact sums correctly rounded
-    (err 0); beyond, an exact sum has a square root per face, so: the area correctly
-    rounded from enclosures (:func:`total_area_view`, err u A), and 2 H(S) = 2 fsum of the correctly rounded H(e) (each within
-    u |H(e)|, the fsum within u of its value: err_H = 2 u sum |H(e)| + u |2 H(S)|, with a
-    factor 1.0001 for |H(e)| <= (1 + u) |its float|).  The checks widen their bounds by err:
-    a pass is then certain; a failure by less than err (about 1e-16 relative) would go
-    unseen."""
-    if len(case.faces) <= EXACT_SUM_LIMIT:
-        A, twoH, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
-        return float(A), 0.0, float(twoH), 0.0
-    A, err_A = total_area_view(case.surface.metric())
-    views = list(mean_curvature_views(case.surface).values())
-    twoH = 2 * math.fsum(views)
-    u = 2.0 ** -53
-    return A, err_A, twoH, 1.0001 * u * (2 * math.fsum(abs(h) for h in views) + abs(twoH))
-
-
 # --- how the curvature methods' answers compare on a given mesh (compare, vectors) ------------
-
-
-def _area_bound(example: Example, want) -> float:
-    # the reference's answer is the exact total correctly rounded: within u A of it
-    return area_tolerance(example) + total_area_view(example.surface.metric())[1]
-
-
-def _mean_curvature_by_pair(example: Example) -> dict:
-    """D2.3: {(i, j) with i < j: H(e)} exactly, keyed by the edge's vertices."""
-    t = example.surface.triangulation
-    return {tuple(sorted(t.edge_vertices(e))): h
-            for e, h in ref.mean_curvature(example.surface).items()}
-
 
 quantity("corner_angles", bound=lambda example, want: corner_tolerances(example),
          exact=lambda example: ref.corner_angles(example.surface))
@@ -662,6 +389,6 @@ quantity("angle_defects",
                                 **ref.turning_angles(example.surface)})
 quantity("edge_mean_curvature", requires=("oriented",),
          bound=lambda example, want: edge_mean_curvature_tolerances(example),
-         exact=_mean_curvature_by_pair)
-quantity("area", bound=_area_bound,
+         exact=mean_curvature_by_pair)
+quantity("area", bound=area_bound,
          exact=lambda example: exact_sum(example.surface.metric().areas))

@@ -12,7 +12,8 @@ The truth is the exact reference on the very floats the implementation received
 (:func:`ddg_oracle.reference.delaunay.flip_to_delaunay`).
 
 The exact operator on an example and the error model of float flips:
-:mod:`.delaunay_exact`.
+:mod:`.delaunay_exact`; where rounding decides a Delaunay test (ties): :mod:`.ties`.  The
+examples are drawn by :mod:`.strategies` and :mod:`.flipped`.
 
 Exact ties (a cot sum exactly 0: the four points cocircular) accept either
 answer; near ties (the exact value within the bound of 0) answered the other
@@ -24,26 +25,23 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-from hypothesis import strategies as st
 
 from ..reference.curvature import corner_angles
 from ..reference.delaunay import harmonic_index, is_delaunay_edge, laplace_beltrami
-from ..reference.polyhedral import PolyhedralSurface
 
 from .bounds import K_COT, corner_tolerances, gamma
 from .delaunay_exact import DelaunayExact, angles_from_squared_lengths, total_area_bound
 from .views import corner_angle_views
 from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
                       implementation_matrix, record, worst, worst_sparse)
-from .strategies import (Example, acute_meshes, closed_meshes, grid_faces,
-                         jittered_grids, mesh_case, obtuse_fans, obtuse_meshes, planar_meshes,
-                         single_triangles)
-from .metrics import polycube_surfaces
-from .precision import representable
+from .flipped import (delaunay_meshes, delaunay_test_meshes, interior_meshes, intrinsic_meshes,
+                      planar_delaunay_points, quads_with_values, scaled_planar_triangulations,
+                      two_triangulations, x42_tetrahedron)
+from .strategies import Example, mesh_case, planar_meshes
+from .ties import cot_sum_with_bound, delaunay_ties, incircle_with_bound
 from ..protocol.methods import eps
 from .registry import PropertyFailure, TieDisagreement, faces_text, prop, quantity
-from ..reference.combinatorics import (face_of, next_corner, opposite_corner, opposite_halfedge,
-                                       prev_corner)
+from ..reference.combinatorics import next_corner, opposite_halfedge, prev_corner
 
 
 def _compare(pid, impl, case, A, exact, B, what):
@@ -59,147 +57,7 @@ def _compare(pid, impl, case, A, exact, B, what):
               expected=float(exact[i, j]), observed=float(A[i, j]))
 
 
-
-# --- strategies --------------------------------------------------------------------------------
-
-
-@st.composite
-def flipped_meshes(draw):
-    """A closed jittered polyhedron (or a grid in R^3) with up to 12 drawn combinatorial
-    flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
-    flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
-    from ..reference.errors import InputError
-    case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
-        lambda s: mesh_case(s.positions, s.triangulation.faces, "polycube"))))
-    t = case.surface.triangulation
-    picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=12))
-    for k in picks:
-        e = k % t.n_edges
-        if t.is_boundary_edge(e):
-            continue
-        u = t.flip(e)
-        if not u.is_strongly_regular():
-            continue
-        try:
-            PolyhedralSurface(u, case.positions).metric()
-        except InputError:                          # a degenerate (collinear) new face
-            continue
-        t = u
-    return Example.of_mesh(case.positions, tuple(t.faces), f"{case.recipe}, {len(picks)} flips drawn")
-
-
-def delaunay_meshes():
-    """Meshes that are often not Delaunay: obtuse fans, jittered grids (in the plane and
-    in R^3), closed jittered polyhedra, and those with random flips; shrinks towards a
-    single triangle.  Not the wide surface meshes (random float jitter, valence 64,
-    slivers): exact intrinsic flips on their float lengths are too slow to shrink a
-    failure today (issue 18); and no isolated vertices: the chapter-4 checks compare
-    triangulations and matrices on the surface's vertices.  Scaled by 2**k and sometimes
-    moved far (:func:`~.strategies.scaled_meshes`: exact; what these properties check is
-    scale-invariant, and an absolute threshold on an edge or an area shows there)."""
-    from .strategies import scaled_meshes
-    return scaled_meshes(st.one_of(*_delaunay_kinds()))
-
-
-def delaunay_test_meshes():
-    """D4.4's examples: half :func:`delaunay_meshes`, half quads beside an exact tie
-    (:func:`~.strategies.near_cocircular_meshes`: a test with a tolerance decides them
-    wrongly); a third of either with faces reversed (:func:`~.strategies.with_reversed_faces`:
-    a test that finds the other face of an edge by the reversed directed edge calls the
-    edge a boundary edge, hence Delaunay)."""
-    from .strategies import grouped, near_cocircular_meshes, with_reversed_faces
-    return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds()), near_cocircular_meshes()))
-
-
-def _delaunay_kinds() -> list:
-    return [single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
-            acute_meshes(), closed_meshes(), flipped_meshes()]
-
-
-@st.composite
-def non_orientable_meshes(draw):
-    """The 6-vertex projective plane, a 3 x 3 Klein bottle (at drawn dyadic points: an
-    immersion, whose metric is all an intrinsic triangulation needs) or a Moebius strip:
-    D4.8, A4.13, C4.19 and L4.20 hold for any piecewise flat surface, orientable or not
-    (docs/findings.md F-libigl-6: a flip algorithm that assumes an orientation breaks there)."""
-    from ..reference import surfaces
-    from ..reference.errors import InputError
-    kind = draw(st.sampled_from(["Moebius strip", "projective plane", "Klein bottle"]))
-    if kind == "Moebius strip":
-        s = surfaces.mobius_strip(draw(st.integers(3, 6)))
-        return mesh_case(s.positions, s.triangulation.faces, f"Moebius strip, {s.n_vertices} vertices")
-    t = surfaces.projective_plane() if kind == "projective plane" else surfaces.klein_bottle(3, 3)
-    coordinate = st.integers(-64, 64).map(lambda k: Fraction(k, 16))
-    points = draw(st.lists(st.tuples(coordinate, coordinate, coordinate),
-                           min_size=t.n_vertices, max_size=t.n_vertices))
-    try:
-        PolyhedralSurface(t, points).metric()
-    except InputError:                              # a degenerate face: draw again
-        from hypothesis import assume
-        assume(False)
-    return mesh_case(points, t.faces, f"{kind} at dyadic points")
-
-
-def intrinsic_meshes():
-    """The examples of the properties that ask for an intrinsic Delaunay triangulation, in
-    three equal parts: :func:`delaunay_meshes`' kinds and non-orientable surfaces
-    (:func:`non_orientable_meshes`, one kind among eight: an implementation that declines
-    non-orientable input keeps most of its examples); quads beside an exact tie
-    (:func:`~.strategies.near_cocircular_meshes`: a flip decided with a tolerance); and
-    planar triangulations far from Delaunay (:func:`~.strategies.sweep_meshes`: flip
-    cascades).  A third of them with faces reversed (:func:`~.strategies.with_reversed_faces`:
-    a flip algorithm that glues by reversed halfedge keys takes an interior edge for a
-    boundary edge and never flips it).  Half of the near ties and cascades closed by cones
-    (:func:`~.strategies.coned`): an implementation that declines boundary meets them too.
-    Every kind maybe with a near-tie quad and a convex fan beside it
-    (:func:`~.strategies.with_traps_beside`)."""
-    from .strategies import (coned, grouped, near_cocircular_meshes, sweep_meshes,
-                             with_reversed_faces, with_traps_beside)
-    return with_reversed_faces(with_traps_beside(st.one_of(
-        grouped(*_delaunay_kinds(), non_orientable_meshes()),
-        coned(near_cocircular_meshes()), coned(sweep_meshes()))))
-
-
-@st.composite
-def two_triangulations(draw):
-    """One jittered planar point grid, triangulated twice (each square's diagonal drawn
-    twice): two triangulations of the same flat metric with the same vertex set."""
-    c = draw(planar_meshes(min_size=1, max_size=3))
-    rows = [p for p in c.positions]
-    m = round(float(max(p[0] for p in rows)))
-    n = round(float(max(p[1] for p in rows)))
-    flips = draw(st.lists(st.booleans(), min_size=m * n, max_size=m * n))
-    other = Example.of_mesh(c.positions, tuple(tuple(f) for f in grid_faces(m, n, flips)),
-                     c.recipe + " retriangulated")
-    return c, other
-
-
-#: X4.2: a flat tetrahedron (positions, faces) whose Delaunay triangulation has a vertex
-#: of valence 1 inside a loop
-X42 = ([(0, 0, 0), (10, 0, 0), (0, 1, 0), (1, Fraction(1, 3), Fraction(1, 10))],
-       [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)])
-
-
-def x42_tetrahedron():
-    """X4.2 (:data:`X42`) as the one example of its property."""
-    return st.just(mesh_case(*X42, "X4.2 tetrahedron"))
-
-
-def _interior_meshes():
-    """Meshes with interior vertices and boundary: grids in R^3 and fans."""
-    return st.one_of(jittered_grids(), obtuse_fans())
-
-
 # --- properties --------------------------------------------------------------------------------
-
-
-def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
-    """(cot a + cot b of edge e as float, the bound on a float evaluation's error): an edge
-    whose sum is within the bound of 0 is an (exact or near) tie, which rounding decides
-    (D4.4; boundary edges: the one corner)."""
-    hs = [x for x in X.triangulation.edge_halfedges(e) if x >= 0]
-    s = sum(float(X.metric.corner_cot(face_of(x), opposite_corner(x))) for x in hs)
-    return s, sum(X.beta[face_of(x), opposite_corner(x)] for x in hs) + 2 * eps() * abs(s)
 
 
 @prop("D4.4 / T4.7 / P4.9", "is_locally_delaunay agrees with the exact angle criterion "
@@ -509,7 +367,7 @@ def flat_meshes_are_minimal(impl, case: Example):
 
 @prop("A4.23", "one minimal-surface step with the intrinsic Laplace-Beltrami operator (boundary "
       "fixed) does not increase the Dirichlet energy above the area: E(x~) <= E(x) <= A(S)",
-      needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=_interior_meshes)
+      needs={"intrinsic_delaunay_laplacian"}, on_mesh=None, strategy=interior_meshes)
 def delaunay_minimal_surface_step(impl, case: Example):
     pid = "A4.23"
     A = implementation_dense(impl, case, pid, "intrinsic_delaunay_laplacian", flips=True)
@@ -548,17 +406,6 @@ def _near_tie(pid, impl, mesh, message, **kw):
     """A disagreement that rounding decides (an exact tie, or within the float bound): a
     tie disagreement, reported apart from real failures."""
     raise TieDisagreement(pid, impl, message, mesh=mesh, **kw)
-
-
-def _planar_points():
-    from .planar_points import rational_point_sets
-    from .strategies import near_cocircular_point_sets
-    # rounded to the checked implementation's input format; distinct points after it.  Half
-    # the draws points of one circle, one moved off it by 2**-k (k in 20..44): the
-    # nearly cocircular sets where a float32 rounding or a joggle picks the other diagonal
-    return st.one_of(rational_point_sets().map(lambda pts: tuple((representable(x), representable(y))
-                                                                 for x, y in pts)).filter(
-        lambda pts: len(set(pts)) == len(pts)), near_cocircular_point_sets())
 
 
 def _planar_result(impl, pts, pid):
@@ -637,20 +484,6 @@ def _flat_tie(pid, impl, mesh, flat):
               "otherwise; the other triangles are Delaunay")
 
 
-def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
-    """(exact in-circle determinant of the exact points (D4.1), as float; the bound on the
-    error of a float evaluation of it): Shewchuk's incircle error bound, (10 + 96 eps) eps times
-    the permanent of the lifted 3 x 3 matrix, rounded up to 16 eps."""
-    from ..reference.delaunay import incircle_determinant
-    rows = [(p[0] - d[0], p[1] - d[1]) for p in (a, b, c)]
-    lifts = [x * x + y * y for x, y in rows]
-    (ax, ay), (bx, by), (cx, cy) = rows
-    det = incircle_determinant(a, b, c, d)
-    perm = (lifts[0] * (abs(bx * cy) + abs(cx * by)) + lifts[1] * (abs(ax * cy) + abs(cx * ay))
-            + lifts[2] * (abs(ax * by) + abs(bx * ay)))
-    return float(det), 16 * eps() * float(perm)
-
-
 def _real_violations(pts, tris):
     """Empty-disk violations of the triangles beyond the float in-circle bound, and the
     number within it (near ties, which rounding decides)."""
@@ -671,7 +504,7 @@ def _real_violations(pts, tris):
 
 @prop("D4.1", "every triangle of planar_delaunay is non-degenerate and its circumdisk holds no "
       "other point in its interior (exact in-circle test on the float points)",
-      needs={"planar_delaunay"}, on_mesh=None, strategy=_planar_points)
+      needs={"planar_delaunay"}, on_mesh=None, strategy=planar_delaunay_points)
 def empty_disk_property(impl, pts):
     tris, mesh, flat = _planar_result(impl, pts, "D4.1")
     real, ties = _real_violations(pts, tris)
@@ -689,7 +522,7 @@ def empty_disk_property(impl, pts):
 
 @prop("T4.1", "planar_delaunay is the unique Delaunay tessellation of the points once "
       "cocircular triangles are merged (compared with the exact flip algorithm's)",
-      needs={"planar_delaunay"}, on_mesh=None, strategy=_planar_points)
+      needs={"planar_delaunay"}, on_mesh=None, strategy=planar_delaunay_points)
 def unique_planar_tessellation(impl, pts):
     from ..reference.planar import cocircular_cells, delaunay_tessellation
     tris, mesh, flat = _planar_result(impl, pts, "T4.1")
@@ -712,13 +545,6 @@ def unique_planar_tessellation(impl, pts):
             return
         raise PropertyFailure("T4.1", impl, "not the Delaunay tessellation", mesh=mesh,
                               expected=missing, observed=extra)
-
-
-def _planar_triangulations():
-    from .planar_points import planar_triangulations
-    from .strategies import scaled_planar
-    # scaled by 2**k (exact): an absolute epsilon on the in-circle determinant shows
-    return scaled_planar(planar_triangulations())
 
 
 class NotPlanarDelaunay(Exception):
@@ -770,7 +596,7 @@ def planar_delaunay_problems(pts, tris, boundary) -> int:
       "vertices and boundary edges, faces counterclockwise) whose interior edges all have "
       "opposite angles summing to at most pi (L4.3: exact in-circle test on the float points); "
       "started on the convex hull, the Delaunay tessellation (T4.1)",
-      needs={"planar_flip_to_delaunay"}, on_mesh=None, strategy=_planar_triangulations)
+      needs={"planar_flip_to_delaunay"}, on_mesh=None, strategy=scaled_planar_triangulations)
 def planar_flips_reach_delaunay(impl, example):
     from ..reference.planar import cocircular_cells, delaunay_tessellation
     pid = "L4.3 / P4.4"
@@ -802,16 +628,10 @@ def planar_flips_reach_delaunay(impl, example):
                               "Delaunay tessellation" + result, mesh=mesh)
 
 
-def _quads():
-    from .planar_points import integer_quadrilaterals
-    values = st.lists(st.integers(-4, 4), min_size=4, max_size=4)
-    return st.tuples(integer_quadrilaterals, values)
-
-
 @prop("L4.14", "Rippa: 1/2 u^T (L13 - L24) u from the implementation's cotan Laplacians of the "
       "two triangulations of a convex quadrilateral equals the exact right side of (4.2); its "
       "sign is that of r1 r3 - r2 r4 (L4.15, C4.16) unless within the bound",
-      needs={"cotan_laplacian"}, on_mesh=None, strategy=_quads)
+      needs={"cotan_laplacian"}, on_mesh=None, strategy=quads_with_values)
 def rippa_energy_difference(impl, quad_u):
     from ..reference.rippa import TRIANGLES_13, TRIANGLES_24, circularity, rippa_right_side
     pts, u = quad_u
@@ -835,21 +655,6 @@ def rippa_energy_difference(impl, quad_u):
 
 
 # --- how the chapter-4 methods' answers compare on a given mesh (compare, vectors) ------------
-
-def delaunay_ties(example: Example, want=None) -> np.ndarray:
-    """(m, 3) bool, per face and corner: whether the edge opposite it is an (exact or near)
-    tie, its float cot sum within :func:`cot_sum_with_bound`'s bound of 0 at the current
-    machine epsilon, where rounding decides and either answer agrees (D4.4's ties; the
-    flat rectangles of CAD meshes are exact ties).  ``want`` unused (a quantity's bound)."""
-    X = Exact.of(example)
-    t = X.triangulation
-    tie = np.zeros(t.n_edges, dtype=bool)
-    for e in range(t.n_edges):
-        s, bound = cot_sum_with_bound(X, e)
-        tie[e] = abs(s) <= bound
-    return np.array([[tie[t.edge_of(opposite_halfedge(f, c))] for c in range(3)]
-                     for f in range(t.n_faces)], dtype=bool).reshape(t.n_faces, 3)
-
 
 quantity("is_locally_delaunay", bound=delaunay_ties)
 quantity("intrinsic_delaunay_laplacian",

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+from fractions import Fraction
 from functools import cached_property
 
 import numpy as np
@@ -22,12 +23,13 @@ from ..reference.polyhedral import PolyhedralSurface
 from . import memo
 from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
-from ..protocol.methods import ISOLATED_VERTEX, eps
+from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
 from .registry import PropertyFailure, TieDisagreement
 from .views import exact_laplacian, laplacian_view
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
-           "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve"]
+           "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
+           "exact_spectrum", "dirichlet_solution"]
 
 
 # --- the error ledger --------------------------------------------------------------------------------
@@ -365,3 +367,27 @@ def dirichlet_solve(A, V0, c):
     if I:
         u[I] = np.linalg.solve(A[np.ix_(I, I)], -A[np.ix_(I, B0)] @ u[B0])
     return u, I
+
+
+# --- exact values the chapter-3 checks and compare decide on --------------------------------------
+
+
+def exact_spectrum(M) -> tuple[np.ndarray, float]:
+    """(eigenvalues ascending, err) of the exact symmetric matrix whose correctly rounded
+    float view is the dense ``M`` (entries within u = 2**-53 relative): Weyl, |lambda(view)
+    - lambda(exact)| <= u ||M||_F, plus eigvalsh's own backward error gamma_4k ||M||_F
+    (k the order).  The exact quantity a sign or definiteness statement is decided on."""
+    k = M.shape[0]
+    if k == 0:
+        return np.zeros(0), 0.0
+    # our own float64 eigvalsh: float64's gamma, whatever the checked implementation declares
+    return np.linalg.eigvalsh(M), float((2.0 ** -53 + gamma(4 * k, FLOAT64_EPSILON))
+                                        * np.linalg.norm(M))
+
+
+def dirichlet_solution(example: Example) -> list:
+    """C3.4 / T3.5: the exact solution with the example's boundary set and values (the
+    floats taken exactly)."""
+    from ..reference.dirichlet import solve_dirichlet
+    return solve_dirichlet(example.surface, {v: Fraction(c) for v, c in
+                                             zip(example.boundary, example.values)})

@@ -35,9 +35,9 @@ from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .bounds import gamma, total_area_view
-from .harness import (Exact, dirichlet_solve, entries_at, fail, implementation_dense,
-                      implementation_matrix, record, worst, worst_sparse)
-from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, capabilities, eps
+from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, exact_spectrum, fail,
+                      implementation_dense, implementation_matrix, record, worst, worst_sparse)
+from ..protocol.methods import ISOLATED_VERTEX, capabilities, eps
 from .registry import TieDisagreement, prop, quantity
 from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
@@ -129,19 +129,6 @@ def _eig_tol(X: Exact, A) -> float:
     return float(np.linalg.norm(X.B) + gamma(4 * X.n) * np.linalg.norm(A))
 
 
-def _exact_spectrum(M) -> tuple[np.ndarray, float]:
-    """(eigenvalues ascending, err) of the exact symmetric matrix whose correctly rounded
-    float view is the dense ``M`` (entries within u = 2**-53 relative): Weyl, |lambda(view)
-    - lambda(exact)| <= u ||M||_F, plus eigvalsh's own backward error gamma_4k ||M||_F
-    (k the order).  The exact quantity a sign or definiteness statement is decided on."""
-    k = M.shape[0]
-    if k == 0:
-        return np.zeros(0), 0.0
-    # our own float64 eigvalsh: float64's gamma, whatever the checked implementation declares
-    return np.linalg.eigvalsh(M), float((2.0 ** -53 + gamma(4 * k, FLOAT64_EPSILON))
-                                        * np.linalg.norm(M))
-
-
 @prop("R3.3", "with negative cotan weights, L is still positive semidefinite and L restricted to "
       "the vertices off a nonempty V0 is positive definite (the Dirichlet problem is uniquely solvable)",
       needs={"cotan_laplacian"}, on_mesh=None, strategy=lambda: with_boundary(obtuse_meshes()))
@@ -172,7 +159,7 @@ def negative_weights_keep_the_energy_positive(impl, case: Example):
     ix = np.ix_(I, I)
     AII, BII = A[ix], X.B[ix]
     k = len(I)
-    spectrum, view_err = _exact_spectrum(X.Lf[ix])      # the exact matrix's, within view_err
+    spectrum, view_err = exact_spectrum(X.Lf[ix])       # the exact matrix's, within view_err
     exact = float(spectrum[0])
     if exact + view_err <= 0:
         raise AssertionError(f"R3.3: the exact L_II is not positive definite (lambda_min "
@@ -195,7 +182,7 @@ def negative_weights_keep_the_energy_positive(impl, case: Example):
       on_mesh=None, strategy=lambda: with_isolated(acute_meshes(max_components=3)))
 def harmonic_functions_are_locally_constant(impl, case: Example):
     """The kernel's dimension is decided on the exact L first: its spectrum (from the
-    correctly rounded view, within ``err``, :func:`_exact_spectrum`) has exactly c zero
+    correctly rounded view, within ``err``, :func:`exact_spectrum`) has exactly c zero
     eigenvalues (c components; positive weights, so the others are positive).  The
     implementation's matrix is within the entry bounds of L, so by Weyl each of its
     sorted eigenvalues is within tol = ||B||_F (+ its eigvalsh error) of the exact one: it
@@ -207,7 +194,7 @@ def harmonic_functions_are_locally_constant(impl, case: Example):
     tol = _eig_tol(X, A)
     comps = X.components()
     lam = np.linalg.eigvalsh((A + A.T) / 2)
-    exact, err = _exact_spectrum(X.Lf)
+    exact, err = exact_spectrum(X.Lf)
     c = len(comps)
     if np.any(np.abs(exact[:c]) > err) or (len(exact) > c and exact[c] <= err):
         raise AssertionError(f"C3.3: the exact L does not have exactly {c} zero eigenvalues "
@@ -496,7 +483,7 @@ def minimal_surface_step_decreases_area(impl, case: Example):
     # E_S(u) - E_S(u*) = 1/2 r^T L_II^-1 r <= |r|^2 / (2 lambda_min), r the exact residual
     # and lambda_min the exact L_II's (from its correctly rounded view, less the view's
     # error: a lower bound), not the implementation's
-    spectrum, view_err = _exact_spectrum(X.Lf[np.ix_(I, I)])
+    spectrum, view_err = exact_spectrum(X.Lf[np.ix_(I, I)])
     lam = float(spectrum[0]) - view_err
     r = X.residual_bound(A, U)[I]
     tol = (float(np.sum(r ** 2)) / lam if lam > 0 else np.inf) + 4 * eps() * before
@@ -556,14 +543,6 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
 # --- how the chapter-3 methods' answers compare on a given mesh (compare, vectors) ------------
 # (Exact.of: the exact values, float views and bounds, once per mesh and machine epsilon)
 
-def _dirichlet_solution(example: Example) -> list:
-    """C3.4 / T3.5: the exact solution with the example's boundary set and values (the
-    floats taken exactly)."""
-    from ..reference.dirichlet import solve_dirichlet
-    return solve_dirichlet(example.surface, {v: Fraction(c) for v, c in
-                                             zip(example.boundary, example.values)})
-
-
 quantity("cotan_laplacian", bound=lambda example, want: Exact.of(example).Bs,
          expected=lambda example, reference: Exact.of(example).Ls,
          exact=lambda example: ref.cotan_laplacian(example.surface))
@@ -576,7 +555,7 @@ quantity("solve_dirichlet", planar=True,
          not_on_a_mesh="needs a boundary set and its values: checked by T3.2 and C3.4 / T3.5",
          bound=lambda example, want: Exact.of(example).dirichlet_solution_bound(
              example.boundary, want),
-         exact=_dirichlet_solution)
+         exact=dirichlet_solution)
 quantity("vertex_areas_barycentric",
          bound=lambda example, want: Exact.of(example).vertex_area_bounds[1],
          exact=lambda example: ref.vertex_areas_barycentric(example.surface))

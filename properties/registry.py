@@ -203,7 +203,7 @@ REQUIREMENTS: dict[str, Callable[[dict], str | None]] = {
 
 #: largest face count for R2.5's exact sums (one square root per face of a float mesh):
 #: beyond it the total mean curvature is the fsum of the correctly rounded H(e), the bound
-#: widened (properties.curvature._steiner_views)
+#: widened (properties.curvature_exact.steiner_views)
 EXACT_SUM_LIMIT = 400
 
 

@@ -2,34 +2,13 @@
 concern the representation rather than a computed quantity).
 
 They take reference objects, not an implementation, and raise AssertionError
-naming the catalog ID.
+naming the catalog ID.  D1.4's triangulations flipped without keeping them regular are
+drawn by :mod:`.flipped` (:func:`~.flipped.unrestricted_flips`, :func:`~.flipped.flip_freely`).
 """
 
 from __future__ import annotations
 
-from hypothesis import strategies as st
-
 from ..reference.combinatorics import Triangulation
-
-from .strategies import closed_surfaces
-
-
-def unrestricted_flips():
-    """(surface, flip choices): flips applied without keeping the triangulation regular."""
-    return st.tuples(closed_surfaces(max_genus=1, relabel=False),
-                     st.lists(st.integers(0, 1 << 16), min_size=1, max_size=12))
-
-
-def flip_freely(t: Triangulation, choices) -> Triangulation:
-    """Flip the edges chosen (skipping unflippable ones); loops and double edges may appear."""
-    from ..reference.errors import NotFlippable
-    for c in choices:
-        e = c % t.n_edges
-        try:
-            t = t.flip(e)
-        except NotFlippable:
-            continue
-    return t
 
 
 def regularity_predicates(t: Triangulation) -> None:

@@ -187,7 +187,7 @@ def test_our_own_float64_bounds_do_not_take_the_implementations_epsilon():
     could not be counted (C3.3: an internal error)."""
     import numpy as np
     from ddg_oracle.properties.bounds import gamma
-    from ddg_oracle.properties.curvature import support_function_integral
+    from ddg_oracle.properties.curvature_exact import support_function_integral
     from ddg_oracle.protocol.methods import at_machine_epsilon
     V = np.array([[0.0, 0, -8], [0, 0, 8], [0, 8, 0], [8, 0, 0], [0, -8, 0], [-8, 0, 0]])
     here = support_function_integral(V)

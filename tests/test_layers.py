@@ -268,3 +268,24 @@ def test_expected_values_are_not_read_from_check_modules():
                         (len(target) == 1 and names & checks)):
                     found.append(f"{path.relative_to(ROOT)}:{node.lineno}")
     assert found == []
+
+
+def test_check_modules_define_no_strategies():
+    """Issue 43, point 3: a chapter check module holds its checks and quantity
+    declarations; what draws their examples lives in a strategy module (strategies, stars,
+    flipped, metrics, planar_points), so no check module defines a ``@st.composite`` and no
+    property's strategy is a named function of a check module (a lambda composing
+    strategies in the ``@prop`` line is the check's own)."""
+    from ddg_oracle.properties.registry import PROPERTIES, PROPERTY_MODULES, all_properties
+    all_properties()
+    checks = {f"ddg_oracle.properties.{m}" for m in PROPERTY_MODULES}
+    found = [f"properties/{m}.py:{node.lineno}: {node.name}"
+             for m in PROPERTY_MODULES
+             for node in ast.walk(ast.parse((ROOT / "properties" / f"{m}.py").read_text(
+                 encoding="utf-8")))
+             if isinstance(node, ast.FunctionDef)
+             and any("composite" in ast.unparse(d) for d in node.decorator_list)]
+    found += [f"{p.id}: {p.strategy.__module__}.{p.strategy.__qualname__}"
+              for p in PROPERTIES.values()
+              if p.strategy.__module__ in checks and p.strategy.__name__ != "<lambda>"]
+    assert found == []

@@ -59,12 +59,12 @@ def test_a_drawn_example_is_the_one_built_without_the_memo(name, monkeypatch):
     # the building steps of a drawn surface are kept per key (memo.DRAWN): a key missing
     # one drawn choice would hand one example another's surface.  The same derandomized
     # stream drawn with the table, then with it bypassed, gives the same examples
-    from ddg_oracle.properties import curvature, strategies
+    from ddg_oracle.properties import stars, strategies
     strategy = {"jittered": strategies.jittered_surfaces(),
                 "intrinsic": strategies.jittered_surfaces(intrinsic=True),
                 "closed": strategies.jittered_surfaces(closed=True, far=False),
-                "stars": curvature.vertex_stars(),
-                "convex": curvature.convex_polyhedra()}[name]
+                "stars": stars.vertex_stars(),
+                "convex": stars.convex_polyhedra()}[name]
     memo.clear()
     with_table = _drawn(strategy, 100)
     assert len(memo.DRAWN) > 0                      # the steps were kept ...

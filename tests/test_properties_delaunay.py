@@ -110,7 +110,8 @@ def test_scipy_qhull_returns_a_non_delaunay_triangle_on_nearly_collinear_points(
     re-triangulates them, giving a triangle whose circumdisk strictly holds another point,
     by far more than a float in-circle evaluation could err."""
     from ddg_oracle.oracles.scipy_spatial import ScipySpatial
-    from ddg_oracle.properties.delaunay import incircle_with_bound, empty_disk_property
+    from ddg_oracle.properties.delaunay import empty_disk_property
+    from ddg_oracle.properties.ties import incircle_with_bound
     from ddg_oracle.properties.registry import PropertyFailure
     third = Fraction(1, 3)
     P = [(2 * third, -third), (1, -2 * third), (4 * third, -1), (5 * third, -4 * third),
@@ -164,7 +165,7 @@ def test_the_intrinsic_properties_draw_non_orientable_surfaces():
     """F-libigl-6 was missed by check while these strategies drew orientable meshes only: they now
     draw RP^2, the Klein bottle and Moebius strips, and the reference passes on them."""
     from hypothesis import given, settings, HealthCheck
-    from ddg_oracle.properties.delaunay import non_orientable_meshes
+    from ddg_oracle.properties.flipped import non_orientable_meshes
     from ddg_oracle.properties.runner import run_on_example
     seen = set()
 

@@ -9,7 +9,7 @@ from ddg_oracle.properties.profiles import profile
 from ddg_oracle.properties.runner import FAILED, PASSED, run_property
 from ddg_oracle.properties.topology import (boundary_loops_and_genus, classification_of_closed_surfaces,
                                  euler_characteristic_of_known_surfaces)
-from ddg_oracle.properties.structure import unrestricted_flips
+from ddg_oracle.properties.flipped import unrestricted_flips
 from tests.planted_bugs import AlwaysOrientable, ChiIgnoresBoundary, OneBoundaryLoop
 
 REF = ReferenceImplementation()
@@ -89,7 +89,8 @@ def test_finding_F_pymeshlab_1_is_caught_by_T1_1_and_explained_by_the_documented
 
 @given(unrestricted_flips())
 def test_D1_4_flips_create_non_regular_triangulations(example):
-    from ddg_oracle.properties.structure import flip_freely, regularity_predicates
+    from ddg_oracle.properties.flipped import flip_freely
+    from ddg_oracle.properties.structure import regularity_predicates
     case, choices = example
     t = flip_freely(case.triangulation, choices)
     regularity_predicates(t)

@@ -365,7 +365,7 @@ def test_near_ties_are_drawn_across_the_range_and_shrink_to_one_quad():
 
 
 def test_reversed_faces_are_drawn_in_small_meshes_and_shrink_small():
-    from ddg_oracle.properties.delaunay import delaunay_test_meshes, intrinsic_meshes
+    from ddg_oracle.properties.flipped import delaunay_test_meshes, intrinsic_meshes
     for strategy in (delaunay_test_meshes(), intrinsic_meshes(), any_meshes()):
         case = find(strategy, lambda c: "reversed" in c.recipe and _reversed(c), settings=SEARCH)
         assert len(case.faces) <= 4 and "reversed" in case.recipe
@@ -386,7 +386,7 @@ def test_sweep_triangulations_and_near_ties_are_a_third_of_the_intrinsic_example
     each (a default run's 25 examples drew too few of a kind: IntrinsicSinglePass and
     IntrinsicFlipTolerance1e6 were missed by one seed of three)."""
     from hypothesis import given
-    from ddg_oracle.properties.delaunay import intrinsic_meshes
+    from ddg_oracle.properties.flipped import intrinsic_meshes
     kinds, beside = [], []
 
     @settings(max_examples=60, database=None, deadline=None, derandomize=True,

@@ -504,7 +504,7 @@ class TiesTheOtherWay(ReferenceImplementation):
     wrong = False
 
     def is_locally_delaunay(self, V, F):
-        from ddg_oracle.properties.delaunay import delaunay_ties
+        from ddg_oracle.properties.ties import delaunay_ties
         from ddg_oracle.properties.example import Example
         got = np.array(super().is_locally_delaunay(V, F), dtype=bool)
         ties = delaunay_ties(Example.of_mesh(

@@ -1,0 +1,103 @@
+"""Chapter 2's expected values beyond the float views of :mod:`.views`: the integral of a
+convex polyhedron's support function (T2.7), R2.5's Steiner coefficients as floats within
+a stated error, and what ``compare`` and the test vectors hold the curvature methods'
+answers to (the exact mean curvature keyed by vertex pair, the bound of the total area).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..protocol.methods import FLOAT64_EPSILON
+from ..reference import curvature as ref
+
+from .bounds import area_tolerance, gamma, total_area_view
+from .example import Example
+from .registry import EXACT_SUM_LIMIT
+from .views import mean_curvature_views
+
+
+def support_function_integral(points, n_theta: int = 256) -> tuple[float, float]:
+    """(value, bound): the integral of h(u) = max_p <u, p> over the unit sphere, numerically.
+
+    For a convex polyhedron with vertices ``points`` this is H(S) (T2.7), i.e.
+    2 pi times the mean width.  Quadrature on the n_theta x 2 n_theta
+    longitude-latitude cells, after centring (the integral of <u, c> vanishes):
+    on a cell where one vertex p_i provably maximises <u, .> (its lead over every
+    p_j at the cell's centre exceeds |p_i - p_j| r, r a bound on the distance from
+    the centre to the cell), h = <u, p_i> is integrated in closed form; on the
+    other cells h(centre) times the cell's area is used, with error <= area R r
+    (h is R-Lipschitz, R = max |p|).  ``bound`` is the sum of those errors plus
+    the float rounding of the sums, gamma_(N + 16) sum |terms|.
+    """
+    P = np.asarray(points, dtype=np.float64)
+    P = P - P.mean(axis=0)
+    R = float(np.sqrt((P * P).sum(axis=1)).max())
+    n_phi = 2 * n_theta
+    th = np.linspace(0.0, np.pi, n_theta + 1)
+    ph = np.linspace(0.0, 2 * np.pi, n_phi + 1)
+    t0, t1, f0, f1 = th[:-1], th[1:], ph[:-1], ph[1:]
+    dth, dph = np.pi / n_theta, 2 * np.pi / n_phi
+    tc, fc = (t0 + t1) / 2, (f0 + f1) / 2
+    smax = np.where((t0 <= np.pi / 2) & (t1 >= np.pi / 2), 1.0, np.maximum(np.sin(t0), np.sin(t1)))
+    r = dth / 2 + smax * dph / 2          # geodesic (hence chordal) radius of a cell about its centre
+    sin2 = (t1 - t0) / 2 - (np.sin(2 * t1) - np.sin(2 * t0)) / 4      # integral of sin^2
+    sincos = (np.sin(t1) ** 2 - np.sin(t0) ** 2) / 2                  # integral of sin cos
+    U = np.stack([sin2[:, None] * (np.sin(f1) - np.sin(f0))[None, :],
+                  sin2[:, None] * (np.cos(f0) - np.cos(f1))[None, :],
+                  sincos[:, None] * np.full(n_phi, dph)[None, :]], axis=-1).reshape(-1, 3)
+    uc = np.stack([np.sin(tc)[:, None] * np.cos(fc)[None, :],
+                   np.sin(tc)[:, None] * np.sin(fc)[None, :],
+                   np.cos(tc)[:, None] * np.ones(n_phi)[None, :]], axis=-1).reshape(-1, 3)
+    rc = np.repeat(r, n_phi)
+    area = np.repeat((np.cos(t0) - np.cos(t1)) * dph, n_phi)
+    vals = uc @ P.T
+    top = vals.argmax(axis=1)
+    rows = np.arange(len(top))
+    best = vals[rows, top]
+    D = np.sqrt(((P[:, None, :] - P[None, :, :]) ** 2).sum(-1))
+    margin = best[:, None] - vals - D[top] * rc[:, None]
+    margin[rows, top] = np.inf
+    pure = (margin > 0).all(axis=1)
+    exact_part = (U[pure] * P[top[pure]]).sum(axis=1)
+    approx_part = best[~pure] * area[~pure]
+    value = float(exact_part.sum() + approx_part.sum())
+    bound = float((area[~pure] * R * rc[~pure]).sum())
+    # our own float64 sums: float64's gamma, whatever the checked implementation declares
+    bound += gamma(len(top) + 16, FLOAT64_EPSILON) * float(np.abs(exact_part).sum()
+                                                           + np.abs(approx_part).sum())
+    return value, bound
+
+
+def steiner_views(case: Example) -> tuple[float, float, float, float]:
+    """(A, err_A, 2 H(S), err_H): R2.5's area and total mean curvature as floats within
+    err of the exact ones.  Up to EXACT_SUM_LIMIT faces the exact sums correctly rounded
+    (err 0); beyond, an exact sum has a square root per face, so: the area correctly
+    rounded from enclosures (:func:`total_area_view`, err u A), and 2 H(S) = 2 fsum of the correctly rounded H(e) (each within
+    u |H(e)|, the fsum within u of its value: err_H = 2 u sum |H(e)| + u |2 H(S)|, with a
+    factor 1.0001 for |H(e)| <= (1 + u) |its float|).  The checks widen their bounds by err:
+    a pass is then certain; a failure by less than err (about 1e-16 relative) would go
+    unseen."""
+    if len(case.faces) <= EXACT_SUM_LIMIT:
+        A, twoH, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
+        return float(A), 0.0, float(twoH), 0.0
+    A, err_A = total_area_view(case.surface.metric())
+    views = list(mean_curvature_views(case.surface).values())
+    twoH = 2 * math.fsum(views)
+    u = 2.0 ** -53
+    return A, err_A, twoH, 1.0001 * u * (2 * math.fsum(abs(h) for h in views) + abs(twoH))
+
+
+def area_bound(example: Example, want) -> float:
+    """The bound of ``area`` against the reference's answer (``compare``, the vectors)."""
+    # the reference's answer is the exact total correctly rounded: within u A of it
+    return area_tolerance(example) + total_area_view(example.surface.metric())[1]
+
+
+def mean_curvature_by_pair(example: Example) -> dict:
+    """D2.3: {(i, j) with i < j: H(e)} exactly, keyed by the edge's vertices."""
+    t = example.surface.triangulation
+    return {tuple(sorted(t.edge_vertices(e))): h
+            for e, h in ref.mean_curvature(example.surface).items()}
