@@ -119,23 +119,72 @@ def _row(label: str, s: PolyhedralSurface, mode: Mode) -> dict:
     return row
 
 
-def _flip_row(label: str, s: PolyhedralSurface) -> dict:
+def _flip_row(label: str, s: PolyhedralSurface, check: bool = True) -> dict:
     m = as_metric(s)
     t0 = start_clock()
     with _Counter(delaunay, "_exact_change") as exact:
         d, log = flip_to_delaunay(m)
     t_flip = time.process_time() - t0
     kept = t_check = None
-    if len(log) <= CHECKED_FLIPS:
+    if check and len(log) <= CHECKED_FLIPS:
         t0 = start_clock()
         with _Counter(angles, "_pi24_multiple") as zero_tests:
             kept = all(a == b for a, b in zip(angle_sums(m), angle_sums(d)))
         t_check = time.process_time() - t0
+    view = _views(d)
     say(f"  real {label}: {len(log)} flips {t_flip:.4f} s ({exact.calls} exact decreases), "
-        f"angle sums kept: {kept}" + (f" ({t_check:.2f} s)" if kept is not None else ""))
+        f"angle sums kept: {kept}" + (f" ({t_check:.2f} s)" if kept is not None else "")
+        + f"; Laplacian view {view['view_s']:.3f} s, through the exact matrix "
+        + (f"{view['exact_view_s']:.3f} s" if view["exact_view_s"] is not None
+           else f"> {EXACT_VIEW_LIMIT} s"))
     return {"mesh": label, "faces": s.triangulation.n_faces, "flips": len(log),
             "flip_s": t_flip, "exact_decreases": exact.calls, "check_s": t_check, "kept": kept,
-            "zero_tests": zero_tests.calls if kept is not None else None}
+            "zero_tests": zero_tests.calls if kept is not None else None, **view}
+
+
+#: CPU seconds the float view through the exact matrix may take before it is given up
+EXACT_VIEW_LIMIT = 60
+
+
+def _views(d) -> dict:
+    """The float view of the Delaunay metric's cotan Laplacian (D3.2 after A4.13; what the
+    checks compare implementations with): as the properties compute it (flipped faces'
+    cotangents as quotients, no division: ``properties.views``), and through the exact
+    matrix (``exact_laplacian(d).to_scipy()``, the way before issue 46), given up after
+    :data:`EXACT_VIEW_LIMIT` CPU seconds; ``same``: the two bit for bit."""
+    from ddg_oracle.properties import views
+    from ddg_oracle.properties.profiles import example_time_limit
+    from ddg_oracle.reference.errors import ExactArithmeticLimit
+    from ddg_oracle.reference.laplacian import cotan_laplacian
+    t0 = start_clock()
+    V = views._laplacian_view(d)
+    t_view = time.process_time() - t0
+    t0 = start_clock()
+    try:
+        with example_time_limit("the exact Laplacian", EXACT_VIEW_LIMIT, cpu=True):
+            E = cotan_laplacian(d).to_scipy()
+        t_exact = time.process_time() - t0
+    except ExactArithmeticLimit:
+        return {"view_s": t_view, "exact_view_s": None, "same": None,
+                "exact_view_limit": EXACT_VIEW_LIMIT}
+    V.sort_indices()
+    E.sort_indices()
+    same = bool((V.indptr == E.indptr).all() and (V.indices == E.indices).all()
+                and V.data.tobytes() == E.data.tobytes())
+    return {"view_s": t_view, "exact_view_s": t_exact, "same": same}
+
+
+def _cad(mode: Mode):
+    """CGAL's CAD meshes whose exact Laplacian after the flips took minutes (issue 46), when
+    the corpus is fetched (``ddg-oracle corpus fetch cgal``)."""
+    from ddg_oracle.application.meshes import load, resolve
+    for name in () if mode.quick else ("cgal:mpi.off", "cgal:mpi_triang.off", "cgal:elk.off"):
+        try:
+            (n, path, _), = resolve([name])
+            m = load(n, path)
+        except InputError:                      # the corpus is not fetched
+            continue
+        yield name, PolyhedralSurface.from_arrays(m.V, m.F)
 
 
 def run(mode: Mode) -> dict:
@@ -148,4 +197,7 @@ def run(mode: Mode) -> dict:
     rows += [_row(label, s, mode) for label, s in _fans(mode)]
     flips += [_flip_row(f"spiky fan {n}", spiky_fan(n))
               for n in ((16,) if mode.quick else (16, 24, 32))]
+    # the CAD meshes' angle sums after the flips: the exact zero tests of sums of angles
+    # whose cotangents carry many square roots take minutes (issue 46): not checked
+    flips += [_flip_row(label, s, check=False) for label, s in _cad(mode)]
     return {"rows": rows, "flips": flips}

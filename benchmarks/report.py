@@ -216,6 +216,12 @@ every angle sum compared exactly with the input's (they must be equal: flips kee
 after long flip cascades the cotangents carry the square roots of many input faces, and the
 comparison takes minutes).  CPU seconds, one run.  The flip loop still computes the canonical
 form of every new squared length and area: on cow.obj the last flips of a cascade dominate.
+*Laplacian view*: the float view of the Delaunay metric's cotan Laplacian (what D4.8 / R4.9
+and `compare` read), each entry correctly rounded with the flipped faces' cotangents kept as
+quotients n / (4 A) (no division: `properties/views.py`); *through the exact matrix*: the same
+view from the exact Laplacian (each cotangent divides by an area that after many flips has
+hundreds of square roots), given up after 60 CPU seconds (`EXACT_VIEW_LIMIT`); *same*: the
+two views bit for bit.  `cgal:` rows need the corpus (`ddg-oracle corpus fetch cgal`).
 """
 
 HYPOTHESIS = """\
@@ -398,11 +404,17 @@ def write(results: dict) -> None:
                 + (f"{r['libigl_s']:.4f}" if r.get("libigl_s") is not None else "-") + " |"
                 for r in res["rows"]]
         out += ["", REAL_FLIPS, "| mesh | faces | flips | flip s | exact decreases | "
-                "angle sums kept | check s | zero tests |", "|---|---|---|---|---|---|---|---|"]
+                "angle sums kept | check s | zero tests | Laplacian view s | through the exact "
+                "matrix s | same |", "|---|---|---|---|---|---|---|---|---|---|---|"]
         out += [f"| {r['mesh']} | {r['faces']:,} | {r['flips']:,} | {r['flip_s']:.2f} | "
                 f"{r['exact_decreases']} | "
                 + ("not checked | - | - |" if r["kept"] is None else
                    f"{'yes' if r['kept'] else 'NO'} | {r['check_s']:.2f} | {r['zero_tests']} |")
+                + (" - | - | - |" if "view_s" not in r else
+                   f" {r['view_s']:.3f} | "
+                   + (f"> {r['exact_view_limit']} (given up) | - |"
+                      if r["exact_view_s"] is None else
+                      f"{r['exact_view_s']:.3f} | {'yes' if r['same'] else 'NO'} |"))
                 for r in res["flips"]]
         out.append("")
     if "dirichlet" in results:

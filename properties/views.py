@@ -103,36 +103,36 @@ def _flipped_laplacian_view(m):
     zero decided by cross-multiplying)."""
     import scipy.sparse as sp
     part, halves = laplacian_parts(m)
-    terms: dict = {}
-    for (i, row) in part._rows.items():
-        for j, v in row.items():
-            terms[i, j] = [v]
-    quotients: dict = {}
+    quotients: dict = {}                    # the flipped faces' terms, per entry
+    per_face: dict = {}
     for i, j, f, c in halves:
-        q = quotients.get(f)
+        q = per_face.get(f)
         if q is None:                       # a face's three corners share its 8 A
             d = 8 * m.areas[f]
-            q = quotients[f] = [Quotient(n, d) if n else None
-                                for n in m.face_cot_numerators(f)]
+            q = per_face[f] = [Quotient(n, d) if n else None
+                               for n in m.face_cot_numerators(f)]
         q = q[c]
         if q is None:
             continue                        # a right angle: cot 0
-        for key, sign in (((i, j), -1), ((j, i), -1), ((i, i), 1), ((j, j), 1)):
-            terms.setdefault(key, []).append((sign, q))
+        for key in ((i, j), (j, i), (i, i), (j, j)):
+            quotients.setdefault(key, []).append(q)
     rows, cols, vals = [], [], []
-    for (i, j), ts in sorted(terms.items()):
-        if len(ts) == 1 and not isinstance(ts[0], tuple):
-            x, zero = float(ts[0]), False   # the exact part alone (nonzero: zeros are left out)
-        elif i == j:                          # a diagonal: every quotient added
-            plus = [t if not isinstance(t, tuple) else t[1] for t in ts]
-            x = rounded_sum(plus)
-            zero = x == 0 and sum_is_zero(plus)
+    for i, row in part._rows.items():       # the entries no flipped face touches: as they are
+        for j, v in row.items():
+            if (i, j) not in quotients:
+                rows.append(i)
+                cols.append(j)
+                vals.append(float(v))       # correctly rounded (nonzero: zeros are left out)
+    for (i, j), qs in quotients.items():
+        v = part._rows.get(i, {}).get(j)
+        if i == j:                          # a diagonal: the quotients added
+            ts = qs if v is None else [v, *qs]
+            x = rounded_sum(ts)
         else:                               # off the diagonal: minus the quotients' sum
-            minus = [-t if not isinstance(t, tuple) else t[1] for t in ts]
-            x = rounded_sum(minus)
-            zero = x == 0 and sum_is_zero(minus)
+            ts = qs if v is None else [-v, *qs]
+            x = rounded_sum(ts)
             x = -x if x else 0.0
-        if not zero:
+        if not (x == 0 and sum_is_zero(ts)):
             rows.append(i)
             cols.append(j)
             vals.append(x)
