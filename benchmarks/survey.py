@@ -28,12 +28,6 @@ QUICK_MAX_FACES = 100
 #: unless set): the exact intrinsic Delaunay Laplacian of some 200-face CAD meshes does not
 #: finish in minutes (thousands of nested square roots), and is then "undecided"
 EXACT_SECONDS = 20
-#: meshes left out whatever their size: the exact intrinsic Delaunay Laplacian on them
-#: takes minutes (thousands of exact flips; docs/performance.md, the real group)
-SLOW = {"pymeshlab:cow.obj": "1,582 intrinsic edge flips",
-        "pymeshlab:bunny10k_textured.obj": "2,065 intrinsic edge flips"}
-
-
 def _uptime() -> str:
     try:
         out = subprocess.run(["uptime"], capture_output=True, text=True, timeout=5).stdout
@@ -74,8 +68,6 @@ def choose(sets: list[str], max_faces: int) -> tuple[list[tuple[str, int]], list
         n = _faces(name, path)
         if isinstance(n, str):
             left.append((name, None, n))
-        elif name in SLOW:
-            left.append((name, n, SLOW[name]))
         elif n > max_faces:
             left.append((name, n, f"over {max_faces:,} faces"))
         else:
@@ -147,9 +139,8 @@ fraction of the meshes where the implementation agrees).
 
 ## Corpus
 
-Meshes of {', '.join(f'`{s}`' for s in sets)} with at most {max_faces:,} faces, except those
-on which the exact intrinsic Delaunay Laplacian needs thousands of exact edge flips (minutes
-each on this machine); `DDG_SURVEY_MAX_FACES=N` sets the limit.
+Meshes of {', '.join(f'`{s}`' for s in sets)} with at most {max_faces:,} faces
+(`DDG_SURVEY_MAX_FACES=N` sets the limit).
 Left out: {left_out}.
 
 | mesh | vertices | faces | seconds |
