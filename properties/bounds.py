@@ -163,15 +163,18 @@ def _float_geometry(case: Example) -> dict:
     for f, face in enumerate(F.tolist()):
         for k in range(3):
             face_of[(face[k], face[next_corner(k)])] = f
+    inner = [(i, j, f, g) for (i, j), f in face_of.items()
+             if i < j and (g := face_of.get((j, i))) is not None]
     edges = {}
-    for (i, j), f in face_of.items():
-        g = face_of.get((j, i))
-        if g is not None and i < j:
-            e = V[j] - V[i]
-            length = float(np.linalg.norm(e))
-            theta = math.atan2(float(np.cross(normal[f], normal[g]) @ e) / length,
-                               float(normal[f] @ normal[g]))
-            edges[(i, j)] = (length, theta, f, g)
+    if inner:
+        # all interior edges at once (one np.cross per edge cost 3 s on a 52k-face mesh)
+        I, J, Fi, Gi = np.array(inner, dtype=np.int64).T
+        e = V[J] - V[I]
+        length = np.linalg.norm(e, axis=1)
+        nf, ng = normal[Fi], normal[Gi]
+        theta = np.arctan2((np.cross(nf, ng) * e).sum(axis=1) / length, (nf * ng).sum(axis=1))
+        edges = {(i, j): (float(x), float(t), f, g)
+                 for (i, j, f, g), x, t in zip(inner, length, theta)}
     with np.errstate(divide="ignore"):
         cot_sum = squared.sum(axis=1) / (2 * twice_area)
     return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges,
