@@ -1,12 +1,14 @@
 """Hypothesis strategies of meshes and implementation-agnostic properties, one per catalog ID.
 
 Modules by kind: the strategies (:mod:`.strategies`, the shared ones; :mod:`.stars`,
-:mod:`.flipped`, :mod:`.metrics` and :mod:`.planar_points`, those of one chapter); the
-check modules (:mod:`.topology`, :mod:`.curvature`, :mod:`.laplacian`, :mod:`.delaunay`:
-the ``@prop`` checks and the ``quantity`` declarations only); the expected values and
-bounds (:mod:`.views`, :mod:`.harness`, :mod:`.bounds`, :mod:`.delaunay_exact`,
-:mod:`.curvature_exact`, :mod:`.ties`).  Data flows one way: no strategy or expected-value
-module imports a check module.
+:mod:`.flipped`, :mod:`.metrics` and :mod:`.planar_points`, those of one chapter;
+:mod:`.point_sets`, those of the notes' statements); the check modules (:mod:`.topology`,
+:mod:`.curvature`, :mod:`.laplacian`, :mod:`.delaunay`: the ``@prop`` checks and the
+``quantity`` declarations only; :mod:`.statements` and :mod:`.structure`: the assertion
+checks of the reference itself only); the expected values and bounds (:mod:`.views`,
+:mod:`.harness`, :mod:`.bounds`, :mod:`.delaunay_exact`, :mod:`.curvature_exact`,
+:mod:`.ties`).  Data flows one way: no strategy or expected-value module imports a check
+module.
 
 Importing this package registers our properties in our own registry and
 nothing else: no Hypothesis profile is loaded or registered (see

@@ -9,7 +9,10 @@
 * planar inputs: point sets for ``planar_delaunay`` (:func:`planar_delaunay_points`),
   triangulations for ``planar_flip_to_delaunay`` (:func:`scaled_planar_triangulations`),
   convex quadrilaterals with values for Rippa's lemma (:func:`quads_with_values`);
-* triangulations flipped without keeping them regular (D1.4, :mod:`.structure`).
+* triangulations flipped without keeping them regular (D1.4, :mod:`.structure`);
+* the notes' statements (:mod:`.statements`): the cube with drawn face diagonals flipped
+  (X4.1, :func:`cube_faces`), closed rational metrics after drawn intrinsic flips, half of
+  them flipped on to Delaunay (D4.3 / C4.6, :func:`closed_rational_metrics`).
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from ..reference.combinatorics import Triangulation
 from ..reference.polyhedral import PolyhedralSurface
 
 from .example import Example
-from .metrics import polycube_surfaces
+from .metrics import flat_tori, polycube_surfaces, randomly_flipped
 from .precision import representable
 from .strategies import (acute_meshes, closed_meshes, closed_surfaces, grid_faces, jittered_grids,
                          mesh_case, obtuse_fans, obtuse_meshes, planar_meshes, single_triangles)
@@ -208,3 +211,36 @@ def flip_freely(t: Triangulation, choices) -> Triangulation:
         except NotFlippable:
             continue
     return t
+
+
+# --- the notes' statements: the cube's triangulations by face diagonals (X4.1), closed
+# rational metrics for the empty immersed disks (D4.3 / C4.6) ----------------------------
+
+
+def cube_faces(choices):
+    """The unit cube with the diagonal of square ``k`` flipped where ``choices[k]``
+    (every one of the 2^6 straight triangulations of its squares), as a piecewise flat
+    surface (intrinsic flips of the reference's cube)."""
+    from ..reference import surfaces
+    from ..reference.intrinsic import flip
+    from ..reference.metric import PiecewiseFlatSurface
+    cube = surfaces.cube()
+    t = cube.triangulation
+    m = PiecewiseFlatSurface(t, [sum((a - b) ** 2 for a, b in zip(
+        cube.positions[t.edge_vertices(e)[0]], cube.positions[t.edge_vertices(e)[1]]))
+        for e in range(t.n_edges)])
+    diagonals = [e for e in range(t.n_edges) if m.squared_lengths[e] == 2]
+    for e, c in zip(diagonals, choices):
+        if c:
+            m = flip(m, e)
+    return m
+
+
+def closed_rational_metrics():
+    """Closed surfaces with rational metrics (flat tori, polycubes) after drawn intrinsic
+    flips, and half of them flipped on to Delaunay (so both answers of T4.7 are drawn)."""
+    from ..reference.delaunay import flip_to_delaunay
+    base = randomly_flipped(st.one_of(flat_tori(), polycube_surfaces(max_genus=1).map(
+        lambda s: s.metric())), max_flips=30)
+    return st.tuples(base, st.booleans()).map(
+        lambda x: flip_to_delaunay(x[0])[0] if x[1] else x[0])

@@ -1,10 +1,12 @@
 """Strategies of chapter 2's curvature properties (:mod:`.curvature`): the star of one
 vertex built to be of a given kind (convex, planar, saddle, folded), surfaces with a vertex
-whose neighbours are coplanar, rational rigid motions and relabellings, convex polyhedra.
+whose neighbours are coplanar, rational rigid motions and relabellings, convex polyhedra;
+and R2.3's stars (:mod:`.statements`): the converses of Lemma 2.4 that fail
+(:data:`CONVERSE_COUNTEREXAMPLES`), rigidly moved and scaled (:func:`moved_counterexamples`).
 
 Each draws a few small integers, builds its surface exactly and rounds it to floats once,
 in a way that keeps what its property relies on (the kind of a star, coplanar neighbours,
-convexity).
+convexity); R2.3's stars stay exact.
 """
 
 from __future__ import annotations
@@ -211,3 +213,40 @@ def convex_polyhedra(draw):
     s = memo.DRAWN.shared(("convex hull", pts), lambda: convex_hull_surface(pts))
     assume(s is not None)
     return Example.of_surface(s, 2, f"convex hull of {list(pts)}")
+
+
+# --- Remark 2.3: the converses of Lemma 2.4 fail ------------------------------------------
+
+def _star(p, ring):
+    n = len(ring)
+    t = Triangulation.from_faces([(0, 1 + i, 1 + (i + 1) % n) for i in range(n)])
+    return PolyhedralSurface(t, [p] + list(ring))
+
+
+_HEXAGON = [(2, 0), (1, 2), (-1, 2), (-2, 0), (-1, -2)]
+_CROWN = [(2, 0), (1, 1), (0, 2), (-1, 1), (-2, 0), (-1, -1), (0, -2), (1, -1)]
+
+#: R2.3: a star for each converse of Lemma 2.4 that fails, vertex 0 the centre:
+#: elliptic, not convex (a cone with one neighbour pulled in); flat, not planar (the
+#: middle of a straight crease); hyperbolic, not a saddle (a zigzag crown below p).
+CONVERSE_COUNTEREXAMPLES = {
+    "elliptic, not convex": ((0, 0, 4), [(x, y, 0) for x, y in _HEXAGON]
+                             + [(Fraction(1, 4), Fraction(-1, 2), 1)]),
+    "flat, not planar": ((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 1)]),
+    "hyperbolic, not a saddle": ((0, 0, 0), [(x, y, -Fraction(1, 10) if i % 2 == 0 else -3)
+                                             for i, (x, y) in enumerate(_CROWN)]),
+}
+
+
+@st.composite
+def moved_counterexamples(draw):
+    """(name, star) of :data:`CONVERSE_COUNTEREXAMPLES` under a drawn rational rotation
+    (Cayley), scale and translation: the vertex types and star predicates are invariant."""
+    from ..reference.curvature import cayley_rotation, rigid_motion
+    name = draw(st.sampled_from(sorted(CONVERSE_COUNTEREXAMPLES)))
+    p, ring = CONVERSE_COUNTEREXAMPLES[name]
+    k = Fraction(draw(st.integers(1, 9)), draw(st.integers(1, 9)))
+    scaled = _star(tuple(k * x for x in p), [tuple(k * x for x in q) for q in ring])
+    abc = draw(st.tuples(*[st.integers(-4, 4)] * 3))
+    shift = draw(st.tuples(*[st.integers(-9, 9)] * 3))
+    return name, rigid_motion(scaled, cayley_rotation(*abc), shift)

@@ -4,7 +4,11 @@ D4.3 / C4.6, X4.3 / X4.4, R4.11).
 
 Each checks the reference's exact values on drawn inputs against an independent
 formulation of the statement and raises AssertionError naming the item; an
-implementation of the same quantity can be checked through the same function.
+implementation of the same quantity can be checked through the same function.  Their
+inputs are drawn by strategy modules: the point sets by :mod:`.point_sets`, R2.3's moved
+stars by :mod:`.stars` (:func:`~.stars.moved_counterexamples`), the closed rational
+metrics of D4.3 by :mod:`.flipped` (:func:`~.flipped.closed_rational_metrics`, with
+X4.1's cube :func:`~.flipped.cube_faces`).
 """
 
 from __future__ import annotations
@@ -12,7 +16,6 @@ from __future__ import annotations
 from fractions import Fraction
 
 from hypothesis import assume
-from hypothesis import strategies as st
 
 from ..reference import planar
 from ..reference.combinatorics import connected_sum, face_of
@@ -21,20 +24,9 @@ from ..reference.laplacian import graph_laplacian
 from ..reference import surfaces
 from ..reference.polyhedral import orientation3d
 
-from .planar_points import integer_point_sets, unit_circle_point
+from .flipped import cube_faces
 
 # --- chapter 1 ---------------------------------------------------------------------------
-
-
-@st.composite
-def sphere_point_sets(draw, max_points: int = 9):
-    """Rational points on the unit sphere (lifted planar integer points divided by a
-    drawn denominator), no 4 coplanar: the vertices of a convex polyhedron."""
-    n = draw(st.integers(4, max_points))
-    den = draw(st.integers(1, 4))
-    flat = draw(st.lists(st.tuples(st.integers(-5, 5), st.integers(-5, 5)), min_size=n,
-                         max_size=n, unique=True))
-    return [planar.stereographic_lift((Fraction(x, den), Fraction(y, den))) for x, y in flat]
 
 
 def convex_polyhedron_is_a_strongly_regular_sphere(points) -> None:
@@ -101,15 +93,6 @@ def alexandrov_uniqueness_on_examples(points, face: int) -> None:
 # --- chapter 3 ---------------------------------------------------------------------------
 
 
-@st.composite
-def lattice_functions(draw):
-    """(dimension 1 or 2, window size, integer function values on the window)."""
-    dim = draw(st.sampled_from((1, 2)))
-    size = draw(st.integers(3, 6))
-    n = size ** dim
-    return dim, size, draw(st.lists(st.integers(-50, 50), min_size=n, max_size=n))
-
-
 def combinatorial_laplacian_on_lattices(case) -> None:
     """X3.1: with nu = 1, (Lap f)(n) = 2 f(n) - f(n + 1) - f(n - 1) on Z and
     (Lap f)(m, n) = 4 f(m, n) - f(m -+ 1, n) - f(m, n -+ 1) on Z^2, at every vertex of a
@@ -137,29 +120,12 @@ def combinatorial_laplacian_on_lattices(case) -> None:
 # --- chapter 4 ---------------------------------------------------------------------------
 
 
-@st.composite
-def circle_triples(draw):
-    """Three distinct rational points B, S, C on a circle with rational centre and
-    radius (scaled rational points of the unit circle)."""
-    params = draw(st.lists(st.tuples(st.integers(-9, 9), st.integers(1, 9)), min_size=3,
-                           max_size=3, unique_by=lambda t: Fraction(t[0], t[1])))
-    r = Fraction(draw(st.integers(1, 20)), draw(st.integers(1, 5)))
-    cx, cy = draw(st.integers(-5, 5)), draw(st.integers(-5, 5))
-    pts = [unit_circle_point(m, n) for m, n in params]
-    assume(len(set(pts)) == 3)
-    return tuple((cx + r * x, cy + r * y) for x, y in pts)
-
-
 def tangent_chord_angle(triple) -> None:
     """L4.8: the angle between the tangent at B and the secant BC equals the inscribed
     angle BSC (exact cotangents; the angle on the side of BC away from S)."""
     b, s, c = triple
     got, want = planar.tangent_chord_cot(b, s, c), planar.inscribed_angle_cot(b, s, c)
     assert got == want, f"L4.8: tangent-chord cot {got} != inscribed cot {want} at {triple}"
-
-
-def planar_points():
-    return integer_point_sets(max_points=8)
 
 
 def voronoi_delaunay_kites(points) -> None:
@@ -226,24 +192,6 @@ def delaunay_triangulations_are_the_cells_triangulated(points) -> None:
         assert got == cells, "R4.4: a Delaunay triangulation minus its ties is not the tessellation"
 
 
-def cube_faces(choices):
-    """The unit cube with the diagonal of square ``k`` flipped where ``choices[k]``
-    (every one of the 2^6 straight triangulations of its squares), as a piecewise flat
-    surface (intrinsic flips of the reference's cube)."""
-    from ..reference.intrinsic import flip
-    from ..reference.metric import PiecewiseFlatSurface
-    cube = surfaces.cube()
-    t = cube.triangulation
-    m = PiecewiseFlatSurface(t, [sum((a - b) ** 2 for a, b in zip(
-        cube.positions[t.edge_vertices(e)[0]], cube.positions[t.edge_vertices(e)[1]]))
-        for e in range(t.n_edges)])
-    diagonals = [e for e in range(t.n_edges) if m.squared_lengths[e] == 2]
-    for e, c in zip(diagonals, choices):
-        if c:
-            m = flip(m, e)
-    return m
-
-
 def voronoi_tessellation_of_the_cube(choices) -> None:
     """X4.1: on the cube with V its 8 vertices, every triangulation by face diagonals is
     Delaunay, each diagonal with weight exactly 0 (its two triangles share a circle: the
@@ -266,43 +214,6 @@ def voronoi_tessellation_of_the_cube(choices) -> None:
 
 # --- Remark 2.3: the converses of Lemma 2.4 fail ------------------------------------------
 
-def _star(p, ring):
-    from ..reference.combinatorics import Triangulation
-    from ..reference.polyhedral import PolyhedralSurface
-    n = len(ring)
-    t = Triangulation.from_faces([(0, 1 + i, 1 + (i + 1) % n) for i in range(n)])
-    return PolyhedralSurface(t, [p] + list(ring))
-
-
-_HEXAGON = [(2, 0), (1, 2), (-1, 2), (-2, 0), (-1, -2)]
-_CROWN = [(2, 0), (1, 1), (0, 2), (-1, 1), (-2, 0), (-1, -1), (0, -2), (1, -1)]
-
-#: R2.3: a star for each converse of Lemma 2.4 that fails, vertex 0 the centre:
-#: elliptic, not convex (a cone with one neighbour pulled in); flat, not planar (the
-#: middle of a straight crease); hyperbolic, not a saddle (a zigzag crown below p).
-CONVERSE_COUNTEREXAMPLES = {
-    "elliptic, not convex": ((0, 0, 4), [(x, y, 0) for x, y in _HEXAGON]
-                             + [(Fraction(1, 4), Fraction(-1, 2), 1)]),
-    "flat, not planar": ((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 1)]),
-    "hyperbolic, not a saddle": ((0, 0, 0), [(x, y, -Fraction(1, 10) if i % 2 == 0 else -3)
-                                             for i, (x, y) in enumerate(_CROWN)]),
-}
-
-
-@st.composite
-def moved_counterexamples(draw):
-    """(name, star) of :data:`CONVERSE_COUNTEREXAMPLES` under a drawn rational rotation
-    (Cayley), scale and translation: the vertex types and star predicates are invariant."""
-    from ..reference.curvature import cayley_rotation, rigid_motion
-    name = draw(st.sampled_from(sorted(CONVERSE_COUNTEREXAMPLES)))
-    p, ring = CONVERSE_COUNTEREXAMPLES[name]
-    k = Fraction(draw(st.integers(1, 9)), draw(st.integers(1, 9)))
-    scaled = _star(tuple(k * x for x in p), [tuple(k * x for x in q) for q in ring])
-    abc = draw(st.tuples(*[st.integers(-4, 4)] * 3))
-    shift = draw(st.tuples(*[st.integers(-9, 9)] * 3))
-    return name, rigid_motion(scaled, cayley_rotation(*abc), shift)
-
-
 def converses_of_lemma_2_4_fail(case) -> None:
     """R2.3: none of the implications of Lemma 2.4 (convex => elliptic, planar => flat,
     saddle => hyperbolic) is reversible: each star is of the curvature type but not of
@@ -318,19 +229,6 @@ def converses_of_lemma_2_4_fail(case) -> None:
 
 
 # --- Definition 2.4, Remark 2.6, Example 2.2: the intrinsic distance of the cube ----------
-
-@st.composite
-def cube_surface_points(draw, n: int = 3):
-    """``n`` rational points of the unit cube's surface (often on edges and vertices)."""
-    out = []
-    for _ in range(n):
-        axis, side = draw(st.integers(0, 2)), draw(st.integers(0, 1))
-        den = draw(st.integers(1, 6))
-        u, v = (Fraction(draw(st.integers(0, den)), den) for _ in range(2))
-        rest = iter((u, v))
-        out.append(tuple(Fraction(side) if k == axis else next(rest) for k in range(3)))
-    return out
-
 
 def cube_distance_is_a_metric(points) -> None:
     """D2.4 / R2.6: the intrinsic distance of the cube's surface is a metric (d(p, p) = 0,
@@ -354,14 +252,6 @@ def cube_distance_is_a_metric(points) -> None:
             f"D2.4: triangle inequality fails for {points[x]}, {points[y]}, {points[z]}"
 
 
-@st.composite
-def opposite_cube_points(draw):
-    """A rational point of the cube's bottom face and one of its top face."""
-    den = draw(st.integers(1, 8))
-    u1, v1, u2, v2 = (Fraction(draw(st.integers(0, den)), den) for _ in range(4))
-    return (u1, v1, Fraction(0)), (u2, v2, Fraction(1))
-
-
 def straight_unfoldings_need_not_be_shortest(points) -> None:
     """X2.2: between points of opposite faces of the cube, the straight segments of the
     unfoldings are paths on the surface and the shortest is d(p, q); some is longer."""
@@ -374,17 +264,6 @@ def straight_unfoldings_need_not_be_shortest(points) -> None:
 
 
 # --- Definition 4.3 / Claim 4.6: the tessellation by empty immersed disks -------------------------
-
-
-def closed_rational_metrics():
-    """Closed surfaces with rational metrics (flat tori, polycubes) after drawn intrinsic
-    flips, and half of them flipped on to Delaunay (so both answers of T4.7 are drawn)."""
-    from ..reference.delaunay import flip_to_delaunay
-    from .metrics import flat_tori, polycube_surfaces, randomly_flipped
-    base = randomly_flipped(st.one_of(flat_tori(), polycube_surfaces(max_genus=1).map(
-        lambda s: s.metric())), max_flips=30)
-    return st.tuples(base, st.booleans()).map(
-        lambda x: flip_to_delaunay(x[0])[0] if x[1] else x[0])
 
 
 def empty_disks_give_the_tessellation(metric) -> None:

@@ -273,18 +273,38 @@ def test_expected_values_are_not_read_from_check_modules():
 def test_check_modules_define_no_strategies():
     """Issue 43, point 3: a chapter check module holds its checks and quantity
     declarations; what draws their examples lives in a strategy module (strategies, stars,
-    flipped, metrics, planar_points), so no check module defines a ``@st.composite`` and no
-    property's strategy is a named function of a check module (a lambda composing
-    strategies in the ``@prop`` line is the check's own)."""
+    flipped, metrics, planar_points, point_sets), so no check module defines a
+    ``@st.composite`` and no property's strategy is a named function of a check module (a
+    lambda composing strategies in the ``@prop`` line is the check's own).  The modules of
+    assertion checks of the reference itself (statements, structure: the other modules
+    whose functions application/traceability.toml names as properties) have no ``@prop``
+    line to compose strategies in, so they do not import ``hypothesis.strategies`` at all
+    (which also keeps out a plain function returning a strategy)."""
     from ddg_oracle.properties.registry import PROPERTIES, PROPERTY_MODULES, all_properties
     all_properties()
     checks = {f"ddg_oracle.properties.{m}" for m in PROPERTY_MODULES}
+    table = tomllib.loads((ROOT / "application" / "traceability.toml").read_text(
+        encoding="utf-8"))
+    named = {name.split(":")[0].removeprefix("ddg_oracle.properties.")
+             for row in table.values() if isinstance(row, dict)
+             for name in row.get("property", [])}
+    assertions = sorted(named - set(PROPERTY_MODULES))
+    assert {"statements", "structure"} <= set(assertions)
+    trees = {m: ast.parse((ROOT / "properties" / f"{m}.py").read_text(encoding="utf-8"))
+             for m in (*PROPERTY_MODULES, *assertions)}
     found = [f"properties/{m}.py:{node.lineno}: {node.name}"
-             for m in PROPERTY_MODULES
-             for node in ast.walk(ast.parse((ROOT / "properties" / f"{m}.py").read_text(
-                 encoding="utf-8")))
+             for m, tree in trees.items()
+             for node in ast.walk(tree)
              if isinstance(node, ast.FunctionDef)
              and any("composite" in ast.unparse(d) for d in node.decorator_list)]
+    found += [f"properties/{m}.py:{node.lineno}: imports hypothesis.strategies"
+              for m in assertions
+              for node in ast.walk(trees[m])
+              if (isinstance(node, ast.ImportFrom) and node.module == "hypothesis"
+                  and any(a.name == "strategies" for a in node.names))
+              or (isinstance(node, ast.ImportFrom) and node.module == "hypothesis.strategies")
+              or (isinstance(node, ast.Import)
+                  and any(a.name == "hypothesis.strategies" for a in node.names))]
     found += [f"{p.id}: {p.strategy.__module__}.{p.strategy.__qualname__}"
               for p in PROPERTIES.values()
               if p.strategy.__module__ in checks and p.strategy.__name__ != "<lambda>"]

@@ -11,14 +11,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ddg_oracle.properties import statements as S
+from ddg_oracle.properties import flipped, point_sets, stars, statements as S
 from ddg_oracle.properties.metrics import bump, bumps
 from ddg_oracle.properties.strategies import closed_surfaces
 from ddg_oracle.reference import planar, surfaces
 from ddg_oracle.reference.errors import InputError
 
 
-@given(S.sphere_point_sets())
+@given(point_sets.sphere_point_sets())
 def test_X1_1_convex_polyhedra_are_strongly_regular_spheres(points):
     S.convex_polyhedron_is_a_strongly_regular_sphere(points)
 
@@ -59,7 +59,7 @@ def test_section_1_2_identities_distinguish_what_they_should():
     assert connected_sum(rp2, rp2).classify().euler_characteristic == 0
 
 
-@given(S.lattice_functions())
+@given(point_sets.lattice_functions())
 def test_X3_1_combinatorial_laplacian_on_Z_and_Z2(case):
     S.combinatorial_laplacian_on_lattices(case)
 
@@ -82,7 +82,7 @@ def test_X3_1_the_printed_left_side_swaps_m_and_n():
     assert lap[idx(n, m)] == -12 != rhs                        # the printed left side (n, m)
 
 
-@given(S.circle_triples())
+@given(point_sets.circle_triples())
 def test_L4_8_tangent_chord_angle(triple):
     S.tangent_chord_angle(triple)
 
@@ -96,7 +96,7 @@ def test_L4_8_the_other_tangent_ray_gives_the_supplement():
         planar.inscribed_angle_cot((0, 0), (1, 1), (2, 2))
 
 
-@given(S.planar_points())
+@given(point_sets.planar_points())
 def test_R4_1_voronoi_delaunay_quads_are_kites(points):
     S.voronoi_delaunay_kites(points)
 
@@ -111,7 +111,7 @@ def test_R4_1_dual_edges_need_not_cross():
     S.voronoi_delaunay_kites(pts)
 
 
-@given(S.planar_points())
+@given(point_sets.planar_points())
 def test_R4_2_delaunay_triangles_are_lifted_hull_facets(points):
     S.delaunay_is_the_lifted_hull(points)
 
@@ -139,7 +139,7 @@ def test_R2_8_a_flipped_tetrahedron_comes_from_no_polyhedral_surface():
     assert t.is_regular() and not t.is_strongly_regular()
 
 
-@given(S.planar_points())
+@given(point_sets.planar_points())
 def test_R4_4_delaunay_triangulations_triangulate_the_cells(points):
     S.delaunay_triangulations_are_the_cells_triangulated(points)
 
@@ -173,16 +173,16 @@ def test_X4_1_a_bent_square_is_not_a_tie():
     assert cotan_weights(flat)[diagonal] == 0 and cotan_weights(bent)[diagonal] != 0
 
 
-@given(S.moved_counterexamples())
+@given(stars.moved_counterexamples())
 def test_R2_3_none_of_the_implications_of_lemma_2_4_is_reversible(case):
     S.converses_of_lemma_2_4_fail(case)
 
 
 def test_R2_3_the_forward_implications_hold_where_the_shapes_do():
     from ddg_oracle.reference.curvature import is_convex_star, is_planar_star, vertex_type
-    cone = S._star((0, 0, 4), [(x, y, 0) for x, y in S._HEXAGON] + [(1, -2, 0)])
+    cone = stars._star((0, 0, 4), [(x, y, 0) for x, y in stars._HEXAGON] + [(1, -2, 0)])
     assert is_convex_star(cone, 0) and vertex_type(cone, 0) == "elliptic"
-    flat = S._star((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 0)])
+    flat = stars._star((0, 0, 0), [(1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 0)])
     assert is_planar_star(flat, 0) and vertex_type(flat, 0) == "flat"
     with pytest.raises(AssertionError, match="R2.3"):          # a star that is convex too
         S.converses_of_lemma_2_4_fail(("elliptic, not convex", cone))
@@ -190,13 +190,13 @@ def test_R2_3_the_forward_implications_hold_where_the_shapes_do():
 
 # the intrinsic distance enumerates every unfolding: 70 ms an example, so fewer examples
 @settings(max_examples=20)
-@given(S.cube_surface_points())
+@given(point_sets.cube_surface_points())
 def test_D2_4_the_cube_distance_is_a_metric(points):
     S.cube_distance_is_a_metric(points)
 
 
 @settings(max_examples=30)
-@given(S.opposite_cube_points())
+@given(point_sets.opposite_cube_points())
 def test_X2_2_straight_unfoldings_need_not_be_shortest(points):
     S.straight_unfoldings_need_not_be_shortest(points)
 
@@ -312,7 +312,7 @@ def test_X4_4_a_sequence_that_does_not_twist_is_caught():
         S.cube_triangulations_grow_without_bound(12, back_and_forth)
 
 
-@given(S.sphere_point_sets(max_points=8), st.integers(0, 20))
+@given(point_sets.sphere_point_sets(max_points=8), st.integers(0, 20))
 @settings(deadline=None)
 def test_T2_10_convex_polytopes_are_rigid_and_the_convex_one_is_unique(points, face):
     S.alexandrov_uniqueness_on_examples(points, face)
@@ -341,7 +341,7 @@ def test_T2_10_a_vertex_inside_a_face_flexes_and_a_pop_is_isometric():
         rigidity.popped_vertex(o, 0)
 
 
-@given(S.closed_rational_metrics())
+@given(flipped.closed_rational_metrics())
 @settings(deadline=None)
 def test_D4_3_C4_6_empty_immersed_disks_give_the_delaunay_tessellation(metric):
     S.empty_disks_give_the_tessellation(metric)
