@@ -42,7 +42,7 @@ from .exact.surds import Surd, exact_sum, simplest
 from .combinatorics import corner_of, face_of, halfedge
 
 __all__ = ["is_delaunay_edge", "incircle_determinant", "in_circumcircle", "is_delaunay",
-           "non_delaunay_edges",
+           "delaunay_edges", "non_delaunay_edges",
            "face_harmonic_index", "harmonic_index", "FlipRecord", "flip_to_delaunay",
            "delaunay_tessellation_edges", "laplace_beltrami", "DelaunayError"]
 
@@ -141,10 +141,24 @@ def in_circumcircle(surface, e: int) -> int:
     return sign(incircle_determinant(i, j, k, l_))
 
 
+def delaunay_edges(surface) -> list[bool]:
+    """D4.4 for every edge, by edge id: :func:`is_delaunay_edge`, decided on the integers of
+    the cotangents where the squared lengths are rational (a float mesh: one comparison of
+    integer products per edge; equal to the definition, tested), else edge by edge.
+
+    >>> from ddg_oracle.reference import surfaces
+    >>> delaunay_edges(surfaces.grid(1, 1).metric())
+    [True, True, True, True, True]
+    """
+    m = surface_metric(surface)
+    known = _delaunay_by_integers(m)
+    return [is_delaunay_edge(m, e) if known[e] == _UNKNOWN else known[e] == _YES
+            for e in range(m.triangulation.n_edges)]
+
+
 def non_delaunay_edges(surface) -> list[int]:
     """The edges failing the angle criterion (D4.4), in increasing order."""
-    m = surface_metric(surface)
-    return [e for e in range(m.triangulation.n_edges) if not is_delaunay_edge(m, e)]
+    return [e for e, ok in enumerate(delaunay_edges(surface)) if not ok]
 
 
 def is_delaunay(surface) -> bool:

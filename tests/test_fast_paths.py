@@ -31,7 +31,8 @@ from ddg_oracle.reference.cotangents import CotanSum, applies, face_cotangents
 from ddg_oracle.reference.curvature import (angle_defects, angle_sums_from_corners, corner_angles,
                                             corner_angles_from_cotangents, gauss_bonnet_holds,
                                             gauss_bonnet_holds_by_faces, turning_angles)
-from ddg_oracle.reference.delaunay import DelaunayError, flip_to_delaunay, is_delaunay
+from ddg_oracle.reference.delaunay import (DelaunayError, delaunay_edges, flip_to_delaunay,
+                                           is_delaunay)
 from ddg_oracle.reference.errors import (DegenerateFace, InputError, NotFlippable,
                                          TermLimitExceeded)
 from ddg_oracle.reference.curvature_fast import CornerSum
@@ -684,8 +685,9 @@ def test_delaunay_by_integers_equals_the_definition(s):
     included."""
     m = s.metric() if isinstance(s, PolyhedralSurface) else s
     known = _delaunay_by_integers(m)
-    assert [k == 1 for k in known] == [is_delaunay_edge(m, e)
-                                       for e in range(m.triangulation.n_edges)]
+    definition = [is_delaunay_edge(m, e) for e in range(m.triangulation.n_edges)]
+    assert [k == 1 for k in known] == definition
+    assert delaunay_edges(s) == delaunay_edges(m) == definition     # the public route
 
 
 @pytest.mark.parametrize("build", [
