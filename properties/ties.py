@@ -10,8 +10,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..protocol.methods import eps
+from ..reference import cotangents
 from ..reference.combinatorics import face_of, opposite_corner, opposite_halfedge
+from ..reference.exact.surds import rounded_root_sum
 
+from . import memo
 from .example import Example
 from .harness import Exact
 
@@ -21,8 +24,26 @@ def cot_sum_with_bound(X: Exact, e: int) -> tuple[float, float]:
     whose sum is within the bound of 0 is an (exact or near) tie, which rounding decides
     (D4.4; boundary edges: the one corner)."""
     hs = [x for x in X.triangulation.edge_halfedges(e) if x >= 0]
-    s = sum(float(X.metric.corner_cot(face_of(x), opposite_corner(x))) for x in hs)
+    cots = memo.of(corner_cot_floats, X.metric)
+    s = sum(float(cots[face_of(x), opposite_corner(x)]) for x in hs)
     return s, sum(X.beta[face_of(x), opposite_corner(x)] for x in hs) + 2 * eps() * abs(s)
+
+
+def corner_cot_floats(metric) -> np.ndarray:
+    """(m, 3): the exact corner cotangents of ``metric`` (D2.6), correctly rounded, column c
+    corner c: from the integers of the fast route where the squared lengths are rational
+    (``cot = N / sqrt(G)``, :mod:`~ddg_oracle.reference.cotangents`; one integer square
+    root per corner), else from the metric's exact cotangents."""
+    t = metric.triangulation
+    if not cotangents.applies(metric):
+        return np.array([[float(metric.corner_cot(f, c)) for c in range(3)]
+                         for f in range(t.n_faces)], dtype=np.float64).reshape(-1, 3)
+    fd = cotangents.face_data(metric)
+    N, G = fd.N, fd.G
+    # corner c of face f is opposite halfedge 3 f + c + 1 (mod 3)
+    return np.array([[rounded_root_sum([(n, G[f])]) if (n := N[opposite_halfedge(f, c)])
+                      else 0.0 for c in range(3)] for f in range(t.n_faces)],
+                    dtype=np.float64).reshape(-1, 3)
 
 
 def incircle_with_bound(a, b, c, d) -> tuple[float, float]:

@@ -690,6 +690,21 @@ def test_delaunay_by_integers_equals_the_definition(s):
     assert delaunay_edges(s) == delaunay_edges(m) == definition     # the public route
 
 
+@settings(max_examples=30, deadline=None)
+@given(st.one_of(hard_meshes(), thin_triangles(), any_meshes().map(lambda c: c.surface)),
+       st.integers(0, 2 ** 32))
+def test_corner_cotangent_floats_are_the_exact_ones_correctly_rounded(s, seed):
+    """properties.ties.corner_cot_floats (the integers' route, one isqrt per corner) gives
+    float(corner_cot) bit for bit, on rational metrics and after random flips (irrational
+    squared lengths: the metric's own route)."""
+    from ddg_oracle.properties.ties import corner_cot_floats
+    m = s.metric() if isinstance(s, PolyhedralSurface) else s
+    for x in (m, random_flips(m, random.Random(seed), 6)):
+        want = [[float(x.corner_cot(f, c)) for c in range(3)]
+                for f in range(x.triangulation.n_faces)]
+        assert corner_cot_floats(x).tolist() == want
+
+
 @pytest.mark.parametrize("build", [
     lambda: surfaces.torus(5, 7).metric(),
     lambda: random_flips(flat_torus(6, 6, (3, 1), (1, 2)), random.Random(2), 200),
