@@ -72,8 +72,12 @@ def connect(address: str):
         # here and read the daemon flag again whenever they restart a worker that died
         dask.config.set({"distributed.worker.daemon": False,
                          "distributed.scheduler.allowed-failures": ALLOWED_FAILURES})
+        # CRITICAL, not ERROR: a worker whose heartbeat meets the scheduler closing at the
+        # end of a run (a loaded machine) logs "Stream is closed" with a traceback; what a
+        # run reports (results, lost workers) is ours, never read from dask's logs
         cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                           dashboard_address=":0", silence_logs=logging.ERROR)
+                                           dashboard_address=":0",
+                                           silence_logs=logging.CRITICAL)
         client = distributed.Client(cluster)
     else:
         client = _client(distributed, address)
@@ -163,11 +167,19 @@ def _require_usable(client, address: str) -> None:
 
 
 def close(client, cluster) -> None:
+    import logging
+    # the client's own heartbeats and comms may log the closing streams as errors too
+    log = logging.getLogger("distributed")
+    level = log.level
+    log.setLevel(logging.CRITICAL)
     try:
         client.close()
     finally:
-        if cluster is not None:
-            cluster.close()
+        try:
+            if cluster is not None:
+                cluster.close()
+        finally:
+            log.setLevel(level)
 
 
 def n_workers(client) -> int:
