@@ -259,13 +259,18 @@ class _ExpectedValues:
         with a wall-clock limit they shared the cores and two of MeshLib's intrinsic
         Delaunay rows became undecided)."""
         from ..properties.profiles import example_time_limit
-        from ..reference.errors import ExactArithmeticLimit
+        from ..reference.errors import BeyondFloatRange, ExactArithmeticLimit
         if q.method in self.gave_up:
             raise self.gave_up[q.method]
         try:
-            with example_time_limit(f"[{q.method}] the exact reference on this mesh",
-                                    cpu=True):
-                return self._values(q, epsilon)
+            try:
+                with example_time_limit(f"[{q.method}] the exact reference on this mesh",
+                                        cpu=True):
+                    return self._values(q, epsilon)
+            except OverflowError as e:
+                # a float view or bound of an exact value beyond the float range (a needle)
+                raise BeyondFloatRange(f"[{q.method}] an exact value lies beyond the float "
+                                       f"range on this mesh ({e})") from e
         except ExactArithmeticLimit as e:
             self.gave_up[q.method] = e
             raise

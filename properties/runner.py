@@ -26,8 +26,9 @@ A :class:`Result` has one of these statuses:
   (shrunk) example;
 * ``undecided``: the exact reference hit one of its guards (a term limit, a precision
   limit, the time limit per example while our own computation ran:
-  :class:`ddg_oracle.reference.errors.ExactArithmeticLimit`) before deciding; the message
-  says which limit to raise;
+  :class:`ddg_oracle.reference.errors.ExactArithmeticLimit`) before deciding, or an exact
+  value the check needs as a float lies beyond the float range (``BeyondFloatRange``);
+  the message says which;
 * ``not applicable``: the implementation lacks a method the property needs, or
   declined every example as outside its domain
   (:class:`~ddg_oracle.protocol.methods.OutsideDomain`; a declined example is not
@@ -52,7 +53,7 @@ from hypothesis import HealthCheck, Phase, given, reject, seed as hypothesis_see
 from hypothesis.errors import Unsatisfiable, UnsatisfiedAssumption
 from hypothesis.reporting import with_reporter
 
-from ..reference.errors import ExactArithmeticLimit
+from ..reference.errors import BeyondFloatRange, ExactArithmeticLimit
 
 from ..protocol.budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
 from .calls import Watched, raised_by_implementation
@@ -327,7 +328,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         state.last = example
         declined = state.outside
         try:
-            p.check(watched, example)
+            _check(p, watched, example)
         except TieDisagreement as t:
             # keep the smallest tie of either pass
             if state.tie is None or _size(t.mesh) < _size(state.tie[0].mesh):
@@ -622,6 +623,20 @@ def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> N
               f"{implementation_name(counterpart)} passes the same example").replace("  ", " ")
 
 
+def _check(p: Property, watched, example) -> None:
+    """``p.check(watched, example)``; an OverflowError of ours (a float view or bound of an
+    exact value beyond the float range: a needle's cotangent) is the reference's limit,
+    :class:`~ddg_oracle.reference.errors.BeyondFloatRange` (``undecided``), not an internal
+    error; the implementation's own stays its crash."""
+    try:
+        p.check(watched, example)
+    except OverflowError as e:
+        if raised_by_implementation(e):
+            raise
+        raise BeyondFloatRange(f"[{p.id}] an exact value this check needs lies beyond the "
+                               f"float range ({e})") from e
+
+
 def run_on_example(p: Property, impl, example, source: str, counterpart=None,
                    convention: str | None = None) -> Result:
     """One property on one given example (e.g. built from a mesh file), no Hypothesis;
@@ -633,7 +648,7 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     state = _Search(n=1, last=example)
     t0 = time.perf_counter()
     try:
-        p.check(Watched(impl, p.id), example)
+        _check(p, Watched(impl, p.id), example)
         errors = []
     except OutsideDomain as o:
         state.outside, state.why, errors = 1, str(o), []

@@ -142,6 +142,13 @@ class TimeLimitExceeded(ExactArithmeticLimit):
     """
 
 
+class BeyondFloatRange(ExactArithmeticLimit):
+    """An exact value that a float view or bound needs lies beyond the float range (the
+    cotangent of a needle's corner, say): it has no float to compare an answer with, so
+    nothing is decided there.  Raised by the checks (``float()`` of an exact number raises
+    ``OverflowError`` there, as ``float(Fraction)`` does)."""
+
+
 class Undecidable(ExactArithmeticLimit):
     """An angle comparison that exact arithmetic cannot settle and enclosures
     did not separate up to the precision limit."""

@@ -625,3 +625,40 @@ def test_an_honest_float32_implementation_passes_every_test_vector(capsys):
     rc, out, err = _run(capsys, "verify", str(ROOT / "vectors"), "--impl",
                         "tests.honest_panel:Atan2Cross32")
     assert rc == 0 and " 0 FAIL" in out + err, out + err
+
+
+# --- a needle: exact values beyond the float range ---------------------------------------
+
+NEEDLE_OFF = "OFF\n4 2 0\n0 0 0\n1 0 0\n0.5 1e-310 0\n0.5 -1 0\n3 0 1 2\n3 1 0 3\n"
+
+
+def test_a_value_beyond_the_float_range_is_undecided_not_an_internal_error(tmp_path, capsys):
+    """A face of height 1e-310: its corner's cotangent (~1e310) has no float, so the float
+    views and bounds that need it raise OverflowError in our code.  That is the reference's
+    limit (undecided, saying so), never 'internal error' (exit 3, a traceback); an
+    implementation's own OverflowError stays its crash."""
+    from ddg_oracle.application.meshes import MeshExamples, MeshInput
+    from ddg_oracle.properties.runner import UNDECIDED, run_on_example
+    from examples.numpy_cotan import NumpyCotan
+    mesh = tmp_path / "needle.off"
+    mesh.write_text(NEEDLE_OFF)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)          # the implementation's floats
+        V = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 1e-310, 0.0], [0.5, -1.0, 0.0]]
+        ex = MeshExamples(MeshInput("needle", V, [[0, 1, 2], [1, 0, 3]])).example()
+        r = run_on_example(PROPERTIES["D3.1"], NumpyCotan(), ex, "needle")
+        assert r.status == UNDECIDED and "beyond the float range" in r.error, r
+
+        class Overflows(NumpyCotan):
+            def cotan_laplacian(self, V, F):
+                raise OverflowError("the implementation's own")
+        assert run_on_example(PROPERTIES["D3.1"], Overflows(), ex, "needle").status == CRASHED
+
+        assert main(["compare", str(mesh), "--impl", "libigl"]) == 0
+        out, err = capsys.readouterr()
+        assert "Traceback" not in out + err and "internal error" not in out + err
+        rows = [line for line in out.splitlines() if line.startswith("cotan_laplacian")]
+        assert rows and "undecided" in rows[0] and "beyond the float" in rows[0], out
+        assert main(["check", "--mesh", str(mesh), "--impl", "libigl"]) == 0
+        out, err = capsys.readouterr()
+        assert "internal error" not in out + err and "BeyondFloatRange" in out + err
