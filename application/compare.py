@@ -71,11 +71,23 @@ def _numeric(quantity, name, got, want, bound, where_of) -> Comparison:
     err = np.abs(got - want)
     if err.size == 0:                  # e.g. the interior edges of a single triangle: none
         return Comparison(quantity, name, "agrees", elements=0, note="no element to compare")
-    k, ratio, over = _worst(err, np.broadcast_to(bound, err.shape))
+    bound = np.broadcast_to(bound, err.shape)
+    # an infinite bound (floats cannot compute that element: a needle's normal) decides
+    # nothing; a quantity with no element decided is undecided, not "agrees"
+    open_ = ~(bound < np.inf)
+    if open_.all():
+        k = tuple(int(x) for x in np.argwhere(open_)[0])
+        return Comparison(quantity, name, "undecided", where=where_of(k),
+                          expected=float(want[k]), observed=float(got[k]), elements=err.size,
+                          note="the derived bound is infinite on every element (floats "
+                               "cannot compute them here): nothing is decided")
+    k, ratio, over = _worst(err, bound)
+    note = (f"{int(open_.sum())} of {err.size} elements not decided (infinite bound)"
+            if open_.any() else None)
     return Comparison(quantity, name, "agrees" if over == 0 else "DIFFERS", worst=ratio,
-                      error=float(err[k]), bound=float(np.broadcast_to(bound, err.shape)[k]),
+                      error=float(err[k]), bound=float(bound[k]),
                       where=where_of(k), expected=float(want[k]), observed=float(got[k]),
-                      over=over, elements=err.size)
+                      over=over, elements=err.size, note=note)
 
 
 def compare_mesh(mesh: MeshInput, impls, reference, workers: int = 1,

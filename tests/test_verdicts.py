@@ -659,6 +659,9 @@ def test_a_value_beyond_the_float_range_is_undecided_not_an_internal_error(tmp_p
         assert "Traceback" not in out + err and "internal error" not in out + err
         rows = [line for line in out.splitlines() if line.startswith("cotan_laplacian")]
         assert rows and "undecided" in rows[0] and "beyond the float" in rows[0], out
+        # the needle's dihedral angle: an infinite bound decides nothing (not "agrees")
+        rows = [line for line in out.splitlines() if line.startswith("edge_mean_curvature")]
+        assert rows and "undecided" in rows[0] and "infinite on every element" in rows[0], out
         assert main(["check", "--mesh", str(mesh), "--impl", "libigl"]) == 0
         out, err = capsys.readouterr()
         assert "internal error" not in out + err and "BeyondFloatRange" in out + err
