@@ -415,10 +415,14 @@ def _matrix(quantity, name, got, want, bound) -> Comparison:
     b = entries_at(bound, err.row, err.col)
     (k,), ratio, over = _worst(err.data, b)
     i, j = int(err.row[k]), int(err.col[k])
+    # as in _numeric: an entry whose bound is infinite decides nothing
+    open_ = int(np.sum(~(b < np.inf)))
     return Comparison(quantity, name, "agrees" if over == 0 else "DIFFERS", worst=ratio,
                       error=float(err.data[k]), bound=float(b[k]), where=f"entry {(i, j)}",
                       expected=float(want[i, j]), observed=float(A[i, j]), over=over,
-                      elements=elements)
+                      elements=elements,
+                      note=(f"{open_} differing entries not decided (infinite bound)"
+                            if open_ else None))
 
 
 def loop_edges(loops) -> list:

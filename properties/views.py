@@ -117,21 +117,20 @@ def _flipped_laplacian_view(m):
         for key in ((i, j), (j, i), (i, i), (j, j)):
             quotients.setdefault(key, []).append(q)
     rows, cols, vals = [], [], []
-    for i, row in part._rows.items():       # the entries no flipped face touches: as they are
-        for j, v in row.items():
-            if (i, j) not in quotients:
-                rows.append(i)
-                cols.append(j)
-                vals.append(float(v))       # correctly rounded (nonzero: zeros are left out)
+    exact = {(i, j): v for i, j, v in part.entries()}     # nonzero: zeros are left out
+    for (i, j), v in exact.items():         # the entries no flipped face touches: as they are
+        if (i, j) not in quotients:
+            rows.append(i)
+            cols.append(j)
+            vals.append(float(v))           # correctly rounded
     for (i, j), qs in quotients.items():
-        v = part._rows.get(i, {}).get(j)
+        v = exact.get((i, j))
         if i == j:                          # a diagonal: the quotients added
             ts = qs if v is None else [v, *qs]
             x = rounded_sum(ts)
         else:                               # off the diagonal: minus the quotients' sum
             ts = qs if v is None else [-v, *qs]
-            x = rounded_sum(ts)
-            x = -x if x else 0.0
+            x = -rounded_sum(ts)            # rounding is symmetric: float(-s) = -float(s)
         if not (x == 0 and sum_is_zero(ts)):
             rows.append(i)
             cols.append(j)

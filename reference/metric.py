@@ -195,9 +195,9 @@ class PiecewiseFlatSurface:
         return kept
 
     def face_cot_numerators(self, f: int) -> tuple:
-        """``(a + b - o)`` of corners 0, 1, 2 of face f (a, b the squared lengths of the sides
-        at the corner, o the opposite one): cot = n / (4 A), exact.  Enclosures of the
-        cotangents need no division (:class:`~ddg_oracle.reference.exact.Quotient`)."""
+        """D2.6: ``(a + b - o)`` of corners 0, 1, 2 of face f (a, b the squared lengths of
+        the sides at the corner, o the opposite one): cot = n / (4 A), exact.  Enclosures
+        of the cotangents need no division (:class:`~ddg_oracle.reference.exact.Quotient`)."""
         l0, l1, l2 = self.face_squared_lengths(f)       # opposite corners 2, 0, 1
         return l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0
 

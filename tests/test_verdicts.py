@@ -665,3 +665,26 @@ def test_a_value_beyond_the_float_range_is_undecided_not_an_internal_error(tmp_p
         assert main(["check", "--mesh", str(mesh), "--impl", "libigl"]) == 0
         out, err = capsys.readouterr()
         assert "internal error" not in out + err and "BeyondFloatRange" in out + err
+
+
+@pytest.mark.parametrize("message, status", [
+    ("int too large to convert to float", "undecided"),            # an exact number's float
+    ("integer division result too large for a float", "undecided"),
+    ("(34, 'Numerical result out of range')", "internal error"),    # float arithmetic: ours
+])
+def test_only_an_exact_numbers_float_overflow_is_undecided(message, status):
+    """The runner calls an OverflowError of our code undecided only where it is the float of
+    an exact number; any other (float arithmetic on an answer, say) stays an internal error,
+    which fails the run, never a quiet exit 0."""
+    from dataclasses import replace
+    from ddg_oracle.properties.example import Example
+    from ddg_oracle.properties.runner import run_on_example
+    from ddg_oracle.reference import surfaces
+    from examples.numpy_cotan import NumpyCotan
+
+    def check(impl, example):
+        impl.cotan_laplacian(*example.arrays())
+        raise OverflowError(message)
+    p = replace(PROPERTIES["D3.1"], check=check)
+    ex = Example.of_surface(surfaces.tetrahedron(), 2, "tetrahedron")
+    assert run_on_example(p, NumpyCotan(), ex, "tetrahedron").status == status
