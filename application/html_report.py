@@ -137,7 +137,8 @@ function statusClass(s) { return "s-" + s.split(" ")[0]; }
 function esc(s) { return String(s).replace(/[&<>"]/g, c => ({"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;"}[c])); }
 function fmt(x) { return x == null ? "-" : Number(x).toPrecision(3); }
 function message(r) {
-  const t = (r.failure && r.failure.message) || r.crash || (r.status !== "passed" ? r.note : "") || "";
+  const t = (r.failure && r.failure.message) || r.crash
+    || (r.status !== "passed" || r.unjudged ? r.note : "") || "";
   return t.split("\n")[0];
 }
 
@@ -201,7 +202,8 @@ const ROWS = [];
 let order = {key: "status", dir: 1};
 
 function cells(r, k) {
-  const ran = r.status === "incomplete" ? r.examples + " of " + r.wanted : r.examples;
+  const ran = r.status === "incomplete" ? r.examples + " of " + r.wanted
+    : r.unjudged ? r.examples + " (" + r.unjudged + " partly judged)" : r.examples;
   return {id: r.property_id, impl: r.implementation, status: r.status, msg: message(r),
           examples: ran, finding: KNOWN[k] || ""};
 }

@@ -74,6 +74,8 @@ class PropertyItem(pytest.Item):
             if first:                        # the root cause first: the wrong answer
                 text = f"{first}\n{text}"
             raise PropertyCheckFailed(text)
+        if r.unjudged:                       # passed, and says what it could not judge (-rP)
+            self.add_report_section("call", "ddg-oracle", r.note)
 
     def repr_failure(self, excinfo):
         if isinstance(excinfo.value, PropertyCheckFailed):

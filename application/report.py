@@ -17,13 +17,14 @@
 
 results.json::
 
-    {"schema": 3,
+    {"schema": 4,
      "command": {"profile", "seed", "implementations", "only", "meshes", "expect_conventions"},
      "versions": {"python", "numpy", "scipy", "hypothesis", "libigl", "pymeshlab", ...},
      "counts": {status: number}, "interrupted": false | true (a partial run),
      "results": [{"property_id", "property_name", "statement", "implementation", "spec",
                   "source", "status", "ok", "examples", "wanted" (the profile's examples),
-                  "ties", "note", "crash", "also",
+                  "ties", "unjudged" (examples with entries an infinite bound could not
+                  judge: "passed (N examples; k partly judged)"), "note", "crash", "also",
                   "failure": null | {"message", "element", "element_ids", "expected",
                                      "observed", "error", "bound", "error_in_bounds"},
                   "mesh": null | {"V", "F", "exact_V"?} | {"file", "vertices", "faces"},
@@ -49,7 +50,7 @@ from pathlib import Path
 
 from .causes import convention_hint, counterexample_faces, element_ids, root_causes
 
-SCHEMA = 3
+SCHEMA = 4        # 4: "unjudged" per result
 VERSIONED = ("numpy", "scipy", "hypothesis", "libigl", "pymeshlab", "matplotlib")
 
 
@@ -129,7 +130,7 @@ def result_record(r, statement: str, spec: str, files: dict | None = None) -> di
     return {"property_id": r.property_id, "property_name": r.property_name,
             "statement": statement, "implementation": r.implementation, "spec": spec,
             "source": r.source, "status": r.status, "ok": r.ok, "examples": r.examples,
-            "wanted": r.wanted, "ties": r.ties, "note": r.note, "crash": r.error, "also": list(r.also),
+            "wanted": r.wanted, "ties": r.ties, "unjudged": r.unjudged, "note": r.note, "crash": r.error, "also": list(r.also),
             "failure": _failure_record(r.failure), "mesh": _mesh_record(r), "files": files,
             "replay": r.replay, "diagnosis": r.diagnosis}
 
@@ -442,6 +443,12 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
     lines.append("passed (of the applicable checks" + (
         f", {len(sources)} sources" if len(sources) > 1 else "") + ")")
     lines.append(fit("  " + ", ".join(f"{n} {k}/{m}" for n, k, m in passed), width))
+    partly = [r for r in results if r.status == PASSED and r.unjudged]
+    if partly:
+        lines.append(f"passed, partly judged ({len(partly)}): some entries had an infinite "
+                     "derived bound (beyond the declared precision's resolution) and an answer "
+                     "other than the exact value's float; they were not judged")
+        lines.extend(row(r, more=f"  ({r.note})") for r in partly)
     na = [(n, sum(r.status == NOT_APPLICABLE for r in results if r.implementation == n))
           for n in impls]
     if any(k for _, k in na):

@@ -15,10 +15,14 @@ that separately from a real error and lets the run go on.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import functools
 import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable
+
+import numpy as np
 
 from .arithmetic import own_arithmetic
 from .profiles import example_time_limit
@@ -101,6 +105,49 @@ class TieDisagreement(PropertyFailure):
     failure, so a tie never hides one."""
 
     kind = "tie disagreement: "
+
+
+class Unjudged:
+    """Entries a check compared against an infinite derived bound (a face whose float normal
+    is 0, an area whose lower bound is not positive, ...) where the implementation's answer
+    differs from the exact float view: the check cannot say whether that answer is right at
+    this precision, so the entry is not judged (neither passed nor failed).  The runner
+    opens one tally per example (:func:`unjudged_entries`) and reports the examples that
+    had such entries; :func:`~.harness.ratios` counts them."""
+
+    def __init__(self):
+        self.entries = 0
+
+
+_UNJUDGED: contextvars.ContextVar = contextvars.ContextVar("ddg_unjudged", default=None)
+
+
+@contextlib.contextmanager
+def unjudged_entries():
+    """A fresh :class:`Unjudged` tally for the checks run inside this block."""
+    tally = Unjudged()
+    token = _UNJUDGED.set(tally)
+    try:
+        yield tally
+    finally:
+        _UNJUDGED.reset(token)
+
+
+def count_unjudged(k: int) -> None:
+    """Add ``k`` unjudged entries to the tally open now, if any."""
+    tally = _UNJUDGED.get()
+    if tally is not None and k:
+        tally.entries += int(k)
+
+
+def within(err, bound):
+    """``err <= bound`` (elementwise for arrays: a bool array), with the entries whose bound
+    is infinite and whose error is not 0 counted unjudged (:func:`count_unjudged`): an
+    infinite bound passes them, and the runner says so.  A NaN error is never within."""
+    e, b = np.asarray(err, dtype=np.float64), np.asarray(bound, dtype=np.float64)
+    count_unjudged(np.count_nonzero(np.isposinf(b) & (e != 0)))
+    ok = e <= b
+    return bool(ok) if ok.ndim == 0 else ok
 
 
 def _is_real(x) -> bool:

@@ -63,7 +63,7 @@ from .profiles import profile as named_profile, profile_budget
 from .precision import inputs_at
 from ..protocol.methods import (OutsideDomain, capabilities, implementation_name, machine_epsilon,
                        near_miss_warning, require_protocol)
-from .registry import Property, PropertyFailure, TieDisagreement, select_properties
+from .registry import Property, PropertyFailure, TieDisagreement, select_properties, unjudged_entries
 from .stream import generated_seed, keyed, same_stream, with_database
 
 PASSED, FAILED, CRASHED, NOT_APPLICABLE = "passed", "FAILED", "crashed", "not applicable"
@@ -113,6 +113,9 @@ class Result:
     # with the exact one (ddg_oracle.application.compare.diagnose: quantity, status, where, expected,
     # observed, worst): which method is wrong, and where
     diagnosis: list | None = None
+    # examples on which some entries had an infinite derived bound and an answer other than
+    # the exact float view: those entries were not judged (the note says how many)
+    unjudged: int = 0
 
     @property
     def ok(self) -> bool:
@@ -121,7 +124,8 @@ class Result:
     def summary(self) -> str:
         """The table cell."""
         if self.status == PASSED:
-            return f"passed ({self.examples} example{'s' if self.examples != 1 else ''})"
+            partly = f"; {self.unjudged} partly judged" if self.unjudged else ""
+            return f"passed ({self.examples} example{'s' if self.examples != 1 else ''}{partly})"
         if self.status == INCOMPLETE:
             return f"incomplete ({self.examples} of {self.wanted} examples)"
         if self.status == TIE:
@@ -152,7 +156,8 @@ class Result:
         from .codec import BadEncoding, decode
         state = decode(data)
         names = {f.name for f in fields(cls)} - {"example"}
-        if not isinstance(state, dict) or set(state) != names:
+        # a record written before a field was added lacks it: its default stands
+        if not isinstance(state, dict) or not names - _ADDED <= set(state) <= names:
             raise BadEncoding("not a result record")
         if state["status"] not in STATUSES or not all(
                 isinstance(state[k], str) for k in ("property_id", "property_name",
@@ -161,6 +166,11 @@ class Result:
         if state["failure"] is not None and not isinstance(state["failure"], PropertyFailure):
             raise BadEncoding("not a result record: its failure is not one")
         return cls(**state)
+
+
+#: fields added to :class:`Result` since results.json was first written (``--resume`` reads
+#: older records without them)
+_ADDED = frozenset({"unjudged"})
 
 
 def example_mesh(example):
@@ -234,6 +244,8 @@ class _Search:
     stopped: str | None = None      # why the budget stopped the search
     refused: bool = False           # stopped because the implementation declines nearly all
     internal: tuple | None = None   # (our own exception, its example): a bug of ddg-oracle
+    unjudged: int = 0               # examples with entries an infinite bound could not judge
+    unjudged_entries: int = 0       # those entries
 
 
 def _keep_smallest(state: _Search, key: str, e: BaseException, example) -> None:
@@ -328,7 +340,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
         state.last = example
         declined = state.outside
         try:
-            _check(p, watched, example)
+            _check(p, watched, example, state)
         except TieDisagreement as t:
             # keep the smallest tie of either pass
             if state.tie is None or _size(t.mesh) < _size(state.tie[0].mesh):
@@ -395,6 +407,7 @@ def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                ties=state.ties, example=state.last, **out)
     _note_outside(r, state)
     _judge_completeness(r, state)
+    _note_unjudged(r, state)
     if state.internal is not None and r.status != INTERNAL:
         r.note = _joined(r.note, "then " + internal_text(state.internal[0]))
     r.spec = implementation_spec(impl)
@@ -608,6 +621,18 @@ def _note_outside(r: Result, state: _Search) -> None:
         r.status = NOT_APPLICABLE
 
 
+def _note_unjudged(r: Result, state: _Search) -> None:
+    """Examples with entries no finite bound could judge: said, so that a pass says what
+    it covers (those entries are neither passed nor failed; the others of the example
+    were judged)."""
+    if state.unjudged and r.status not in (NOT_APPLICABLE, INTERNAL):
+        r.unjudged = state.unjudged
+        r.note = _joined(r.note, f"{state.unjudged_entries} entr"
+                         f"{'y' if state.unjudged_entries == 1 else 'ies'} in {state.unjudged} "
+                         f"of {max(r.examples, 1)} examples not judged: the derived bound is "
+                         f"infinite there (beyond the resolution of the declared precision)")
+
+
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
     """Re-check the shrunk example with the reference-convention counterpart."""
     try:
@@ -623,13 +648,20 @@ def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> N
               f"{implementation_name(counterpart)} passes the same example").replace("  ", " ")
 
 
-def _check(p: Property, watched, example) -> None:
+def _check(p: Property, watched, example, state: _Search | None = None) -> None:
     """``p.check(watched, example)``; an OverflowError of ours (a float view or bound of an
     exact value beyond the float range: a needle's cotangent) is the reference's limit,
     :class:`~ddg_oracle.reference.errors.BeyondFloatRange` (``undecided``), not an internal
-    error; the implementation's own stays its crash."""
+    error; the implementation's own stays its crash.  Entries the check could not judge
+    (an infinite bound: :class:`~.registry.Unjudged`) are counted in ``state``."""
     try:
-        p.check(watched, example)
+        with unjudged_entries() as tally:
+            try:
+                p.check(watched, example)
+            finally:
+                if state is not None and tally.entries:
+                    state.unjudged += 1
+                    state.unjudged_entries += tally.entries
     except OverflowError as e:
         # only the float of an exact number (int, Fraction, Surd: "... too large ... float"):
         # float arithmetic on an implementation's answer overflows with other messages
@@ -651,7 +683,7 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     state = _Search(n=1, last=example)
     t0 = time.perf_counter()
     try:
-        _check(p, Watched(impl, p.id), example)
+        _check(p, Watched(impl, p.id), example, state)
         errors = []
     except OutsideDomain as o:
         state.outside, state.why, errors = 1, str(o), []
@@ -664,6 +696,7 @@ def run_on_example(p: Property, impl, example, source: str, counterpart=None,
     r = Result(p.id, p.name, name, examples=1 - state.outside, seconds=time.perf_counter() - t0,
                ties=state.ties, example=example, source=source, **out)
     _note_outside(r, state)
+    _note_unjudged(r, state)
     _attach_counterexample(r, impl, example)
     if r.status == FAILED and counterpart is not None:
         _explain_by_convention(r, p, counterpart, convention)

@@ -194,12 +194,12 @@ def report_in_two_workers(tmp_path_factory):
 def test_report_files_and_json_schema(report_in_two_workers):
     d = report_in_two_workers
     doc = json.loads((d / "results.json").read_text())
-    assert doc["schema"] == 3
+    assert doc["schema"] == 4
     assert doc["command"]["profile"] == "ci" and "argv" not in doc["command"]
     assert doc["counts"]["FAILED"] == 1 and doc["counts"]["tie disagreement"] == 1
     assert set(doc["versions"]) >= {"python", "numpy", "hypothesis"}
     keys = {"property_id", "property_name", "statement", "implementation", "spec", "source",
-            "status", "ok", "examples", "wanted", "ties", "note", "crash", "also", "failure",
+            "status", "ok", "examples", "wanted", "ties", "unjudged", "note", "crash", "also", "failure",
             "mesh", "files", "replay", "diagnosis"}
     assert len(doc["results"]) == 6 and all(set(r) == keys for r in doc["results"])
     failed = [r for r in doc["results"] if r["status"] == FAILED]

@@ -688,3 +688,34 @@ def test_only_an_exact_numbers_float_overflow_is_undecided(message, status):
     p = replace(PROPERTIES["D3.1"], check=check)
     ex = Example.of_surface(surfaces.tetrahedron(), 2, "tetrahedron")
     assert run_on_example(p, NumpyCotan(), ex, "tetrahedron").status == status
+
+
+def test_an_entry_an_infinite_bound_cannot_judge_is_said_not_judged_not_passed_silently():
+    """A needle whose float cross product is 0 (exact area 2^-104): its corner bounds are
+    infinite, so no answer there can fail.  A wrong answer at those corners is reported as
+    entries not judged (the note says how many, in how many examples), never as a silent
+    pass; a right answer leaves no note, and a wrong one on a plain triangle fails."""
+    from fractions import Fraction
+    from ddg_oracle.properties.runner import run_on_example
+    from ddg_oracle.properties.strategies import Example
+    e = 2.0 ** -52
+    pts = [(0.0, 0.0, 0.0), (1.0, 1.0 + e, 0.0), (1.0 + e, 1.0 + 2 * e, 0.0)]
+    needle = Example.of_mesh(tuple(tuple(Fraction(x) for x in p) for p in pts), ((0, 1, 2),),
+                             "cross product below float resolution")
+
+    class Equilateral(ReferenceImplementation):
+        def corner_angles(self, V, F):
+            return np.full((len(F), 3), np.pi / 3)
+    right = run_on_example(PROPERTIES["D2.6"], ReferenceImplementation(), needle, "needle")
+    assert right.status == PASSED and not right.note
+    wrong = run_on_example(PROPERTIES["D2.6"], Equilateral(), needle, "needle")
+    assert wrong.status == PASSED
+    assert "3 entries in 1 of 1 examples not judged" in wrong.note, wrong.note
+    assert wrong.summary() == "passed (1 example; 1 partly judged)"
+    plain = Example.of_mesh(((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),
+                             (Fraction(0), Fraction(2), Fraction(0))), ((0, 1, 2),), "triangle")
+    assert run_on_example(PROPERTIES["D2.6"], Equilateral(), plain, "triangle").status == FAILED
+    from ddg_oracle.application.report import result_record, terminal_report
+    assert result_record(wrong, "", "x")["unjudged"] == 1
+    text = terminal_report([right, wrong], width=200)
+    assert "passed, partly judged (1)" in text and "3 entries in 1 of 1 examples" in text
