@@ -39,6 +39,7 @@ from ..protocol.methods import (FLOAT64_EPSILON, ISOLATED_VERTEX, METHODS, WHERE
 
 from .files import read_text
 from ..reference.errors import InputError
+from ..reference.exact import float_view
 from ..reference.combinatorics import next_corner, prev_corner
 
 FORMAT = "ddg-oracle-test-vectors"
@@ -260,11 +261,6 @@ def exact_text(x) -> str:
         if r.startswith(head):
             return r[len(head):-1]
     return str(x)
-
-
-def float_view(x) -> float:
-    from ..oracles.exact_reference import float_view as view
-    return view(x)
 
 
 # --- expected answers -------------------------------------------------------------------------

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..reference import delaunay, laplacian
 from ..reference.combinatorics import Triangulation, next_corner, opposite_halfedge
-from ..reference.exact import rounded_sum
+from ..reference.exact import float_view, rounded_sum
 from ..reference.polyhedral import PolyhedralSurface
 
 from ..properties import memo, views
@@ -22,15 +22,6 @@ from ..properties.example import surface_key
 from ..protocol.methods import ISOLATED_VERTEX, OutsideDomain
 
 from ..protocol.arrays import Referenced
-
-
-def float_view(x) -> float:
-    """The correctly rounded float of an exact value; beyond the float range that is +-inf
-    (IEEE round to nearest), where Python's float() of a Fraction raises OverflowError."""
-    try:
-        return float(x)
-    except OverflowError:
-        return math.inf if x > 0 else -math.inf
 
 
 #: this adapter as ``ddg-oracle check --impl reference`` finds it (read without importing the

@@ -7,13 +7,13 @@ edge opposite it is a tie (``is_locally_delaunay``'s bound in ``compare`` and th
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
 from ..protocol.methods import eps
 from ..reference import cotangents
 from ..reference.combinatorics import face_of, opposite_corner, opposite_halfedge
+from ..reference.exact import float_view
 from ..reference.exact.surds import rounded_root_sum
 
 from . import memo
@@ -39,7 +39,7 @@ def corner_cot_floats(metric) -> np.ndarray:
     (a needle's cotangent, as :func:`~ddg_oracle.reference.exact.surds.rounded_root_sum`)."""
     t = metric.triangulation
     if not cotangents.applies(metric):
-        return np.array([[_rounded(metric.corner_cot(f, c)) for c in range(3)]
+        return np.array([[float_view(metric.corner_cot(f, c)) for c in range(3)]
                          for f in range(t.n_faces)], dtype=np.float64).reshape(-1, 3)
     fd = cotangents.face_data(metric)
     N, G = fd.N, fd.G
@@ -61,13 +61,6 @@ def incircle_with_bound(a, b, c, d) -> tuple[float, float]:
     perm = (lifts[0] * (abs(bx * cy) + abs(cx * by)) + lifts[1] * (abs(ax * cy) + abs(cx * ay))
             + lifts[2] * (abs(ax * by) + abs(bx * ay)))
     return float(det), 16 * eps() * float(perm)
-
-
-def _rounded(x) -> float:
-    try:
-        return float(x)
-    except OverflowError:
-        return math.inf if x > 0 else -math.inf
 
 
 def delaunay_ties(example: Example, want=None) -> np.ndarray:

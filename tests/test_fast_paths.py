@@ -12,7 +12,6 @@
 No timings here (they live in benchmarks/).
 """
 
-import math
 import pickle
 import random
 from math import gcd, prod
@@ -699,12 +698,7 @@ def test_corner_cotangent_floats_are_the_exact_ones_correctly_rounded(s, seed):
     float(corner_cot) bit for bit, on rational metrics and after random flips (irrational
     squared lengths: the metric's own route)."""
     from ddg_oracle.properties.ties import corner_cot_floats
-
-    def rounded(v):                 # float(), or +-inf beyond the float range (a needle)
-        try:
-            return float(v)
-        except OverflowError:
-            return math.inf if v > 0 else -math.inf
+    from ddg_oracle.reference.exact import float_view as rounded     # +-inf beyond range
     m = s.metric() if isinstance(s, PolyhedralSurface) else s
     for x in (m, random_flips(m, random.Random(seed), 6)):
         want = [[rounded(x.corner_cot(f, c)) for c in range(3)]

@@ -49,7 +49,7 @@ from functools import lru_cache
 from ..errors import InputError, Undecidable
 from . import arccots
 from .arccots import ArccotSum
-from .rationals import rational
+from .rationals import float_view, rational
 from .surds import Surd
 from .terms import reexpress, refine, t_add, t_mul, t_scale, t_sign
 
@@ -291,10 +291,7 @@ class Angle(ArccotSum):
 def _sort_key(c: Surd) -> float:
     """A float ordering cotangents for display: beyond the float range, +-inf (never an
     OverflowError: a repr inside an error message must not raise one)."""
-    try:
-        return float(c)
-    except OverflowError:
-        return math.inf if c > 0 else -math.inf
+    return float_view(c)
 
 
 def corner_angle(cot) -> Angle:

@@ -52,6 +52,22 @@ def rational(x, where: str = "") -> Fraction:
     return Fraction(int(n), int(d))
 
 
+def float_view(x) -> float:
+    """The correctly rounded float of an exact number (int, Fraction, Surd, angle): its
+    ``float()``, or +-inf beyond the float range (IEEE round to nearest), where Python's
+    ``float()`` raises OverflowError.  Exact: decided by the number's own rounding and sign.
+
+    >>> float_view(Fraction(1, 3)) == 1 / 3
+    True
+    >>> float_view(-10 ** 400), float_view(Fraction(10 ** 400, 3))
+    (-inf, inf)
+    """
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf if x > 0 else -math.inf
+
+
 def on_common_denominator(values) -> tuple[list[int], int]:
     """(integers X, D): rationals x = X / D over their least common denominator D > 0, so
     that sums and products of them are integer arithmetic (floats: D a power of two).

@@ -57,7 +57,7 @@ from math import isqrt
 from ..errors import InputError, TermLimitExceeded
 from .terms import (pruned_base, reexpress, refine, strip_small_squares, t_add, t_bounds,
                     t_mul, t_scale, t_sign, t_split)
-from .rationals import rational
+from .rationals import float_view, rational
 
 __all__ = ["Surd", "Quotient", "sqrt", "simplest", "exact_sum", "rounded_sum", "sum_is_zero",
            "rounded_root_sum", "settings", "limits"]
@@ -666,10 +666,7 @@ class Surd:
             if self.is_rational():
                 h = hash(self._terms.get(1, _ZERO))
             else:
-                try:
-                    h = hash(float(self))
-                except OverflowError:
-                    h = hash(math.inf if self.sign() > 0 else -math.inf)
+                h = hash(float_view(self))
             self._hash = h
         return h
 
@@ -929,23 +926,11 @@ def rounded_root_sum(terms, den: int = 1) -> float:
             r = isqrt(n * n * four // G)
             lo += r if n > 0 else -r - 1
         scale = den << p
-        a, b = _rounded(Fraction(lo, scale)), _rounded(Fraction(lo + k, scale))
+        a, b = float_view(Fraction(lo, scale)), float_view(Fraction(lo + k, scale))
         if a == b and (a != 0.0 or lo > 0 or lo + k < 0):
             return a
         p *= 2
     exact = Fraction(0)
     for n, G in terms:
         exact = exact + Fraction(n, den) / sqrt(G)
-    try:
-        return float(exact)
-    except OverflowError:
-        return math.inf if exact > 0 else -math.inf
-
-
-def _rounded(x: Fraction) -> float:
-    """float(x), or +-inf beyond the float range (IEEE round to nearest), where float() of
-    a Fraction raises OverflowError."""
-    try:
-        return float(x)
-    except OverflowError:
-        return math.inf if x > 0 else -math.inf
+    return float_view(exact)
