@@ -21,11 +21,14 @@ what :func:`ddg_oracle.reference.delaunay.flip_to_delaunay` gives.
 
 from __future__ import annotations
 
+import math
 from collections import deque
 from fractions import Fraction
 
 from ddg_oracle.reference.delaunay import face_harmonic_index, harmonic_index, is_delaunay_edge
 from ddg_oracle.reference.intrinsic import flip, is_flippable
+from ddg_oracle.reference.exact.angles import Angle, _nearest_pi24
+from ddg_oracle.reference.exact.terms import reexpress, refine, t_add, t_mul, t_scale, t_sign
 
 
 def _faces(V, F, number):
@@ -109,3 +112,152 @@ def flip_to_delaunay_immutable(m):
                 queued[x] = True
                 queue.append(x)
     return m, log
+
+
+# --- the exact zero test of angles as it was before 2026-12-06 (side by side) ------------------
+# reference/exact/angles.py's _pi24_multiple and its helpers at 3430653, unchanged but for
+# the name: cotangents as single Surds (no Surd.ratio), terms keyed by radicands (a gcd per
+# product of two square roots), two full complex products per split.
+
+def pi24_multiple_before(parts: dict) -> int | None:
+    """k when A = sum m arccot(c) over ``parts`` is exactly k pi / 24, else None (exact).
+
+    A is a rational multiple of pi iff U = e^(2iA) = prod u_c^m, u_c = (c + i)/(c - i), is
+    a root of unity.  U lies in L = Q(i, sqrt b_1, ..., sqrt b_N), b one coprime base of all
+    the cotangents, whose roots of unity have orders dividing 24.  Expanding U costs up to
+    2^N terms.  Instead, with G = Gal(L/Q(i)) (sigma_T: sqrt b -> -sqrt b for b in T) and
+    its characters chi_S (S a set of base elements, chi_S(sigma_T) = (-1)^|S & T|),
+
+        E_S(U) = prod over sigma in G of sigma(U)^chi_S(sigma),    U^(2^N) = prod_S E_S(U)
+
+    (Fourier inversion on G), and E_S is multiplicative.  E_S(u_c) = 1 unless S lies in
+    the span V_c (over F_2) of the radicands of c; then E_S(u_c) = e_S(u_c)^(2^(N - d_c)),
+    with d_c = dim V_c and e_S taken over the 2^d_c automorphisms of Q(i, c) alone: d_c
+    complex products, one per basis vector, whose operands halve each time.  With M_S the
+    largest d_c over the c with S in V_c,
+
+        X_S = prod over those c of e_S(u_c)^(m_c 2^(M_S - d_c))    in Q(i, sqrt(prod S)),
+
+    and E_S(U) = X_S^(2^(N - M_S)).  So U is a root of unity iff every X_S is one, i.e.
+    X_S^24 = 1: the work grows with the size of single cotangents, not with N, and never
+    expands a product of cotangents of different faces.  The enclosure of A then only
+    picks k.
+
+    """
+    base = refine([b for c in parts for b in c.base])
+    bits: dict[int, int] = {}                       # radicand -> bit mask over base
+    factors: dict[int, list] = {}                   # S (mask) -> [(e_S(u_c), m_c, d_c, key)]
+    for c, m in parts.items():
+        terms = c._terms if all(b in base for b in c.base) else reexpress(c._terms, base)
+        # u_c = (c + i)^2 / (c^2 + 1): kept, like everything below, only up to a positive
+        # real factor (integer coefficients, no Fraction arithmetic); see the test below
+        c2 = t_mul(terms, terms)
+        w = _primitive((t_add(c2, {1: -1})[0], t_scale(terms, 2)))
+        basis = _f2_basis([_mask(r, base, bits) for r in terms if r != 1])
+        items = [(w, 0)]
+        for v, pivot in basis:
+            b = base[pivot]
+            items = [z for w, s in items for z in _split(w, s, b, v)]
+        key = tuple(sorted(terms))
+        for w, s in items:
+            rad = math.prod(base[i] for i in range(len(base)) if s >> i & 1)
+            if any(r != 1 and r != rad for part in w for r in part):   # pragma: no cover
+                raise AssertionError(f"e_S(u) is not in Q(i, sqrt({rad})): a wrong character")
+            factors.setdefault(s, []).append((w, m, len(basis), key))
+    for group in factors.values():
+        top = max(d for _, _, d, _ in group)
+        by_key: dict[tuple, list] = {}
+        for w, m, d, key in group:
+            if m < 0:                   # w^-1 is conj(w) / |w|^2: its conjugate, up to > 0
+                w, m = (w[0], {r: -q for r, q in w[1].items()}), -m
+            by_key.setdefault(key, []).append(_tpow(w, m << (top - d)))
+        # X_S times a positive real: X_S^24 == 1 iff that power is a positive real
+        x, y = _tpow(_tprod([_tprod(ws) for ws in by_key.values()]), 24)
+        if y or t_sign(x, ()) <= 0:
+            return None
+    return _nearest_pi24(Angle._raw(parts, Fraction(0)))
+
+
+def _primitive(z):
+    """z times a positive rational: integer coefficients without a common factor."""
+    den = 0
+    for part in z:
+        for q in part.values():
+            if type(q) is not int:
+                den = den * q.denominator // math.gcd(den, q.denominator) if den else q.denominator
+    if den:
+        z = tuple({r: int(q * den) for r, q in part.items()} for part in z)
+    g = math.gcd(*z[0].values(), *z[1].values())
+    if g > 1:
+        z = tuple({r: q // g for r, q in part.items()} for part in z)
+    return z
+
+
+def _mask(r: int, base: tuple, memo: dict) -> int:
+    """The radicand r (a product of distinct base elements) as a bit mask over ``base``."""
+    m = memo.get(r)
+    if m is None:
+        m = sum(1 << i for i, b in enumerate(base) if r % b == 0)
+        memo[r] = m
+    return m
+
+
+def _f2_basis(masks: list[int]) -> list[tuple[int, int]]:
+    """A reduced echelon basis of the span of ``masks`` over F_2: [(vector, pivot bit)].
+
+    Reduced: no vector has another's pivot bit, so flipping the pivot's square root alone
+    is an automorphism that changes that basis vector and no other (the dual basis).
+    """
+    basis: list[list[int]] = []
+    for v in masks:
+        for w, p in basis:
+            if v >> p & 1:
+                v ^= w
+        if v:
+            p = v.bit_length() - 1
+            for row in basis:
+                if row[0] >> p & 1:
+                    row[0] ^= v
+            basis.append([v, p])
+    return [(v, p) for v, p in basis]
+
+
+def _split(w, s: int, b: int, v: int):
+    """The two halves w sigma(w) and w / sigma(w) of w under sigma: sqrt b -> -sqrt b.
+
+    Up to a positive real factor (cotangents are real, so |sigma(w)|^2 > 0), w / sigma(w)
+    is w * conj(sigma(w)); the second half carries the character of ``v`` (``s ^ v``).
+    """
+    x, y = w
+    fx = {r: (-q if r % b == 0 else q) for r, q in x.items()}
+    fy = {r: (-q if r % b == 0 else q) for r, q in y.items()}
+    yield _tmul(w, (fx, fy)), s
+    yield _tmul(w, (fx, {r: -q for r, q in fy.items()})), s ^ v
+
+
+def _tmul(z, w):
+    """Complex product of (real, imaginary) term dicts over one base, made primitive."""
+    (a, b), (c, d) = z, w
+    return _primitive((t_add(t_mul(a, c), t_mul(b, d), negate=True)[0],
+                       t_add(t_mul(a, d), t_mul(b, c))[0]))
+
+
+def _tpow(z, n: int):
+    """z**n, n >= 0, by repeated squaring."""
+    out = ({1: 1}, {})
+    while n:
+        if n & 1:
+            out = _tmul(out, z)
+        n >>= 1
+        if n:
+            z = _tmul(z, z)
+    return out
+
+
+def _tprod(zs: list):
+    """The product of ``zs`` by a balanced tree (operands of similar size)."""
+    if not zs:
+        return ({1: 1}, {})
+    while len(zs) > 1:
+        zs = [_tmul(zs[i], zs[i + 1]) if i + 1 < len(zs) else zs[i] for i in range(0, len(zs), 2)]
+    return zs[0]

@@ -126,6 +126,21 @@ area seen (input or result); *h terms*: of the harmonic index in the flip log,
 a sum over all faces (it dominates the time on these surfaces).
 """
 
+EGREGIUM = """\
+### Exact angle sums after intrinsic flips (T2.5, Gauss-Bonnet)
+
+A closed float mesh of 52 faces (the convex hull of 28 random unit vectors, float64),
+60 random intrinsic flip attempts; then T2.5 (every vertex's angle sum equals the one
+before, decided exactly) and `gauss_bonnet_holds` on the flipped metric, CPU seconds.
+The cotangents after the flips carry several independent square roots (*roots*: the
+most in one cotangent); each equality is the exact zero test of `reference/exact/angles.py`
+(Galois characters).  *now* and *before* (`benchmarks/peers.py:pi24_multiple_before`,
+the test before 2026-12-06: cotangents as single Surds, terms keyed by radicands, two
+complex products per split; the enclosures are today's in both) side by side in one
+run, *before* only where a cotangent has at most 6 square roots (with 9, one vertex
+took 525 s); issue 46's target is < 1 s each.
+"""
+
 SUITE = """\
 ## 4. Test suite and `ddg-oracle check`
 
@@ -502,6 +517,13 @@ _TABLES = [
                 ("flips", lambda r: str(r["flips"])), ("seconds", lambda r: f"{r['seconds']:.2f}"),
                 ("max terms", lambda r: str(r["max_terms"])),
                 ("h terms", lambda r: str(r["max_terms_h"]))]),
+    ("egregium", EGREGIUM, [("seed", lambda r: str(r["seed"])),
+                            ("faces", lambda r: str(r["faces"])),
+                            ("faces changed", lambda r: str(r["faces_changed"])),
+                            ("roots", lambda r: str(r["max_roots"])),
+                            ("zero test", lambda r: r["impl"]),
+                            ("T2.5 s", lambda r: f"{r['t25_s']:.3f}"),
+                            ("Gauss-Bonnet s", lambda r: f"{r['gauss_bonnet_s']:.3f}")]),
     ("suite", SUITE, [("command", lambda r: r["command"]),
                       ("wall seconds", lambda r: f"{r['wall']:.0f}"),
                       ("CPU seconds", lambda r: f"{r['cpu']:.0f}" if "cpu" in r else "-"),

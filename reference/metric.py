@@ -190,8 +190,8 @@ class PiecewiseFlatSurface:
             return tuple(self._cots[3 * f:3 * f + 3])  # inline halfedge(f, c): hot
         kept = self._face_cots.get(f)
         if kept is None:
-            inv = 1 / (4 * self.areas[f])
-            kept = self._face_cots[f] = tuple(n * inv for n in self.face_cot_numerators(f))
+            kept = self._face_cots[f] = tuple(Surd.quotients(self.face_cot_numerators(f),
+                                                             4 * self.areas[f]))
         return kept
 
     def face_cot_numerators(self, f: int) -> tuple:

@@ -1,5 +1,6 @@
 """Exact angles: triangle sums are pi exactly, comparisons are exact, enclosures are certified."""
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -205,7 +206,7 @@ def test_a_large_multiplicity_is_one_power_by_squaring(monkeypatch):
     from ddg_oracle.reference.exact import angles
     calls = []
     real = angles._tmul
-    monkeypatch.setattr(angles, "_tmul", lambda z, w: calls.append(1) or real(z, w))
+    monkeypatch.setattr(angles, "_tmul", lambda *a: calls.append(1) or real(*a))
     theta = Angle({Surd(1): 10_000}, -2500)
     assert theta.sign() == 0 and theta == 0
     assert 0 < len(calls) <= 64
@@ -269,3 +270,42 @@ def test_hash_is_total_beyond_the_float_range():
     assert hash(huge) == hash(Angle({}, 2 ** 1100)) and hash(-huge) != hash(huge)
     assert isinstance(hash(AngleLength({Surd(Fraction(1)): Fraction(2 ** 1100)})), int)
     assert len({huge, Angle({}, 2 ** 1100)}) == 1
+
+
+_BASE = (2, 3, 5, 7, 11)
+_surds = st.lists(st.tuples(st.sets(st.sampled_from(_BASE), max_size=3), st.integers(-60, 60)),
+                  min_size=1, max_size=5).map(
+    lambda ts: sum((q * sqrt(math.prod(r)) for r, q in ts), Surd(0))).filter(bool)
+
+
+@given(st.lists(st.tuples(_surds, _surds.filter(lambda d: d > 0), st.integers(-3, 3)),
+                min_size=1, max_size=4), st.booleans())
+def test_the_zero_test_from_ratios_and_bit_masks_is_the_one_before(parts, pi4):
+    """The exact zero test of arccot sums (angles._pi24_multiple) reads a cotangent made as
+    n / d from the pair (Surd.ratio), keys terms by bit masks, and splits with eight
+    products of halves; the test before 2026-12-06 (benchmarks.peers.pi24_multiple_before:
+    single Surds, radicand keys, two complex products) gives the same answer on the same
+    angles, given as quotients or as plain Surds, and on a sum made exactly a multiple of
+    pi / 4 by adding the negated arccots."""
+    from benchmarks.peers import pi24_multiple_before
+    from ddg_oracle.reference.exact.angles import _pi24_multiple
+    with_ratio: dict = {}
+    for n, d, m in parts:
+        (c,) = Surd.quotients([n], d)
+        c = c if isinstance(c, Surd) else Surd(c)
+        # kept as the pair exactly where d and n / d are irrational
+        assert (c.ratio is not None) == (not d.is_rational() and not (n / d).is_rational())
+        if pi4:                                    # arccot(c) + arccot(-c) = pi
+            with_ratio[_copy(-c)] = with_ratio.get(-c, 0) + m
+        with_ratio[c] = with_ratio.get(c, 0) + m
+    with_ratio = {c: m for c, m in with_ratio.items() if m}
+    plain = {_copy(c): m for c, m in with_ratio.items()}
+    k = _pi24_multiple(with_ratio)
+    assert k == pi24_multiple_before(plain) == _pi24_multiple(plain)
+    assert k is not None or not pi4
+
+
+def _copy(c):
+    """The same value as a Surd without a remembered ratio."""
+    return Surd(str(c))
+

@@ -51,7 +51,7 @@ from . import arccots
 from .arccots import ArccotSum
 from .rationals import float_view, rational
 from .surds import Surd
-from .terms import reexpress, refine, t_add, t_mul, t_scale, t_sign
+from .terms import reexpress, refine, t_add, t_scale, t_sign
 
 _Number = (int, Fraction, float)
 _ZERO = Fraction(0)
@@ -329,6 +329,12 @@ def _known_multiple(c: Surd) -> Fraction | None:
         if abs(q) != 1:
             return None                       # tan(j pi/24) rational only for 0, +-1
         return Fraction(1, 4) if q > 0 else Fraction(3, 4)
+    ops = c.ratio or (c,)
+    # a quotient of many terms (a cotangent after intrinsic flips) is not divided for this
+    # normalization; it is exact either way (the zero test decides arccot(c) = j pi / 24)
+    if any(x.n_terms > 4 for x in ops):
+        return None
+    c = ops[0] / ops[1] if len(ops) == 2 else c
     if c.n_terms > 4:
         return None
     # Only radicands built from 2 and 3 can give a multiple of pi/24.
@@ -370,30 +376,44 @@ def _pi24_multiple(parts: dict) -> int | None:
     expands a product of cotangents of different faces.  The enclosure of A then only
     picks k.
 
+    In practice on z_c = c + i (u_c = z_c^2 / |z_c|^2), every number only up to a positive
+    real factor: e_S(u_c) = e_S(z_c)^2 times one, so X_S = Y_S^2 (Y_S the same product of
+    the e_S(z_c)) and X_S^24 = 1 iff Y_S^48 is a positive real; e_S(z_c) = a + i b
+    sqrt(prod S) (a, b rational: sigma maps it to its conjugate where chi_S(sigma) = -1),
+    half the size of e_S(u_c).  A cotangent made as n / d (``Surd.ratio``: n / (4 A) after
+    intrinsic flips) is read as z = n + i d = (c + i) d, whose coefficients are far smaller.
+
     >>> _pi24_multiple({Surd(2): 1, Surd(3): 1})          # arccot 2 + arccot 3 = pi/4
     6
     >>> _pi24_multiple({Surd(2): 1}) is None
     True
     """
-    base = refine([b for c in parts for b in c.base])
+    # a cotangent made as n / d (Surd.ratio: after intrinsic flips n / (4 A)) is read as the
+    # pair: u_c = (n + i d)^2 / (n^2 + d^2), and n, d have far smaller coefficients than c
+    operands = {c: c.ratio or (c,) for c in parts}
+    base = refine([b for ops in operands.values() for x in ops for b in x.base])
     bits: dict[int, int] = {}                       # radicand -> bit mask over base
+    weight = _Weights(base)                         # bit mask -> radicand
     factors: dict[int, list] = {}                   # S (mask) -> [(e_S(u_c), m_c, d_c, key)]
     for c, m in parts.items():
-        terms = c._terms if all(b in base for b in c.base) else reexpress(c._terms, base)
-        # u_c = (c + i)^2 / (c^2 + 1): kept, like everything below, only up to a positive
-        # real factor (integer coefficients, no Fraction arithmetic); see the test below
-        c2 = t_mul(terms, terms)
-        w = _primitive((t_add(c2, {1: -1})[0], t_scale(terms, 2)))
-        basis = _f2_basis([_mask(r, base, bits) for r in terms if r != 1])
+        ops = [x._terms if all(b in base for b in x.base) else reexpress(x._terms, base)
+               for x in operands[c]]
+        # u_c = z^2 / |z|^2 with z = c + i, or z = n + i d (c = n / d: z is (c + i) d): the
+        # test runs on z, kept, like everything below, only up to a positive real factor
+        # (integer coefficients, no Fraction arithmetic), and squares at the end (Y_S below)
+        w = _primitive(tuple(ops) if len(ops) == 2 else (ops[0], {1: 1}))
+        # from here on the terms are keyed by bit masks over the base: a product of two
+        # square roots is an xor and a cached product, no gcd of (large) radicands
+        w = tuple({_mask(r, base, bits): q for r, q in part.items()} for part in w)
+        radicands = sorted({_mask(r, base, bits) for x in ops for r in x})
+        basis = _f2_basis([r for r in radicands if r])
         items = [(w, 0)]
         for v, pivot in basis:
-            b = base[pivot]
-            items = [z for w, s in items for z in _split(w, s, b, v)]
-        key = tuple(sorted(terms))
+            items = [z for w, s in items for z in _split(w, s, pivot, v, weight)]
+        key = tuple(radicands)
         for w, s in items:
-            rad = math.prod(base[i] for i in range(len(base)) if s >> i & 1)
-            if any(r != 1 and r != rad for part in w for r in part):   # pragma: no cover
-                raise AssertionError(f"e_S(u) is not in Q(i, sqrt({rad})): a wrong character")
+            if any(r and r != s for part in w for r in part):   # pragma: no cover
+                raise AssertionError(f"e_S(u) is not in Q(i, sqrt({weight(s)})): a wrong character")
             factors.setdefault(s, []).append((w, m, len(basis), key))
     for group in factors.values():
         top = max(d for _, _, d, _ in group)
@@ -401,10 +421,10 @@ def _pi24_multiple(parts: dict) -> int | None:
         for w, m, d, key in group:
             if m < 0:                   # w^-1 is conj(w) / |w|^2: its conjugate, up to > 0
                 w, m = (w[0], {r: -q for r, q in w[1].items()}), -m
-            by_key.setdefault(key, []).append(_tpow(w, m << (top - d)))
-        # X_S times a positive real: X_S^24 == 1 iff that power is a positive real
-        x, y = _tpow(_tprod([_tprod(ws) for ws in by_key.values()]), 24)
-        if y or t_sign(x, ()) <= 0:
+            by_key.setdefault(key, []).append(_tpow(w, m << (top - d), weight))
+        # Y_S times a positive real, X_S = Y_S^2: X_S^24 == 1 iff Y_S^48 is a positive real
+        x, y = _tpow(_tprod([_tprod(ws, weight) for ws in by_key.values()], weight), 48, weight)
+        if y or t_sign({weight(r): q for r, q in x.items()}, ()) <= 0:
             return None
     return _nearest_pi24(Angle._raw(parts, Fraction(0)))
 
@@ -436,7 +456,7 @@ def _primitive(z):
                 den = den * q.denominator // math.gcd(den, q.denominator) if den else q.denominator
     if den:
         z = tuple({r: int(q * den) for r, q in part.items()} for part in z)
-    g = math.gcd(*z[0].values(), *z[1].values())
+    g = math.gcd(*z[0].values(), *z[1].values())       # stops scanning at a gcd of 1
     if g > 1:
         z = tuple({r: q // g for r, q in part.items()} for part in z)
     return z
@@ -471,44 +491,98 @@ def _f2_basis(masks: list[int]) -> list[tuple[int, int]]:
     return [(v, p) for v, p in basis]
 
 
-def _split(w, s: int, b: int, v: int):
-    """The two halves w sigma(w) and w / sigma(w) of w under sigma: sqrt b -> -sqrt b.
+class _Weights:
+    """The radicand of a bit mask over ``base`` (the product of its base elements),
+    cached: ``weight(mask)``."""
+
+    def __init__(self, base: tuple):
+        self.base, self.known = base, {0: 1}
+
+    def __call__(self, mask: int) -> int:
+        r = self.known.get(mask)
+        if r is None:
+            r = self.known[mask] = math.prod(b for i, b in enumerate(self.base) if mask >> i & 1)
+        return r
+
+
+def _m_mul(ta: dict, tb: dict, weight: _Weights) -> dict:
+    """``ta * tb`` for integer term dicts keyed by bit masks over one base:
+    sqrt(r_S) sqrt(r_T) = r_(S & T) sqrt(r_(S ^ T)).  A square runs over each pair once."""
+    acc: dict = {}
+    if ta is tb:
+        items = list(ta.items())
+        pairs = ((items[i], items[j], 1 if i == j else 2)
+                 for i in range(len(items)) for j in range(i, len(items)))
+    else:
+        pairs = ((a, b, 1) for a in ta.items() for b in tb.items())
+    for (s1, q1), (s2, q2), k in pairs:
+        common = s1 & s2
+        q = k * q1 * q2 if not common else k * q1 * q2 * weight(common)
+        r = s1 ^ s2
+        t = acc.get(r)
+        if t is None:
+            acc[r] = q
+        else:
+            t += q
+            if t:
+                acc[r] = t
+            else:
+                del acc[r]
+    return acc
+
+
+def _split(w, s: int, pivot: int, v: int, weight: _Weights):
+    """The two halves w sigma(w) and w / sigma(w) of w under sigma: sqrt b -> -sqrt b
+    (b the base element of bit ``pivot``; terms keyed by bit masks).
 
     Up to a positive real factor (cotangents are real, so |sigma(w)|^2 > 0), w / sigma(w)
     is w * conj(sigma(w)); the second half carries the character of ``v`` (``s ^ v``).
+    With w = x + i y and x = x0 + x1 sqrt b, y = y0 + y1 sqrt b (x0, ..., y1 free of
+    sqrt b), x sigma(x) = x0^2 - b x1^2 (and so for y), x sigma(y) + y sigma(x) =
+    2 (x0 y0 - b x1 y1) and y sigma(x) - x sigma(y) = 2 sqrt b (x0 y1 - x1 y0):
+
+        w sigma(w)       = x sigma(x) - y sigma(y) + i (x sigma(y) + y sigma(x)),
+        w conj(sigma(w)) = x sigma(x) + y sigma(y) + i (y sigma(x) - x sigma(y)),
+
+    eight products of halves, a quarter of the work of the two complex products.
     """
-    x, y = w
-    fx = {r: (-q if r % b == 0 else q) for r, q in x.items()}
-    fy = {r: (-q if r % b == 0 else q) for r, q in y.items()}
-    yield _tmul(w, (fx, fy)), s
-    yield _tmul(w, (fx, {r: -q for r, q in fy.items()})), s ^ v
+    bit, b = 1 << pivot, weight(1 << pivot)
+    (x0, x1), (y0, y1) = (({r: q for r, q in part.items() if not r & bit},
+                           {r ^ bit: q for r, q in part.items() if r & bit}) for part in w)
+    xx = t_add(_m_mul(x0, x0, weight), t_scale(_m_mul(x1, x1, weight), b), negate=True)[0]
+    yy = t_add(_m_mul(y0, y0, weight), t_scale(_m_mul(y1, y1, weight), b), negate=True)[0]
+    xy = t_add(_m_mul(x0, y0, weight), t_scale(_m_mul(x1, y1, weight), b), negate=True)[0]
+    yx = t_add(_m_mul(x0, y1, weight), _m_mul(x1, y0, weight), negate=True)[0]
+    yield _primitive((t_add(xx, yy, negate=True)[0], t_scale(xy, 2))), s
+    yield _primitive((t_add(xx, yy)[0], {r | bit: 2 * q for r, q in yx.items()})), s ^ v
 
 
-def _tmul(z, w):
-    """Complex product of (real, imaginary) term dicts over one base, made primitive."""
+def _tmul(z, w, weight: _Weights):
+    """Complex product of (real, imaginary) term dicts keyed by bit masks, made primitive."""
     (a, b), (c, d) = z, w
-    return _primitive((t_add(t_mul(a, c), t_mul(b, d), negate=True)[0],
-                       t_add(t_mul(a, d), t_mul(b, c))[0]))
+    return _primitive((t_add(_m_mul(a, c, weight), _m_mul(b, d, weight), negate=True)[0],
+                       t_add(_m_mul(a, d, weight), _m_mul(b, c, weight))[0]))
 
 
-def _tpow(z, n: int):
+def _tpow(z, n: int, weight: _Weights):
     """z**n, n >= 0, by repeated squaring."""
-    out = ({1: 1}, {})
+    out = ({0: 1}, {})
     while n:
         if n & 1:
-            out = _tmul(out, z)
+            out = _tmul(out, z, weight)
         n >>= 1
         if n:
-            z = _tmul(z, z)
+            z = _tmul(z, z, weight)
     return out
 
 
-def _tprod(zs: list):
+def _tprod(zs: list, weight: _Weights):
     """The product of ``zs`` by a balanced tree (operands of similar size)."""
     if not zs:
-        return ({1: 1}, {})
+        return ({0: 1}, {})
     while len(zs) > 1:
-        zs = [_tmul(zs[i], zs[i + 1]) if i + 1 < len(zs) else zs[i] for i in range(0, len(zs), 2)]
+        zs = [_tmul(zs[i], zs[i + 1], weight) if i + 1 < len(zs) else zs[i]
+              for i in range(0, len(zs), 2)]
     return zs[0]
 
 

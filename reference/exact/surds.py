@@ -239,6 +239,37 @@ class Surd:
 
     # --- inspection ---------------------------------------------------------
 
+    @classmethod
+    def quotients(cls, numerators, d) -> list:
+        """``[n / d for n in numerators]``, exact (``d`` nonzero).  An irrational quotient of
+        an irrational ``d`` is a :class:`SurdQuotient`: a Surd that keeps the pair and
+        divides only if its canonical form is asked for.  After intrinsic flips a cotangent
+        n / (4 A) has coefficients of tens of thousands of bits where n and A have hundreds
+        (the division took most of T2.5's time); its sign, enclosures, float, hash and the
+        exact zero test of angles (:mod:`.angles`, :attr:`ratio`) work from the pair.
+
+        >>> q = Surd.quotients([1, sqrt(2), 2 + 2 * sqrt(2)], 1 + sqrt(2))
+        >>> q[0] == sqrt(2) - 1, q[0].ratio == (1, 1 + sqrt(2)), q[1] == 2 - sqrt(2), q[2]
+        (True, True, True, Surd('2'))
+        """
+        if not (isinstance(d, Surd) and d._base):
+            inv = 1 / d
+            return [n * inv for n in numerators]
+        d = Surd(d)
+        sign = d.sign()
+        out = []
+        for n in numerators:
+            n = Surd(n)
+            k = _proportion(n, d)
+            out.append(Surd(k) if k is not None else SurdQuotient(sign * n, sign * d))
+        return out
+
+    @property
+    def ratio(self):
+        """``(n, d)`` (Surds, d > 0) with this number == n / d exactly, when it is kept as
+        that quotient (:class:`SurdQuotient`); else None."""
+        return None
+
     def terms(self):
         """``((radicand, coefficient), ...)`` sorted by radicand; 1 is the rational part.
 
@@ -817,6 +848,64 @@ class Quotient:
 
     def __float__(self):
         return rounded_sum((self,))
+
+
+def _proportion(n: Surd, d: Surd) -> Fraction | None:
+    """The rational k with n == k d (d irrational, nonzero), or None: exact, no division
+    (the two term dicts over one base are proportional)."""
+    if not n:
+        return Fraction(0)
+    _, tn, td, _ = _common(n, d)
+    if tn.keys() != td.keys():
+        return None
+    r = next(iter(td))
+    k = Fraction(tn[r]) / td[r]
+    return k if all(tn[x] == k * td[x] for x in td) else None
+
+
+class SurdQuotient(Surd):
+    """An irrational :class:`Surd` known as n / d (Surds, d > 0): made by
+    :meth:`Surd.quotients`.  It *is* a Surd (equal values compare and hash equal); its
+    canonical form (``_base``, ``_terms``) is the division n * (1 / d), computed on first
+    use (``__getattr__``: those slots stay unset until then, as in
+    ``ddg_oracle.reference.cotangents.CotanSum``); the sign, negation, enclosures, float,
+    hash and the exact zero test of angles work from the pair."""
+
+    __slots__ = ("_n", "_d")
+
+    def __new__(cls, n: Surd, d: Surd):
+        self = object.__new__(cls)
+        self._n, self._d, self._hash = n, d, None
+        return self
+
+    def __getattr__(self, name):
+        if name != "_base" and name != "_terms":
+            raise AttributeError(f"'SurdQuotient' object has no attribute {name!r}")
+        v = self._n * (1 / self._d)
+        self._base, self._terms = v._base, v._terms
+        return v._base if name == "_base" else v._terms
+
+    @property
+    def ratio(self):
+        return self._n, self._d
+
+    def is_rational(self):
+        return False                    # made so (Surd.quotients)
+
+    def __bool__(self):
+        return True
+
+    def sign(self):
+        return self._n.sign()
+
+    def __neg__(self):
+        return SurdQuotient(-self._n, self._d)
+
+    def _bound_count(self):
+        return 1
+
+    def _bounds(self, k):
+        return Quotient(self._n, self._d).scaled_bounds(k)       # 2 units wide at most
 
 
 def _floor_ceil(q: Fraction, k: int) -> tuple[int, int]:
