@@ -27,7 +27,7 @@ from fractions import Fraction
 
 from ddg_oracle.reference.delaunay import face_harmonic_index, harmonic_index, is_delaunay_edge
 from ddg_oracle.reference.intrinsic import flip, is_flippable
-from ddg_oracle.reference.exact.angles import Angle, _nearest_pi24
+from ddg_oracle.reference.exact.angles import Angle, _f2_basis, _mask, _nearest_pi24, _primitive
 from ddg_oracle.reference.exact.terms import reexpress, refine, t_add, t_mul, t_scale, t_sign
 
 
@@ -115,35 +115,15 @@ def flip_to_delaunay_immutable(m):
 
 
 # --- the exact zero test of angles as it was before 2026-12-06 (side by side) ------------------
-# reference/exact/angles.py's _pi24_multiple and its helpers at 3430653, unchanged but for
-# the name: cotangents as single Surds (no Surd.ratio), terms keyed by radicands (a gcd per
-# product of two square roots), two full complex products per split.
+# reference/exact/angles.py's _pi24_multiple and the helpers that changed since, at 3430653,
+# unchanged but for the name: cotangents as single Surds (no Surd.ratio), terms keyed by
+# radicands (a gcd per product of two square roots), two full complex products per split;
+# _primitive, _mask and _f2_basis are the module's own (unchanged).
+
 
 def pi24_multiple_before(parts: dict) -> int | None:
-    """k when A = sum m arccot(c) over ``parts`` is exactly k pi / 24, else None (exact).
-
-    A is a rational multiple of pi iff U = e^(2iA) = prod u_c^m, u_c = (c + i)/(c - i), is
-    a root of unity.  U lies in L = Q(i, sqrt b_1, ..., sqrt b_N), b one coprime base of all
-    the cotangents, whose roots of unity have orders dividing 24.  Expanding U costs up to
-    2^N terms.  Instead, with G = Gal(L/Q(i)) (sigma_T: sqrt b -> -sqrt b for b in T) and
-    its characters chi_S (S a set of base elements, chi_S(sigma_T) = (-1)^|S & T|),
-
-        E_S(U) = prod over sigma in G of sigma(U)^chi_S(sigma),    U^(2^N) = prod_S E_S(U)
-
-    (Fourier inversion on G), and E_S is multiplicative.  E_S(u_c) = 1 unless S lies in
-    the span V_c (over F_2) of the radicands of c; then E_S(u_c) = e_S(u_c)^(2^(N - d_c)),
-    with d_c = dim V_c and e_S taken over the 2^d_c automorphisms of Q(i, c) alone: d_c
-    complex products, one per basis vector, whose operands halve each time.  With M_S the
-    largest d_c over the c with S in V_c,
-
-        X_S = prod over those c of e_S(u_c)^(m_c 2^(M_S - d_c))    in Q(i, sqrt(prod S)),
-
-    and E_S(U) = X_S^(2^(N - M_S)).  So U is a root of unity iff every X_S is one, i.e.
-    X_S^24 = 1: the work grows with the size of single cotangents, not with N, and never
-    expands a product of cotangents of different faces.  The enclosure of A then only
-    picks k.
-
-    """
+    """k when sum m arccot(c) over ``parts`` is exactly k pi / 24, else None: the exact
+    zero test as it was (the mathematics: ``reference.exact.angles._pi24_multiple``)."""
     base = refine([b for c in parts for b in c.base])
     bits: dict[int, int] = {}                       # radicand -> bit mask over base
     factors: dict[int, list] = {}                   # S (mask) -> [(e_S(u_c), m_c, d_c, key)]
@@ -176,50 +156,6 @@ def pi24_multiple_before(parts: dict) -> int | None:
         if y or t_sign(x, ()) <= 0:
             return None
     return _nearest_pi24(Angle._raw(parts, Fraction(0)))
-
-
-def _primitive(z):
-    """z times a positive rational: integer coefficients without a common factor."""
-    den = 0
-    for part in z:
-        for q in part.values():
-            if type(q) is not int:
-                den = den * q.denominator // math.gcd(den, q.denominator) if den else q.denominator
-    if den:
-        z = tuple({r: int(q * den) for r, q in part.items()} for part in z)
-    g = math.gcd(*z[0].values(), *z[1].values())
-    if g > 1:
-        z = tuple({r: q // g for r, q in part.items()} for part in z)
-    return z
-
-
-def _mask(r: int, base: tuple, memo: dict) -> int:
-    """The radicand r (a product of distinct base elements) as a bit mask over ``base``."""
-    m = memo.get(r)
-    if m is None:
-        m = sum(1 << i for i, b in enumerate(base) if r % b == 0)
-        memo[r] = m
-    return m
-
-
-def _f2_basis(masks: list[int]) -> list[tuple[int, int]]:
-    """A reduced echelon basis of the span of ``masks`` over F_2: [(vector, pivot bit)].
-
-    Reduced: no vector has another's pivot bit, so flipping the pivot's square root alone
-    is an automorphism that changes that basis vector and no other (the dual basis).
-    """
-    basis: list[list[int]] = []
-    for v in masks:
-        for w, p in basis:
-            if v >> p & 1:
-                v ^= w
-        if v:
-            p = v.bit_length() - 1
-            for row in basis:
-                if row[0] >> p & 1:
-                    row[0] ^= v
-            basis.append([v, p])
-    return [(v, p) for v, p in basis]
 
 
 def _split(w, s: int, b: int, v: int):

@@ -678,12 +678,3 @@ def test_term_product_cancels_to_nothing():
     half = Fraction(1, 2)
     assert terms_module.t_mul({2: half, 3: Fraction(1, 3)},
                                {2: half, 3: Fraction(-1, 3)}) == {1: Fraction(1, 2) - Fraction(1, 3)}
-
-
-@given(st.dictionaries(st.sampled_from([1, 2, 3, 5, 6, 10, 15, 30]),
-                       st.one_of(st.integers(-99, 99), st.fractions(max_denominator=50)).filter(bool),
-                       max_size=6))
-def test_a_square_is_the_general_product_of_a_term_dict_with_itself(terms):
-    """terms.t_mul runs a square (the same dict twice) over each pair of terms once."""
-    from ddg_oracle.reference.exact.terms import t_mul
-    assert t_mul(terms, terms) == t_mul(terms, dict(terms))

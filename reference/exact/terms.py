@@ -201,8 +201,6 @@ def t_mul(ta, tb):
     q1, q2 = next(iter(ta.values())), next(iter(tb.values()))
     direct = ((type(q1) is int or q1.denominator.bit_length() <= _SMALL_DENOMINATOR_BITS)
               and (type(q2) is int or q2.denominator.bit_length() <= _SMALL_DENOMINATOR_BITS))
-    if ta is tb and direct:
-        return _t_square(ta)
     acc: dict = {}
     for r1, q1 in ta.items():
         for r2, q2 in tb.items():
@@ -242,33 +240,6 @@ def t_mul(ta, tb):
     if direct:
         return acc
     return {r: Fraction(n, d) for r, (n, d) in acc.items() if n}
-
-
-def _t_square(ta):
-    """``ta * ta`` for small coefficients (:func:`t_mul`'s direct way): each pair of terms
-    once, the products of two different terms doubled (about half the products)."""
-    items = list(ta.items())
-    acc: dict = {}
-    for i, (r1, q1) in enumerate(items):
-        for j in range(i, len(items)):
-            r2, q2 = items[j]
-            if i == j:
-                r, q = 1, q1 * q1 * r1
-            elif r1 == 1 or r2 == 1:
-                r, q = r1 * r2, 2 * q1 * q2
-            else:
-                g = gcd(r1, r2)
-                r, q = (r1 * r2, 2 * q1 * q2) if g == 1 else ((r1 // g) * (r2 // g), 2 * q1 * q2 * g)
-            s = acc.get(r)
-            if s is None:
-                acc[r] = q
-            else:
-                s += q
-                if s:
-                    acc[r] = s
-                else:
-                    del acc[r]
-    return acc
 
 
 def t_scale(terms, k):
