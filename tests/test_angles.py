@@ -192,6 +192,12 @@ def test_an_undecided_sign_says_why_and_its_message_survives_a_huge_cotangent(mo
     theta = corner_angle(big) - corner_angle(big + 1)      # about 1e-800, not 0
     assert "arccot" in repr(theta)                  # no OverflowError
     monkeypatch.setattr(arccots, "PRECISION_LIMIT", 512)
+    # no square root: the turning count of exact products decides it, whatever the limit
+    assert theta.sign() == 1 and Angle(theta._parts, theta._pi).sign() == 1
+    # without it (too many square roots for it, here made so), the limit is said
+    from ddg_oracle.reference.exact import angles
+    monkeypatch.setattr(angles, "_sign_by_turning", lambda *a, **k: None)
+    theta = corner_angle(big) - corner_angle(big + 1)
     with pytest.raises(Undecidable, match=r"it is not 0 \(exact zero test\).*PRECISION_LIMIT"):
         theta.sign()
     off = corner_angle(Fraction(13, 10)) - pi * Fraction(1, 5)
@@ -303,9 +309,59 @@ def test_the_zero_test_from_ratios_and_bit_masks_is_the_one_before(parts, pi4):
     k = _pi24_multiple(with_ratio)
     assert k == pi24_multiple_before(plain) == _pi24_multiple(plain)
     assert k is not None or not pi4
+    # the turning count reads the pairs too: the same sign as from the plain Surds
+    from ddg_oracle.reference.exact.angles import _sign_by_turning
+    for r in (0, -1, Fraction(3, 2)):
+        assert _sign_by_turning(with_ratio, Fraction(r)) == _sign_by_turning(plain, Fraction(r))
 
 
 def _copy(c):
     """The same value as a Surd without a remembered ratio."""
     return Surd(str(c))
 
+
+
+@given(st.lists(st.tuples(_surds, st.integers(-3, 3).filter(bool)), min_size=1, max_size=4),
+       st.integers(-8, 8))
+def test_the_turning_count_is_the_sign(parts, halves):
+    """angles._sign_by_turning (half-turns of exact products, no enclosure) gives the sign
+    the enclosures and the exact zero test give, pi part r = halves / 2 included; and
+    the sum with the arccots of the negated cotangents added (exactly (r + sum m) pi) has
+    that multiple's sign, 0 included."""
+    from ddg_oracle.reference.exact.angles import _sign_by_turning
+    theta: dict = {}
+    for c, m in parts:
+        theta[c] = theta.get(c, 0) + m
+    theta = {c: m for c, m in theta.items() if m}
+    r = Fraction(halves, 2)
+    assume(theta)
+    assert _sign_by_turning(theta, r) == Angle(theta, r).sign()
+    plus = {**theta}                            # m arccot(c) + m arccot(-c) = m pi
+    for c, m in theta.items():
+        plus[-c] = plus.get(-c, 0) + m
+    plus = {c: m for c, m in plus.items() if m}
+    total = r + sum(theta.values())             # exactly (r + sum m) pi
+    want = (total > 0) - (total < 0)
+    if sum(abs(m) for m in plus.values()) + abs(2 * r) <= 64:
+        assert _sign_by_turning(plus, r) == want
+
+
+def test_a_lifted_apex_beyond_every_enclosure_is_decided():
+    """The audit's Undecidable (issue 46): a 3-face fan whose apex is lifted by 2^-2060 has
+    an angle defect of about 2^-4120, below the enclosures' 4,096 bits; sign(), float(),
+    hash() and vertex_type raised.  Three square roots in all: the turning count decides
+    (K > 0, lifted either way), the float is +0.0, and the flat fan's defect is 0."""
+    import math
+    from ddg_oracle.reference.combinatorics import Triangulation
+    from ddg_oracle.reference.curvature import angle_sums, vertex_type
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    faces = Triangulation.from_faces([(0, 1, 2), (0, 2, 3), (0, 3, 1)])
+    rim = [(Fraction(1), Fraction(0), Fraction(0)), (Fraction(-1, 2), Fraction(866, 1000), Fraction(0)),
+           (Fraction(-1, 2), Fraction(-866, 1000), Fraction(0))]
+    for h, kind in ((Fraction(1, 2 ** 2060), "elliptic"), (Fraction(-1, 2 ** 2060), "elliptic"),
+                    (Fraction(0), "flat")):
+        s = PolyhedralSurface(faces, [(Fraction(0), Fraction(0), h)] + rim)
+        defect = 2 * pi - angle_sums(s)[0]
+        assert defect.sign() == (1 if h else 0) and vertex_type(s, 0) == kind
+        assert float(defect) == 0.0 and math.copysign(1.0, float(defect)) == 1.0
+        assert isinstance(hash(defect), int)

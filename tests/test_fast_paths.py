@@ -540,8 +540,9 @@ def test_corner_sums_answer_from_their_integers_as_their_parts_would(s):
     """A CornerSum (the fast angle sum of a vertex without multiples of pi / 24) gives the
     enclosures, sign, float and hash of the Angle of its parts, and keeps its form under
     negation and a multiple of pi added (defects, turning angles) without building them;
-    pickled, it is that plain Angle.  Only the exact zero test reads the parts: a sum that
-    is a multiple of pi (two corners with cotangents c and -c, then a - pi = 0) needs it."""
+    pickled, it is that plain Angle.  Only the exact decisions (the zero test, the turning
+    count) read the parts: a sum that is a multiple of pi (two corners with cotangents c and
+    -c, then a - pi = 0) needs them."""
     lazy = [a for a in curvature_fast.angle_sums_fast(s) if isinstance(a, CornerSum)]
     assume(lazy)
     for a in lazy:
@@ -551,9 +552,12 @@ def test_corner_sums_answer_from_their_integers_as_their_parts_would(s):
             for bits in (8, 70, 200):
                 b._scaled_at(bits)
             with mock.patch.object(angles, "_pi24_multiple",
-                                   wraps=angles._pi24_multiple) as zero_test:
+                                   wraps=angles._pi24_multiple) as zero_test, \
+                    mock.patch.object(angles, "_sign_by_turning",
+                                      wraps=angles._sign_by_turning) as turning:
                 sign, x, h = b.sign(), float(b), hash(b)
-            assert _parts_built(b) == zero_test.called
+            # the exact decisions (the zero test, the turning count) read the parts
+            assert _parts_built(b) == (zero_test.called or turning.called)
             plain = Angle._raw(b._parts, b._pi)             # builds them
             assert _parts_built(b) and type(plain) is Angle
             for bits in (8, 70, 200):

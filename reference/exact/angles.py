@@ -25,8 +25,16 @@ How comparisons are decided, exactly:
   independent radicands costs 128 small products, not 2^128 terms.
 * A pi part with 24 r not an integer makes theta != 0 at once (the arccot part
   is a multiple of pi/24 or irrational over pi).
-* Otherwise theta != 0 and the enclosure is refined until it excludes 0; a
-  nonzero theta within 2**-``arccots.PRECISION_LIMIT`` of 0 raises
+* Otherwise theta != 0 and the enclosure is refined until it excludes 0.
+* The turning count (:func:`_sign_by_turning`): with r a multiple of 1/2, the sign of
+  theta follows from the exact signs of the partial products of the c + i (each turns
+  by an arccot in (0, pi)), with no enclosure.  It decides at once where the arccots
+  have at most 4 square roots in all, and, where the enclosure reaches
+  2**-``arccots.PRECISION_LIMIT`` without excluding 0, wherever they have at most
+  TURNING_ROOTS (12) square roots (a coprime base of all their radicands) and at most
+  TURNING_STEPS (64) arccots counted with multiplicity: such an angle is always decided,
+  whatever the size of its numbers (a float mesh's vertex of valence k has one radicand
+  per face, k in all, often pairwise coprime).  Beyond those, a nonzero theta within 2**-``arccots.PRECISION_LIMIT`` of 0 raises
   :class:`~ddg_oracle.reference.errors.Undecidable`, saying so.
 
 No float is used anywhere in a decision.  ``float(angle)`` is correctly rounded.
@@ -176,6 +184,11 @@ class Angle(ArccotSum):
             if hi < 0:
                 return -1
             if not nonzero and bits >= zero_test_bits:
+                # a few square roots in all: the turning count decides outright (exact
+                # products of at most 16 terms, milliseconds)
+                turned = _sign_by_turning(self._parts, self._pi, roots=4)
+                if turned is not None:
+                    return turned
                 # the test builds nothing larger than the products of one cotangent's
                 # conjugates, so it always finishes
                 k = _pi24_multiple(self._parts)
@@ -189,6 +202,10 @@ class Angle(ArccotSum):
             # the last try at the limit itself
             bits = min(zero_test_bits if not nonzero and bits < zero_test_bits else 2 * bits,
                        limit)
+        # beyond the enclosures' limit, few square roots: the turning of exact products
+        turned = _sign_by_turning(self._parts, self._pi)
+        if turned is not None:
+            return turned
         why = ("its pi part is off the multiples of pi/24" if (self._pi * 24).denominator != 1
                else "exact zero test")
         raise Undecidable(
@@ -286,6 +303,57 @@ class Angle(ArccotSum):
         if self._pi or not terms:
             terms.insert(0, f"{self._pi}*pi")
         return "Angle(" + " ".join(terms) + ")"
+
+
+#: the turning count (:func:`_sign_by_turning`) runs where the arccots have at most this many
+#: square roots in all and this many arccots counted with multiplicity: its products have up
+#: to 2^TURNING_ROOTS terms
+TURNING_ROOTS, TURNING_STEPS = 12, 64
+
+
+_ONE = Surd(1)
+
+
+def _sign_by_turning(parts: dict, r: Fraction, roots: int = TURNING_ROOTS) -> int | None:
+    """The sign of theta = sum m arccot(c) + r pi, exactly, by counting half-turns of exact
+    products (no enclosure, so no precision limit): None where r is not a multiple of 1/2,
+    or the arccots are too many or have more than ``roots`` square roots in all
+    (TURNING_ROOTS, TURNING_STEPS).
+
+    arccot(c) = arg(c + i) lies in (0, pi), -arccot(c) = arg(c - i) in (-pi, 0), and
+    r pi is |2 r| steps of arg(+-i) = +-pi/2.  With A_j the sum of the first j steps and
+    q_j = floor(A_j / pi), the point P_j = product of the first j factors lies on the ray
+    of A_j: Im P_j has the sign (-1)^q_j, or is 0 exactly when A_j = q_j pi.  A step of
+    (0, pi) keeps q (the new point strictly on q's side) or adds 1; a step of (-pi, 0) keeps
+    q (strictly on q's side, or on the ray of q pi itself) or takes 1 away.  Every decision
+    is the exact sign of a Surd.  Then theta = A_n - (-r) pi is compared through q_n."""
+    if (2 * r).denominator != 1 or sum(abs(m) for m in parts.values()) + abs(2 * r) > TURNING_STEPS:
+        return None
+    # arccot(c) = arg(c + i) = arg(n + i d) for c = n / d, d > 0 (Surd.ratio: no division)
+    pairs = {c: c.ratio or (c, _ONE) for c in parts}
+    if len(refine([b for pair in pairs.values() for x in pair for b in x.base])) > roots:
+        return None
+    steps = [(*pairs[c], 1 if m > 0 else -1) for c, m in parts.items() for _ in range(abs(m))]
+    quarter = int(2 * r)
+    steps += [(Surd(0), _ONE, 1 if quarter > 0 else -1)] * abs(quarter)   # arg(+-i) = +-pi/2
+    x, y, q = _ONE, Surd(0), 0                      # P = x + i y, A = 0: q = 0
+    for a, b, d in steps:
+        # P (a + d i b): arg grows by arccot(a / b) (d = 1) or shrinks by it (d = -1)
+        x, y = x * a - d * y * b, y * a + d * x * b
+        side = y.sign() * (1 if q % 2 == 0 else -1)     # > 0: strictly on q's side
+        if d > 0:
+            if side <= 0:
+                q += 1
+        elif side < 0:
+            # below q pi: A lies in ((q - 1) pi, q pi), never on (q - 1) pi itself (the step
+            # is shorter than pi); on the axis (side 0) it is q pi exactly, and q stays
+            q -= 1
+    # theta = A_n exactly (r pi is among the steps): A_n in [q pi, (q + 1) pi)
+    if q > 0 or (q == 0 and y.sign() != 0):
+        return 1
+    if q == 0:
+        return 0
+    return -1
 
 
 def _sort_key(c: Surd) -> float:
