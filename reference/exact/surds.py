@@ -196,6 +196,10 @@ def _rebuild(base, items):
     return from_terms(tuple(base), dict(items), prune=False)
 
 
+#: :meth:`Surd.quotients` keeps n / d as the pair only for a denominator of more terms
+QUOTIENT_TERMS = 4
+
+
 class Surd:
     """An exact real number ``q1*sqrt(r1) + q2*sqrt(r2) + ...``.
 
@@ -248,11 +252,18 @@ class Surd:
         (the division took most of T2.5's time); its sign, enclosures, float, hash and the
         exact zero test of angles (:mod:`.angles`, :attr:`ratio`) work from the pair.
 
-        >>> q = Surd.quotients([1, sqrt(2), 2 + 2 * sqrt(2)], 1 + sqrt(2))
-        >>> q[0] == sqrt(2) - 1, q[0].ratio == (1, 1 + sqrt(2)), q[1] == 2 - sqrt(2), q[2]
-        (True, True, True, Surd('2'))
+        A ``d`` of at most :data:`QUOTIENT_TERMS` terms (a face area of a float mesh: one)
+        is inverted at once, as before, and its quotients are plain Surds: their division is
+        cheap, and a pair would only cost the angles' exact tests a division per corner.
+
+        >>> d = 1 + sqrt(2) + sqrt(3) + sqrt(5) + sqrt(7)
+        >>> q = Surd.quotients([1, 2 * d], d)
+        >>> q[0] * d == 1, q[0].ratio == (1, d), q[1]
+        (True, True, Surd('2'))
+        >>> Surd.quotients([1], 1 + sqrt(2))[0].ratio is None       # a small d: divided
+        True
         """
-        if not (isinstance(d, Surd) and d._base):
+        if not (isinstance(d, Surd) and d._base and len(d._terms) > QUOTIENT_TERMS):
             inv = 1 / d
             return [n * inv for n in numerators]
         d = Surd(d)
