@@ -114,7 +114,7 @@ class Result:
     # observed, worst): which method is wrong, and where
     diagnosis: list | None = None
     # examples on which some entries had an infinite derived bound and an answer other than
-    # the exact float view: those entries were not judged (the note says how many)
+    # the exact float view: those entries were not judged (the note says so)
     unjudged: int = 0
 
     @property
@@ -245,7 +245,6 @@ class _Search:
     refused: bool = False           # stopped because the implementation declines nearly all
     internal: tuple | None = None   # (our own exception, its example): a bug of ddg-oracle
     unjudged: int = 0               # examples with entries an infinite bound could not judge
-    unjudged_entries: int = 0       # those entries
 
 
 def _keep_smallest(state: _Search, key: str, e: BaseException, example) -> None:
@@ -626,11 +625,13 @@ def _note_unjudged(r: Result, state: _Search) -> None:
     it covers (those entries are neither passed nor failed; the others of the example
     were judged)."""
     if state.unjudged and r.status not in (NOT_APPLICABLE, INTERNAL):
-        r.unjudged = state.unjudged
-        r.note = _joined(r.note, f"{state.unjudged_entries} entr"
-                         f"{'y' if state.unjudged_entries == 1 else 'ies'} in {state.unjudged} "
-                         f"of {max(r.examples, 1)} examples not judged: the derived bound is "
-                         f"infinite there (beyond the resolution of the declared precision)")
+        # examples, not entries: a check may compare one entry more than once; and at most
+        # the examples counted (a failure's shrinking runs examples again)
+        n = max(r.examples, 1)
+        r.unjudged = min(state.unjudged, n)
+        r.note = _joined(r.note, f"{r.unjudged} of {n} examples had entries no finite bound "
+                         "could judge (an infinite derived bound: beyond the resolution of the "
+                         "declared precision); those entries were neither passed nor failed")
 
 
 def _explain_by_convention(r: Result, p: Property, counterpart, convention) -> None:
@@ -661,7 +662,6 @@ def _check(p: Property, watched, example, state: _Search | None = None) -> None:
             finally:
                 if state is not None and tally.entries:
                     state.unjudged += 1
-                    state.unjudged_entries += tally.entries
     except OverflowError as e:
         # only the float of an exact number (int, Fraction, Surd: "... too large ... float"):
         # float arithmetic on an implementation's answer overflows with other messages
