@@ -244,6 +244,8 @@ def _parse_faces(faces, n_vertices, allow_repeats: bool):
             raise BadShape(f"face {i}: expected a row of 3 vertex indices, got {_short(row)}")
     for i, row in enumerate(rows):
         for c, x in enumerate(row):
+            if type(x) is int:
+                continue                  # the common case, without the ABC checks below
             if isinstance(x, Sequence) and not isinstance(x, (str, bytes)):
                 # a 3-d array or a nested list: a shape problem, not a bad index
                 raise BadShape(f"face {i}, corner {c}: expected a vertex index, got the "

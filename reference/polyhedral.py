@@ -129,7 +129,10 @@ def _point(p, i: int) -> tuple[Fraction, ...]:
         raise BadShape(f"vertex {i}: a point must be a sequence of coordinates, got {p!r}") from None
     if len(coords) < 2:
         raise BadShape(f"vertex {i} has {len(coords)} coordinate(s); need at least 2")
-    return tuple(rational(x, where=f"vertex {i}, coordinate {j}") for j, x in enumerate(coords))
+    # a Fraction as it is, without its message built: every surface a strategy draws or
+    # derives comes here with Fractions (a tenth of drawing an example went to the messages)
+    return tuple(x if type(x) is Fraction else rational(x, where=f"vertex {i}, coordinate {j}")
+                 for j, x in enumerate(coords))
 
 
 def orientation3d(a, b, c, d) -> int:
