@@ -34,7 +34,10 @@ from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, Boun
                                 WeldedByPosition)
 
 SEARCH = settings(max_examples=1000, database=None, deadline=None, derandomize=True,
-                  suppress_health_check=list(HealthCheck))
+                  suppress_health_check=list(HealthCheck),
+                  # no explain phase: it reruns the found example under sys.settrace (7 s of
+                  # this file's 40), to print a report no test here reads
+                  phases=[p for p in Phase if p is not Phase.explain])
 #: the first example found, unshrunk: for the tests that only say a kind of input is drawn
 #: (shrinking it took 10 s of test_boundary_sets_come_unsorted_too's 10)
 DRAWN = settings(SEARCH, phases=[Phase.generate])
