@@ -230,3 +230,35 @@ def test_non_finite_entries_after_flips_across_a_face_beyond_float_resolution_ar
                              (Fraction(0), Fraction(1), Fraction(0))), ((0, 1, 2),), "triangle")
     r = run_on_example(PROPERTIES["D4.8 / R4.9"], NaNAfterFlips(), plain, "triangle")
     assert r.status == FAILED and "non-finite entries" in str(r.failure)
+
+
+def test_the_panels_flips_end_at_float_ties_without_their_budget():
+    """A fan of 7 faces and a 2-face disk (squared lengths of a float32 hunt example): two
+    of its sides are Delaunay ties that float32 rounding calls non-Delaunay both ways.
+    Flipping on a bare ``cot a + cot b >= 0`` flipped them back and forth until the flip
+    budget (50 m^2 + 1000 = 5,050 flips) ran out, in 7 of 270 runs of the default hunt; the
+    panel's relative tolerance (geometry-central's delaunayEPS, scaled) ends it in a few."""
+    import numpy as np
+    from tests.honest_panel import IntrinsicFlips, KahanHalfAngle32
+    F = np.array([[1, 2, 3], [1, 3, 4], [1, 4, 5], [1, 5, 6], [1, 6, 7], [1, 7, 8], [1, 8, 0],
+                  [9, 10, 11], [9, 11, 12]])
+    l2 = np.array([[float.fromhex(x) for x in row] for row in (
+        ("0x1.ap-10", "0x1.1p-8", "0x1.4p-11"), ("0x1.9p-9", "0x1.d4p-7", "0x1.1p-8"),
+        ("0x1.48p-8", "0x1.28p-5", "0x1.d4p-7"), ("0x1.e8p-8", "0x1.388p-4", "0x1.28p-5"),
+        ("0x1.54p-7", "0x1.248p-3", "0x1.388p-4"), ("0x1.c4p-7", "0x1.f64p-3", "0x1.248p-3"),
+        ("0x1.04p-2", "0x1p-13", "0x1.f64p-3"), ("0x1.f4p-7", "0x1.194p-3", "0x1.388p-3"),
+        ("0x1.9p-4", "0x1.f4p-7", "0x1.194p-3"))], dtype=np.float32)
+    flips = IntrinsicFlips(F.copy(), l2.copy(), KahanHalfAngle32())
+    done = []
+    flip = flips.flip
+    flips.flip = lambda f, c: done.append((f, c)) or flip(f, c)
+    F2, L2 = flips.run()
+    assert 0 < len(done) <= 3 * len(F), len(done)
+    assert np.isfinite(L2).all() and (L2 > 0).all()
+    # and every side it kept is Delaunay up to that tolerance, in its own float32 cotangents
+    for f in range(len(F2)):
+        for c in range(3):
+            g, d = (int(x) for x in flips.nb[f, c])
+            if g >= 0 and g != f:
+                a, b = flips.cot(f, c), flips.cot(g, d)
+                assert a + b >= -8 * float(np.finfo(np.float32).eps) * (abs(a) + abs(b))
