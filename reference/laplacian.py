@@ -276,32 +276,29 @@ def gradient_pl(surface: PolyhedralSurface, f: Sequence, face: int) -> tuple:
 def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
     """``integral over S of <grad f, grad g> dA`` for the piecewise linear interpolants.
 
-    Computed face by face from gradients, independently of any cotangent:
-    for a polyhedral surface from the gradient vectors (:func:`gradient_pl`)
-    and the face area ``sqrt(det G) / 2``; for an intrinsic surface from the
-    Gram matrix of the edge lengths, ``<grad f, grad g> = df^T G^-1 dg``.
-    Exact (a Surd).  T3.6: equals ``f^T Lap g`` with the cotan Laplacian.
+    Computed face by face from the Gram matrix G of the edge vectors u = p1 - p0,
+    v = p2 - p0 (or of the edge lengths, for an intrinsic surface), independently of any
+    cotangent: the gradients are ``grad f = c1 u + c2 v`` with ``G (c1, c2) = df``
+    (:func:`gradient_pl`), so ``<grad f, grad g> = df^T G^-1 dg``, and the face's area is
+    ``sqrt(det G) / 2``; ``df = (f1 - f0, f2 - f0)``.  Exact (a Surd).  T3.6: equals
+    ``f^T Lap g`` with the cotan Laplacian.
     """
     t = _triangulation(surface)
     if len(f) != t.n_vertices or len(g) != t.n_vertices:
         raise BadShape(f"functions of lengths {len(f)}, {len(g)} on {t.n_vertices} vertices")
     terms = []
     for face, (a, b, c) in enumerate(t.faces):
-        u, v, (uu, uv, vv) = _face_gram(surface, face)
+        # the Gram route for positions too: the gradient vectors themselves (gradient_pl,
+        # twice per face) took twice the time for the same number (tests/test_laplacian.py)
+        _, _, (uu, uv, vv) = _face_gram(surface, face)
         det = uu * vv - uv * uv
         if not det:
             raise InputError(f"face {face} is degenerate (zero area)")
-        area = sqrt(det) / 2
-        if u is not None:
-            gf = gradient_pl(surface, f, face)
-            gg = gf if g is f else gradient_pl(surface, g, face)
-            inner = dot(gf, gg)
-        else:
-            df1, df2 = f[b] - f[a], f[c] - f[a]
-            dg1, dg2 = g[b] - g[a], g[c] - g[a]
-            inner = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
+        df1, df2 = f[b] - f[a], f[c] - f[a]
+        dg1, dg2 = (df1, df2) if g is f else (g[b] - g[a], g[c] - g[a])
+        inner = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
         if inner:
-            terms.append(area * inner)
+            terms.append(sqrt(det) / 2 * inner)
     return exact_sum(terms)
 
 

@@ -27,7 +27,7 @@ from ddg_oracle.reference.areas import (area_as_dirichlet_energy, area_from_cota
                             laplacian_of_positions, triangle_area_heron, triangle_cotangents)
 from ddg_oracle.reference.combinatorics import Triangulation
 from ddg_oracle.reference.errors import InputError
-from ddg_oracle.reference.exact import Surd, corner_angle, pi, sqrt
+from ddg_oracle.reference.exact import Surd, corner_angle, exact_sum, pi, sqrt
 from ddg_oracle.reference.laplacian import (cotan_laplacian, cotan_weight_by_sines, cotan_weighted_edges,
                                  cotan_weights, dirichlet_energy, dirichlet_energy_pl,
                                  dirichlet_inner_product_pl, dirichlet_energy_gradient_pl,
@@ -240,6 +240,21 @@ def test_C3_4_energy_gradient_is_the_inner_product_with_each_hat_and_L_f(case, d
         st.lists(st.integers(0, n - 1), min_size=12, max_size=12, unique=True), label="hats")
     for i in hats:
         assert grad[i] == dirichlet_inner_product_pl(s, f, [Fraction(int(v == i)) for v in range(n)])
+
+
+@given(with_functions(any_meshes()))
+def test_T3_6_inner_product_by_gram_matrices_is_the_one_of_the_gradient_vectors(case):
+    """dirichlet_inner_product_pl takes <grad f, grad g> = df^T G^-1 dg face by face; the
+    gradient vectors themselves (gradient_pl) and the area sqrt(det G) / 2 give the same
+    exact number, on the surface and on its metric."""
+    s, f, g = case.surface, list(case.values), list(case.second)
+    by_vectors = exact_sum(
+        s.metric().area(k) * sum((a * b for a, b in zip(gradient_pl(s, f, k), gradient_pl(s, g, k))),
+                                 Fraction(0))
+        for k in range(s.triangulation.n_faces))
+    assert dirichlet_inner_product_pl(s, f, g) == by_vectors
+    assert dirichlet_inner_product_pl(s.metric(), f, g) == by_vectors
+    assert dirichlet_energy_pl(s, f) * 2 == dirichlet_inner_product_pl(s, f, list(f))
 
 
 def test_T3_6_gradient_of_a_linear_function_is_its_coefficient_vector():
