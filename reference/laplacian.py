@@ -289,7 +289,8 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
     terms = []
     for face, (a, b, c) in enumerate(t.faces):
         # the Gram route for positions too: the gradient vectors themselves (gradient_pl,
-        # twice per face) took twice the time for the same number (tests/test_laplacian.py)
+        # twice per face) took 1.7 times as long for the same number (tests/test_laplacian.py
+        # keeps the two equal)
         _, _, (uu, uv, vv) = _face_gram(surface, face)
         det = uu * vv - uv * uv
         if not det:

@@ -49,9 +49,11 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
     """Compile a C++ snippet with its ``// build: g++ ... NAME.cpp -o NAME ...`` line, run it.
 
     The program is kept in examples/cpp/build/findings/, keyed by the hash of the snippet,
-    its build line and the compiler's version: a second run of the suite runs it without
-    compiling CGAL's headers again (4-6 s of CPU per snippet, 20 s for the five); a changed
-    snippet, build line or compiler builds anew."""
+    its build line, the compiler's version and the newest file of each library header
+    directory it includes (``<CGAL/...>``: /usr/include/CGAL): a second run of the suite
+    runs it without compiling CGAL's headers again (4-6 s of CPU per snippet, 17 s for the
+    five); a changed snippet, build line, compiler or library (an upgrade rewrites its
+    headers) builds anew."""
     import hashlib
     command = shlex.split(re.match(r"// build: (.*)\n", code)[1])
     source = next(a for a in command if a.endswith(".cpp"))
@@ -61,7 +63,8 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
                                  timeout=60).stdout
     except OSError:
         version = ""
-    key = hashlib.sha256("\0".join((code, " ".join(command), version)).encode()).hexdigest()
+    key = hashlib.sha256("\0".join((code, " ".join(command), version,
+                                     *_headers_stamp(code))).encode()).hexdigest()
     kept = ROOT / "examples" / "cpp" / "build" / "findings" / key[:16]
     if not (kept / exe).is_file():
         (where / source).write_text(code, encoding="utf-8")
@@ -73,6 +76,19 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
         kept.mkdir(parents=True, exist_ok=True)
         os.replace(where / exe, kept / exe)             # whole or not at all
     return subprocess.run([str(kept / exe)], capture_output=True, text=True, timeout=300)
+
+
+def _headers_stamp(code: str) -> list[str]:
+    """For each library header directory a snippet includes (``#include <Dir/...>``), where
+    it is and its newest file's modification time: what a library upgrade changes."""
+    out = []
+    for top in sorted(set(re.findall(r"^#include <(\w+)/", code, re.M))):
+        for root in (Path("/usr/include"), Path("/usr/local/include")):
+            if (root / top).is_dir():
+                newest = max((e.stat().st_mtime_ns for d, _, files in os.walk(root / top)
+                              for e in map(lambda f: Path(d) / f, files)), default=0)
+                out.append(f"{root / top}:{newest}")
+    return out
 
 
 def test_a_crash_is_the_finding_of_a_crash_and_a_wrong_answer_the_other():
