@@ -232,19 +232,6 @@ def cotan_laplacian_from_weights(surface) -> SparseMatrix:
 # --- T3.6: the Dirichlet energy of the piecewise linear interpolant -------------------------
 
 
-def _face_gram(surface, f: int):
-    """(u, v, G) of face f: u, v the edge vectors from corner 0 to corners 1, 2 (None
-    for an intrinsic surface) and the Gram matrix entries (uu, uv, vv), exact."""
-    if isinstance(surface, PolyhedralSurface):
-        p = surface.positions
-        a, b, c = surface.triangulation.faces[f]
-        u, v = sub(p[b], p[a]), sub(p[c], p[a])
-        return u, v, (dot(u, u), dot(u, v), dot(v, v))
-    m = metric_of_surface(surface)
-    l0, l1, l2 = m.face_squared_lengths(f)   # |01|^2, |12|^2, |20|^2
-    return None, None, (l0, (l0 + l2 - l1) / 2, l2)
-
-
 def _triangulation(surface):
     if isinstance(surface, PolyhedralSurface):
         return surface.triangulation
@@ -262,8 +249,10 @@ def gradient_pl(surface: PolyhedralSurface, f: Sequence, face: int) -> tuple:
     if not isinstance(surface, PolyhedralSurface):
         raise InputError("gradient_pl needs positions (a PolyhedralSurface); use "
                          "dirichlet_inner_product_pl for an intrinsic surface")
-    u, v, (uu, uv, vv) = _face_gram(surface, face)
+    p = surface.positions
     a, b, c = surface.triangulation.faces[face]
+    u, v = sub(p[b], p[a]), sub(p[c], p[a])
+    uu, uv, vv = dot(u, u), dot(u, v), dot(v, v)
     d1, d2 = f[b] - f[a], f[c] - f[a]
     det = uu * vv - uv * uv
     if not det:
@@ -286,21 +275,29 @@ def dirichlet_inner_product_pl(surface, f: Sequence, g: Sequence):
     t = _triangulation(surface)
     if len(f) != t.n_vertices or len(g) != t.n_vertices:
         raise BadShape(f"functions of lengths {len(f)}, {len(g)} on {t.n_vertices} vertices")
+    m = metric_of_surface(surface)          # raises DegenerateFace naming a zero-area face
     terms = []
     for face, (a, b, c) in enumerate(t.faces):
         # the Gram route for positions too: the gradient vectors themselves (gradient_pl,
         # twice per face) took 1.7 times as long for the same number (tests/test_laplacian.py
-        # keeps the two equal)
-        _, _, (uu, uv, vv) = _face_gram(surface, face)
-        det = uu * vv - uv * uv
-        if not det:
-            raise InputError(f"face {face} is degenerate (zero area)")
+        # keeps the two equal); G and the area from the metric's exact squared lengths and
+        # areas (integers on a common denominator, computed once per surface)
+        uu, uv, vv, det = _gram_of_lengths(m, face)
         df1, df2 = f[b] - f[a], f[c] - f[a]
         dg1, dg2 = (df1, df2) if g is f else (g[b] - g[a], g[c] - g[a])
         inner = (vv * df1 * dg1 - uv * (df1 * dg2 + df2 * dg1) + uu * df2 * dg2) / det
         if inner:
-            terms.append(sqrt(det) / 2 * inner)
+            terms.append(m.area(face) * inner)
     return exact_sum(terms)
+
+
+def _gram_of_lengths(m: PiecewiseFlatSurface, face: int) -> tuple:
+    """(uu, uv, vv, det G) of a face from its exact squared lengths: u, v the edges from
+    corner 0 to corners 1 and 2, ``uv = (|u|^2 + |v|^2 - |u - v|^2) / 2``, ``det G = 4 A^2``
+    (positive: the metric is valid)."""
+    l0, l1, l2 = m.face_squared_lengths(face)   # |01|^2, |12|^2, |20|^2
+    uv = (l0 + l2 - l1) / 2
+    return l0, uv, l2, l0 * l2 - uv * uv
 
 
 def dirichlet_energy_gradient_pl(surface, f: Sequence) -> list:
@@ -318,16 +315,14 @@ def dirichlet_energy_gradient_pl(surface, f: Sequence) -> list:
     t = _triangulation(surface)
     if len(f) != t.n_vertices:
         raise BadShape(f"a function of length {len(f)} on {t.n_vertices} vertices")
+    m = metric_of_surface(surface)          # raises DegenerateFace naming a zero-area face
     terms: list = [[] for _ in range(t.n_vertices)]
     for face, (a, b, c) in enumerate(t.faces):
-        _, _, (uu, uv, vv) = _face_gram(surface, face)
-        det = uu * vv - uv * uv
-        if not det:
-            raise InputError(f"face {face} is degenerate (zero area)")
         d1, d2 = f[b] - f[a], f[c] - f[a]
         if not (d1 or d2):
             continue
-        area = sqrt(det) / 2
+        uu, uv, vv, det = _gram_of_lengths(m, face)
+        area = m.area(face)
         hat_b, hat_c = (vv * d1 - uv * d2) / det, (uu * d2 - uv * d1) / det
         for v, x in ((a, -(hat_b + hat_c)), (b, hat_b), (c, hat_c)):
             if x:
