@@ -474,6 +474,20 @@ def test_T2_7_support_function_integral_on_random_convex_hulls(case):
     assert all(a >= 0 for a in C.dihedral_angles(case.surface).values())
 
 
+@given(stars.convex_polyhedra())
+@settings(max_examples=5, deadline=None, database=None,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+def test_T2_7_the_coarse_to_fine_quadrature_is_the_cell_by_cell_one_with_no_larger_bound(case):
+    """Deciding blocks of cells first leaves undecided a subset of the cells a test of every
+    cell leaves (n_coarse = n_theta): the same integral up to rounding, a bound no larger."""
+    P = case.surface.to_arrays()[0]
+    value, bound = curvature_exact.support_function_integral(P)
+    every_value, every_bound = curvature_exact.support_function_integral(P, n_coarse=256)
+    assert abs(value - every_value) <= 1e-12 * abs(every_value)
+    assert bound <= every_bound * (1 + 1e-9)
+    assert bound > 0
+
+
 # --- AngleLength and exact_sum ---------------------------------------------------------------------
 
 
