@@ -639,6 +639,12 @@ def _check(args, argv) -> int:
     from .implementations import BUILTIN
     plain = {s for s in specs if s in BUILTIN}         # a built-in name without options
     pool = workers > 1 or client is not None
+    if not pool:
+        # no pool worker is forked in this run, only isolated library workers: the
+        # forkserver (not started yet) imports what they need, not the properties
+        from .containment import LIBRARY_PRELOAD, forkserver_in_use, start_workers_from_a_forkserver
+        if forkserver_in_use():
+            start_workers_from_a_forkserver(LIBRARY_PRELOAD)
     started = start_implementations([s for s in specs if not pool or s not in plain], args.timeout)
     warn_near_misses(started.values())
     names = {s: getattr(i, "name", s) for s, i in started.items()}
