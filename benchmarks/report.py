@@ -146,9 +146,11 @@ SUITE = """\
 
 README's test command exactly (its `pytest -n N`), and README's `ddg-oracle check`, one
 run each: the wall time, and the CPU time (user + system) of the command and every process
-it waited for (less noisy than wall time on a shared machine, but not still: one tree,
-4d5d6ba, took 300 s at 22:52 and 367 s / 569 CPU-s at 23:52 on 2026-12-06, on this
-machine; compare versions side by side, in one sitting).
+it waited for.  Neither is still on this shared machine, whose cores run the same work
+faster or slower by the hour: one tree, 4232c90, took 386 s / 592 CPU-s at 02:28 and
+292 s / 431 CPU-s at 02:45 on 2026-12-07 (the machine's busy core-seconds 704 and 518);
+runs alternating with b5e221a in that sitting took 335 s / 506 CPU-s and 284 s /
+419 CPU-s.  Compare versions side by side, alternating, in one sitting.
 """
 
 MESHCHECK = """\
