@@ -641,7 +641,8 @@ def _check(args, argv) -> int:
     pool = workers > 1 or client is not None
     if not pool:
         # no pool worker is forked in this run, only isolated library workers: the
-        # forkserver (not started yet) imports what they need, not the properties
+        # forkserver, if not started yet, imports what they need, not the properties (a
+        # process that needs more imports it itself)
         from .containment import LIBRARY_PRELOAD, forkserver_in_use, start_workers_from_a_forkserver
         if forkserver_in_use():
             start_workers_from_a_forkserver(LIBRARY_PRELOAD)

@@ -87,8 +87,8 @@ class TakesTwoSeconds(ReferenceImplementation):
 
 class SlowChi(ReferenceImplementation):
     """The reference, 20 ms per Euler characteristic: a task that is still running when a
-    cluster worker is killed (tests/test_cluster.py; 64 calls in a run of its three
-    properties, 1.3 s of a task's time slept)."""
+    cluster worker is killed (tests/test_cluster.py: 64 calls, 1.3 s slept, in a run of its
+    three properties)."""
 
     name = "slow-chi"
 
