@@ -64,7 +64,7 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
     except OSError:
         version = ""
     key = hashlib.sha256("\0".join((code, " ".join(command), version,
-                                     *_headers_stamp(code))).encode()).hexdigest()
+                                     *_headers_stamp(code, command))).encode()).hexdigest()
     kept = ROOT / "examples" / "cpp" / "build" / "findings" / key[:16]
     if not (kept / exe).is_file():
         (where / source).write_text(code, encoding="utf-8")
@@ -78,12 +78,15 @@ def _built(code: str, where: Path) -> subprocess.CompletedProcess:
     return subprocess.run([str(kept / exe)], capture_output=True, text=True, timeout=300)
 
 
-def _headers_stamp(code: str) -> list[str]:
+def _headers_stamp(code: str, command: list[str]) -> list[str]:
     """For each library header directory a snippet includes (``#include <Dir/...>``), where
-    it is and its newest file's modification time: what a library upgrade changes."""
+    it is and its newest file's modification time: what a library upgrade changes.  Looked
+    for where the compiler looks: the build line's ``-I`` directories, then the system's."""
     out = []
+    includes = [Path(a[2:]) for a in command if a.startswith("-I") and len(a) > 2]
+    includes += [Path(b) for a, b in zip(command, command[1:]) if a == "-I"]
     for top in sorted(set(re.findall(r"^#include <(\w+)/", code, re.M))):
-        for root in (Path("/usr/include"), Path("/usr/local/include")):
+        for root in (*includes, Path("/usr/include"), Path("/usr/local/include")):
             if (root / top).is_dir():
                 newest = max((e.stat().st_mtime_ns for d, _, files in os.walk(root / top)
                               for e in map(lambda f: Path(d) / f, files)), default=0)
