@@ -41,8 +41,9 @@ def test_readme_first_example_runs_as_shown(tmp_path):
     (tmp_path / "mygeom.py").write_text(code, encoding="utf-8")
     command = re.search(r"```bash\n(ddg-oracle check --impl mygeom:MyGeometry)\n```", README)[1]
     exe = str(Path(sys.executable).with_name("ddg-oracle"))
-    # one worker: the output is the same in any number (a pool of 2 cost ~30% more CPU)
-    out = subprocess.run([exe, *command.split()[1:], "--profile", "ci", "--workers", "1"],
+    # README's profile (default) with a seed, so the run is the same every time; one
+    # worker: the output is the same in any number (a pool of 2 cost ~30% more CPU)
+    out = subprocess.run([exe, *command.split()[1:], "--seed", "1", "--workers", "1"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
     assert out.returncode == 1, out.stdout + out.stderr
     shown = re.search(r"```text\n(.*?)```", README, re.S)[1].splitlines()
@@ -64,7 +65,7 @@ def test_readme_example_passes_once_it_declares_its_convention(tmp_path):
     assert declared != code
     (tmp_path / "mygeom.py").write_text(declared, encoding="utf-8")
     exe = str(Path(sys.executable).with_name("ddg-oracle"))
-    out = subprocess.run([exe, "check", "--impl", "mygeom:MyGeometry", "--profile", "ci",
+    out = subprocess.run([exe, "check", "--impl", "mygeom:MyGeometry", "--seed", "1",
                           "--workers", "1"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stdout + out.stderr
