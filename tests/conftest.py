@@ -14,7 +14,8 @@ from ddg_oracle.properties.profiles import PREFIX, register_profiles
 
 # the suite's own processes (xdist workers, the scripts and commands its tests start) load
 # no third-party Hypothesis plugin: trio's, installed with selenium for the browser tests,
-# costs 0.17 s of CPU at every start of a process (the ddg-oracle command skips them too)
+# made `import hypothesis` cost 0.27-0.36 s of CPU instead of 0.12-0.19 s at every start
+# of a process (docs/check.md; the ddg-oracle command skips them too)
 os.environ.setdefault("HYPOTHESIS_NO_PLUGINS", "1")
 # and start their workers (in-process runs, isolated libraries) as the command does, from a
 # forkserver that imported the properties once; a user's process spawns them, which the
