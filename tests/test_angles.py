@@ -212,10 +212,32 @@ def test_a_large_multiplicity_is_one_power_by_squaring(monkeypatch):
     from ddg_oracle.reference.exact import angles
     calls = []
     real = angles._tmul
-    monkeypatch.setattr(angles, "_tmul", lambda *a: calls.append(1) or real(*a))
+    monkeypatch.setattr(angles, "_tmul", lambda *a, **k: calls.append(1) or real(*a, **k))
     theta = Angle({Surd(1): 10_000}, -2500)
     assert theta.sign() == 0 and theta == 0
     assert 0 < len(calls) <= 64
+
+
+_BASES = [(2,), (3,), (2, 3), (3, 5, 7), (15,), (6, 35), (10, 21), (3 * 193 ** 2,), (2, 3 * 193 ** 2)]
+
+
+@given(st.sampled_from(_BASES), st.data(), st.integers(1, 60))
+def test_powers_are_primitive_without_a_gcd_of_their_coefficients(base, data, n):
+    """The zero test's powers divide out only 2 and the base elements (no gcd of two large
+    coefficients): the same primitive numbers as a full gcd after every product."""
+    from ddg_oracle.reference.exact import angles
+    weight = angles._Weights(base)
+    masks = st.integers(0, (1 << len(base)) - 1)
+    part = st.dictionaries(masks, st.integers(-50, 50).filter(bool), max_size=4)
+    x, y = data.draw(part), data.draw(part)
+    assume(x or y)
+    z = angles._primitive((x, y))
+    out, full = ({0: 1}, {}), ({0: 1}, {})
+    for _ in range(n):             # one product at a time: every power up to n is checked
+        full = angles._tmul(full, z, weight)            # a gcd of all the coefficients
+        out = angles._tmul(out, z, weight, powers=True)
+        assert out == full
+    assert angles._tpow(z, n, weight) == full
 
 
 # --- multiples of pi/24 with large multiplicities (a wrong sign before 2026-12-04) ----------

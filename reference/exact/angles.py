@@ -530,6 +530,28 @@ def _primitive(z):
     return z
 
 
+def _power_primitive(z, base: tuple):
+    """z made primitive where z is a power of a primitive element (integer coefficients):
+    without the gcd of two coefficients (quadratic in their size; 190,000 bits each in a
+    zero test of 9 square roots).  A prime p sharing all coefficients of such a power
+    divides 2 or an element of ``base``: otherwise p is unramified in L = Q(i, sqrt b, ...)
+    and prime to the index of Z[i, sqrt b, ...] in its ring of integers, so p | z^n there
+    gives p | z, not primitive.  So dividing out 2 and the elements of ``base`` while they
+    divide every coefficient (a gcd with a small number each time) leaves z primitive."""
+    values = [q for part in z for q in part.values()]
+    k = min(((q & -q).bit_length() - 1 for q in values), default=0)
+    if k > 0:
+        values = [q >> k for q in values]
+    g = 1 << max(k, 0)
+    for b in base:
+        while (h := math.gcd(b, *values)) > 1:
+            g *= h
+            values = [q // h for q in values]
+    if g > 1:
+        z = tuple({r: q // g for r, q in part.items()} for part in z)
+    return z
+
+
 def _mask(r: int, base: tuple, memo: dict) -> int:
     """The radicand r (a product of distinct base elements) as a bit mask over ``base``."""
     m = memo.get(r)
@@ -625,22 +647,24 @@ def _split(w, s: int, pivot: int, v: int, weight: _Weights):
     yield _primitive((t_add(xx, yy)[0], {r | bit: 2 * q for r, q in yx.items()})), s ^ v
 
 
-def _tmul(z, w, weight: _Weights):
-    """Complex product of (real, imaginary) term dicts keyed by bit masks, made primitive."""
+def _tmul(z, w, weight: _Weights, powers: bool = False):
+    """Complex product of (real, imaginary) term dicts keyed by bit masks, made primitive
+    (``powers``: z and w are powers of one primitive element, :func:`_power_primitive`)."""
     (a, b), (c, d) = z, w
-    return _primitive((t_add(_m_mul(a, c, weight), _m_mul(b, d, weight), negate=True)[0],
-                       t_add(_m_mul(a, d, weight), _m_mul(b, c, weight))[0]))
+    zw = (t_add(_m_mul(a, c, weight), _m_mul(b, d, weight), negate=True)[0],
+          t_add(_m_mul(a, d, weight), _m_mul(b, c, weight))[0])
+    return _power_primitive(zw, weight.base) if powers else _primitive(zw)
 
 
 def _tpow(z, n: int, weight: _Weights):
-    """z**n, n >= 0, by repeated squaring."""
+    """z**n made primitive, n >= 0, z primitive, by repeated squaring."""
     out = ({0: 1}, {})
     while n:
         if n & 1:
-            out = _tmul(out, z, weight)
+            out = _tmul(out, z, weight, powers=True)
         n >>= 1
         if n:
-            z = _tmul(z, z, weight)
+            z = _tmul(z, z, weight, powers=True)
     return out
 
 
