@@ -138,7 +138,12 @@ most in one cotangent); each equality is the exact zero test of `reference/exact
 the test before 2026-12-06: cotangents as single Surds, terms keyed by radicands, two
 complex products per split; the enclosures are today's in both) side by side in one
 run, *before* only where a cotangent has at most 6 square roots (with 9, one vertex
-took 525 s); issue 46's target is < 1 s each.
+took 525 s); issue 46's target is < 1 s each.  With 9 roots (seed 4) the time is big-integer
+gcds and products: since 3528f6e the powers are made primitive without a gcd (its body: T2.5
+15.6 s before, 12.3 s after, means of two runs alternating with a worktree of 982505e in
+one sitting; 818e926, the commit of the table before this one, took 15.3 s that morning
+beside 11.3 s at 3528f6e, where its own table had 10.1 s: seed 4's big-integer work ran half
+again slower on this machine that morning, while the small seeds' *before* rows did not move).
 """
 
 SUITE = """\
