@@ -539,6 +539,8 @@ def _power_primitive(z, base: tuple):
     gives p | z, not primitive.  So dividing out 2 and the elements of ``base`` while they
     divide every coefficient (a gcd with a small number each time) leaves z primitive."""
     values = [q for part in z for q in part.values()]
+    if not any(values):         # 0 (never a power of a nonzero element): nothing to divide
+        return z
     k = min(((q & -q).bit_length() - 1 for q in values), default=0)
     if k > 0:
         values = [q >> k for q in values]
