@@ -24,11 +24,18 @@ from hypothesis import strategies as st
 from ..reference.combinatorics import Triangulation
 from ..reference.polyhedral import PolyhedralSurface
 
+from .draws import grouped, once, spread
 from .example import Example
 from .metrics import flat_tori, polycube_surfaces, randomly_flipped
 from .precision import representable
 from .strategies import (acute_meshes, closed_meshes, closed_surfaces, grid_faces, jittered_grids,
                          mesh_case, obtuse_fans, obtuse_meshes, planar_meshes, single_triangles)
+
+
+@once
+def _flip_bases():
+    return st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
+        lambda s: mesh_case(s.positions, s.triangulation.faces, "polycube")))
 
 
 @st.composite
@@ -37,8 +44,7 @@ def flipped_meshes(draw):
     flips: long, thin, folded triangles whose intrinsic Delaunay triangulation needs many
     flips.  Flips that would make a loop or a double edge, or a face of area 0, are skipped."""
     from ..reference.errors import InputError
-    case = draw(st.one_of(closed_meshes(), jittered_grids(), polycube_surfaces(max_genus=1).map(
-        lambda s: mesh_case(s.positions, s.triangulation.faces, "polycube"))))
+    case = draw(_flip_bases())
     t = case.surface.triangulation
     picks = draw(st.lists(st.integers(0, 10 ** 6), max_size=12))
     for k in picks:
@@ -75,13 +81,16 @@ def delaunay_test_meshes():
     wrongly); a third of either with faces reversed (:func:`~.strategies.with_reversed_faces`:
     a test that finds the other face of an edge by the reversed directed edge calls the
     edge a boundary edge, hence Delaunay)."""
-    from .strategies import grouped, near_cocircular_meshes, with_reversed_faces
+    from .strategies import near_cocircular_meshes, with_reversed_faces
     return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds()), near_cocircular_meshes()))
 
 
 def _delaunay_kinds() -> list:
     return [single_triangles(), planar_meshes(), jittered_grids(), obtuse_meshes(),
             acute_meshes(), closed_meshes(), flipped_meshes()]
+
+
+_SIXTEENTHS = st.integers(-64, 64).map(lambda k: Fraction(k, 16))
 
 
 @st.composite
@@ -92,13 +101,12 @@ def non_orientable_meshes(draw):
     (docs/findings.md F-libigl-6: a flip algorithm that assumes an orientation breaks there)."""
     from ..reference import surfaces
     from ..reference.errors import InputError
-    kind = draw(st.sampled_from(["Moebius strip", "projective plane", "Klein bottle"]))
+    kind = draw(spread(("Moebius strip", "projective plane", "Klein bottle")))
     if kind == "Moebius strip":
         s = surfaces.mobius_strip(draw(st.integers(3, 6)))
         return mesh_case(s.positions, s.triangulation.faces, f"Moebius strip, {s.n_vertices} vertices")
     t = surfaces.projective_plane() if kind == "projective plane" else surfaces.klein_bottle(3, 3)
-    coordinate = st.integers(-64, 64).map(lambda k: Fraction(k, 16))
-    points = draw(st.lists(st.tuples(coordinate, coordinate, coordinate),
+    points = draw(st.lists(st.tuples(_SIXTEENTHS, _SIXTEENTHS, _SIXTEENTHS),
                            min_size=t.n_vertices, max_size=t.n_vertices))
     try:
         PolyhedralSurface(t, points).metric()
@@ -121,7 +129,7 @@ def intrinsic_meshes():
     (:func:`~.strategies.coned`): an implementation that declines boundary meets them too.
     Every kind maybe with a near-tie quad and a convex fan beside it
     (:func:`~.strategies.with_traps_beside`)."""
-    from .strategies import (coned, grouped, near_cocircular_meshes, sweep_meshes,
+    from .strategies import (coned, near_cocircular_meshes, sweep_meshes,
                              with_reversed_faces, with_traps_beside)
     return with_reversed_faces(with_traps_beside(st.one_of(
         grouped(*_delaunay_kinds(), non_orientable_meshes()),

@@ -17,6 +17,7 @@ from ..reference.combinatorics import halfedge
 from ..reference.planar import orientation
 
 from .precision import representable
+from .draws import once, spread
 
 #: the 12 integer points on the circle x^2 + y^2 = 25 (from 3^2 + 4^2 = 5^2)
 CIRCLE5 = ((5, 0), (4, 3), (3, 4), (0, 5), (-3, 4), (-4, 3),
@@ -51,6 +52,7 @@ def _completed(pts: list, extra) -> list:
     return pts
 
 
+@once
 @st.composite
 def integer_point_sets(draw, max_points: int = 8, bound: int = 6):
     """Distinct integer points, not all collinear; often with a cocircular subset
@@ -58,11 +60,11 @@ def integer_point_sets(draw, max_points: int = 8, bound: int = 6):
     pts: list = []
     if draw(st.booleans()):
         cx, cy = draw(st.integers(-2, 2)), draw(st.integers(-2, 2))
-        arc = draw(st.lists(st.sampled_from(CIRCLE5), min_size=3, max_size=6, unique=True))
+        arc = draw(st.lists(spread(CIRCLE5), min_size=3, max_size=6, unique=True))
         pts += [(cx + x, cy + y) for x, y in arc]
     if draw(st.booleans()):
         a = (draw(st.integers(-bound, bound)), draw(st.integers(-bound, bound)))
-        d = draw(st.sampled_from([(1, 0), (0, 1), (1, 1), (1, -1), (2, 1), (1, 2)]))
+        d = draw(spread(((1, 0), (0, 1), (1, 1), (1, -1), (2, 1), (1, 2))))
         k = draw(st.integers(3, 4))
         pts += [(a[0] + i * d[0], a[1] + i * d[1]) for i in range(k)]
     coord = st.integers(-bound, bound)
@@ -71,6 +73,7 @@ def integer_point_sets(draw, max_points: int = 8, bound: int = 6):
     return _completed(pts, [(bound + 1, bound + 2), (-bound - 1, bound + 3), (0, -bound - 1)])
 
 
+@once
 @st.composite
 def rational_point_sets(draw, max_points: int = 8):
     """:func:`integer_point_sets` divided by a common denominator in 1..3, sometimes

@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import textwrap
 import time
+import weakref
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
@@ -300,6 +301,19 @@ def _outcome(p: Property, impl, errors: list[BaseException], state: _Search) -> 
     return dict(status=PASSED)
 
 
+_STRATEGIES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def strategy_of(p: Property):
+    """``p``'s strategy, built once per process: Hypothesis validates a strategy object and
+    computes its emptiness, reusability and cacheability over the whole tree the first
+    time it is drawn from, so a strategy built afresh for every run pays that again."""
+    s = _STRATEGIES.get(p.strategy)
+    if s is None:
+        s = _STRATEGIES[p.strategy] = p.strategy()
+    return s
+
+
 def run_property(p: Property, impl, settings: Settings, seed: int | None = None,
                  counterpart=None, convention: str | None = None,
                  budget: Budget | None = None) -> Result:
@@ -481,7 +495,7 @@ def _search(body, p: Property, settings: Settings, seed, state=None, **changes):
     # not a strategy that filters too much
     changes["suppress_health_check"] = tuple(settings.suppress_health_check) + (
         HealthCheck.filter_too_much,)
-    run = Settings(settings, report_multiple_bugs=False, **changes)(given(p.strategy())(body))
+    run = Settings(settings, report_multiple_bugs=False, **changes)(given(strategy_of(p))(body))
     if seed is None and settings.derandomize:
         seed = derandomized_seed(p.id)
     if seed is not None:

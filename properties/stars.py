@@ -26,6 +26,7 @@ from ..reference.polyhedral import PolyhedralSurface
 from . import memo
 from . import variants
 from .example import Example
+from .draws import once, spread
 from .strategies import floated
 from .variants import circle_point
 
@@ -66,6 +67,7 @@ def _star_surface(directions, kind, params, symmetry, shift):
                          vertex=0, kind=kind, params=params)
 
 
+@once
 @st.composite
 def vertex_stars(draw, kind: str | None = None):
     """The star of one interior vertex (a disk, chi = 1), built to be of a given kind (L2.4, R2.2).
@@ -84,13 +86,13 @@ def vertex_stars(draw, kind: str | None = None):
     kind = kind or draw(st.sampled_from(["convex", "planar", "saddle", "folded"]))
     symmetry = draw(st.integers(0, 47))
     shift = tuple(Fraction(draw(st.integers(-8, 8)), 4) for _ in range(3))
-    scale = [Fraction(1, 2), Fraction(1), Fraction(3, 2), Fraction(2)]
+    scale = (Fraction(1, 2), Fraction(1), Fraction(3, 2), Fraction(2))
     if kind in ("convex", "planar"):
         n = draw(st.integers(3, 8))
         gaps = draw(st.lists(st.integers(1, 3), min_size=n, max_size=n))
         assume(2 * max(gaps) < sum(gaps))              # every sector below pi
-        lam = draw(st.lists(st.sampled_from(scale), min_size=n, max_size=n))
-        steep = draw(st.sampled_from([Fraction(1, 4), Fraction(1), Fraction(3)]))
+        lam = draw(st.lists(spread(scale), min_size=n, max_size=n))
+        steep = draw(spread((Fraction(1, 4), Fraction(1), Fraction(3))))
         angles, acc = [], Fraction(1, 3)
         for g in gaps:
             angles.append(2 * math.pi * float(acc) / sum(gaps))
@@ -104,7 +106,7 @@ def vertex_stars(draw, kind: str | None = None):
         m = draw(st.integers(3, 4))          # d and -d for m = 2 directions span a plane only
         gaps = draw(st.lists(st.integers(1, 3), min_size=m, max_size=m))
         heights = draw(st.lists(st.integers(-3, 3), min_size=m, max_size=m))
-        lam = draw(st.lists(st.sampled_from(scale), min_size=2 * m, max_size=2 * m))
+        lam = draw(st.lists(spread(scale), min_size=2 * m, max_size=2 * m))
         total = sum(gaps) + 1
         half, acc = [], Fraction(1, 2)
         for g in gaps:
@@ -150,7 +152,7 @@ def pushable_surfaces(draw):
         s = PolyhedralSurface(Triangulation.from_faces(faces),
                               [(0, 0, top), (0, 0, -bottom)] + ring)
         case = Example.of_surface(floated(s), 2, f"bipyramid n={n}, apexes {top}, -{bottom}")
-        return case, draw(st.sampled_from([0, 1]))
+        return case, draw(spread((0, 1)))
     m, n = draw(st.integers(2, 4)), draw(st.integers(2, 4))
     g = surfaces.grid(m, n)
     i, j = draw(st.integers(1, m - 1)), draw(st.integers(1, n - 1))
@@ -197,6 +199,9 @@ def convex_hull_surface(points) -> PolyhedralSurface | None:
         return None
 
 
+_DIRECTIONS = st.tuples(st.integers(-3, 3), st.integers(-3, 3), st.integers(-3, 3)).filter(any)
+
+
 @st.composite
 def convex_polyhedra(draw):
     """A convex polyhedron: the hull of 4..12 integer points near the sphere of radius 8.
@@ -205,8 +210,7 @@ def convex_polyhedra(draw):
     about 8 and rounded to integers, so coordinates are exact floats.
     """
     n = draw(st.integers(4, 12))
-    dirs = draw(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3), st.integers(-3, 3))
-                         .filter(any), min_size=n, max_size=n, unique=True))
+    dirs = draw(st.lists(_DIRECTIONS, min_size=n, max_size=n, unique=True))
     pts = tuple(sorted({tuple(round(8 * x / math.sqrt(sum(y * y for y in d))) for x in d)
                         for d in dirs}))
     # the hull depends on the points alone: built once per point set in this process

@@ -22,24 +22,12 @@ from ..reference.errors import NotFlippable
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo, variants
+from .draws import once, spread
 from .example import Example
 from .precision import input_format, representable
 
 
-def spread(values):
-    """One of ``values``, each about equally often, shrinking towards the first (list them
-    simplest first).  ``st.integers(a, b)`` draws ``a`` in about half of the examples (and
-    ``st.integers(0, 3) == 3`` holds in one of seven, not four); where a bug shows only
-    in part of a range (an exponent past a threshold), that part must be drawn."""
-    return st.sampled_from(tuple(values))
-
-
-def grouped(*strategies):
-    """``st.one_of(*strategies)`` as one branch of an enclosing ``one_of``: Hypothesis
-    flattens nested ``one_of`` (through ``map`` too), so ``one_of(one_of(a, b, c), d)``
-    draws d one time in four, not two."""
-    inner = st.one_of(*strategies)
-    return st.composite(lambda draw: draw(inner))()
+_LIFTS = st.one_of(st.none(), st.integers(0, 8))    # a sliver's apex lifted by 2^-k, or not
 
 
 def expected_classification(orientable: bool, genus: int, holes: int) -> Classification:
@@ -84,10 +72,11 @@ def punch_holes(t: Triangulation, holes: int, start: int = 0) -> Triangulation:
     return t
 
 
+@once
 def surface_moves(max_size: int = 4):
     """Lists of refinement and flip moves: (name, integer choosing where)."""
     return st.lists(
-        st.tuples(st.sampled_from(["flip", "split", "1to4"]), st.integers(0, 1 << 16)),
+        st.tuples(spread(("flip", "split", "1to4")), st.integers(0, 1 << 16)),
         max_size=max_size)
 
 
@@ -188,7 +177,7 @@ def triangulated_surfaces(draw, orientable=None, genus=None, holes=None,
         t, n = variants.reversed_faces(t, draw(st.integers(0, 1 << 16)))
         recipe += f", {n} face(s) reversed"
     for _ in range(n_comp):
-        name = draw(st.sampled_from(sorted(_TOPOLOGY_COMPONENTS)))
+        name = draw(spread(sorted(_TOPOLOGY_COMPONENTS)))
         build, (o2, g2, k2) = _TOPOLOGY_COMPONENTS[name]
         other = expected_classification(o2, g2, k2)
         # listed after the surface, or before it (its faces and vertices first: where code
@@ -233,7 +222,7 @@ def orientation_traps(draw):
     kind = draw(st.integers(0, 2))
     yes = [n for n, (_, c) in _TOPOLOGY_COMPONENTS.items() if c[0]]
     no = [n for n, (_, c) in _TOPOLOGY_COMPONENTS.items() if not c[0]]
-    names = [draw(st.sampled_from(yes))] + ([draw(st.sampled_from(no))] if kind else [])
+    names = [draw(spread(yes))] + ([draw(spread(no))] if kind else [])
     if kind == 2:
         names.reverse()
     built = [_TOPOLOGY_COMPONENTS[n][0]() for n in names]
@@ -440,9 +429,9 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
     orientation = draw(st.integers(0, 2)) if intrinsic else 0
     if orientation == 1 and closed is True:
         orientation = 2
-    name = draw(st.sampled_from(names))      # drawn always: the choices stay aligned when
+    name = draw(spread(names))      # drawn always: the choices stay aligned when
     if draw(spread((False, False, False, True))):   # orientation or valence shrinks to 0
-        name = draw(st.sampled_from(high))
+        name = draw(spread(high))
     if orientation == 1:
         name = "moebius strip"
     a, b = draw(st.integers(0, 5)), draw(st.integers(0, 5))
@@ -479,6 +468,7 @@ def _base(draw, closed, intrinsic, max_valence=MAX_VALENCE):
     return s, chi, f"{name} [{a}, {b}]", orientation
 
 
+@once
 @st.composite
 def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
                       intrinsic: bool = False, far: bool = True, wide: bool = True,
@@ -553,7 +543,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
             t = s.triangulation
             border = [x for x in range(t.n_halfedges) if t.twin(x) < 0]
             h = border[h % len(border)] if border else h
-        lift = draw(st.one_of(st.none(), st.integers(0, 8)))
+        lift = draw(_LIFTS)
         h %= s.triangulation.n_halfedges
         # one sliver, or a cluster of them at one point, or a band across the mesh
         family = variants.SLIVER_FAMILIES[draw(st.integers(0, 2))]
@@ -576,7 +566,7 @@ def jittered_surfaces(draw, closed: bool | None = None, subdivide: bool = True,
         # orientation choice from "consistent" to "Möbius")
         names = [n for n, (_, _, c) in _COMPONENTS.items()
                  if (c or closed is not True) and (orientation == 1 or n != "moebius strip")]
-        other = draw(st.sampled_from(names))
+        other = draw(spread(names))
         build, chi2, _ = _COMPONENTS[other]
         key += ("and", other, comp)
         s = _built(key, lambda s=s: variants.disjoint_union(s, build(), touch=comp == 2))
@@ -700,6 +690,7 @@ def grid_faces(m: int, n: int, flips) -> list[tuple[int, int, int]]:
     return faces
 
 
+@once
 @st.composite
 def planar_meshes(draw, heights: bool = False, min_size: int = 1, max_size: int = 3,
                   max_m: int | None = None):
@@ -733,6 +724,9 @@ def jittered_grids():
 _H = Fraction(7, 8)      # ~ sqrt(3)/2: the lattice triangles have angles 59.5 and 60.3 degrees
 
 
+_NO_HEIGHT = st.just(0)
+
+
 @st.composite
 def acute_meshes(draw, max_components: int = 1, heights: bool = True):
     """Triangular lattices (angles ~60 degrees) moved by at most 1/32 per coordinate:
@@ -745,7 +739,7 @@ def acute_meshes(draw, max_components: int = 1, heights: bool = True):
         cols = draw(st.integers(1, 3))
         nv = (rows + 1) * (cols + 1)
         jit = draw(st.lists(st.tuples(st.integers(-1, 1), st.integers(-1, 1),
-                                      st.integers(-1, 1) if heights else st.just(0)),
+                                      st.integers(-1, 1) if heights else _NO_HEIGHT),
                             min_size=nv, max_size=nv))
         base = len(pts)
         for j in range(rows + 1):
@@ -847,6 +841,9 @@ def near_cocircular_quads(draw):
     return mesh_case(pts, [(0, 1, 2), (0, 2, 3)], recipe)
 
 
+_MOVED_QUADS = st.composite(lambda d: _near_tie_quad(d, tie=False))()
+
+
 @st.composite
 def near_cocircular_meshes(draw, max_quads: int = 4):
     """1 .. ``max_quads`` :func:`near_cocircular_quads` side by side (64 apart in x, each a
@@ -856,8 +853,7 @@ def near_cocircular_meshes(draw, max_quads: int = 4):
     tolerance (1e-10 relative: an inward move with k >= 35, about one quad in three).
     Shrinks to one quad moved in by 2**-40 (a list: the shrinker deletes the quads that
     do not fail, whichever is the one that does)."""
-    quads = draw(st.lists(st.composite(lambda d: _near_tie_quad(d, tie=False))(),
-                          min_size=1, max_size=max_quads))
+    quads = draw(st.lists(_MOVED_QUADS, min_size=1, max_size=max_quads))
     count = len(quads)
     pts, faces, recipes = [], [], []
     for i, (quad, recipe) in enumerate(quads):
@@ -997,6 +993,7 @@ def near_cocircular_point_sets(draw):
     return pts
 
 
+@once
 @st.composite
 def convex_fans(draw, max_points: int = 10):
     """A convex polygon of 4 .. ``max_points`` points on the parabola y = x^2 (exact
@@ -1036,7 +1033,7 @@ def scaled_planar(triangulations):
     @st.composite
     def build(draw):
         pts, faces, on_hull = draw(triangulations)
-        k = draw(st.sampled_from(SCALES[input_format().name]))
+        k = draw(spread(SCALES[input_format().name]))
         if k:
             s = Fraction(2) ** k
             pts = tuple((x * s, y * s) for x, y in pts)
@@ -1072,11 +1069,12 @@ _PLATONIC = {"tetrahedron": surfaces.tetrahedron, "octahedron": surfaces.octahed
            "icosahedron": surfaces.icosahedron}
 
 
+@once
 @st.composite
 def closed_meshes(draw):
     """Tetrahedron, octahedron or icosahedron, maybe 1-to-4 subdivided (midpoints), every
     vertex moved by at most 2/64 per coordinate."""
-    name = draw(st.sampled_from(sorted(_PLATONIC)))
+    name = draw(spread(sorted(_PLATONIC)))
     s = _PLATONIC[name]()
     t, pts = s.triangulation, [tuple(p) for p in s.positions]
     sub = draw(st.booleans())
@@ -1149,7 +1147,7 @@ def scaled_meshes(meshes):
     def build(draw):
         c = draw(meshes)
         fmt = input_format()
-        k = draw(st.sampled_from(SCALES[fmt.name]))
+        k = draw(spread(SCALES[fmt.name]))
         e = draw(st.integers(0, fmt.offset)) if draw(st.integers(0, 3)) == 3 else None
         if k == 0 and e is None:
             return c
@@ -1195,8 +1193,11 @@ def with_isolated(meshes, max_isolated: int = 2):
     return build()
 
 
+_EIGHTHS = st.integers(-8, 8).map(lambda k: Fraction(k, 8))
+
+
 def _values(n: int):
-    return st.lists(st.integers(-8, 8).map(lambda k: Fraction(k, 8)), min_size=n, max_size=n)
+    return st.lists(_EIGHTHS, min_size=n, max_size=n)
 
 
 def with_functions(meshes):

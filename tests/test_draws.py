@@ -1,0 +1,69 @@
+"""properties/draws.py and the runner's strategies: a strategy is built once, not at every
+draw (Hypothesis validates each new strategy object over its whole tree the first time it
+is drawn from: the cost of an example, paid again and again)."""
+
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings, strategies as st
+from hypothesis.strategies import SearchStrategy
+
+from ddg_oracle.properties import PROPERTIES
+from ddg_oracle.properties.draws import once, spread
+from ddg_oracle.properties.runner import strategy_of
+
+# the same examples twice: derandomized, generation only
+TWICE = settings(max_examples=4, database=None, deadline=None, derandomize=True,
+                 phases=[Phase.generate], suppress_health_check=list(HealthCheck))
+
+
+def _validated(strategy) -> list:
+    """The strategy objects drawn from (validated) while drawing TWICE's examples."""
+    seen, validate = [], SearchStrategy.validate
+
+    def record(self):
+        seen.append(self)          # the objects themselves: an id is reused once freed
+        return validate(self)
+
+    @TWICE
+    @given(strategy)
+    def draw(example):
+        pass
+
+    SearchStrategy.validate = record
+    try:
+        draw()
+    finally:
+        SearchStrategy.validate = validate
+    return seen
+
+
+@pytest.mark.parametrize("pid", sorted(PROPERTIES))
+def test_drawing_the_same_examples_again_builds_no_strategy(pid):
+    s = strategy_of(PROPERTIES[pid])
+    assert strategy_of(PROPERTIES[pid]) is s
+    first = {id(x) for x in _validated(s)}
+    again = [x for x in _validated(s) if id(x) not in first]
+    assert not again, f"{pid}: strategies built at every draw: {again[:3]}"
+
+
+def test_a_strategy_built_in_every_draw_is_seen():
+    """The test above can fail: a composite that builds its inner strategy in the draw."""
+    @st.composite
+    def fresh(draw):
+        return draw(st.sampled_from([1, 2, 3]))
+
+    @st.composite
+    def kept(draw):
+        return draw(spread([1, 2, 3]))
+
+    for strategy, built in ((fresh(), True), (kept(), False)):
+        first = {id(x) for x in _validated(strategy)}
+        assert bool([x for x in _validated(strategy) if id(x) not in first]) is built
+
+
+def test_once_gives_one_object_per_arguments():
+    @once
+    def between(a, b):
+        return st.integers(a, b).map(lambda k: 2 * k)
+
+    assert between(0, 3) is between(0, 3) and between(0, 3) is not between(0, 4)
+    assert spread(range(3)) is spread((0, 1, 2))
