@@ -17,8 +17,18 @@ def once(factory):
     first time it is drawn from: three small ones built afresh made a trivial example 1.3
     to 1.8 times as costly (a micro-benchmark, 300 examples).  Hypothesis itself caches
     ``integers``, ``lists``, ``tuples`` and ``booleans`` of equal arguments, not
-    ``sampled_from``, ``one_of``, ``filter``, ``map`` or composites."""
-    return functools.lru_cache(maxsize=512)(factory)
+    ``sampled_from``, ``one_of``, ``filter``, ``map`` or composites.  Arguments that
+    cannot be hashed (a list) build a new strategy, as without this."""
+    memo = functools.lru_cache(maxsize=512)(factory)
+
+    @functools.wraps(factory)
+    def strategy(*args, **kwargs):
+        try:
+            hash((args, tuple(kwargs.items())))
+        except TypeError:
+            return factory(*args, **kwargs)
+        return memo(*args, **kwargs)
+    return strategy
 
 
 def spread(values):

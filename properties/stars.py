@@ -83,7 +83,7 @@ def vertex_stars(draw, kind: str | None = None):
     Then one of the 48 symmetries of the cube and a dyadic translation, both
     exact on floats, so the kind survives rounding to floats.
     """
-    kind = kind or draw(st.sampled_from(["convex", "planar", "saddle", "folded"]))
+    kind = kind or draw(spread(("convex", "planar", "saddle", "folded")))
     symmetry = draw(st.integers(0, 47))
     shift = tuple(Fraction(draw(st.integers(-8, 8)), 4) for _ in range(3))
     scale = (Fraction(1, 2), Fraction(1), Fraction(3, 2), Fraction(2))

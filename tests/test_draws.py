@@ -66,4 +66,12 @@ def test_once_gives_one_object_per_arguments():
         return st.integers(a, b).map(lambda k: 2 * k)
 
     assert between(0, 3) is between(0, 3) and between(0, 3) is not between(0, 4)
+
+    @once
+    def one_of_these(values):
+        return st.sampled_from(values)
+
+    # a list cannot be a key: a new strategy, drawing as the tuple's does
+    assert one_of_these([1, 2]) is not one_of_these([1, 2])
+    assert one_of_these((1, 2)) is one_of_these((1, 2))
     assert spread(range(3)) is spread((0, 1, 2))
