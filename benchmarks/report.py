@@ -636,11 +636,11 @@ def _targets(results: dict) -> list[str]:
     if main:
         m, slow, ci = main["median_default"], main["slowest_default"], main["ci"]
         add("main", f"| `ddg-oracle check` default, median of 3 runs, <= 60 s | {m:.1f} s | "
-                     f"{'yes' if m <= 60 else 'no'} |")
+                    f"{'yes' if m <= 60 else 'no'} |")
         add("main", f"| no task over 20 s (default) | slowest {slow:.1f} s | "
-                     f"{'yes' if slow <= 20.5 else 'no'} |")
+                    f"{'yes' if slow <= 20.5 else 'no'} |")
         add("main", f"| `ddg-oracle check --profile ci` <= 120 s | {ci:.1f} s | "
-                     f"{'yes' if ci <= 120 else 'no'} |")
+                    f"{'yes' if ci <= 120 else 'no'} |")
     rows = results.get("catch", {}).get("rows", [])
     catch = [r for r in rows if not r.get("admitted")]     # the contract admits the others
     if catch:
@@ -656,26 +656,27 @@ def _targets(results: dict) -> list[str]:
     if real:
         undecided = sum(r["undecided"] for r in real["rows"])
         add("real", f"| no undecided sign on the sample meshes and fans (issue 18) | "
-                     f"{undecided} of {sum(r['defects'] for r in real['rows']):,} | "
-                     f"{'yes' if undecided == 0 else 'no'} |")
+                    f"{undecided} of {sum(r['defects'] for r in real['rows']):,} | "
+                    f"{'yes' if undecided == 0 else 'no'} |")
         samples = [r for r in real["rows"] if not r["mesh"].startswith("fan")]
         exact, floats = (sum(r[k] for r in samples) for k in ("exact_s", "float_s"))
         add("real", f"| float views of the angle defects as fast as the exact values, sample "
-                     f"meshes summed (issue 18) | floats {floats:.2f} s, exact {exact:.2f} s | "
-                     f"{'yes' if floats <= exact else 'no'} |")
+                    f"meshes summed (issue 18) | floats {floats:.2f} s, exact {exact:.2f} s | "
+                    f"{'yes' if floats <= exact else 'no'} |")
         for name, limit in (("bunny10k_textured.obj", 30), ("bunny.obj", 180)):
             for r in real["flips"]:
                 if r["mesh"] == name:
                     add("real", f"| exact intrinsic Delaunay of {name} <= {limit} s | "
-                                 f"{r['flips']:,} flips in {r['flip_s']:.1f} s | "
-                                 f"{'yes' if r['flip_s'] <= limit else 'no'} |")
+                                f"{r['flips']:,} flips in {r['flip_s']:.1f} s | "
+                                f"{'yes' if r['flip_s'] <= limit else 'no'} |")
     for r in results.get("meshcheck", {}).get("rows", []):
         if r["mesh"].endswith(":bunny.obj"):
             slow = f", slowest task {r['slowest']} {r['slowest_seconds']:.0f} s" \
                 if "slowest" in r else ""
-            add("meshcheck", f"| `ddg-oracle {r.get('command', 'check --mesh')} pymeshlab:bunny.obj` "
-                         f"({r['impl']}) <= 60 s (issue 18) | median {r['wall']:.0f} s{slow} | "
-                         f"{'yes' if r['wall'] <= 60 else 'no'} |")
+            add("meshcheck",
+                f"| `ddg-oracle {r.get('command', 'check --mesh')} pymeshlab:bunny.obj` "
+                f"({r['impl']}) <= 60 s (issue 18) | median {r['wall']:.0f} s{slow} | "
+                f"{'yes' if r['wall'] <= 60 else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None
