@@ -8,6 +8,8 @@ from hypothesis.strategies import SearchStrategy
 
 from ddg_oracle.properties import PROPERTIES
 from ddg_oracle.properties.draws import once, spread
+from ddg_oracle.properties.example import Example
+from ddg_oracle.properties.precision import inputs_at
 from ddg_oracle.properties.runner import strategy_of
 
 # the same examples twice: derandomized, generation only
@@ -40,7 +42,8 @@ def _validated(strategy) -> list:
 def test_drawing_the_same_examples_again_builds_no_strategy(pid):
     s = strategy_of(PROPERTIES[pid])
     assert strategy_of(PROPERTIES[pid]) is s
-    first = {id(x) for x in _validated(s)}
+    kept = _validated(s)               # alive: a freed object's id could come back
+    first = {id(x) for x in kept}
     again = [x for x in _validated(s) if id(x) not in first]
     assert not again, f"{pid}: strategies built at every draw: {again[:3]}"
 
@@ -56,8 +59,46 @@ def test_a_strategy_built_in_every_draw_is_seen():
         return draw(spread([1, 2, 3]))
 
     for strategy, built in ((fresh(), True), (kept(), False)):
-        first = {id(x) for x in _validated(strategy)}
+        alive = _validated(strategy)
+        first = {id(x) for x in alive}
         assert bool([x for x in _validated(strategy) if id(x) not in first]) is built
+
+
+def _meshes(x):
+    """The Examples (what an implementation receives as arrays) inside a drawn value."""
+    if isinstance(x, Example):
+        yield x
+    elif isinstance(x, (tuple, list)):
+        for y in x:
+            yield from _meshes(y)
+
+
+def _float32_meshes(strategy) -> list:
+    """The meshes (V, F) a float32 implementation receives from TWICE's examples."""
+    drawn = []
+
+    @TWICE
+    @given(strategy)
+    def collect(example):
+        drawn.extend(repr(m.mesh) for m in _meshes(example) if m.mesh is not None)
+
+    with inputs_at(2.0 ** -23):
+        collect()
+    return drawn
+
+
+@pytest.mark.parametrize("pid", sorted(PROPERTIES))
+def test_a_kept_strategy_draws_for_the_format_of_each_run(pid):
+    """A verdict: one strategy object serves float64 and float32 implementations alike, so
+    the input format must be read when drawing, never when building: a float32
+    implementation given float64 coordinates would fail for the input's rounding.  The
+    kept strategy, built and drawn at float64 first, gives a float32 run what a strategy
+    built for that run gives."""
+    s = strategy_of(PROPERTIES[pid])
+    _validated(s)                                     # built and drawn at float64 first
+    with inputs_at(2.0 ** -23):
+        fresh = PROPERTIES[pid].strategy()
+    assert _float32_meshes(s) == _float32_meshes(fresh)
 
 
 def test_once_gives_one_object_per_arguments():
