@@ -43,6 +43,7 @@ from .knockout_plugin import (ENV, HAND_ENV, PACKAGE, RECORD_ENV, STATS_ENV, VAR
 JSON = ROOT / "docs" / "perf" / "knockout.json"
 DOC = ROOT / "docs" / "knockout.md"
 PLUGIN = "benchmarks.knockout_plugin"
+HAND_PLUGIN = "benchmarks.knockout_hand"      # switches a hand-written one on (DDG_KNOCKOUT_HAND)
 TIMEOUT = 300.0
 NEW_TESTS = "tests/test_knockouts.py"      # the tests written for this benchmark's survivors
 
@@ -98,7 +99,8 @@ def _env(**extra) -> dict:
 
 def _pytest(files, env, timeout, stop_first=True):
     cmd = ["nice", "-n", "10", sys.executable, "-m", "pytest", "-q", "-rfE",
-           "-p", "no:cacheprovider", "-p", PLUGIN, "--hypothesis-seed=0", "-W", "ignore",
+           "-p", "no:cacheprovider", "-p", PLUGIN, "-p", HAND_PLUGIN,
+           "--hypothesis-seed=0", "-W", "ignore",
            *[a for d in DESELECT for a in ("--deselect", d)],
            *(["-x"] if stop_first else []), *files]
     t0 = time.monotonic()

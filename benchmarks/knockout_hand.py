@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import re
 import time
 from collections.abc import Sequence
@@ -39,7 +40,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Callable
 
-from .knockout_plugin import PACKAGE, STATS
+from . import knockout_plugin
+from .knockout_plugin import HAND_ENV, PACKAGE, STATS, Patch, function_of
 
 # -- the table -------------------------------------------------------------------------------
 
@@ -587,6 +589,31 @@ def _belt_zero_refused(orig, flips):
 def _belt_either_side(orig, flips):
     """the rung to flip chosen without looking at which side its bottom triangle is on."""
     return _belt(flips, rung=_either_side_rung)
+
+
+# -- switching one on in a pytest run --------------------------------------------------------------
+
+
+def knock_out_by_hand(key: str) -> Patch:
+    """Switch on the hand-written wrong version ``MODULE:QUALNAME:NAME`` (MODULE short, as
+    ``curvature`` or ``exact.surds``); returns the Patch (``.undo()`` to restore)."""
+    if key not in HAND_WRITTEN:
+        raise ValueError(f"no hand-written wrong version {key!r} (one of "
+                         f"{', '.join(HAND_WRITTEN)})")
+    h = HAND_WRITTEN[key]
+    module, qualname = h.target.split(":")
+    f, cache = function_of(f"{PACKAGE}.{module}", qualname)
+    return Patch(f, cache=cache, replace=h.call)
+
+
+def pytest_configure(config):
+    """Loaded with ``-p benchmarks.knockout_hand`` beside the knockout plugin (a pytest
+    plugin of its own, so that the plugin never imports this module and the runner below
+    may import benchmarks/knockout.py without a cycle): ``DDG_KNOCKOUT_HAND`` switches one
+    on, and the knockout plugin writes its stats at the end."""
+    key = os.environ.get(HAND_ENV)
+    if key:
+        knockout_plugin._STATE["patch"] = knock_out_by_hand(key)
 
 
 # -- running them -------------------------------------------------------------------------------

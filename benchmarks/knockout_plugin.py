@@ -9,8 +9,10 @@ Loaded with ``-p benchmarks.knockout_plugin`` by ``benchmarks/knockout.py`` in a
   with ``from .cotangents import face_data`` is switched too.
 * ``DDG_KNOCKOUT_HAND=MODULE:QUALNAME:NAME`` (``curvature:vertex_type:sign_reversed``): the
   same, with a wrong version written by hand (``HAND_WRITTEN`` in
-  benchmarks/knockout_hand.py: a realistic mistake for a function no generic variant fits;
-  the function's code becomes a wrapper calling it, a generator function's too).
+  benchmarks/knockout_hand.py, loaded as a second plugin, ``-p benchmarks.knockout_hand``,
+  which switches it on with this module's ``Patch``: a realistic mistake for a function no
+  generic variant fits; the function's code becomes a wrapper calling it, a generator
+  function's too).
 * ``DDG_KNOCKOUT_STATS=PATH`` (with either): at the end, how many calls of the function the
   tests made and how many results the variant changed (a survivor with none changed was
   never really switched on).
@@ -469,19 +471,6 @@ def knock_out(spec: str) -> Patch:
     return Patch(f, perturber(variant), cache=cache)
 
 
-def knock_out_by_hand(key: str) -> Patch:
-    """Switch on the hand-written wrong version ``MODULE:QUALNAME:NAME`` (MODULE short, as
-    ``curvature`` or ``exact.surds``; benchmarks/knockout_hand.py's ``HAND_WRITTEN``)."""
-    from .knockout_hand import HAND_WRITTEN
-    if key not in HAND_WRITTEN:
-        raise ValueError(f"no hand-written wrong version {key!r} (one of "
-                         f"{', '.join(HAND_WRITTEN)})")
-    h = HAND_WRITTEN[key]
-    module, qualname = h.target.split(":")
-    f, cache = function_of(f"{PACKAGE}.{module}", qualname)
-    return Patch(f, cache=cache, replace=h.call)
-
-
 # -- recording what each target returns and who calls it ----------------------------------------
 
 class Recorder:
@@ -525,9 +514,6 @@ def pytest_configure(config):
     spec = os.environ.get(ENV)
     if spec:
         _STATE["patch"] = knock_out(spec)
-    hand = os.environ.get(HAND_ENV)
-    if hand:
-        _STATE["patch"] = knock_out_by_hand(hand)
     if os.environ.get(RECORD_ENV):
         rec = Recorder()
         rec.wrap_all()

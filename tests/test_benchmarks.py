@@ -95,8 +95,8 @@ def test_a_knockout_patches_the_function_object_and_undo_restores_it():
 def test_a_hand_written_wrong_version_patches_the_function_and_undo_restores_it():
     """benchmarks/knockout_hand.py's wrong versions switch on in the function object itself,
     a generator function's too (cube_belt_twist), and count the results they change."""
-    from benchmarks.knockout_hand import HAND_WRITTEN
-    from benchmarks.knockout_plugin import STATS, knock_out_by_hand
+    from benchmarks.knockout_hand import HAND_WRITTEN, knock_out_by_hand
+    from benchmarks.knockout_plugin import STATS
     from ddg_oracle.reference import surfaces
     from ddg_oracle.reference.curvature import vertex_type
     from ddg_oracle.reference.triangulations import cube_belt_twist
@@ -129,6 +129,19 @@ def test_a_knockout_that_must_be_killed_is_killed_in_a_child():
     res = run_knockout(spec, ["tests/test_surfaces.py"], timeout=120)
     assert res["status"] == "killed", res
     assert res["by"].startswith("FAILED tests/test_surfaces.py")
+
+
+def test_a_hand_written_knockout_is_switched_on_in_a_child_by_its_own_plugin():
+    """benchmarks/knockout_hand.py is a pytest plugin of its own (the knockout plugin does not
+    import it): a child run with DDG_KNOCKOUT_HAND fails the test that sees the mistake,
+    and counts the calls it changed."""
+    from benchmarks.knockout import run_knockout
+
+    res = run_knockout("curvature:vertex_type:sign_reversed",
+                       ["tests/test_curvature.py::test_D2_2_vertex_types_on_a_torus"],
+                       timeout=120, hand=True)
+    assert res["status"] == "killed", res
+    assert res["changed"] >= 1 and res["calls"] >= res["changed"], res
 
 
 def test_knockout_variants_change_sparse_matrices_and_surfaces():
