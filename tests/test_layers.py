@@ -147,11 +147,20 @@ def test_a_library_worker_does_not_import_hypothesis_or_the_properties():
     assert p.PROPERTIES["D1.6"].id == "D1.6" and len(p.PROPERTIES) == len(p.all_properties())
 
 
-def _module_graph() -> dict[str, set[str]]:
-    """{module: the modules of ours it imports} over the five folders, lazy imports inside
-    functions included (a cycle through them still ties two modules into one)."""
+def _benchmark_files():
+    """The benchmarks' modules (package ``benchmarks``, the repository's folder): outside
+    the five layers, held to the same one-way imports among themselves."""
+    for path in sorted((ROOT / "benchmarks").rglob("*.py")):
+        sub = ".".join(path.relative_to(ROOT / "benchmarks").with_suffix("").parts[:-1])
+        yield path, None, "benchmarks" + (f".{sub}" if sub else "")
+
+
+def _module_graph(benchmarks: bool = False) -> dict[str, set[str]]:
+    """{module: the modules of ours it imports} over the five folders (and the benchmarks'
+    with ``benchmarks``), lazy imports inside functions included (a cycle through them
+    still ties two modules into one)."""
     modules = {}
-    for path, _, package in _files():
+    for path, _, package in [*_files(), *(_benchmark_files() if benchmarks else ())]:
         modules[package if path.stem == "__init__" else f"{package}.{path.stem}"] = path
     graph = {}
     for name, path in modules.items():
@@ -203,6 +212,15 @@ def test_no_two_modules_import_each_other():
     """Issue 43: data flows one way; the cycles cli <-> report, report <-> html_report,
     jobs <-> cluster and rationals <-> surds were cut, and none comes back."""
     assert _cycles(_module_graph()) == []
+
+
+def test_no_two_benchmark_modules_import_each_other():
+    """The benchmarks too: knockout.py, knockout_plugin.py and knockout_hand.py imported
+    each other (the plugin lazily) until the hand-written versions became a pytest plugin
+    of their own."""
+    graph = _module_graph(benchmarks=True)
+    assert "benchmarks.knockout_plugin" in graph["benchmarks.knockout"]
+    assert _cycles(graph) == []
 
 
 def test_the_cycle_check_sees_a_lazy_cycle():
