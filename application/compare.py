@@ -225,6 +225,7 @@ def _answers(todo, V, F) -> list:
     """(impl, method, answer on the reference's conventions, or a Comparison saying why
     there is none) for each of ``todo``'s (impl, method, why not applicable)."""
     from ..properties.conventions import declared, to_reference
+    from ..protocol.answers import MalformedAnswer, read, short
     from ..protocol.methods import OutsideDomain, implementation_name
     answers = []
     for impl, method, why in todo:
@@ -233,11 +234,18 @@ def _answers(todo, V, F) -> list:
             answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
             continue
         try:
-            got = to_reference(declared(impl), method, getattr(impl, method)(V, F), V, F)
+            got = getattr(impl, method)(V, F)
         except OutsideDomain as e:          # the implementation has no value on this mesh
             got = Comparison(method, name, "not applicable", note=str(e))
         except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
             got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
+        else:
+            # not of its method's kind (a string, 2.5 for an integer): it differs, said so,
+            # before anything reads it (int(2.5) == 2 would agree)
+            try:
+                got = to_reference(declared(impl), method, read(method, got), V, F)
+            except MalformedAnswer as e:
+                got = Comparison(method, name, "DIFFERS", note=str(e), observed=short(got))
         answers.append((impl, method, got))
     return answers
 
@@ -438,7 +446,7 @@ def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
     computed here if None)."""
     method = q.method
     if q.kind in ("integer", "boolean"):
-        same = type(want)(got) == want
+        same = got == want                 # an int or a bool (protocol.answers.normalized)
         return Comparison(method, name, "agrees" if same else "DIFFERS", expected=want,
                           observed=got, elements=1, over=int(not same))
     if q.kind == "loops":
@@ -475,9 +483,10 @@ def _compare_one(q, name, got, want, ex, bound=None) -> Comparison:
         return _matrix(method, name, got, want, bound)
     if q.element == "total":
         return _numeric(method, name, [float(got)], [float(want)], bound, WHERE["total"])
-    shape = np.shape(want)
-    return _numeric(method, name, np.asarray(got, dtype=np.float64).reshape(shape), want, bound,
-                    WHERE[q.element])
+    got, shape = np.asarray(got, dtype=np.float64), np.shape(want)
+    if got.size == int(np.prod(shape)):    # e.g. corner angles as one flat (3m,) array
+        got = got.reshape(shape)
+    return _numeric(method, name, got, want, bound, WHERE[q.element])
 
 
 def diagnose(mesh, impl, methods, faces_limit: int = 200) -> list[dict]:

@@ -724,11 +724,14 @@ def _call(impl, method: str, req: dict):
     """``impl``'s answer to the request fields ``req`` of ``method`` (as a corpus case's
     ``input``: non-finite coordinates as strings)."""
     from ..properties.conventions import declared, to_reference
+    from ..protocol.answers import read
     inp = _unportable(req)
     # integer arrays for faces and vertex sets, floats for points and values
     dtypes = {"F": np.int64, "boundary": np.int64}
     args = [np.array(inp[a], dtype=dtypes.get(a, np.float64)) for a in METHODS[method].arguments]
-    answer = getattr(impl, method)(*args)
+    # of its method's kind (protocol.answers: MalformedAnswer, its failure, otherwise), a
+    # single value as a Python int, bool or number (2.0 for chi reads as 2, as in check)
+    answer = read(method, getattr(impl, method)(*args))
     if METHODS[method].arguments[:2] == ("V", "F"):      # its declared conventions, mapped
         answer = to_reference(declared(impl), method, answer, args[0], args[1])
     return answer

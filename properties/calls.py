@@ -1,7 +1,8 @@
 """The checked implementation, watched: each protocol call marked as the implementation's
-time, each answer mapped from the conventions it declares onto the reference's
-(:mod:`.conventions`) and, where it must be a finite number, screened for NaN and
-infinity.
+time, each answer checked to be of its method's kind (:mod:`ddg_oracle.protocol.answers`:
+no string, complex number or 2.5 for an integer), mapped from the conventions it declares
+onto the reference's (:mod:`.conventions`) and, where it must be a finite number,
+screened for NaN and infinity.
 
 The runner hands every property the implementation wrapped in :class:`Watched`:
 
@@ -23,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from .arithmetic import implementations_arithmetic
+from ..protocol.answers import MalformedAnswer, read, short
 from ..protocol.budget import BudgetExceeded, calling
 from ..protocol.methods import METHODS, OutsideDomain, implementation_name
 from .registry import PropertyFailure
@@ -76,6 +78,15 @@ class Watched:
                 except AttributeError:         # an exception type without attributes
                     raise ImplementationRaised(f"{type(e).__name__}: {e}") from e
                 raise
+            try:
+                answer = read(attr, answer)
+            except MalformedAnswer as e:
+                # not of its kind (a string, 2.5 for an integer, complex numbers): read as
+                # it is, it could pass (int(2.5) == 2) or crash our reading of it
+                raise PropertyFailure(self._pid, self._impl, str(e), mesh=_mesh(args) if
+                                      METHODS[attr].arguments[:2] == ("V", "F") else None,
+                                      expected=f"the contract's {METHODS[attr].kind}",
+                                      observed=short(answer)) from None
             if self._conventions and METHODS[attr].arguments[:2] == ("V", "F"):
                 # the conventions it declares, mapped onto the reference's (.conventions)
                 from .conventions import to_reference

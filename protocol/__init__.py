@@ -5,6 +5,7 @@ called, the one thing properties, adapters and the application share.
   ``OutsideDomain``, capabilities, declared precision and conventions;
 - :mod:`.budget`: a task's wall-clock and crash budget, which every call respects;
 - :mod:`.arrays`: the input arrays checked before a library sees them;
+- :mod:`.answers`: the kind an answer must be of, checked before anything reads it;
 - :mod:`.schema`: the JSON Schemas of the executable protocol (docs/protocol.md);
 - :mod:`.processes`: how a process that ran an implementation ended.
 

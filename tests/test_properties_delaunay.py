@@ -248,4 +248,5 @@ def test_integral_float_indices_are_indices_and_fractional_ones_are_not():
     r = run_on_example(PROPERTIES["D4.1"], FloatIndices(), _SQUARE_AND_MIDPOINT, "test")
     assert r.status == "passed", (r.status, r.failure, r.error)
     r = run_on_example(PROPERTIES["D4.1"], FloatIndices(0.5), _SQUARE_AND_MIDPOINT, "test")
-    assert r.status == "FAILED" and "point indices" in str(r.failure), (r.status, r.error)
+    assert r.status == "FAILED" and "5 in an array of float64, not a vertex index" in \
+        str(r.failure), (r.status, r.error)

@@ -719,3 +719,137 @@ def test_an_entry_an_infinite_bound_cannot_judge_is_said_not_judged_not_passed_s
     assert result_record(wrong, "", "x")["unjudged"] == 1
     text = terminal_report([right, wrong], width=200)
     assert "passed, partly judged (1)" in text and "1 of 1 examples had entries" in text
+
+
+# --- an answer not of its method's kind is the implementation's failure ------------------------
+
+
+class ChiNudged(ReferenceImplementation):
+    """chi + 1/4 where chi >= 0: read with int() as the checks did, every one of D1.6's
+    examples of non-negative chi passed (int(2.25) == 2)."""
+
+    name = "chi-nudged"
+
+    def euler_characteristic(self, V, F):
+        chi = super().euler_characteristic(V, F)
+        return chi + 0.25 if chi >= 0 else chi
+
+
+class ChiAnswers(ReferenceImplementation):
+    """chi as ``kind`` says: a string, a two-element array (int() of it raised inside
+    ddg-oracle: an internal error), or a correct integral float."""
+
+    def __init__(self, kind: str):
+        self.kind, self.name = kind, f"chi-as-{kind}"
+
+    def euler_characteristic(self, V, F):
+        chi = super().euler_characteristic(V, F)
+        return {"str": str(chi), "array": np.array([chi, 7]), "float": float(chi),
+                "numpy": np.int32(chi)}[self.kind]
+
+
+class OrientableAsText(ReferenceImplementation):
+    name = "orientable-as-text"
+
+    def is_orientable(self, V, F):
+        return "True"               # bool("True") is True: it passed on orientable surfaces
+
+
+def test_an_integer_answer_that_is_not_an_integer_fails_d1_6():
+    r = run_property(PROPERTIES["D1.6"], ChiNudged(), profile("ci"))
+    assert r.status == FAILED, r
+    assert "euler_characteristic answered" in r.failure.message
+    assert "not an integer" in r.failure.message
+
+
+@pytest.mark.parametrize("kind,status", [("str", FAILED), ("array", FAILED),
+                                         ("float", PASSED), ("numpy", PASSED)])
+def test_an_answer_of_another_type_fails_and_never_crashes_our_reading(kind, status):
+    r = run_property(PROPERTIES["X1.4"], ChiAnswers(kind), profile("ci"))
+    assert r.status == status, r
+    if status == FAILED:
+        assert "not an integer" in r.failure.message, r.failure
+
+
+def test_a_bool_answered_as_text_fails():
+    r = run_property(PROPERTIES["T1.1 / C1.2"], OrientableAsText(), profile("ci"))
+    assert r.status == FAILED and "not a bool" in r.failure.message, r
+
+
+class WrongForms(ReferenceImplementation):
+    """compare's reading of answers: a short angle_defects array (its reshape raised: exit 3,
+    "internal error"), complex corner angles (read as floats, the imaginary part dropped),
+    a string area, chi + 1/4 (int() of it agreed)."""
+
+    name = "wrong-forms"
+
+    def angle_defects(self, V, F):
+        return super().angle_defects(V, F)[:-1]
+
+    def corner_angles(self, V, F):
+        return super().corner_angles(V, F) + 1e-3j
+
+    def area(self, V, F):
+        return str(super().area(V, F))
+
+    def euler_characteristic(self, V, F):
+        return super().euler_characteristic(V, F) + 0.25
+
+
+def test_compare_says_an_answer_of_the_wrong_form_differs_and_goes_on():
+    from ddg_oracle.application.compare import compare_mesh
+    from ddg_oracle.application.meshes import MeshInput
+    from ddg_oracle.reference import surfaces
+    s = surfaces.icosahedron()
+    V = [[float(x) for x in p] for p in s.positions]
+    mesh = MeshInput("mesh", V, [list(f) for f in s.triangulation.faces])
+    methods = ["angle_defects", "corner_angles", "area", "euler_characteristic", "genus"]
+    rows = {c.quantity: c for c in compare_mesh(mesh, [WrongForms()], ReferenceImplementation(),
+                                                 methods=methods)}
+    assert rows["angle_defects"].status == "DIFFERS" and "shape" in rows["angle_defects"].note
+    assert rows["corner_angles"].status == "DIFFERS" and "complex" in rows["corner_angles"].note
+    assert rows["area"].status == "DIFFERS" and "not a real number" in rows["area"].note
+    assert rows["euler_characteristic"].status == "DIFFERS"
+    assert "not an integer" in rows["euler_characteristic"].note
+    assert rows["genus"].status == "agrees"          # the others stand
+
+
+@pytest.mark.parametrize("method,answer", [
+    ("euler_characteristic", 2), ("euler_characteristic", np.int64(-2)),
+    ("euler_characteristic", 2.0), ("euler_characteristic", np.array(2)),
+    ("is_orientable", True), ("is_orientable", np.bool_(False)), ("is_orientable", 1),
+    ("area", 1.5), ("area", np.float32(1.5)), ("area", np.array([1.5])),
+    ("angle_defects", [0.5, 1]), ("angle_defects", np.zeros(3, np.float32)),
+    ("angle_defects", np.array([__import__("fractions").Fraction(1, 3)], dtype=object)),
+    ("boundary_loops", [[0, 1, 2], np.array([3, 4, 5])]), ("boundary_loops", []),
+    ("edge_mean_curvature", {(0, 1): 0.5, (np.int64(1), np.int64(2)): np.float64(1)}),
+    ("is_locally_delaunay", np.ones((2, 3), dtype=bool)), ("is_locally_delaunay", [[1, 0, 1]]),
+    ("intrinsic_delaunay_triangulation", (np.array([[0, 1, 2]]), np.ones((1, 3)))),
+    ("planar_delaunay", [[0, 1, 2]]),
+])
+def test_every_form_a_correct_implementation_may_answer_in_is_of_its_kind(method, answer):
+    """No false alarm: the checks and compare read these answers as they always did."""
+    from ddg_oracle.protocol.answers import problem
+    assert problem(method, answer) is None
+
+
+@pytest.mark.parametrize("method,answer", [
+    ("euler_characteristic", 2.5), ("euler_characteristic", "2"), ("euler_characteristic", True),
+    ("euler_characteristic", None), ("euler_characteristic", float("nan")),
+    ("euler_characteristic", np.array([2, 7])),
+    ("is_orientable", "True"), ("is_orientable", 2), ("is_orientable", None),
+    ("area", "1.5"), ("area", 1 + 0j), ("area", np.array([1.0, 2.0])), ("area", True),
+    ("angle_defects", ["0.5"]), ("angle_defects", np.array([1j])), ("angle_defects", [object()]),
+    ("angle_defects", [True, False]),
+    ("boundary_loops", "012"), ("boundary_loops", [["0", "1"]]), ("boundary_loops", [[0.5]]),
+    ("edge_mean_curvature", [(0, 1, 0.5)]), ("edge_mean_curvature", {(0, 1): "0.5"}),
+    ("edge_mean_curvature", {"01": 0.5}),
+    ("cotan_laplacian", np.array([["a"]])),
+    ("is_locally_delaunay", np.full((1, 3), 2)), ("is_locally_delaunay", [["yes"] * 3]),
+    ("intrinsic_delaunay_triangulation", np.ones((1, 3))),
+    ("planar_delaunay", [[0, 1, 2.5]]),
+])
+def test_answers_not_of_their_kind_are_named(method, answer):
+    from ddg_oracle.protocol.answers import problem
+    why = problem(method, answer)
+    assert why is not None and why.startswith(method), why

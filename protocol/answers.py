@@ -1,0 +1,230 @@
+"""What an answer of a protocol method must be made of, before anything reads it.
+
+Each method's contract names its answer's kind (:class:`~.methods.Method`): an integer,
+a bool, boundary loops of vertex indices, real numbers (arrays, a total, edge values),
+a matrix, flags, triangulations.  :func:`problem` says, in one line, why an answer is
+not of its kind (None when it is): a string, a complex number, an array of objects that
+are not numbers, 2.5 for an integer, ``"True"`` for a bool.  Every answer of a checked
+implementation passes through it first (``properties.calls.Watched``, ``compare``), so
+that reading it can neither let a wrong value through (``int(2.5) == 2``, ``bool("False")``,
+``float("0.5")``, ``np.asarray(complex, float)`` dropping the imaginary part) nor crash
+ddg-oracle's own code (``int(np.array([2, 7]))``): such an answer is the
+implementation's failure, said as such.
+
+Only the kind of each element is checked here, not the shape (the checks and ``compare``
+say which shape was expected); numbers may be any real numbers: Python and numpy ints
+and floats of any width, ``Fraction``.  An integer may come as an integral float
+(``2.0``), a bool as 0 or 1, a single number as an array of one element;
+:func:`normalized` gives them as Python's ``int``, ``bool`` and number.
+
+>>> problem("euler_characteristic", 2), problem("euler_characteristic", 2.0)
+(None, None)
+>>> problem("euler_characteristic", 2.5)
+'euler_characteristic answered 2.5 (float), not an integer'
+>>> problem("is_orientable", "False")
+"is_orientable answered 'False' (str), not a bool"
+>>> problem("angle_defects", [0.5, 1j])
+'angle_defects answered complex numbers, not real numbers'
+>>> problem("boundary_loops", [[0, 1, 2]]), problem("boundary_loops", [["0", "1", "2"]])
+(None, "boundary_loops answered a loop holding '0' (str), not a vertex index")
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from .methods import METHODS
+
+__all__ = ["MalformedAnswer", "normalized", "problem", "read", "short"]
+
+
+class MalformedAnswer(ValueError):
+    """An answer not of its method's kind (the message: :func:`problem`'s line)."""
+
+
+def short(x) -> str:
+    """``repr(x)`` in at most 60 characters (an answer's own ``__repr__`` may raise)."""
+    try:
+        text = repr(x)
+    except Exception:  # noqa: BLE001  (an answer's own __repr__ that raises)
+        text = f"<{type(x).__name__}>"
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _what(x) -> str:
+    return f"{short(x)} ({type(x).__name__})"
+
+
+def _is_real(x) -> bool:
+    """A real number, not a bool (True is an int to Python, never an answer's number)."""
+    return isinstance(x, numbers.Real) and not isinstance(x, (bool, np.bool_))
+
+
+def _integral(x) -> bool:
+    if isinstance(x, numbers.Integral):
+        return not isinstance(x, (bool, np.bool_))
+    try:
+        return _is_real(x) and float(x).is_integer()
+    except (OverflowError, ValueError):
+        return False
+
+
+def _scalar(x):
+    """A 0-dimensional or one-element numpy array as its element (``np.sum`` of a shape-(1,)
+    array, a library's ``array(2)``); anything else unchanged."""
+    if isinstance(x, np.ndarray) and x.size == 1:
+        return x.reshape(()).item() if x.dtype.kind != "O" else x.reshape(())[()]
+    return x
+
+
+def _reals(method: str, answer, what: str = "real numbers") -> str | None:
+    """Why ``answer`` (an array or nested sequences) is not made of real numbers, or None."""
+    try:
+        a = np.asarray(answer)
+    except (TypeError, ValueError) as e:
+        return f"{method} answered something numpy cannot read as an array ({e})"
+    kind = a.dtype.kind
+    if kind == "c":
+        return f"{method} answered complex numbers, not {what}"
+    if kind in "US":
+        return f"{method} answered strings, not {what}"
+    if kind == "b":
+        return f"{method} answered bools, not {what}"
+    if kind == "O":
+        bad = next((x for x in a.reshape(-1) if not _is_real(x)), None) if a.size else None
+        if bad is not None:
+            return f"{method} answered an array holding {_what(bad)}, not {what}"
+    elif kind not in "iuf":
+        return f"{method} answered an array of {a.dtype}, not {what}"
+    return None
+
+
+def _integers(method: str, answer, what: str) -> str | None:
+    """Why ``answer`` (an array of indices) is not made of integers, or None."""
+    try:
+        a = np.asarray(answer)
+    except (TypeError, ValueError) as e:
+        return f"{method} answered something numpy cannot read as an array ({e})"
+    if a.dtype.kind in "iu":
+        return None
+    if a.dtype.kind == "O":
+        bad = next((x for x in a.reshape(-1) if not _integral(x)), None) if a.size else None
+        return None if bad is None else f"{method} answered {_what(bad)}, not {what}"
+    if a.dtype.kind == "f":
+        # integral floats, as numpy reads [[0, 1, 2.0]] (an empty list reads as float64)
+        bad = a[~(np.isfinite(a) & (a == np.round(a)))]
+        return None if not bad.size else \
+            f"{method} answered {float(bad[0])!r} in an array of {a.dtype}, not {what}"
+    return f"{method} answered an array of {a.dtype}, not of {what}s"
+
+
+def problem(method: str, answer) -> str | None:
+    """Why ``answer`` is not of the kind of ``method``'s answer (one line), or None.  An
+    answer whose own code raises while it is read (its ``__len__``, ``__iter__``,
+    ``__array__``...) is not of its kind either."""
+    try:
+        return _problem(method, answer)
+    except Exception as e:  # noqa: BLE001  (the implementation's object raised)
+        return f"{method} answered a {type(answer).__name__} that raised {type(e).__name__} " \
+               f"when read: {short(str(e))}"
+
+
+def _problem(method: str, answer) -> str | None:
+    spec = METHODS[method]
+    kind = spec.kind
+    if kind == "integer":
+        x = _scalar(answer)
+        return None if _integral(x) else f"{method} answered {_what(x)}, not an integer"
+    if kind == "boolean":
+        x = _scalar(answer)
+        if isinstance(x, (bool, np.bool_)) or (isinstance(x, numbers.Integral) and x in (0, 1)):
+            return None
+        return f"{method} answered {_what(x)}, not a bool"
+    if kind == "numbers" and spec.element == "total":
+        x = _scalar(answer)
+        return None if _is_real(x) else f"{method} answered {_what(x)}, not a real number"
+    if kind == "numbers":
+        return _reals(method, answer)
+    if kind == "loops":
+        if isinstance(answer, (str, bytes)) or not _iterable(answer):
+            return f"{method} answered {_what(answer)}, not a list of loops"
+        for loop in answer:
+            if isinstance(loop, (str, bytes)) or not _iterable(loop):
+                return f"{method} answered a loop {_what(loop)}, not a list of vertex indices"
+            for v in loop:
+                if not isinstance(v, numbers.Integral) or isinstance(v, (bool, np.bool_)):
+                    return f"{method} answered a loop holding {_what(v)}, not a vertex index"
+        return None
+    if kind == "edges":
+        if not hasattr(answer, "items"):
+            return f"{method} answered {_what(answer)}, not a dict {{(i, j): value}}"
+        for key, value in answer.items():
+            if not (isinstance(key, tuple) and len(key) == 2 and all(_integral(i) for i in key)):
+                return f"{method} answered the key {_what(key)}, not a pair of vertex indices"
+            if not _is_real(_scalar(value)):
+                return f"{method} answered {_what(value)} at edge {key}, not a real number"
+        return None
+    if kind == "matrix":
+        import scipy.sparse as sp
+        if sp.issparse(answer):
+            return None if answer.dtype.kind in "iuf" else \
+                f"{method} answered a sparse matrix of {answer.dtype}, not of real numbers"
+        return _reals(method, answer)
+    if kind == "flags":
+        try:
+            a = np.asarray(answer)
+        except (TypeError, ValueError) as e:
+            return f"{method} answered something numpy cannot read as an array ({e})"
+        if a.dtype.kind == "b" or (a.dtype.kind in "iu" and np.all((a == 0) | (a == 1))):
+            return None
+        return f"{method} answered an array of {a.dtype}, not of bools"
+    if kind == "intrinsic triangulation":
+        if isinstance(answer, (str, bytes)) or not _iterable(answer) or len(answer) != 2:
+            return f"{method} answered {_what(answer)}, not a pair (F2, l2)"
+        F2, l2 = answer
+        return _integers(method, F2, "a vertex index") or _reals(method, l2)
+    return _integers(method, answer, "a vertex index")          # a planar triangulation
+
+
+def read(method: str, answer):
+    """``answer`` as :func:`normalized` gives it, or :class:`MalformedAnswer` saying why it
+    is not of its method's kind.
+
+    >>> read("genus", np.int64(1))
+    1
+    >>> read("genus", "1")
+    Traceback (most recent call last):
+    ...
+    ddg_oracle.protocol.answers.MalformedAnswer: genus answered '1' (str), not an integer
+    """
+    why = problem(method, answer)
+    if why is not None:
+        raise MalformedAnswer(why)
+    return normalized(method, answer)
+
+
+def normalized(method: str, answer):
+    """An answer without a :func:`problem`, a single value as Python's ``int`` (integer
+    kinds), ``bool`` (boolean kinds) or number (a total); any other answer unchanged.
+
+    >>> normalized("euler_characteristic", np.float64(2.0)), normalized("is_orientable", 1)
+    (2, True)
+    """
+    spec = METHODS[method]
+    if spec.kind == "integer":
+        return int(_scalar(answer))
+    if spec.kind == "boolean":
+        return bool(_scalar(answer))
+    if spec.kind == "numbers" and spec.element == "total":
+        return _scalar(answer)
+    return answer
+
+
+def _iterable(x) -> bool:
+    try:
+        iter(x)
+    except TypeError:
+        return False
+    return hasattr(x, "__len__")
