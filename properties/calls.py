@@ -1,6 +1,7 @@
 """The checked implementation, watched: each protocol call marked as the implementation's
 time, each answer checked to be of its method's kind (:mod:`ddg_oracle.protocol.answers`:
-no string, complex number or 2.5 for an integer), mapped from the conventions it declares
+no string, complex number or 2.5 for an integer) and copied (a binding may overwrite the
+storage it answered in on its next call), mapped from the conventions it declares
 onto the reference's (:mod:`.conventions`) and, where it must be a finite number,
 screened for NaN and infinity.
 
@@ -87,6 +88,10 @@ class Watched:
                                       METHODS[attr].arguments[:2] == ("V", "F") else None,
                                       expected=f"the contract's {METHODS[attr].kind}",
                                       observed=short(answer)) from None
+            # a copy of our own: a binding may answer in storage it overwrites on its next
+            # call, and a property comparing two answers (T2.5: before and after a motion)
+            # then compared the second with itself, moved: a correct implementation failed
+            answer = _own_copy(answer)
             if self._conventions and METHODS[attr].arguments[:2] == ("V", "F"):
                 # the conventions it declares, mapped onto the reference's (.conventions)
                 from .conventions import to_reference
@@ -134,6 +139,18 @@ def first_non_finite(method: str, answer):
         return None
     where = tuple(int(i) for i in bad[0])
     return (where or None), float(a[where])
+
+
+def _own_copy(answer):
+    """``answer`` with nothing the implementation still holds (arrays, sparse matrices,
+    dicts and lists copied); a scalar as it is."""
+    if isinstance(answer, (int, float, bool, str, type(None))):
+        return answer
+    import copy
+    try:
+        return copy.deepcopy(answer)
+    except Exception:  # noqa: BLE001  (an object that cannot be copied: read as it is)
+        return answer
 
 
 def _mesh(args):

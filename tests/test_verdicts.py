@@ -853,3 +853,28 @@ def test_answers_not_of_their_kind_are_named(method, answer):
     from ddg_oracle.protocol.answers import problem
     why = problem(method, answer)
     assert why is not None and why.startswith(method), why
+
+
+class AnswersInOneBuffer(ReferenceImplementation):
+    """Correct angle defects, answered in storage it keeps and overwrites on its next call
+    (a binding returning a view of its member array)."""
+
+    name = "answers-in-one-buffer"
+
+    def __init__(self):
+        self._out = np.zeros(0)
+
+    def angle_defects(self, V, F):
+        K = super().angle_defects(V, F)
+        if self._out.shape != K.shape:
+            self._out = np.zeros(K.shape)
+        self._out[:] = K
+        return self._out
+
+
+def test_an_answer_the_implementation_overwrites_later_is_read_as_it_was():
+    """In process (the pytest plugin, check_implementation), T2.5 compared the defects after
+    a rigid motion with themselves relabelled: FAILED at 1.5e13 x its bound for a correct
+    implementation.  (Isolated, as ddg-oracle check runs it, the answers were copies.)"""
+    r = run_property(PROPERTIES["T2.5"], AnswersInOneBuffer(), profile("ci"))
+    assert r.status == PASSED, (r.status, r.failure)
