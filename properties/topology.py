@@ -7,6 +7,8 @@ built (genus, crosscaps, holes), never from the implementation under test.
 
 from __future__ import annotations
 
+from collections import Counter
+
 from hypothesis import strategies as st
 
 from ..reference.combinatorics import connected_sum
@@ -123,13 +125,22 @@ def boundary_loops_and_genus(impl, case: Example):
     if k != case.expected.boundary_components:
         raise PropertyFailure("R1.6", impl, "wrong number of boundary loops", mesh=_mesh(case),
                               expected=case.expected.boundary_components, observed=k)
-    boundary = {tuple(sorted(e)) for loop in loops for e in zip(loop, list(loop[1:]) + list(loop[:1]))}
+    # each loop's consecutive pairs (the last to the first): every boundary edge once and
+    # nothing else (a set of them let a loop traced past its start, or twice, pass)
+    walked = Counter(tuple(sorted(e)) for loop in loops
+                     for e in zip(loop, list(loop[1:]) + list(loop[:1])))
     t, at = case.triangulation, case.layout            # surface vertex -> array index
     truth = {tuple(sorted(at[v] for v in t.edge_vertices(e)))
              for e in range(t.n_edges) if t.is_boundary_edge(e)}
-    if boundary != truth:
+    if set(walked) != truth:
         raise PropertyFailure("R1.6", impl, "boundary loops do not run along the boundary edges",
-                              mesh=_mesh(case), expected=sorted(truth), observed=sorted(boundary))
+                              mesh=_mesh(case), expected=sorted(truth), observed=sorted(walked))
+    again = sorted(e for e, n in walked.items() if n > 1)
+    if again:
+        raise PropertyFailure("R1.6", impl, f"a boundary loop runs along edge {again[0]} "
+                              f"{walked[again[0]]} times: each loop is a simple cycle, every "
+                              "boundary edge once", mesh=_mesh(case), element=f"edge {again[0]}",
+                              expected=len(truth), observed=sum(len(x) for x in loops))
     # chi counts a vertex used by no face as a point (D1.6); the surface's is without it
     chi = int(_call(impl, "euler_characteristic", case)) - len(case.isolated or ())
     # the genus as built when the implementation has none: its loops and chi are still

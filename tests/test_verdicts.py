@@ -878,3 +878,40 @@ def test_an_answer_the_implementation_overwrites_later_is_read_as_it_was():
     implementation.  (Isolated, as ddg-oracle check runs it, the answers were copies.)"""
     r = run_property(PROPERTIES["T2.5"], AnswersInOneBuffer(), profile("ci"))
     assert r.status == PASSED, (r.status, r.failure)
+
+
+class LoopsPastTheirStart(ReferenceImplementation):
+    """Each boundary loop traced one step past its start ([a, b, c, a, b]) or, with
+    ``twice``, twice around: R1.6 compared the set of the loops' edges with the boundary
+    edges, and both passed it."""
+
+    def __init__(self, twice: bool = False):
+        self.twice, self.name = twice, "loops-twice" if twice else "loops-run-on"
+
+    def boundary_loops(self, V, F):
+        return [list(x) * 2 if self.twice else list(x) + list(x[:2])
+                for x in super().boundary_loops(V, F)]
+
+
+@pytest.mark.parametrize("twice", [False, True])
+def test_boundary_loops_must_run_once_along_each_boundary_edge(twice):
+    r = run_property(PROPERTIES["R1.6"], LoopsPastTheirStart(twice), profile("ci"))
+    assert r.status == FAILED and "times: each loop is a simple cycle" in r.failure.message, r
+    assert run_property(PROPERTIES["R1.6"], ReferenceImplementation(), profile("ci")).status \
+        == PASSED
+
+
+class EveryTriangleTwice(ReferenceImplementation):
+    name = "every-triangle-twice"
+
+    def planar_delaunay(self, P):
+        T = np.asarray(super().planar_delaunay(P))
+        return np.concatenate([T, T])
+
+
+def test_a_triangle_given_twice_fails_t4_1_and_is_not_our_crash():
+    """reference.planar.cocircular_cells unpacked the one point of a neighbour outside a
+    triangle, and a triangle given twice has none: T4.1 was an internal error (exit 3)."""
+    r = run_property(PROPERTIES["T4.1"], EveryTriangleTwice(), profile("ci"))
+    assert r.status == FAILED and "not a triangulation of the points" in r.failure.message, \
+        (r.status, r.error)
