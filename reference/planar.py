@@ -403,6 +403,13 @@ def cocircular_cells(points, triangles) -> frozenset:
     >>> sorted(sorted(c) for c in cocircular_cells([(0, 0), (1, 0), (1, 1), (0, 1)],
     ...                                            [(0, 1, 2), (0, 2, 3)]))
     [[0, 1, 2, 3]]
+
+    Two triangles on the same three points (a triangle given twice) form no quadrilateral:
+    nothing is merged across their edges.
+
+    >>> sorted(sorted(c) for c in cocircular_cells([(0, 0), (1, 0), (0, 1)],
+    ...                                            [(0, 1, 2), (0, 1, 2)]))
+    [[0, 1, 2]]
     """
     pts = as_point_set(points)
     tris = [tuple(t) for t in triangles]
@@ -414,7 +421,10 @@ def cocircular_cells(points, triangles) -> frozenset:
     for ks in by_edge.values():
         if len(ks) == 2:
             a, b = (tris[k] for k in ks)
-            (d,) = set(b) - set(a)
+            other = set(b) - set(a)
+            if len(other) != 1:
+                continue                    # the same three points: no quadrilateral
+            (d,) = other
             if in_circle(*(pts[v] for v in a), pts[d]) == 0:    # the sign of a's orientation
                 merge.append(tuple(ks))                          # does not matter for 0
     return frozenset(frozenset(v for k in group for v in tris[k])
