@@ -915,3 +915,38 @@ def test_a_triangle_given_twice_fails_t4_1_and_is_not_our_crash():
     r = run_property(PROPERTIES["T4.1"], EveryTriangleTwice(), profile("ci"))
     assert r.status == FAILED and "not a triangulation of the points" in r.failure.message, \
         (r.status, r.error)
+
+
+def test_watched_answers_are_copies_of_arrays_matrices_and_dicts():
+    """What the implementation keeps and changes after answering (a sparse matrix's data, a
+    dict of edge values, an array in a tuple) does not change the answer a check holds."""
+    import scipy.sparse as sp
+    from ddg_oracle.properties.calls import Watched
+
+    class Keeps(ReferenceImplementation):
+        name = "keeps"
+
+        def __init__(self):
+            self.L = sp.csr_matrix(np.eye(4))
+            self.H = {(0, 1): 0.5}
+            self.T = (np.array([[0, 1, 2]]), np.ones((1, 3)))
+
+        def cotan_laplacian(self, V, F):
+            return self.L
+
+        def edge_mean_curvature(self, V, F):
+            return self.H
+
+        def intrinsic_delaunay_triangulation(self, V, F):
+            return self.T
+
+    impl = Keeps()
+    w = Watched(impl, "test")
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    L, H, T = w.cotan_laplacian(V, F), w.edge_mean_curvature(V, F), \
+        w.intrinsic_delaunay_triangulation(V, F)
+    impl.L.data[:] = 7.0
+    impl.H[(0, 1)] = 9.0
+    impl.T[1][:] = 3.0
+    assert L.toarray()[0, 0] == 1.0 and H == {(0, 1): 0.5} and T[1][0, 0] == 1.0
