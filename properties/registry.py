@@ -18,6 +18,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import functools
+import math
 import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable
@@ -60,7 +61,10 @@ class PropertyFailure(AssertionError):
     def error(self) -> float | None:
         """|observed - expected| when both are real numbers, else None."""
         if _is_real(self.expected) and _is_real(self.observed):
-            return abs(float(self.observed) - float(self.expected))
+            try:
+                return abs(float(self.observed) - float(self.expected))
+            except OverflowError:       # an answer beyond the float range (chi = 10**400)
+                return math.inf
         return None
 
     @property

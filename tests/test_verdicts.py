@@ -950,3 +950,65 @@ def test_watched_answers_are_copies_of_arrays_matrices_and_dicts():
     impl.H[(0, 1)] = 9.0
     impl.T[1][:] = 3.0
     assert L.toarray()[0, 0] == 1.0 and H == {(0, 1): 0.5} and T[1][0, 0] == 1.0
+
+
+# --- chapter 1: what a helper's probes found (an answer beyond floats, an unchecked method,
+# --- a component never drawn) ---------------------------------------------------------------
+
+
+class ChiBeyondFloats(ReferenceImplementation):
+    name = "chi-beyond-floats"
+
+    def euler_characteristic(self, V, F):
+        return 10 ** 400
+
+
+class OrientableOnly:
+    """is_orientable (always True: wrong on a Möbius strip or a Klein bottle) and no genus:
+    T1.1 / C1.2 needed both, and nothing else reads is_orientable."""
+
+    name = "orientable-only"
+
+    def is_orientable(self, V, F):
+        return True
+
+
+class LoopsOfTheFirstComponent(ReferenceImplementation):
+    """Boundary loops of the component of face 0 only (code that assumes a connected mesh):
+    R1.6 drew connected surfaces only."""
+
+    name = "loops-of-the-first-component"
+
+    def boundary_loops(self, V, F):
+        return super().boundary_loops(V, np.asarray(F)[_component_faces(F, 0)])
+
+
+def _component_faces(F, face):
+    """The faces joined to ``face`` through shared vertices (a component of the mesh)."""
+    F = np.asarray(F).tolist()
+    seen, todo, verts = {face}, [face], set(F[face])
+    while todo:
+        todo.pop()
+        for k, f in enumerate(F):
+            if k not in seen and verts & set(f):
+                seen.add(k)
+                todo.append(k)
+                verts |= set(f)
+    return sorted(seen)
+
+
+def test_an_integer_answer_beyond_the_float_range_is_a_failure_not_undecided():
+    """Its failure message computed |observed - expected| in floats: OverflowError, read as
+    the exact reference's limit (undecided, exit 0)."""
+    r = run_property(PROPERTIES["D1.6"], ChiBeyondFloats(), profile("ci"))
+    assert r.status == FAILED and r.failure.error == float("inf"), (r.status, r.error)
+
+
+def test_orientability_is_checked_without_genus():
+    r = run_property(PROPERTIES["T1.1 / C1.2"], OrientableOnly(), profile("ci"))
+    assert r.status == FAILED and "orientability" in r.failure.message, (r.status, r.note)
+
+
+def test_boundary_loops_are_checked_on_every_component():
+    r = run_property(PROPERTIES["R1.6"], LoopsOfTheFirstComponent(), profile("ci"))
+    assert r.status == FAILED, (r.status, r.note)
