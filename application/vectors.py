@@ -777,7 +777,7 @@ def read_answers(path: str | Path) -> list[dict]:
             continue
         try:
             obj = json.loads(line)
-        except ValueError as e:
+        except (ValueError, RecursionError) as e:   # a value nested beyond the parser
             raise VectorsError(f"{path}:{k}: not JSON ({e})") from None
         if not (isinstance(obj, dict) and isinstance(obj.get("id"), str)
                 and ("value" in obj) != ("error" in obj)):

@@ -40,8 +40,10 @@ import numpy as np
 import scipy.sparse
 
 from ..protocol.budget import check_time_left, cut_short, time_left
-from ..protocol.methods import FLOAT64_EPSILON, METHODS, OutsideDomain
+from ..protocol.methods import (FLOAT64_EPSILON, METHODS, BadDeclaration, OutsideDomain,
+                                checked_epsilon)
 
+from ..protocol.answers import MalformedAnswer, indices_problem, problem, read, reals_problem
 from ..protocol.arrays import checked_arrays
 from ..protocol.processes import NotSent, call_limit, exit_text, stderr_tail
 
@@ -61,6 +63,10 @@ def _as_sparse(value, method: str):
     if not isinstance(value, dict) or not {"shape", "rows", "cols", "values"} <= set(value):
         raise DriverFailed(f"{method}: expected a sparse matrix "
                            '{"shape", "rows", "cols", "values"}, got ' + _short(value))
+    _raise_if(indices_problem(method, value["shape"], "a size")
+              or indices_problem(method, value["rows"], "a row index")
+              or indices_problem(method, value["cols"], "a column index")
+              or reals_problem(method, value["values"]))
     n, m = value["shape"]
     return scipy.sparse.csr_matrix((np.asarray(value["values"], dtype=np.float64),
                                     (np.asarray(value["rows"], dtype=np.int64),
@@ -94,37 +100,41 @@ _NUMBERS_SHAPE = {"corner": lambda n, m: (m, 3), "vertex": lambda n, m: (n,),
 
 def decode_value(method: str, value, n: int, m: int):
     """The protocol value of ``method`` from its JSON answer (docs/protocol.md), read by the
-    method's kind and element (:class:`~ddg_oracle.protocol.methods.Method`)."""
+    method's kind and element (:class:`~ddg_oracle.protocol.methods.Method`).  Each element
+    must be of its kind before it is converted (:mod:`ddg_oracle.protocol.answers`): numbers
+    written as strings, 0.4 as a vertex index or ``"yes"`` as a flag were converted by numpy
+    and passed; an integral number such as ``2.0`` is an integer, as JSON Schema says."""
     spec = METHODS.get(method)
     if spec is None:
         raise DriverFailed(f"{method}: not a protocol method")
+    try:
+        return _decoded(method, spec, value, n, m)
+    except MalformedAnswer as e:
+        raise DriverFailed(str(e)) from None
+
+
+def _decoded(method: str, spec, value, n: int, m: int):
     kind = spec.kind
-    if kind == "integer":
-        if not isinstance(value, int) or isinstance(value, bool):
-            raise DriverFailed(f"{method}: expected an integer, got {_short(value)}")
-        return value
-    if kind == "boolean":
-        if not isinstance(value, bool):
-            raise DriverFailed(f"{method}: expected true or false, got {_short(value)}")
-        return value
+    if kind in ("integer", "boolean"):
+        return read(method, value)
     if kind == "numbers" and spec.element == "total":
         if not isinstance(value, (int, float)) or isinstance(value, bool):
             raise DriverFailed(f"{method}: expected a number, got {_short(value)}")
         return float(value)
-    if kind == "loops":
-        if not isinstance(value, list) or not all(isinstance(loop, list) for loop in value):
-            raise DriverFailed(f"{method}: expected a list of vertex lists, got {_short(value)}")
-        return [[int(v) for v in loop] for loop in value]
-    if kind == "numbers":
-        return _array(value, method, _NUMBERS_SHAPE[spec.element](n, m), np.float64)
-    if kind == "flags":
-        return _array(value, method, (m, 3), bool)
     if kind == "edges":
         if not isinstance(value, list) or not all(isinstance(t, list) and len(t) == 3
                                                  for t in value):
             raise DriverFailed(f"{method}: expected a list of [i, j, H] triples, got "
                                f"{_short(value)}")
-        return {(min(int(i), int(j)), max(int(i), int(j))): float(h) for i, j, h in value}
+        _raise_if(indices_problem(method, [t[:2] for t in value])
+                  or reals_problem(method, [t[2] for t in value]))
+        out: dict = {}
+        for i, j, h in value:
+            e = (min(int(i), int(j)), max(int(i), int(j)))
+            if e in out:                # a later value would replace the first silently
+                raise DriverFailed(f"{method}: edge {list(e)} is given twice")
+            out[e] = float(h)
+        return out
     if kind == "matrix":
         L = _as_sparse(value, method)
         if L.shape != (n, n):
@@ -133,9 +143,24 @@ def decode_value(method: str, value, n: int, m: int):
     if kind == "intrinsic triangulation":
         if not isinstance(value, dict) or set(value) != {"F", "l2"}:
             raise DriverFailed(f'{method}: expected {{"F": ..., "l2": ...}}, got {_short(value)}')
+        _raise_if(problem(method, (value["F"], value["l2"])))
         F2 = _array(value["F"], method, (None, 3), np.int64)
         return F2, _array(value["l2"], method, (len(F2), 3), np.float64)
+    _raise_if(problem(method, value))
+    if kind == "loops":
+        if not isinstance(value, list):
+            raise DriverFailed(f"{method}: expected a list of vertex lists, got {_short(value)}")
+        return [[int(v) for v in loop] for loop in value]
+    if kind == "numbers":
+        return _array(value, method, _NUMBERS_SHAPE[spec.element](n, m), np.float64)
+    if kind == "flags":
+        return _array(value, method, (m, 3), bool)
     return _array(value, method, (None, 3), np.int64)            # a planar triangulation
+
+
+def _raise_if(why: str | None) -> None:
+    if why is not None:
+        raise DriverFailed(why)
 
 
 def program_of(argv: list[str]) -> list[str]:
@@ -224,7 +249,12 @@ class Executable:
                                f"the protocol's are {', '.join(METHODS)}")
         self.methods = frozenset(methods)
         self.name = str(hello.get("name") or os.path.basename(self.argv[0]))
-        self.machine_epsilon = float(hello.get("machine_epsilon", FLOAT64_EPSILON))
+        try:
+            self.machine_epsilon = checked_epsilon(
+                hello.get("machine_epsilon", FLOAT64_EPSILON), "its handshake")
+        except BadDeclaration as e:
+            self.close()
+            raise DriverFailed(str(e)) from None
         self.conventions = self._conventions(hello.get("conventions"))
 
     def _conventions(self, declared) -> dict:

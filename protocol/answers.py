@@ -37,7 +37,8 @@ import numpy as np
 
 from .methods import METHODS
 
-__all__ = ["MalformedAnswer", "normalized", "problem", "read", "short"]
+__all__ = ["MalformedAnswer", "indices_problem", "normalized", "problem", "read",
+           "reals_problem", "short"]
 
 
 class MalformedAnswer(ValueError):
@@ -79,7 +80,7 @@ def _scalar(x):
     return x
 
 
-def _reals(method: str, answer, what: str = "real numbers") -> str | None:
+def reals_problem(method: str, answer, what: str = "real numbers") -> str | None:
     """Why ``answer`` (an array or nested sequences) is not made of real numbers, or None."""
     try:
         a = np.asarray(answer)
@@ -101,7 +102,7 @@ def _reals(method: str, answer, what: str = "real numbers") -> str | None:
     return None
 
 
-def _integers(method: str, answer, what: str) -> str | None:
+def indices_problem(method: str, answer, what: str = "a vertex index") -> str | None:
     """Why ``answer`` (an array of indices) is not made of integers, or None."""
     try:
         a = np.asarray(answer)
@@ -146,7 +147,7 @@ def _problem(method: str, answer) -> str | None:
         x = _scalar(answer)
         return None if _is_real(x) else f"{method} answered {_what(x)}, not a real number"
     if kind == "numbers":
-        return _reals(method, answer)
+        return reals_problem(method, answer)
     if kind == "loops":
         if isinstance(answer, (str, bytes)) or not _iterable(answer):
             return f"{method} answered {_what(answer)}, not a list of loops"
@@ -154,7 +155,7 @@ def _problem(method: str, answer) -> str | None:
             if isinstance(loop, (str, bytes)) or not _iterable(loop):
                 return f"{method} answered a loop {_what(loop)}, not a list of vertex indices"
             for v in loop:
-                if not isinstance(v, numbers.Integral) or isinstance(v, (bool, np.bool_)):
+                if not _integral(v):        # 3 or 3.0 (a float array's list), not 3.4
                     return f"{method} answered a loop holding {_what(v)}, not a vertex index"
         return None
     if kind == "edges":
@@ -171,7 +172,7 @@ def _problem(method: str, answer) -> str | None:
         if sp.issparse(answer):
             return None if answer.dtype.kind in "iuf" else \
                 f"{method} answered a sparse matrix of {answer.dtype}, not of real numbers"
-        return _reals(method, answer)
+        return reals_problem(method, answer)
     if kind == "flags":
         try:
             a = np.asarray(answer)
@@ -184,8 +185,8 @@ def _problem(method: str, answer) -> str | None:
         if isinstance(answer, (str, bytes)) or not _iterable(answer) or len(answer) != 2:
             return f"{method} answered {_what(answer)}, not a pair (F2, l2)"
         F2, l2 = answer
-        return _integers(method, F2, "a vertex index") or _reals(method, l2)
-    return _integers(method, answer, "a vertex index")          # a planar triangulation
+        return indices_problem(method, F2, "a vertex index") or reals_problem(method, l2)
+    return indices_problem(method, answer, "a vertex index")          # a planar triangulation
 
 
 def read(method: str, answer):

@@ -18,6 +18,7 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import math
+import numbers
 from dataclasses import dataclass
 
 
@@ -145,12 +146,40 @@ _epsilon = contextvars.ContextVar("ddg_machine_epsilon", default=FLOAT64_EPSILON
 
 
 def machine_epsilon(impl) -> float:
-    """The implementation's declared ``machine_epsilon`` (float32: 2**-23), default float64.
+    """The implementation's declared ``machine_epsilon`` (float32: 2**-23), default float64;
+    :class:`BadDeclaration` for a declaration :func:`checked_epsilon` refuses.
 
     Tolerances are derived from it: a library computing in float32 is held to
     float32 bounds, not float64 ones.
     """
-    return float(getattr(impl, "machine_epsilon", FLOAT64_EPSILON))
+    return checked_epsilon(getattr(impl, "machine_epsilon", FLOAT64_EPSILON),
+                           implementation_name(impl))
+
+
+#: the coarsest machine epsilon an implementation may declare: bfloat16's, the coarsest
+#: binary floating-point format computed in; the bounds scale with it, and with 1.0 an
+#: angle defect off by 3 radians passed D2.2
+COARSEST_EPSILON = 2.0 ** -7
+
+
+def checked_epsilon(value, who: str) -> float:
+    """``value`` as a declared machine epsilon: a real number with 0 <= eps <= 2**-7 (0: an
+    exact implementation), else :class:`BadDeclaration` naming ``who`` and the value.
+
+    >>> checked_epsilon(2 ** -23, "f32") == 2 ** -23
+    True
+    >>> checked_epsilon(1.0, "mine")
+    Traceback (most recent call last):
+    ...
+    ddg_oracle.protocol.methods.BadDeclaration: mine declares machine_epsilon 1.0: it must be a number from 0 (exact) to 2**-7 (bfloat16; float16 2**-10, float32 2**-23, float64 2**-52)
+    """
+    ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    e = float(value) if ok else math.nan
+    if not 0 <= e <= COARSEST_EPSILON:
+        raise BadDeclaration(f"{who} declares machine_epsilon {value!r}: it must be a number "
+                             "from 0 (exact) to 2**-7 (bfloat16; float16 2**-10, float32 "
+                             "2**-23, float64 2**-52)")
+    return e
 
 
 def eps() -> float:
@@ -247,6 +276,11 @@ class NotAnImplementation(TypeError):
     checking it would pass every property vacuously."""
 
 
+class BadDeclaration(NotAnImplementation):
+    """An implementation declaring what cannot be checked against (a machine epsilon of 1.0,
+    NaN or -1): its bounds would let any answer pass, or none."""
+
+
 def near_misses(impl) -> list[tuple[str, str]]:
     """(name ``impl`` has, protocol method it probably means), for its public callables
     that are not protocol methods but look like one.
@@ -306,6 +340,7 @@ def require_protocol(impl) -> frozenset[str]:
     """
     caps = capabilities(impl)
     if caps:
+        machine_epsilon(impl)               # BadDeclaration for one that cannot be checked
         return caps
     misses = near_misses(impl)
     hint = ""

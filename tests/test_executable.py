@@ -196,3 +196,71 @@ def test_a_handshake_interrupted_never_answers_the_next_request():
     V, F = TET
     assert impl.euler_characteristic(np.array(V, float), np.array(F)) == 2
     impl.close()
+
+
+# --- answers read element by element, declarations checked (a helper's hostile drivers) --------
+
+
+@pytest.mark.parametrize("method,value,words", [
+    ("angle_defects", ["1.5", "2.0"], "strings"),                  # numbers as strings
+    ("planar_delaunay", [[0.4, 1.4, 2.4]], "0.4 in an array"),      # 0.4 read as index 0
+    ("boundary_loops", [[0.4, 1.4, 2.4]], "not a vertex index"),
+    ("is_locally_delaunay", [["yes", "", "yes"]], "not of bools"),  # "" and "yes" as flags
+    ("edge_mean_curvature", [[1, 0, 1e9], [0, 1, 0.5]], "given twice"),   # the last one won
+    ("edge_mean_curvature", [[0, 1, "0.5"]], "strings"),
+    ("cotan_laplacian", {"shape": [2, 2], "rows": [0.4], "cols": [0], "values": [1.0]},
+     "not a row index"),
+    ("cotan_laplacian", {"shape": [2, 2], "rows": [0], "cols": [0], "values": ["1"]}, "strings"),
+    ("intrinsic_delaunay_triangulation", {"F": [[0, 1, 2]], "l2": [["1", "1", "1"]]},
+     "strings"),
+    ("euler_characteristic", 2.5, "not an integer"),
+    ("is_orientable", "true", "not a bool"),
+])
+def test_a_program_answer_not_of_its_kind_is_refused_not_converted(method, value, words):
+    """Each of these was converted by numpy (or a dict) and passed the checks and verify."""
+    from ddg_oracle.oracles.executable import decode_value
+    with pytest.raises(DriverFailed, match=words):
+        decode_value(method, value, 3, 1)
+
+
+def test_an_integral_number_is_an_integer_as_json_schema_says():
+    """``2.0`` validates as an integer against docs/protocol.schema.json; it was refused
+    (a correct program crashed on D1.6); a Python implementation's 2.0 was taken."""
+    from ddg_oracle.oracles.executable import decode_value
+    assert decode_value("euler_characteristic", 2.0, 3, 1) == 2
+    assert decode_value("boundary_loops", [[0.0, 1.0, 2.0]], 3, 1) == [[0, 1, 2]]
+
+
+_EPSILON_DRIVER = '''
+import json, sys
+for line in sys.stdin:
+    request = json.loads(line)
+    if request["method"] == "hello":
+        print('{"methods": ["area"], "machine_epsilon": %s}' % sys.argv[1], flush=True)
+    else:
+        print(json.dumps({"id": request["id"], "value": 100.0}), flush=True)
+'''
+
+
+@pytest.mark.parametrize("epsilon", ["1.0", "-1", "NaN", "Infinity", "true", "0.5"])
+def test_a_machine_epsilon_that_lets_anything_pass_is_refused_at_the_handshake(
+        tmp_path, capsys, epsilon):
+    """machine_epsilon 1.0 let angle defects off by 3 rad pass D2.2; Infinity was our
+    OverflowError (exit 3); -1 and NaN failed correct programs by nonsense bounds."""
+    from ddg_oracle.application.cli import main
+    (tmp_path / "eps.py").write_text(_EPSILON_DRIVER)
+    rc = main(["check", "--impl", f"exec:{sys.executable} {tmp_path / 'eps.py'} {epsilon}",
+               "--only", "T3.9"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "declares machine_epsilon" in err and err.count("\n") == 1, err
+
+
+def test_a_python_implementation_declaring_such_an_epsilon_is_refused():
+    from ddg_oracle.properties.runner import run_properties
+    from ddg_oracle.protocol.methods import BadDeclaration
+    coarse = type("Coarse", (ReferenceImplementation,), {"machine_epsilon": 1.0,
+                                                         "name": "coarse"})()
+    with pytest.raises(BadDeclaration, match="machine_epsilon 1.0"):
+        run_properties(coarse, only=["D2.2"])
+    exact = type("Exact", (ReferenceImplementation,), {"machine_epsilon": 0, "name": "exact"})()
+    assert run_properties(exact, only=["D1.6"])[0].status == PASSED

@@ -339,3 +339,14 @@ def test_the_adapters_give_the_protocols_values_at_an_isolated_vertex(corpus, sp
            for m, f in corpus.items()}
     verdicts = vectors.verify(sub, vectors.answers(sub, impl))
     assert verdicts and {v.status for v in verdicts} == {"pass"}
+
+
+def test_an_answers_file_nested_beyond_the_json_parser_is_a_usage_error(tmp_path, capsys):
+    """json.loads raised RecursionError on [[[...]]] 50,000 deep: a traceback and exit 3."""
+    from ddg_oracle.application.cli import main
+    ROOT = Path(__file__).resolve().parent.parent
+    deep = tmp_path / "answers.jsonl"
+    deep.write_text('{"id": "x", "value": ' + "[" * 50000 + "]" * 50000 + "}\n")
+    assert main(["verify", str(ROOT / "vectors"), str(deep)]) == 2
+    err = capsys.readouterr().err
+    assert "not JSON" in err and err.count("\n") == 1, err
