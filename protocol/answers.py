@@ -207,19 +207,38 @@ def read(method: str, answer):
 
 
 def normalized(method: str, answer):
-    """An answer without a :func:`problem`, a single value as Python's ``int`` (integer
-    kinds), ``bool`` (boolean kinds) or number (a total); any other answer unchanged.
+    """An answer without a :func:`problem`, in the forms the checks read: a single value as
+    Python's ``int`` (integer kinds), ``bool`` (boolean kinds) or number (a total); arrays
+    (numbers, flags, faces; a matrix not sparse) as numpy arrays, their dtype kept (a list
+    of Fractions stays exact); loops as lists of Python ints; edge values as numbers (an
+    array of one element is its element).  A declared convention's map negates, halves or
+    scales these (``-answer`` of a list raised inside ddg-oracle).
 
     >>> normalized("euler_characteristic", np.float64(2.0)), normalized("is_orientable", 1)
     (2, True)
+    >>> normalized("angle_defects", [0.5, 1.0]), normalized("boundary_loops", [(0, 1.0, 2)])
+    (array([0.5, 1. ]), [[0, 1, 2]])
+    >>> normalized("edge_mean_curvature", {(0, 1): np.array([0.5])})
+    {(0, 1): 0.5}
     """
     spec = METHODS[method]
-    if spec.kind == "integer":
+    kind = spec.kind
+    if kind == "integer":
         return int(_scalar(answer))
-    if spec.kind == "boolean":
+    if kind == "boolean":
         return bool(_scalar(answer))
-    if spec.kind == "numbers" and spec.element == "total":
+    if kind == "numbers" and spec.element == "total":
         return _scalar(answer)
+    if kind in ("numbers", "flags", "planar triangulation") or (
+            kind == "matrix" and not hasattr(answer, "tocsr")):
+        return np.asarray(answer)
+    if kind == "loops":
+        return [[int(v) for v in loop] for loop in answer]
+    if kind == "edges":
+        return {(int(i), int(j)): _scalar(h) for (i, j), h in answer.items()}
+    if kind == "intrinsic triangulation":
+        F2, l2 = answer
+        return np.asarray(F2), np.asarray(l2)
     return answer
 
 

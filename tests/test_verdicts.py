@@ -1012,3 +1012,35 @@ def test_orientability_is_checked_without_genus():
 def test_boundary_loops_are_checked_on_every_component():
     r = run_property(PROPERTIES["R1.6"], LoopsOfTheFirstComponent(), profile("ci"))
     assert r.status == FAILED, (r.status, r.note)
+
+
+# --- answers in other forms than the checks read: normalized first (a helper's probes) --------
+
+
+class NegativeLaplacianAsLists(ReferenceImplementation):
+    """libigl's sign, declared, the matrix as nested lists: the declaration's map negated
+    the raw answer (-list: a TypeError of ours, an internal error)."""
+
+    name = "negative-laplacian-as-lists"
+    conventions = {"laplacian": "negative"}
+
+    def cotan_laplacian(self, V, F):
+        return (-super().cotan_laplacian(V, F)).toarray().tolist()
+
+
+class EdgeValuesInArrays(ReferenceImplementation):
+    """Each mean curvature an array of one element (accepted as a number): float() of it
+    raised inside D2.3 on numpy 2 (an internal error)."""
+
+    name = "edge-values-in-arrays"
+
+    def edge_mean_curvature(self, V, F):
+        return {e: np.array([h]) for e, h in super().edge_mean_curvature(V, F).items()}
+
+
+@pytest.mark.parametrize("impl,pid", [(NegativeLaplacianAsLists, "D3.1"),
+                                      (EdgeValuesInArrays, "D2.3")])
+def test_answers_in_another_accepted_form_are_checked_not_our_crash(impl, pid):
+    r = run_property(PROPERTIES[pid], impl(), profile("ci"))
+    assert r.status == PASSED, (r.status, r.error)
+
