@@ -32,7 +32,9 @@ counts an unused vertex as a point, and ddg-oracle adds their number.
   ``boundary_loops`` needs a manifold, *oriented* mesh (``ValueError`` otherwise): an
   orientable mesh is first oriented with LaPy's own ``orient_()`` (on a copy); a
   non-orientable or non-manifold one is outside LaPy's domain (``OutsideDomain``), as
-  is ``genus`` of a non-orientable or non-manifold mesh (LaPy raises ``ValueError``).
+  is ``genus`` of a non-orientable or non-manifold mesh (LaPy raises ``ValueError``),
+  and a mesh of several components that is not oriented, where ``orient_()`` never
+  returns (F-lapy-4).
 
 >>> import numpy as np
 >>> V = np.array([[0., 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
@@ -94,6 +96,12 @@ class Lapy:
             if not m.is_orientable():
                 raise OutsideDomain("LaPy's boundary_loops needs an oriented mesh; this one "
                                     "is not orientable")
+            labels = m.connected_components()[1]
+            if len(np.unique(labels[np.unique(m.t)])) > 1:     # of the used vertices
+                # orient_() floods from triangle 0 until every triangle is reached: never
+                # on a second component (F-lapy-4)
+                raise OutsideDomain("LaPy's orient_() does not return on a mesh of several "
+                                    "components that is not oriented (F-lapy-4)")
             m.orient_()
         return [[int(v) for v in loop] for loop in m.boundary_loops()]
 

@@ -123,3 +123,32 @@ def test_finding_F_lapy_3_solver_matrices_stop_at_the_largest_used_index():
     assert s.stiffness[3].nnz == 0 and s.mass.diagonal()[3] == 0
     assert to_reference(declared(Lapy()), "euler_characteristic",
                         Lapy().euler_characteristic(W, G), W, G) == 4
+
+
+def test_finding_F_lapy_4_orient_never_returns_on_two_components_and_the_adapter_declines():
+    """LaPy 1.7.0's ``TriaMesh.orient_()`` floods from triangle 0 ``while len(v.data) < tdim``
+    (tria_mesh.py l. 1872): a second component is never reached and the loop never ends.
+    The adapter called it before boundary_loops: R1.6 hung for its whole budget (40 s)
+    once R1.6 drew meshes of two components.  Now those are outside its domain."""
+    import multiprocessing as mp
+    import lapy
+    from ddg_oracle.oracles.lapy import Lapy
+    from ddg_oracle.protocol.methods import OutsideDomain
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                  [3, 0, 0], [4, 0, 0], [4, 1, 0], [3, 1, 0]])
+    F = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 7, 6]])   # the last face listed the other way
+    p = mp.get_context("fork").Process(target=_orient, args=(V, F))     # lapy imported here
+    p.start()
+    p.join(3)                 # 4 faces: milliseconds, if it returned at all
+    hung = p.is_alive()
+    p.kill()
+    assert hung, "LaPy's orient_() returned: F-lapy-4 may be fixed upstream"
+    with pytest.raises(OutsideDomain, match="F-lapy-4"):
+        Lapy().boundary_loops(V, F)
+    assert lapy.TriaMesh(V, F[:2]).is_oriented()
+    assert Lapy().boundary_loops(V, np.vstack([F[:2], [[4, 5, 6], [4, 6, 7]]])) != []
+
+
+def _orient(V, F):
+    import lapy
+    lapy.TriaMesh(V, F).orient_()
