@@ -452,7 +452,8 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
     na = [(n, sum(r.status == NOT_APPLICABLE for r in results if r.implementation == n))
           for n in impls]
     if any(k for _, k in na):
-        lines.append("not applicable (the implementation lacks a method the property needs)")
+        lines.append("not applicable (a method the property needs is missing, or every example "
+                     "was declined)")
         lines.append(fit("  " + ", ".join(f"{n} {k}" for n, k in na if k), width))
 
     def block(k, others=()):

@@ -769,8 +769,9 @@ def answers(corpus: dict[str, dict], impl) -> list[dict]:
 
 
 def read_answers(path: str | Path) -> list[dict]:
-    """The lines of an answers file (JSON Lines; VectorsError naming a bad line)."""
-    out = []
+    """The lines of an answers file (JSON Lines; VectorsError naming a bad line, or a case
+    answered twice)."""
+    out, seen = [], {}
     text = read_text(path, "an answers file", error=VectorsError)
     for k, line in enumerate(text.splitlines(), 1):
         if not line.strip():
@@ -783,6 +784,10 @@ def read_answers(path: str | Path) -> list[dict]:
                 and ("value" in obj) != ("error" in obj)):
             raise VectorsError(f'{path}:{k}: expected {{"id": ..., "value": ...}} or '
                                f'{{"id": ..., "error": {{"kind", "message"}}}}')
+        if obj["id"] in seen:           # which would count? (both were, "72 cases" of 36)
+            raise VectorsError(f"{path}:{k}: case {obj['id']!r} is answered again (first on "
+                               f"line {seen[obj['id']]}): one answer per case")
+        seen[obj["id"]] = k
         out.append(obj)
     if not out:
         raise VectorsError(f"{path}: no answer in it (an empty answers file checks nothing)")

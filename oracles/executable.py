@@ -242,6 +242,10 @@ class Executable:
         if not isinstance(methods, list) or not methods:
             self.close()
             raise DriverFailed(f"{self.spec}: the handshake lists no methods: {_short(hello)}")
+        if not all(isinstance(x, str) for x in methods):
+            self.close()
+            raise DriverFailed(f"{self.spec}: the handshake's methods must be names (strings): "
+                               f"{_short(methods)}")
         unknown = sorted(set(methods) - set(METHODS))
         if unknown:
             self.close()

@@ -311,6 +311,8 @@ def parse(declaration) -> tuple[Convention, ...]:
     d = dict(declaration)
     preset = d.pop("preset", None)
     if preset is not None:
+        if not isinstance(preset, str):
+            raise ValueError(f"conventions: preset must be a preset's name, got {preset!r}")
         d = {**parse_dict(preset), **d}
     out = []
     for key, value in d.items():
@@ -321,10 +323,10 @@ def parse(declaration) -> tuple[Convention, ...]:
                                  f"number (the diagonal shift), got {value!r}")
             out.append(_regularization(float(value)))
             continue
-        if key not in VOCABULARY:
+        if not isinstance(key, str) or key not in VOCABULARY:
             raise ValueError(f"conventions: no convention {key!r}; the keys: "
                              f"{', '.join(list(VOCABULARY) + ['regularization'])}")
-        if value not in VOCABULARY[key]:
+        if not isinstance(value, str) or value not in VOCABULARY[key]:      # ["x"]: no name
             raise ValueError(f"conventions: {key} is one of {', '.join(map(str, VOCABULARY[key]))} "
                              f"(the reference's: {REFERENCE[key]}), got {value!r}")
         out.append(VOCABULARY[key][value])

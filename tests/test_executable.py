@@ -264,3 +264,19 @@ def test_a_python_implementation_declaring_such_an_epsilon_is_refused():
         run_properties(coarse, only=["D2.2"])
     exact = type("Exact", (ReferenceImplementation,), {"machine_epsilon": 0, "name": "exact"})()
     assert run_properties(exact, only=["D1.6"])[0].status == PASSED
+
+
+@pytest.mark.parametrize("hello,words", [
+    ('{"methods": [["area"]]}', "methods must be names"),
+    ('{"methods": [1, "area"]}', "methods must be names"),
+    ('{"methods": ["area"], "conventions": {"laplacian": ["x"]}}', "laplacian is one of"),
+    ('{"methods": ["area"], "conventions": {"preset": ["libigl"]}}', "preset must be"),
+])
+def test_a_handshake_of_the_wrong_shape_is_named_not_a_type_error(tmp_path, hello, words):
+    """These were a bare "TypeError: unhashable type" (exit 2, no word of the handshake)."""
+    (tmp_path / "h.py").write_text(
+        "import json, sys\nfor line in sys.stdin:\n"
+        "    if json.loads(line)['method'] == 'hello':\n"
+        f"        print({hello!r}, flush=True)\n")
+    with pytest.raises(DriverFailed, match=words):
+        Executable([sys.executable, str(tmp_path / "h.py")])

@@ -350,3 +350,13 @@ def test_an_answers_file_nested_beyond_the_json_parser_is_a_usage_error(tmp_path
     assert main(["verify", str(ROOT / "vectors"), str(deep)]) == 2
     err = capsys.readouterr().err
     assert "not JSON" in err and err.count("\n") == 1, err
+
+
+def test_a_case_answered_twice_is_a_usage_error(tmp_path, capsys):
+    """Both answers were counted ("72 cases" for 36): which one was judged?"""
+    ROOT = Path(__file__).resolve().parent.parent
+    line = json.dumps({"id": "area/tetrahedron", "value": 1.0})
+    twice = tmp_path / "answers.jsonl"
+    twice.write_text(line + "\n" + line + "\n")
+    assert main(["verify", str(ROOT / "vectors"), str(twice)]) == 2
+    assert "answered again (first on line 1)" in capsys.readouterr().err

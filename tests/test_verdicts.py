@@ -1073,3 +1073,18 @@ def test_a_dirichlet_solver_that_leaves_a_component_out_fails():
     r = run_property(PROPERTIES["C3.4 / T3.5"], OneComponent(), profile("ci"),
                      budget=Budget(120.0, 6, 1.0))
     assert r.status == FAILED and "solve_dirichlet" in r.failure.message, (r.status, r.error)
+
+
+def test_an_implementation_declining_every_example_says_so(capsys):
+    """The report's line said "the implementation lacks a method the property needs", which
+    it did not."""
+    from ddg_oracle.application.report import terminal_report
+    class DeclinesAll(ReferenceImplementation):
+        name = "declines-all"
+
+        def angle_defects(self, V, F):
+            raise OutsideDomain("no area today")
+
+    r = run_property(PROPERTIES["D2.2"], DeclinesAll(), profile("default"))
+    assert r.status == NOT_APPLICABLE and "outside its domain: no area today" in r.note, r.note
+    assert "or every example was declined" in terminal_report([r])
