@@ -147,12 +147,19 @@ class Lapy:
 
     def solve_dirichlet(self, V, F, boundary, values) -> np.ndarray:
         """``Solver(mesh).poisson(h=0, dtup=(boundary, values))`` on the used vertices
-        (boundary indices renumbered; a boundary vertex used by no face is dropped)."""
+        (boundary indices renumbered), put back on every row of V: a boundary vertex used
+        by no face, which LaPy never sees, keeps its given value (the protocol's u[boundary]
+        = values; the "dropped" map would give it 0)."""
         m, keep = _used_mesh(V, F)
-        new = np.full(len(checked_arrays(V, F)[0]), -1, dtype=np.int64)
+        n = len(checked_arrays(V, F)[0])
+        new = np.full(n, -1, dtype=np.int64)
         new[keep] = np.arange(len(keep))
-        b = new[np.asarray(boundary, dtype=np.int64).reshape(-1)]
+        given = np.asarray(boundary, dtype=np.int64).reshape(-1)
+        b = new[given]
         vals = np.asarray(values, dtype=np.float64).reshape(-1)
         inside = b >= 0
         x = lapy.Solver(m).poisson(h=0.0, dtup=(b[inside], vals[inside]))
-        return np.asarray(x, dtype=np.float64).reshape(-1)
+        u = np.zeros(n)
+        u[keep] = np.asarray(x, dtype=np.float64).reshape(-1)
+        u[given[~inside]] = vals[~inside]
+        return u

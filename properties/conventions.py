@@ -126,14 +126,20 @@ def mixed_areas(V, F) -> np.ndarray:
 
 def _expand_used(answer, V, F, isolated_value):
     """An answer indexed by the referenced vertices only (LaPy's), put back on every vertex
-    of V, with the protocol's value at the others."""
+    of V, with the protocol's value at the others; one with a row for every vertex of V
+    already (a solution of the Dirichlet problem, whose values at a boundary vertex of no
+    face only the call's arguments know) as it is."""
     V, F = _arrays(V, F)
     used = np.unique(F)
     import scipy.sparse as sp
     if sp.issparse(answer):
         A = sp.coo_matrix(answer)
+        if A.shape == (len(V), len(V)):
+            return answer
         return sp.csr_matrix((A.data, (used[A.row], used[A.col])), shape=(len(V), len(V)))
     a = np.asarray(answer, dtype=np.float64)
+    if len(a) == len(V):
+        return a
     out = np.full((len(V),) + a.shape[1:], isolated_value, dtype=np.float64)
     out[used] = a
     return out

@@ -1211,26 +1211,37 @@ def with_functions(meshes):
     return build()
 
 
-def with_boundary(meshes, mesh_boundary: bool = False):
+def with_boundary(meshes, mesh_boundary: bool = False, unused: int = 0):
     """A mesh with a nonempty drawn boundary set V0 (or its boundary vertices) and
     values on all vertices (only those on V0 are used).  V0 is listed sorted, reversed
     or shuffled (the order an implementation receives it in): a solver that assumes
     sorted indices fails on the others.  Never a vertex listed twice: the protocol's
     boundary indices are distinct, as in the libraries (gpytoolbox asserts it, LaPy raises,
-    libigl's min_quad_with_fixed crashes on a repeat)."""
+    libigl's min_quad_with_fixed crashes on a repeat).  ``unused``: up to this many
+    vertices used by no face (drawn 0 first), at drawn rows of V, each in V0 (no face
+    gives it an equation): a solver that drops them must still give them their values."""
     @st.composite
     def build(draw):
         c = draw(meshes)
-        t = Triangulation.from_faces(c.faces, n_vertices=c.n)
+        k = draw(st.integers(0, unused)) if unused else 0
+        if k:
+            c = _with_unused_vertices(c, draw(st.lists(st.integers(0, c.n), min_size=k,
+                                                       max_size=k)))
+        # the surface on the vertices some face uses (a triangulation has no other)
+        used = sorted({v for f in c.faces for v in f})
+        at = {v: k for k, v in enumerate(used)}
+        t = Triangulation.from_faces([[at[v] for v in f] for f in c.faces],
+                                     n_vertices=len(used))
         if mesh_boundary:
-            V0 = [v for v in range(c.n) if t.is_boundary_vertex(v)]
+            V0 = [used[k] for k in range(len(used)) if t.is_boundary_vertex(k)]
         else:
             picks = draw(st.lists(st.booleans(), min_size=c.n, max_size=c.n))
             V0 = [v for v in range(c.n) if picks[v]]
-        comps = [sorted({v for f in comp for v in t.faces[f]}) for comp in t.components()]
+        comps = [sorted({used[v] for f in comp for v in t.faces[f]}) for comp in t.components()]
         for comp in comps:                      # every component meets V0
             if not any(v in V0 for v in comp):
                 V0.append(comp[draw(st.integers(0, len(comp) - 1))])
+        V0 += [v for v in range(c.n) if v not in at and v not in V0]
         f = draw(_values(c.n))
         g = draw(_values(c.n))
         V0 = sorted(V0)
@@ -1242,6 +1253,19 @@ def with_boundary(meshes, mesh_boundary: bool = False):
         recipe = c.recipe + ("", ", V0 reversed", ", V0 shuffled")[order]
         return Example.of_mesh(c.positions, c.faces, recipe, tuple(V0), tuple(f), tuple(g))
     return build()
+
+
+def _with_unused_vertices(c, rows) -> Example:
+    """``c`` with a vertex used by no face inserted at each of ``rows`` (indices of the new
+    V, counted before each insertion; the faces renumbered), placed 3 units past the
+    mesh's largest x: a point, as an OBJ file's leftover vertex."""
+    positions, faces = list(c.positions), [list(f) for f in c.faces]
+    far = max(p[0] for p in positions) + 3
+    for r in rows:
+        r = min(r, len(positions))
+        positions.insert(r, (far, *positions[0][1:]))
+        faces = [[v + (v >= r) for v in f] for f in faces]
+    return Example.of_mesh(positions, faces, c.recipe + f", unused vertices at rows {list(rows)}")
 
 
 @dataclass(frozen=True)

@@ -1088,3 +1088,24 @@ def test_an_implementation_declining_every_example_says_so(capsys):
     r = run_property(PROPERTIES["D2.2"], DeclinesAll(), profile("default"))
     assert r.status == NOT_APPLICABLE and "outside its domain: no area today" in r.note, r.note
     assert "or every example was declined" in terminal_report([r])
+
+
+def test_a_dirichlet_solver_that_drops_unused_vertices_fails():
+    """A vertex no face uses is in V0 (no face gives it an equation); a solver that solves
+    on the used vertices (as LaPy does) must still give it its value: T3.2 and C3.4 drew no
+    such vertex, and one that came back 0 passed."""
+    from examples.numpy_mesh import NumpyMesh
+
+    class DropsUnused(NumpyMesh):
+        name = "drops-unused"
+
+        def solve_dirichlet(self, V, F, boundary, values):
+            u = np.asarray(NumpyMesh.solve_dirichlet(self, V, F, boundary, values), float)
+            u[np.setdiff1d(np.arange(len(V)), np.unique(F))] = 0.0
+            return u
+
+    r = run_property(PROPERTIES["C3.4 / T3.5"], DropsUnused(), profile("ci"),
+                     budget=Budget(120.0, 6, 1.0))
+    assert r.status == FAILED and "given value on the boundary set" in r.failure.message, \
+        (r.status, r.error)
+    assert run_property(PROPERTIES["C3.4 / T3.5"], NumpyMesh(), profile("ci")).status == PASSED
