@@ -187,7 +187,9 @@ def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
         return mesh
     try:
         from ..reference.polyhedral import PolyhedralSurface
-        PolyhedralSurface.from_arrays(V, mesh.F)
+        s = PolyhedralSurface.from_arrays(V, mesh.F)
+        if not nondegenerate(V, mesh.F):
+            s.metric()          # a face the rounding collapsed (cgal-style far meshes), as load
     except InputError as e:
         raise InputError(f"{mesh.name} rounded to {fmt.name} (as this implementation reads "
                          f"it): {e}") from None

@@ -24,7 +24,7 @@ from . import memo
 from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
-from .registry import PropertyFailure, TieDisagreement, count_unjudged
+from .registry import PropertyFailure, TieDisagreement, judgeable
 from .views import exact_laplacian, laplacian_view
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
@@ -68,12 +68,10 @@ def recording(ledger: ErrorLedger):
 
 def ratios(err, bound) -> np.ndarray:
     """``err / bound`` elementwise: an error in units of its derived bound (inf where the
-    bound is 0 and the error is not, 0 where both are).  An infinite bound judges nothing:
-    where the error is not 0 there the entry is counted unjudged
-    (:func:`~.registry.count_unjudged`, reported by the runner) and its ratio is 0."""
-    err = np.asarray(err, dtype=float)
-    bound = np.asarray(bound, dtype=float)
-    count_unjudged(np.count_nonzero(np.isposinf(bound) & (err != 0)))
+    bound is 0 and the error is not, 0 where both are).  An infinite (or NaN) bound judges
+    nothing: where the error is not 0 there the entry is counted unjudged
+    (:func:`~.registry.judgeable`, reported by the runner) and its ratio is 0."""
+    err, bound = judgeable(err, bound)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(bound > 0, err / np.where(bound > 0, bound, 1), np.where(err > 0, np.inf, 0))
 

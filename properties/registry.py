@@ -121,6 +121,7 @@ class Unjudged:
 
     def __init__(self):
         self.entries = 0
+        self.judged = 0                 # entries compared against a finite bound (or equal)
 
 
 _UNJUDGED: contextvars.ContextVar = contextvars.ContextVar("ddg_unjudged", default=None)
@@ -137,19 +138,32 @@ def unjudged_entries():
         _UNJUDGED.reset(token)
 
 
-def count_unjudged(k: int) -> None:
-    """Add ``k`` unjudged entries to the tally open now, if any."""
+def count_unjudged(k: int, judged: int = 0) -> None:
+    """Add ``k`` unjudged entries (and ``judged`` judged ones) to the tally open now, if any."""
     tally = _UNJUDGED.get()
-    if tally is not None and k:
+    if tally is not None:
         tally.entries += int(k)
+        tally.judged += int(judged)
+
+
+def judgeable(err, bound) -> tuple[np.ndarray, np.ndarray]:
+    """(err, bound) as float arrays, a NaN bound made infinite: 0/0 of a quantity below
+    the float range's resolution (a triangle of side 1e-300) decides nothing, as an
+    infinite bound; read as a number it failed the exact answer itself ("error 0 = 0 x the
+    derived bound nan").  The entries it leaves undecided are counted
+    (:func:`count_unjudged`), the others counted judged."""
+    e, b = np.asarray(err, dtype=np.float64), np.asarray(bound, dtype=np.float64)
+    b = np.where(np.isnan(b), np.inf, b)
+    open_ = np.isposinf(b) & (e != 0)
+    count_unjudged(np.count_nonzero(open_), open_.size - np.count_nonzero(open_))
+    return e, b
 
 
 def within(err, bound):
     """``err <= bound`` (elementwise for arrays: a bool array), with the entries whose bound
-    is infinite and whose error is not 0 counted unjudged (:func:`count_unjudged`): an
+    is infinite (or NaN: :func:`judgeable`) and whose error is not 0 counted unjudged: an
     infinite bound passes them, and the runner says so.  A NaN error is never within."""
-    e, b = np.asarray(err, dtype=np.float64), np.asarray(bound, dtype=np.float64)
-    count_unjudged(np.count_nonzero(np.isposinf(b) & (e != 0)))
+    e, b = judgeable(err, bound)
     ok = e <= b
     return bool(ok) if ok.ndim == 0 else ok
 

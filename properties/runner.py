@@ -246,6 +246,7 @@ class _Search:
     refused: bool = False           # stopped because the implementation declines nearly all
     internal: tuple | None = None   # (our own exception, its example): a bug of ddg-oracle
     unjudged: int = 0               # examples with entries an infinite bound could not judge
+    nothing_judged: int = 0         # examples of which no entry could be judged at all
 
 
 def _keep_smallest(state: _Search, key: str, e: BaseException, example) -> None:
@@ -643,6 +644,14 @@ def _note_unjudged(r: Result, state: _Search) -> None:
         # the examples counted (a failure's shrinking runs examples again)
         n = max(r.examples, 1)
         r.unjudged = min(state.unjudged, n)
+        if r.status == PASSED and state.nothing_judged >= n:
+            # not one entry of one example compared against a finite bound: nothing was
+            # checked (a mesh below the float range's resolution), so nothing passed
+            r.status = UNDECIDED
+            r.note = _joined(r.note, f"no entry of {'the' if n == 1 else 'any'} example could "
+                             "be judged: every derived bound is infinite (beyond the "
+                             "resolution of the declared precision)")
+            return
         r.note = _joined(r.note, f"{r.unjudged} of {n} examples had entries no finite bound "
                          "could judge (an infinite derived bound: beyond the resolution of the "
                          "declared precision); those entries were neither passed nor failed")
@@ -676,6 +685,8 @@ def _check(p: Property, watched, example, state: _Search | None = None) -> None:
             finally:
                 if state is not None and tally.entries:
                     state.unjudged += 1
+                    # every comparison against an infinite bound: this example decided nothing
+                    state.nothing_judged += not tally.judged
     except OverflowError as e:
         # only the float of an exact number (int, Fraction, Surd: "... too large ... float"):
         # float arithmetic on an implementation's answer overflows with other messages

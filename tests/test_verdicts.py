@@ -693,8 +693,10 @@ def test_only_an_exact_numbers_float_overflow_is_undecided(message, status):
 def test_an_entry_an_infinite_bound_cannot_judge_is_said_not_judged_not_passed_silently():
     """A needle whose float cross product is 0 (exact area 2^-104): its corner bounds are
     infinite, so no answer there can fail.  A wrong answer at those corners is reported as
-    entries not judged (the note says in how many examples), never as a silent
-    pass; a right answer leaves no note, and a wrong one on a plain triangle fails."""
+    entries not judged, never as a silent pass: here no entry at all could be judged, so
+    D2.6 is undecided (it was "passed, partly judged" until a helper's 1e-150 triangle
+    showed a wrong implementation passing that way); a right answer leaves no note, and a
+    wrong one on a plain triangle fails."""
     from fractions import Fraction
     from ddg_oracle.properties.runner import run_on_example
     from ddg_oracle.properties.strategies import Example
@@ -709,16 +711,15 @@ def test_an_entry_an_infinite_bound_cannot_judge_is_said_not_judged_not_passed_s
     right = run_on_example(PROPERTIES["D2.6"], ReferenceImplementation(), needle, "needle")
     assert right.status == PASSED and not right.note
     wrong = run_on_example(PROPERTIES["D2.6"], Equilateral(), needle, "needle")
-    assert wrong.status == PASSED
-    assert "1 of 1 examples had entries no finite bound could judge" in wrong.note, wrong.note
-    assert wrong.summary() == "passed (1 example; 1 partly judged)"
+    assert wrong.status == "undecided"
+    assert "no entry of the example could be judged" in wrong.note, wrong.note
     plain = Example.of_mesh(((Fraction(0),) * 3, (Fraction(1), Fraction(0), Fraction(0)),
                              (Fraction(0), Fraction(2), Fraction(0))), ((0, 1, 2),), "triangle")
     assert run_on_example(PROPERTIES["D2.6"], Equilateral(), plain, "triangle").status == FAILED
     from ddg_oracle.application.report import result_record, terminal_report
     assert result_record(wrong, "", "x")["unjudged"] == 1
     text = terminal_report([right, wrong], width=200)
-    assert "passed, partly judged (1)" in text and "1 of 1 examples had entries" in text
+    assert "undecided" in text and "no entry of the example could be judged" in text
 
 
 # --- an answer not of its method's kind is the implementation's failure ------------------------
@@ -1109,3 +1110,64 @@ def test_a_dirichlet_solver_that_drops_unused_vertices_fails():
     assert r.status == FAILED and "given value on the boundary set" in r.failure.message, \
         (r.status, r.error)
     assert run_property(PROPERTIES["C3.4 / T3.5"], NumpyMesh(), profile("ci")).status == PASSED
+
+
+# --- given meshes at the ends of the float range (a helper's mesh files) ------------------------
+
+
+class WrongAtAnyScale:
+    """pi/3 at every corner, 0 at every vertex: wrong for any triangle but an equilateral."""
+
+    name = "wrong-at-any-scale"
+
+    def corner_angles(self, V, F):
+        return np.full(np.asarray(F).shape, np.pi / 3)
+
+    def angle_defects(self, V, F):
+        return np.zeros(len(V))
+
+
+class Float32Mesh(ReferenceImplementation):
+    name = "float32-mesh"
+    machine_epsilon = 2.0 ** -23
+
+
+def _triangle(tmp_path, name, points) -> str:
+    path = tmp_path / name
+    path.write_text("".join(f"v {x!r} {y!r} 0\n" for x, y in points) + "f 1 2 3\n")
+    return str(path)
+
+
+def test_a_mesh_below_the_float_range_is_undecided_never_passed_or_failed(tmp_path, capsys):
+    """A triangle of side 1e-300: its bounds were 0/0 (NaN), and a NaN bound failed the
+    reference itself on R2.4 ("error 0 = 0 x the derived bound nan"); at side 1e-150 every
+    bound is infinite and a wrong implementation "passed, partly judged" (R2.4, D2.6)."""
+    from ddg_oracle.application.cli import main
+    from ddg_oracle.application.meshes import MeshExamples, load
+    from ddg_oracle.properties.runner import run_on_example
+    tiny = _triangle(tmp_path, "tiny.obj", [(0.0, 0.0), (1e-300, 0.0), (0.0, 1e-300)])
+    small = _triangle(tmp_path, "small.obj", [(0.0, 0.0), (1e-150, 0.0), (0.0, 1e-150)])
+    for path in (tiny, small):
+        example = MeshExamples(load(path, path)).example()
+        for pid in ("R2.4", "D2.6"):
+            assert run_on_example(PROPERTIES[pid], ReferenceImplementation(), example,
+                                  path).status == PASSED, (pid, path)
+            r = run_on_example(PROPERTIES[pid], WrongAtAnyScale(), example, path)
+            assert r.status in (FAILED, "undecided"), (pid, path, r.status, r.note)
+    assert main(["check", "--mesh", small, "--impl", "tests.test_verdicts:WrongAtAnyScale",
+                 "--only", "R2.4", "D2.6"]) == 0
+    out = capsys.readouterr().out
+    assert "undecided" in out and "passed" not in out.split("passed (of the")[0], out
+
+
+def test_a_float32_reading_that_collapses_the_mesh_is_not_applicable_not_our_crash(tmp_path,
+                                                                                    capsys):
+    """A triangle at x = 1e8: float32 merges two of its vertices.  check --mesh raised
+    DegenerateFace inside seven checks (internal errors, exit 3) and failed R2.4 with a NaN
+    bound; compare said not applicable."""
+    from ddg_oracle.application.cli import main
+    far = _triangle(tmp_path, "far.obj", [(1e8, 0.0), (1e8 + 1, 0.0), (1e8, 1.0)])
+    assert main(["check", "--mesh", far, "--impl", "tests.test_verdicts:Float32Mesh",
+                 "--only", "D2.2", "R2.4", "D3.1"]) == 0
+    out = capsys.readouterr().out
+    assert "internal error" not in out and "FAILED" not in out and "not applicable" in out, out
