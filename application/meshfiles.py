@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import struct
 from pathlib import Path
 
@@ -104,21 +105,28 @@ def _shared(i: int, ints: list) -> int:
     return ints[i] if 0 <= i < len(ints) else i
 
 
+#: a number as C's strtod and the file formats write it, in ASCII: Python's float() also
+#: takes "1_0" (as 10), full-width digits and surrounding spaces, which no writer means
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+_INTEGER = re.compile(r"[+-]?[0-9]+\Z")
+_NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)\Z", re.IGNORECASE)
+
+
 def _float(tok: str, name: str, where: str) -> float:
-    try:
-        x = float(tok)
-    except ValueError:
-        raise MeshFileError(f"{name}:{where}: {tok!r} is not a number") from None
+    if _NON_FINITE.match(tok):
+        raise MeshFileError(f"{name}:{where}: non-finite coordinate {tok!r}")
+    if not _NUMBER.match(tok):
+        raise MeshFileError(f"{name}:{where}: {tok!r} is not a number")
+    x = float(tok)
     if not math.isfinite(x):
         raise MeshFileError(f"{name}:{where}: non-finite coordinate {tok!r}")
     return x
 
 
 def _int(tok: str, name: str, where: str) -> int:
-    try:
-        return int(tok)
-    except ValueError:
-        raise MeshFileError(f"{name}:{where}: {tok!r} is not an integer index") from None
+    if not _INTEGER.match(tok):
+        raise MeshFileError(f"{name}:{where}: {tok!r} is not an integer index")
+    return int(tok)
 
 
 def _triangle(corners: list[int], name: str, where: str) -> list[int]:
@@ -177,6 +185,10 @@ def _off(data: bytes, name: str):
     n0, head = next(rest, (0, [""]))
     if not head[0].endswith("OFF"):
         raise MeshFileError(f"{name}:line 1: missing the OFF header")
+    if "4" in head[0] or head[0].startswith("n"):
+        # 4OFF, nOFF: points of R^4 or R^n (reading three coordinates dropped the others)
+        raise MeshFileError(f"{name}:line 1: {head[0]} holds points of more than 3 "
+                            "dimensions: not a surface in R^3")
     skip = 1                                   # lines before the body: the header
     if len(head) > 1:                          # "OFF nv nf ne" on one line
         n, counts = n0, head[1:]
@@ -214,7 +226,9 @@ _PLY_TYPES = {"char": "b", "int8": "b", "uchar": "B", "uint8": "B", "short": "h"
 
 
 def _ply(data: bytes, name: str):
-    end = data.find(b"end_header")
+    # the line that is "end_header" (a comment may mention the word before it)
+    found = re.search(rb"^end_header[ \t]*\r?$", data, re.MULTILINE)
+    end = found.start() if found else -1
     if not data.startswith(b"ply") or end < 0:
         raise MeshFileError(f"{name}: not a PLY file (missing 'ply' or 'end_header')")
     header = data[:end].decode("ascii", "replace").splitlines()

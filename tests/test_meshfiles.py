@@ -106,3 +106,28 @@ def test_fuzz_readers_give_a_mesh_or_a_clear_error(tmp_path_factory, ext, case):
     except MeshFileError:
         return
     assert F and all(0 <= i < len(V) for f in F for i in f) and all(len(f) == 3 for f in F)
+
+
+@pytest.mark.parametrize("name,text,words", [
+    ("under.obj", "v 1_0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", "'1_0' is not a number"),
+    ("wide.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 \uff13\n", "not an integer index"),
+    ("four.off", "4OFF\n3 1 0\n0 0 0 0\n1 0 0 5\n0 1 0 7\n3 0 1 2\n", "more than 3 dimensions"),
+])
+def test_a_number_no_writer_means_is_refused_not_read_as_another(tmp_path, name, text, words):
+    """Python's float() read "1_0" as 10 and int() a full-width digit as 3; 4OFF's fourth
+    coordinate was dropped: each a silently different mesh (a helper's mesh files)."""
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(MeshFileError, match=words):
+        read_mesh(str(path))
+
+
+def test_a_ply_comment_naming_end_header_is_a_comment(tmp_path):
+    """The reader took the first "end_header" anywhere, and refused this file as faceless."""
+    path = tmp_path / "c.ply"
+    path.write_text("ply\nformat ascii 1.0\ncomment made with the end_header tool\n"
+                    "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    V, F = read_mesh(str(path))[:2]
+    assert len(V) == 3 and [list(f) for f in F] == [[0, 1, 2]]
