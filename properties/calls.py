@@ -147,7 +147,9 @@ def _own_copy(answer):
     deep copy took 0.4 s); a number as it is."""
     if isinstance(answer, (int, float, bool, str, type(None))):
         return answer
-    if isinstance(answer, np.ndarray):
+    if isinstance(answer, np.ndarray) or hasattr(answer, "tocsr"):
+        # a scipy sparse matrix's own copy copies its arrays (copy.copy shares them); before
+        # the dict case: a dok_matrix is a dict too (and was copied into a plain one)
         return answer.copy()
     if isinstance(answer, dict):
         return {k: v if isinstance(v, (int, float)) else _own_copy(v) for k, v in answer.items()}
@@ -156,8 +158,7 @@ def _own_copy(answer):
             else list(map(_own_copy, answer))
     import copy
     try:
-        # a scipy sparse matrix's own copy copies its arrays (copy.copy shares them)
-        return answer.copy() if hasattr(answer, "tocsr") else copy.deepcopy(answer)
+        return copy.deepcopy(answer)
     except Exception:  # noqa: BLE001  (an object that cannot be copied: read as it is)
         return answer
 

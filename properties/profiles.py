@@ -47,7 +47,7 @@ import threading
 import time
 from contextlib import contextmanager
 
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, Phase, Verbosity, settings
 from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 
 from ..reference.errors import InputError, TimeLimitExceeded
@@ -163,12 +163,16 @@ def _register(database) -> None:
         ci = {"derandomize": False, "database": database}
     else:
         ci = {"derandomize": True, "database": None}
-    ours = {"default": settings(max_examples=25, deadline=None, suppress_health_check=_quiet,
-                                **db),
-            "ci": settings(max_examples=60, deadline=None, suppress_health_check=_quiet,
-                           print_blob=True, **ci),
-            "thorough": settings(max_examples=1000, deadline=None, suppress_health_check=_quiet,
-                                 **db)}
+    # every setting that changes what runs is given here: the others would come from the
+    # profile loaded when these are built, the user's (phases=[explicit, reuse] made every
+    # property run 1 of 25 examples and pass, or none: "told to run no test cases")
+    base = dict(deadline=None, suppress_health_check=_quiet, phases=tuple(Phase),
+                verbosity=Verbosity.normal, report_multiple_bugs=True, stateful_step_count=50)
+    ours = {"default": settings(max_examples=25, derandomize=False, print_blob=False,
+                                **base, **db),
+            "ci": settings(max_examples=60, print_blob=True, **base, **ci),
+            "thorough": settings(max_examples=1000, derandomize=False, print_blob=False,
+                                 **base, **db)}
     _registered = _with_hypothesis(ours)
 
 

@@ -298,13 +298,22 @@ def near_misses(impl) -> list[tuple[str, str]]:
         return [tuple(x) for x in known]
     out = []
     for name in sorted(dir(impl)):
-        if name.startswith("_") or name in METHODS or not callable(getattr(impl, name, None)):
+        if name.startswith("_") or name in METHODS or not _callable_attribute(impl, name):
             continue
         guess = KNOWN_ALIASES.get(name.lower()) or next(
             iter(difflib.get_close_matches(name.lower(), METHODS, n=1, cutoff=0.75)), None)
         if guess is not None and guess not in capabilities(impl):
             out.append((name, guess))
     return out
+
+
+def _callable_attribute(impl, name: str) -> bool:
+    """Whether ``impl.name`` is callable; False when reading it raises (a property of the
+    user's that computes something: a hint must never stop a check)."""
+    try:
+        return callable(getattr(impl, name, None))
+    except Exception:  # noqa: BLE001
+        return False
 
 
 def near_miss_warning(impl) -> str | None:

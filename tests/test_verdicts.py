@@ -7,6 +7,7 @@ Each test here is a false pass or a hidden failure that a session found on lande
 
 from __future__ import annotations
 
+import subprocess
 import sys
 import textwrap
 import time
@@ -1039,8 +1040,17 @@ class EdgeValuesInArrays(ReferenceImplementation):
         return {e: np.array([h]) for e, h in super().edge_mean_curvature(V, F).items()}
 
 
+class LaplacianAsDok(ReferenceImplementation):
+    """A scipy dok_matrix (a dict to Python): copied into a plain dict, an internal error."""
+
+    name = "laplacian-as-dok"
+
+    def cotan_laplacian(self, V, F):
+        return super().cotan_laplacian(V, F).todok()
+
+
 @pytest.mark.parametrize("impl,pid", [(NegativeLaplacianAsLists, "D3.1"),
-                                      (EdgeValuesInArrays, "D2.3")])
+                                      (EdgeValuesInArrays, "D2.3"), (LaplacianAsDok, "D3.1")])
 def test_answers_in_another_accepted_form_are_checked_not_our_crash(impl, pid):
     r = run_property(PROPERTIES[pid], impl(), profile("ci"))
     assert r.status == PASSED, (r.status, r.error)
@@ -1171,3 +1181,25 @@ def test_a_float32_reading_that_collapses_the_mesh_is_not_applicable_not_our_cra
                  "--only", "D2.2", "R2.4", "D3.1"]) == 0
     out = capsys.readouterr().out
     assert "internal error" not in out and "FAILED" not in out and "not applicable" in out, out
+
+
+def test_the_users_loaded_hypothesis_profile_changes_nothing_of_ours():
+    """Our profiles were built from the profile loaded at that moment, the user's: with
+    phases=[explicit, reuse] every property ran no example (an internal error blaming
+    ddg-oracle) or only a saved one (1 of 25, passed).  In a fresh interpreter: the user's
+    conftest would have loaded it first."""
+    code = (
+        "import sys\n"
+        "from hypothesis import settings, Phase\n"
+        "settings.register_profile('replay-only', phases=[Phase.explicit, Phase.reuse],"
+        " max_examples=3)\n"
+        "settings.load_profile('replay-only')\n"
+        "from ddg_oracle.properties import PROPERTIES\n"
+        "from ddg_oracle.properties.runner import run_property\n"
+        "from ddg_oracle.properties.profiles import profile\n"
+        "from ddg_oracle.oracles.exact_reference import ReferenceImplementation\n"
+        "r = run_property(PROPERTIES['D1.6'], ReferenceImplementation(), profile('default'))\n"
+        "print(r.status, r.examples)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120)
+    assert out.stdout.split() == ["passed", "25"], out.stdout + out.stderr[-2000:]
