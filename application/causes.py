@@ -5,7 +5,9 @@ page (:mod:`ddg_oracle.application.html_report`) and the pytest plugin.
 * :func:`element_ids`: the mesh element a failure names (a vertex, an edge, a face corner);
 * :func:`blamed_methods`, :func:`wrong_answer`: the protocol methods a failure blames and
   their wrong answer on the counterexample;
-* :func:`convention_hint`: the convention of the vocabulary under which the answer agrees;
+* :func:`convention_hint`: the convention of the vocabulary under which the answer agrees
+  (and no other answer of the example breaks); :func:`group_hint`: a root cause's, only
+  when every diagnosed member shares it;
 * :func:`root_causes`: failures grouped by implementation and blamed methods, crashes by
   message, smallest counterexample first.
 """
@@ -113,7 +115,8 @@ def convention_hint(r) -> str | None:
     declare: "cotan_laplacian agrees under laplacian=negative (the matrix is -L ...):
     declare conventions = {'laplacian': 'negative'}"; else None."""
     from ..properties.conventions import declaration_text, parse
-    for d in r.diagnosis or []:
+    rows = r.diagnosis or []
+    for d in rows:
         names = d.get("explained_by") or []
         if d["status"] == "DIFFERS" and names:
             key, _, value = names[0].partition("=")
@@ -122,10 +125,35 @@ def convention_hint(r) -> str | None:
                 c = parse({key: value})
             except ValueError:
                 continue
+            if any(e["status"] == "agrees" and c[0].applies(e["quantity"]) for e in rows):
+                # a method the convention changes agrees as it is: declaring it would make
+                # that one wrong (area_gradient doubled beside a right Laplacian)
+                return None
             return (f"{d['quantity']} agrees with the exact answer under {names[0]} "
                     f"({c[0].about}): if that is your convention, declare "
                     f"{declaration_text(c)}")
     return None
+
+
+def group_hint(results, members) -> str | None:
+    """The convention hint of a root cause's results: the one every member with a
+    differing, diagnosed answer shares; None when one of them has another or none (a real
+    bug that agrees with a convention on one small example, as doubling the interior
+    weights only does on a closed tetrahedron, must not be called a convention)."""
+    hints, unexplained = set(), False
+    for k in members:
+        r = results[k]
+        differing = [d for d in (r.diagnosis or []) if d["status"] == "DIFFERS"]
+        if not differing:
+            continue
+        h = convention_hint(r)
+        if h is None:
+            unexplained = True
+        else:
+            hints.add(h.split(": if that is", 1)[0].split(" under ", 1)[1])
+    if unexplained or len(hints) != 1:
+        return None
+    return next(h for k in members if (h := convention_hint(results[k])))
 
 
 def wrong_answer(r) -> str | None:

@@ -547,13 +547,13 @@ def page_data(results, known: dict, argv=None, snippets: dict | None = None) -> 
     the command line, the root causes, the notes' statements and errata of each catalog
     ID, the documented findings' text, the replay snippets and, for mesh-file failures,
     the neighbourhood of the failing element (a mesh file's result carries its mesh)."""
-    from .causes import convention_hint, element_ids, root_causes
+    from .causes import element_ids, group_hint, root_causes
     causes, crashes = root_causes(results)
     by_id, errata = _statements()
     cause_text, cause_of = [], {}
     for c in causes:
         blame = " or ".join(c.methods) or "an answer"
-        hint = next((h for k in c.members if (h := convention_hint(results[k]))), None)
+        hint = group_hint(results, c.members)
         text = (f"{c.implementation}: {blame} wrong, {len(c.members)} "
                 f"propert{'ies' if len(c.members) != 1 else 'y'}" + (f"; {c.where}" if c.where else "")
                 + (f"; {hint}" if hint else ""))

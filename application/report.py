@@ -48,7 +48,7 @@ import textwrap
 from fractions import Fraction
 from pathlib import Path
 
-from .causes import convention_hint, counterexample_faces, element_ids, root_causes
+from .causes import counterexample_faces, element_ids, group_hint, root_causes
 
 SCHEMA = 4        # 4: "unjudged" per result
 VERSIONED = ("numpy", "scipy", "hypothesis", "libigl", "pymeshlab", "matplotlib")
@@ -404,7 +404,7 @@ def terminal_report(results, width: int = 100, files: dict | None = None,
                 first = results[c.first]
                 head += (f"; smallest counterexample {counterexample_faces(first)} face"
                          f"{'s' if counterexample_faces(first) != 1 else ''} ({first.property_id}): {c.where}")
-            hint = next((h for k in c.members if (h := convention_hint(results[k]))), None)
+            hint = group_hint(results, c.members)
             if hint:
                 head += f"; {hint}"
             lines.append(fit(head, width))

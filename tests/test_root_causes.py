@@ -63,3 +63,24 @@ def test_a_wrong_genus_in_r1_6_is_blamed_on_genus():
     assert "genus" in PROPERTIES["R1.6"].methods
     r = run_property(PROPERTIES["R1.6"], GenusIgnoresBoundary(), profile("ci"))
     assert r.status == FAILED and "wrong" in str(r.failure) and "genus" in str(r.failure)
+
+
+def test_a_convention_hint_needs_every_diagnosed_member_and_no_method_it_would_break():
+    """Two misleading hints a helper found: a bug doubling only the interior weights agrees
+    with weights=full on D3.1's closed tetrahedron, and the root cause of 9 properties took
+    that one member's hint (the other 8 diagnoses explained nothing); a bug doubling only
+    area_gradient was told to declare weights=full, which would halve its right Laplacian."""
+    from types import SimpleNamespace as R
+    from ddg_oracle.application.causes import convention_hint, group_hint
+
+    def row(q, status, *names):
+        return {"quantity": q, "status": status, "explained_by": list(names), "where": None,
+                "expected": None, "observed": None, "worst": None, "note": None}
+    full = R(diagnosis=[row("cotan_laplacian", "DIFFERS", "weights=full")])
+    plain = R(diagnosis=[row("cotan_laplacian", "DIFFERS")])
+    assert "declare" in convention_hint(full)
+    assert group_hint([full, plain], [0, 1]) is None
+    assert group_hint([full, full, R(diagnosis=None)], [0, 1, 2]) == convention_hint(full)
+    gradient_only = R(diagnosis=[row("area_gradient", "DIFFERS", "weights=full"),
+                                 row("cotan_laplacian", "agrees")])
+    assert convention_hint(gradient_only) is None
