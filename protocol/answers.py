@@ -80,12 +80,24 @@ def _scalar(x):
     return x
 
 
+def _array(method: str, answer):
+    """(``answer`` as a numpy array, None), or (None, why numpy cannot read it)."""
+    try:
+        return np.asarray(answer), None
+    except (TypeError, ValueError) as e:
+        return None, f"{method} answered something numpy cannot read as an array ({e})"
+
+
+def _first(a: np.ndarray, ok):
+    """The first element of ``a`` (an object array) that is not ``ok``, or None."""
+    return next((x for x in a.reshape(-1) if not ok(x)), None)
+
+
 def reals_problem(method: str, answer, what: str = "real numbers") -> str | None:
     """Why ``answer`` (an array or nested sequences) is not made of real numbers, or None."""
-    try:
-        a = np.asarray(answer)
-    except (TypeError, ValueError) as e:
-        return f"{method} answered something numpy cannot read as an array ({e})"
+    a, why = _array(method, answer)
+    if why:
+        return why
     kind = a.dtype.kind
     if kind == "c":
         return f"{method} answered complex numbers, not {what}"
@@ -94,7 +106,7 @@ def reals_problem(method: str, answer, what: str = "real numbers") -> str | None
     if kind == "b":
         return f"{method} answered bools, not {what}"
     if kind == "O":
-        bad = next((x for x in a.reshape(-1) if not _is_real(x)), None) if a.size else None
+        bad = _first(a, _is_real)
         if bad is not None:
             return f"{method} answered an array holding {_what(bad)}, not {what}"
     elif kind not in "iuf":
@@ -104,14 +116,11 @@ def reals_problem(method: str, answer, what: str = "real numbers") -> str | None
 
 def indices_problem(method: str, answer, what: str = "a vertex index") -> str | None:
     """Why ``answer`` (an array of indices) is not made of integers, or None."""
-    try:
-        a = np.asarray(answer)
-    except (TypeError, ValueError) as e:
-        return f"{method} answered something numpy cannot read as an array ({e})"
-    if a.dtype.kind in "iu":
-        return None
+    a, why = _array(method, answer)
+    if why or a.dtype.kind in "iu":
+        return why
     if a.dtype.kind == "O":
-        bad = next((x for x in a.reshape(-1) if not _integral(x)), None) if a.size else None
+        bad = _first(a, _integral)
         return None if bad is None else f"{method} answered {_what(bad)}, not {what}"
     if a.dtype.kind == "f":
         # integral floats, as numpy reads [[0, 1, 2.0]] (an empty list reads as float64)
@@ -174,10 +183,9 @@ def _problem(method: str, answer) -> str | None:
                 f"{method} answered a sparse matrix of {answer.dtype}, not of real numbers"
         return reals_problem(method, answer)
     if kind == "flags":
-        try:
-            a = np.asarray(answer)
-        except (TypeError, ValueError) as e:
-            return f"{method} answered something numpy cannot read as an array ({e})"
+        a, why = _array(method, answer)
+        if why:
+            return why
         if a.dtype.kind == "b" or (a.dtype.kind in "iu" and np.all((a == 0) | (a == 1))):
             return None
         return f"{method} answered an array of {a.dtype}, not of bools"

@@ -65,23 +65,46 @@ def test_plugin_fails_a_hang_and_an_incomplete_item(tmp_path):
     assert "[D1.6] slow: incomplete" in out.stdout and "of 25 examples ran" in out.stdout
 
 
+#: chi and a near miss (cotmatrix), and a property that raises when read
+_HALF = """
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+
+
+class Half:
+    name = "half"
+
+    def euler_characteristic(self, V, F):
+        return ReferenceImplementation().euler_characteristic(V, F)
+
+    def cotmatrix(self, V, F):
+        return None
+
+    @property
+    def costly(self):
+        raise RuntimeError("computed on demand")
+"""
+
+#: angle defects times k, a constructor option
+_SCALED = """
+from ddg_oracle.oracles.exact_reference import ReferenceImplementation
+
+
+class Scaled(ReferenceImplementation):
+    def __init__(self, k=1):
+        self.k, self.name = k, f"scaled-{k}"
+
+    def angle_defects(self, V, F):
+        return self.k * super().angle_defects(V, F)
+"""
+
+
 def test_a_near_miss_hint_under_warnings_as_errors_stops_nothing(tmp_path):
     """With filterwarnings = error, the hint ("cotmatrix is not a protocol method") was
     raised at configuration time: INTERNALERROR, and the user's own tests never ran.  A
     property that raises when read stopped the plugin the same way."""
     (tmp_path / "pytest.ini").write_text("[pytest]\nfilterwarnings =\n    error\n")
     (tmp_path / "test_theirs.py").write_text("def test_theirs():\n    assert True\n")
-    (tmp_path / "mine.py").write_text(
-        "from ddg_oracle.oracles.exact_reference import ReferenceImplementation\n"
-        "class Half:\n"
-        "    name = 'half'\n"
-        "    def euler_characteristic(self, V, F):\n"
-        "        return ReferenceImplementation().euler_characteristic(V, F)\n"
-        "    def cotmatrix(self, V, F):\n"
-        "        return None\n"
-        "    @property\n"
-        "    def costly(self):\n"
-        "        raise RuntimeError('computed on demand')\n")
+    (tmp_path / "mine.py").write_text(_HALF)
     out = _pytest("--ddg-impl", "mine:Half", "--ddg-only", "D1.6", cwd=tmp_path)
     assert out.returncode == 0, out.stdout + out.stderr
     assert "2 passed" in out.stdout and "did you mean `cotan_laplacian`" in out.stdout
@@ -91,13 +114,7 @@ def test_the_replay_of_a_failure_builds_the_implementation_with_its_options(tmp_
     """The plugin's replay loaded 'scaled:Scaled' for --ddg-impl 'scaled:Scaled(k=2)': the
     class with no options, which does not fail, under "reproduce (raises the same
     failure)"."""
-    (tmp_path / "scaled.py").write_text(
-        "from ddg_oracle.oracles.exact_reference import ReferenceImplementation\n"
-        "class Scaled(ReferenceImplementation):\n"
-        "    def __init__(self, k=1):\n"
-        "        self.k, self.name = k, f'scaled-{k}'\n"
-        "    def angle_defects(self, V, F):\n"
-        "        return self.k * super().angle_defects(V, F)\n")
+    (tmp_path / "scaled.py").write_text(_SCALED)
     out = _pytest("--ddg-impl", "scaled:Scaled(k=2)", "--ddg-only", "D2.2", cwd=tmp_path)
     assert out.returncode == 1, out.stdout + out.stderr
     assert "load_implementation('scaled:Scaled(k=2)')" in out.stdout, out.stdout
