@@ -160,11 +160,14 @@ def nondegenerate(V, F) -> bool:
     False
     """
     P = np.asarray(V, dtype=np.float64)[np.asarray(F, dtype=np.int64)]
-    u, w = P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]
-    a = u[:, [1, 2, 0]] * w[:, [2, 0, 1]]
-    b = u[:, [2, 0, 1]] * w[:, [1, 2, 0]]
-    bound = 8.2 * 2.0 ** -53 * (np.abs(a) + np.abs(b)) + 2.0 ** -1070
-    return bool(np.all(np.any(np.abs(a - b) > bound, axis=1)))
+    # underflow is in the bound (2^-1070) and overflow makes it infinite (not certified):
+    # whatever numpy error settings the caller has (np.seterr(all="raise")), no warning
+    with np.errstate(all="ignore"):
+        u, w = P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]
+        a = u[:, [1, 2, 0]] * w[:, [2, 0, 1]]
+        b = u[:, [2, 0, 1]] * w[:, [1, 2, 0]]
+        bound = 8.2 * 2.0 ** -53 * (np.abs(a) + np.abs(b)) + 2.0 ** -1070
+        return bool(np.all(np.any(np.abs(a - b) > bound, axis=1)))
 
 
 def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
