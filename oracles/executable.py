@@ -39,12 +39,11 @@ import time
 import numpy as np
 import scipy.sparse
 
+from ..protocol.answers import MalformedAnswer, indices_problem, problem, read, reals_problem
+from ..protocol.arrays import checked_arrays
 from ..protocol.budget import check_time_left, cut_short, time_left
 from ..protocol.methods import (FLOAT64_EPSILON, METHODS, BadDeclaration, OutsideDomain,
                                 checked_epsilon)
-
-from ..protocol.answers import MalformedAnswer, indices_problem, problem, read, reals_problem
-from ..protocol.arrays import checked_arrays
 from ..protocol.processes import NotSent, call_limit, exit_text, stderr_tail
 
 PROTOCOL_VERSION = 1

@@ -143,7 +143,7 @@ def first_non_finite(method: str, answer):
 
 def _own_copy(answer):
     """``answer`` with nothing the implementation still holds: arrays, sparse matrices,
-    dicts, lists and tuples copied (a dict of 170,000 edge values in about 0.05 s, where a
+    dicts, lists and tuples copied (a dict of 170,000 edge values in 0.09 s, where a
     deep copy took 0.4 s); a number as it is."""
     if isinstance(answer, (int, float, bool, str, type(None))):
         return answer

@@ -1223,10 +1223,10 @@ def with_boundary(meshes, mesh_boundary: bool = False, unused: int = 0):
     @st.composite
     def build(draw):
         c = draw(meshes)
-        k = draw(st.integers(0, unused)) if unused else 0
-        if k:
-            c = _with_unused_vertices(c, draw(st.lists(st.integers(0, c.n), min_size=k,
-                                                       max_size=k)))
+        extra = draw(st.integers(0, unused)) if unused else 0
+        if extra:
+            c = _with_unused_vertices(c, draw(st.lists(st.integers(0, c.n), min_size=extra,
+                                                       max_size=extra)))
         # the surface on the vertices some face uses (a triangulation has no other)
         used = sorted({v for f in c.faces for v in f})
         at = {v: k for k, v in enumerate(used)}

@@ -5,7 +5,8 @@ a bool, boundary loops of vertex indices, real numbers (arrays, a total, edge va
 a matrix, flags, triangulations.  :func:`problem` says, in one line, why an answer is
 not of its kind (None when it is): a string, a complex number, an array of objects that
 are not numbers, 2.5 for an integer, ``"True"`` for a bool.  Every answer of a checked
-implementation passes through it first (``properties.calls.Watched``, ``compare``), so
+implementation passes through it first (``properties.calls.Watched``, ``compare``, ``verify``
+and the executable protocol's decoder, ``oracles.executable.decode_value``), so
 that reading it can neither let a wrong value through (``int(2.5) == 2``, ``bool("False")``,
 ``float("0.5")``, ``np.asarray(complex, float)`` dropping the imaginary part) nor crash
 ddg-oracle's own code (``int(np.array([2, 7]))``): such an answer is the
