@@ -75,7 +75,13 @@ def _integral(x) -> bool:
 
 def _scalar(x):
     """A 0-dimensional or one-element numpy array as its element (``np.sum`` of a shape-(1,)
-    array, a library's ``array(2)``); anything else unchanged."""
+    array, a library's ``array(2)``), as is any array numpy reads (``__array__``: a torch
+    or JAX tensor of one element); anything else unchanged."""
+    if not isinstance(x, (np.ndarray, numbers.Number, str, bytes)) and hasattr(x, "__array__"):
+        try:
+            x = np.asarray(x)
+        except Exception:  # noqa: BLE001  (not readable as an array: judged as it is)
+            return x
     if isinstance(x, np.ndarray) and x.size == 1:
         return x.reshape(()).item() if x.dtype.kind != "O" else x.reshape(())[()]
     return x
