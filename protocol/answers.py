@@ -60,8 +60,13 @@ def _what(x) -> str:
 
 
 def _is_real(x) -> bool:
-    """A real number, not a bool (True is an int to Python, never an answer's number)."""
-    return isinstance(x, numbers.Real) and not isinstance(x, (bool, np.bool_))
+    """A real number, not a bool (True is an int to Python, never an answer's number): a
+    ``numbers.Real`` (ints, floats, Fractions, numpy's, gmpy2's, SymPy's), or another
+    number type that converts itself with ``__float__`` (Decimal, mpmath's mpf); never a
+    complex number (numpy's would drop its imaginary part) nor a string."""
+    if isinstance(x, (bool, np.bool_, str, bytes, complex, np.complexfloating, np.ndarray)):
+        return False
+    return isinstance(x, numbers.Real) or hasattr(type(x), "__float__")
 
 
 def _integral(x) -> bool:

@@ -831,6 +831,7 @@ class _Tensor:
     ("euler_characteristic", _Tensor(2)), ("area", _Tensor(1.5)),
     ("is_orientable", _Tensor(True)), ("angle_defects", _Tensor([0.5, 1.0])),
     ("edge_mean_curvature", {(0, 1): _Tensor(0.5)}),
+    ("area", __import__("decimal").Decimal("1.5")),
     ("euler_characteristic", 2), ("euler_characteristic", np.int64(-2)),
     ("euler_characteristic", 2.0), ("euler_characteristic", np.array(2)),
     ("is_orientable", True), ("is_orientable", np.bool_(False)), ("is_orientable", 1),
