@@ -246,7 +246,7 @@ class _Search:
     refused: bool = False           # stopped because the implementation declines nearly all
     internal: tuple | None = None   # (our own exception, its example): a bug of ddg-oracle
     unjudged: int = 0               # examples with entries an infinite bound could not judge
-    nothing_judged: int = 0         # examples of which no entry could be judged at all
+    decided: int = 0                # examples that judged an entry (or needed no bound)
 
 
 def _keep_smallest(state: _Search, key: str, e: BaseException, example) -> None:
@@ -644,7 +644,7 @@ def _note_unjudged(r: Result, state: _Search) -> None:
         # the examples counted (a failure's shrinking runs examples again)
         n = max(r.examples, 1)
         r.unjudged = min(state.unjudged, n)
-        if r.status == PASSED and state.nothing_judged >= n:
+        if r.status == PASSED and not state.decided:
             # not one entry of one example compared against a finite bound: nothing was
             # checked (a mesh below the float range's resolution), so nothing passed
             r.status = UNDECIDED
@@ -683,10 +683,11 @@ def _check(p: Property, watched, example, state: _Search | None = None) -> None:
             try:
                 p.check(watched, example)
             finally:
-                if state is not None and tally.entries:
-                    state.unjudged += 1
-                    # every comparison against an infinite bound: this example decided nothing
-                    state.nothing_judged += not tally.judged
+                if state is not None:
+                    state.unjudged += bool(tally.entries)
+                    # an example whose every bounded comparison met an infinite bound decided
+                    # nothing; one with no such comparison compared in its own way
+                    state.decided += bool(tally.judged or not tally.entries)
     except OverflowError as e:
         # only the float of an exact number (int, Fraction, Surd: "... too large ... float"):
         # float arithmetic on an implementation's answer overflows with other messages
