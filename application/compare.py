@@ -45,9 +45,12 @@ class Comparison:
     explained_by: tuple = ()
 
 
-def _epsilon_of(impl):
-    from ..protocol.methods import at_machine_epsilon, machine_epsilon
-    return at_machine_epsilon(machine_epsilon(impl))
+def bounds_epsilon(impl, V, F) -> float:
+    """The machine epsilon of ``impl``'s bounds on (V, F): the one it declares, coarser if
+    it declares rounding its own input (:func:`~ddg_oracle.properties.conventions.bound_epsilon`)."""
+    from ..protocol.methods import machine_epsilon
+    from ..properties.conventions import bound_epsilon, declared
+    return bound_epsilon(declared(impl), machine_epsilon(impl), V, F)
 
 
 def _worst(err: np.ndarray, bound: np.ndarray):
@@ -160,10 +163,11 @@ class _Plan:
 
     @classmethod
     def of(cls, mesh: MeshInput, impls, methods) -> "_Plan":
-        from ..protocol.methods import METHODS, capabilities, machine_epsilon
+        from ..protocol.methods import METHODS, capabilities
         from ..properties.registry import all_quantities, unmet
         quantities = all_quantities()
         ex = MeshExamples(mesh)
+        V, F = np.array(mesh.V, dtype=np.float64), np.array(mesh.F, dtype=np.int64)
         asked: dict = {}                    # method -> the machine epsilons of its bounds
         todo = []
         for impl in impls:
@@ -176,15 +180,15 @@ class _Plan:
                        or unmet(q.requires, ex.facts))
                 todo.append((impl, method, why))
                 if not why:
-                    asked.setdefault(method, set()).add(machine_epsilon(impl))
-        return cls(mesh, ex, np.array(mesh.V, dtype=np.float64),
-                   np.array(mesh.F, dtype=np.int64), todo, asked)
+                    asked.setdefault(method, set()).add(bounds_epsilon(impl, V, F))
+        return cls(mesh, ex, V, F, todo, asked)
 
 
 def _rows(plan: _Plan, answers, expected, explain) -> list:
     """The comparisons of one reading's answers with its expected values."""
-    from ..protocol.methods import implementation_name, machine_epsilon
-    from ..properties.conventions import declared, widened
+    from ..protocol.methods import at_machine_epsilon, implementation_name
+    from ..properties.conventions import declared
+    from ..properties.harness import widened
     from ..properties.registry import all_quantities
 
     quantities = all_quantities()
@@ -194,9 +198,10 @@ def _rows(plan: _Plan, answers, expected, explain) -> list:
         if isinstance(got, Comparison):
             rows.append(got)
             continue
-        with _epsilon_of(impl):
+        epsilon = bounds_epsilon(impl, V, F)
+        with at_machine_epsilon(epsilon):
             try:
-                want, bound = expected(quantities[method], machine_epsilon(impl))
+                want, bound = expected(quantities[method], epsilon)
             except ExactArithmeticLimit as e:
                 # the exact reference gave up (time or precision): nothing is said of the
                 # implementation's answer here

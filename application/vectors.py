@@ -818,7 +818,7 @@ def _short(x, width: int = 60) -> str:
 def _widened(conventions, method: str, got, inp: dict, want: dict, bits: str) -> dict:
     """``want`` with its bound at ``bits`` widened for the declared conventions' maps, on the
     case's mesh at that machine epsilon."""
-    from ..properties.conventions import widened
+    from ..properties.harness import widened
     from ..protocol.methods import at_machine_epsilon
     from ..properties.strategies import mesh_case
     key = f"tolerance{bits}"
@@ -828,6 +828,35 @@ def _widened(conventions, method: str, got, inp: dict, want: dict, bits: str) ->
                         lambda: mesh_case(inp["V"], [list(f) for f in inp["F"]], "a test vector"),
                         tol)
     return want if wider is tol else {**want, key: wider}
+
+
+def _rounding_widened(conventions, inp: dict, want: dict, bits: str) -> dict:
+    """``want`` with every bound at ``bits`` widened for an implementation that declares
+    rounding its own input (:func:`~ddg_oracle.properties.conventions.bound_epsilon`: e'
+    instead of e).  The written bounds are at e; each is a sum, minimum or maximum of terms
+    linear in e, sublinear (a square root) or gamma_k = k e / (1 - k e) with k <= K = 3 m
+    + n + 8 (no sum of the corpus has more terms), so 2 e' / e times it covers the bound at
+    e' where K e' <= 1/2; beyond, infinite (nothing judged)."""
+    from ..properties.conventions import bound_epsilon
+    e = EPSILONS[bits]
+    wider = bound_epsilon(conventions, e, inp["V"], inp.get("F", []))
+    if wider == e:
+        return want
+    K = 3 * len(inp.get("F", [])) + len(inp["V"]) + 8
+    factor = 2 * wider / e if K * wider <= 0.5 else math.inf
+    key = f"tolerance{bits}"
+
+    def scaled(x):
+        if isinstance(x, dict):
+            return {k: _times(v, factor) if k == key else scaled(v) for k, v in x.items()}
+        return x
+    return scaled(want)
+
+
+def _times(bound, factor: float):
+    t = np.asarray(bound, dtype=np.float64)
+    out = np.where(t > 0, t * factor, t)          # an exact entry (bound 0) stays exact
+    return out.tolist() if out.ndim else float(out)
 
 
 def _elementwise(got, want: dict, bits: str, label) -> None:
@@ -924,6 +953,8 @@ def _check_value(method: str, c: dict, value, bits: str, conventions=()) -> None
     kind = kind_of(method)
     if conventions and kind == "numbers":
         want = _widened(conventions, method, got, inp, want, bits)
+    if conventions and "V" in inp:
+        want = _rounding_widened(conventions, inp, want, bits)
     if kind in ("integer", "boolean"):
         if got != want["value"]:
             raise _Wrong(f"got {got!r}, expected {want['value']!r}")
@@ -1009,7 +1040,7 @@ def verify(corpus: dict[str, dict], lines: list[dict], float32: bool = False,
            conventions=()) -> list[Verdict]:
     """A verdict per answered case (the answers of one implementation; ``conventions``: the
     ones it declares, its answers already mapped by them (:func:`answers`), whose maps may
-    widen a case's written bound: :func:`~ddg_oracle.properties.conventions.widened`)."""
+    widen a case's written bound: :func:`~ddg_oracle.properties.harness.widened`)."""
     bits = "32" if float32 else "64"
     by_id = {c["id"]: (m, c) for m, f in corpus.items() for c in f["cases"]}
     out = []

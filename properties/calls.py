@@ -27,7 +27,8 @@ import numpy as np
 from .arithmetic import implementations_arithmetic
 from ..protocol.answers import MalformedAnswer, read, short
 from ..protocol.budget import BudgetExceeded, calling
-from ..protocol.methods import METHODS, OutsideDomain, implementation_name
+from ..protocol.methods import (METHODS, OutsideDomain, at_least_machine_epsilon,
+                                implementation_name, machine_epsilon)
 from .registry import PropertyFailure
 
 __all__ = ["Watched", "first_non_finite", "raised_by_implementation"]
@@ -68,44 +69,79 @@ class Watched:
             return value
 
         def call(*args):
+            on_mesh = METHODS[attr].arguments[:2] == ("V", "F")
+            rounding = self._rounding(args) if on_mesh else None
+            # the input as given, for the conventions' maps and the report: an
+            # implementation may work in place (the course's loader rescales V in place),
+            # and a map computed from the rescaled V (radius 1) left a correct answer
+            # unscaled, a failure reported the rescaled mesh
+            given = _given(args) if on_mesh else None
             try:
                 with calling(f"{self.name}.{attr}"), implementations_arithmetic():
                     answer = value(*args)
             except _NOT_THE_IMPLEMENTATIONS:
                 raise
             except BaseException as e:
-                try:
-                    e._ddg_raised_by_implementation = True
-                except AttributeError:         # an exception type without attributes
-                    raise ImplementationRaised(f"{type(e).__name__}: {e}") from e
+                if rounding == np.inf and isinstance(e, Exception):
+                    raise _unresolved(attr, "raised " + type(e).__name__) from e
+                _mark(e)
                 raise
             try:
                 answer = read(attr, answer)
             except MalformedAnswer as e:
                 # not of its kind (a string, 2.5 for an integer, complex numbers): read as
                 # it is, it could pass (int(2.5) == 2) or crash our reading of it
-                raise PropertyFailure(self._pid, self._impl, str(e), mesh=_mesh(args) if
-                                      METHODS[attr].arguments[:2] == ("V", "F") else None,
+                raise PropertyFailure(self._pid, self._impl, str(e), mesh=_mesh(given),
                                       expected=f"the contract's {METHODS[attr].kind}",
                                       observed=short(answer)) from None
             # a copy of our own: a binding may answer in storage it overwrites on its next
             # call, and a property comparing two answers (T2.5: before and after a motion)
             # then compared the second with itself, moved: a correct implementation failed
             answer = _own_copy(answer)
-            if self._conventions and METHODS[attr].arguments[:2] == ("V", "F"):
+            if self._conventions and on_mesh:
                 # the conventions it declares, mapped onto the reference's (.conventions)
                 from .conventions import to_reference
-                answer = to_reference(self._conventions, attr, answer, args[0], args[1])
+                answer = to_reference(self._conventions, attr, answer, *(given or args[:2]))
+            if rounding is not None:
+                # an input it rounds itself (a rescaling): the bounds count that rounding
+                at_least_machine_epsilon(rounding)
             found = first_non_finite(attr, answer)
+            if found is not None and rounding == np.inf:
+                raise _unresolved(attr, f"answered {found[1]!r}")
             if found is not None:
                 where, x = found
-                mesh = _mesh(args) if METHODS[attr].arguments[:2] == ("V", "F") else None
+                mesh = _mesh(given)
                 raise PropertyFailure(self._pid, self._impl,
                                       f"{attr} answered {x!r} where the exact value is a "
                                       "finite number", mesh=mesh, element=where,
                                       expected="a finite number", observed=x)
             return answer
         return call
+
+
+    def _rounding(self, args):
+        """The bounds' epsilon on this call's input if the implementation declares rounding
+        its input itself (:func:`.conventions.bound_epsilon`; infinite: its own rounding
+        resolves nothing of this mesh), else None."""
+        from .conventions import bound_epsilon
+        if not any(c.rounds_input for c in self._conventions):
+            return None
+        return bound_epsilon(self._conventions, machine_epsilon(self._impl), args[0], args[1])
+
+
+def _mark(e: BaseException) -> None:
+    try:
+        e._ddg_raised_by_implementation = True
+    except AttributeError:         # an exception type without attributes
+        raise ImplementationRaised(f"{type(e).__name__}: {e}") from e
+
+
+def _unresolved(method: str, what: str) -> OutsideDomain:
+    """A declined input: the implementation rounds its input itself (a declared rescaling)
+    and that rounding leaves nothing of this mesh resolved (an edge below 2^-42 of the
+    radius in float64), so whatever it answers or raises judges nothing."""
+    return OutsideDomain(f"{method} {what} on a mesh its own declared rescaling "
+                         "(input_scale) cannot resolve: not judged")
 
 
 def first_non_finite(method: str, answer):
@@ -163,9 +199,13 @@ def _own_copy(answer):
         return answer
 
 
-def _mesh(args):
+def _given(args):
+    """A copy of the (V, F) of a call, as float and integer arrays (None if they are not)."""
     try:
-        V, F = np.asarray(args[0], dtype=np.float64), np.asarray(args[1], dtype=np.int64)
-        return V.tolist(), F.tolist()
+        return np.array(args[0], dtype=np.float64), np.array(args[1], dtype=np.int64)
     except (TypeError, ValueError):
         return None
+
+
+def _mesh(given):
+    return None if given is None else (given[0].tolist(), given[1].tolist())

@@ -21,7 +21,7 @@ whose constants leave a margin of about 2 over the counted roundings (:mod:`.bou
 A pointwise curvature is multiplied back by a float vertex area (:attr:`Convention.divides_by`):
 the library's own area and this one each carry an honest float error, within the vertex-area
 bound of L3.7 and relative to the area unbounded on a needle; the angle defects' bounds add
-both for such an implementation (:func:`widened`: the curvature properties, ``compare`` and
+both for such an implementation (:func:`.harness.widened`: the curvature properties, ``compare`` and
 ``verify --impl``).  Once they did not, and PyGEL3D failed D2.2 at 1.38 x the bound on a
 needle tetrahedron where its curvature times its own mixed area is accurate.
 Where an implementation declares nothing and fails, :func:`explaining` names the
@@ -35,13 +35,14 @@ it names a finding and another implementation, not a map.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 __all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
-           "declaration_text", "pointwise_area", "widened"]
+           "declaration_text", "pointwise_area", "bound_epsilon"]
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,9 @@ class Convention:
     #: a pointwise curvature: the vertex area (a protocol method's name) the map multiplies
     #: the answer back by, whose float error the angle defects' bounds must then add
     divides_by: str | None = None
+    #: the implementation rounds its own input before computing (a rescaling): every
+    #: bound on its answers counts that rounding (:func:`bound_epsilon`)
+    rounds_input: bool = False
 
     @property
     def name(self) -> str:
@@ -243,7 +247,8 @@ def _vocabulary() -> dict:
                    lambda method, a, V, F: (
                        {e: h / _scale(V) for e, h in dict(a).items()}
                        if method == "edge_mean_curvature" else
-                       scaled(1 if method == "area_gradient" else 2)(a, V, F))),
+                       scaled(1 if method == "area_gradient" else 2)(a, V, F)),
+                   rounds_input=True),
         Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX
                    + ("euler_characteristic",),
                    "answers only for the vertices some face uses, renumbered in order; "
@@ -364,32 +369,63 @@ def pointwise_area(conventions) -> str | None:
     return next((c.divides_by for c in conventions if c.divides_by), None)
 
 
-def widened(conventions, method: str, answer, case, bound):
-    """``bound`` on ``method``'s ``answer`` (already mapped) on ``case``, widened by what the
-    declared conventions' maps cannot carry back exactly: a pointwise curvature multiplied
-    back by a float vertex area (:func:`pointwise_area`).  The library divided by its own
-    float area and the map multiplies by another, each within L3.7's vertex-area bound B of
-    the exact A (:attr:`.harness.Exact.vertex_area_bounds`), so the answer is the angle
-    defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), is
-    infinite where 0 < A <= B (the float area is not even of certain sign) and unchanged at
-    a vertex of no face (A = B = 0).  Every other
-    map adds at most two roundings, inside the bounds: ``bound`` unchanged.  ``case``: the
-    Example, or a function building it (called only if needed)."""
-    name = pointwise_area(c for c in conventions if c.applies(method))
-    if name is None:
-        return bound
-    from .harness import Exact
-    X = Exact.of(case() if callable(case) else case)
-    B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
-    A = np.zeros(len(B))
-    A[X.keep] = X.vertex_areas(name)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # no area at all (a vertex of no face: the map puts the protocol's value there,
-        # nothing is divided): nothing to add; an area not even of certain sign: no bound
-        d = np.where(A > B, 2 * B / (A - B), np.where(B == 0, 0.0, np.inf))
-        extra = d * (np.abs(np.asarray(answer, dtype=np.float64)) + bound)
-    # inf * 0 is NaN, and a NaN bound fails every comparison: infinite stays infinite
-    return bound + np.where(np.isinf(d), np.inf, extra)
+#: how much wider than the rounding it counts :func:`bound_epsilon` makes the bounds
+ROUNDING_MARGIN = 2.0
+
+
+def bound_epsilon(conventions, e: float, V, F) -> float:
+    """The machine epsilon the bounds use for an implementation of machine epsilon ``e``
+    declaring ``conventions``, called on (V, F): ``e``, unless a declared convention rounds
+    the input before the implementation computes (:attr:`Convention.rounds_input`).
+
+    The DDG course's loader (``input_scale = unit_radius``) centres the points at their
+    mean and divides them by the largest distance r from it: two roundings of every
+    coordinate, which move a vertex by delta <= e |x - c~| (relative to the exact point
+    after an exact rescaling; c~ the float centre).  With c~ any point of the input's hull
+    (the mean, a bounding box's centre) off by the float mean's error (<= gamma_n max |x|
+    per coordinate), |x - c~| <= rho = 2 r + sqrt(3) n e max |x|, r taken over every row
+    of V (the loader sees the unused vertices too).  Each edge vector of a face then
+    carries a further relative error 2 delta / l_min (l_min: the shortest edge of any
+    face): far more than the bounds' own count where a point far from a small mesh sets
+    the radius (a 4e-9 edge with a point at distance 1 failed at 3e4 x the float64
+    bound).  Every bound of :mod:`.bounds` is derived for edge vectors (or side lengths)
+    with relative errors of a few units u = e / 2 and grows linearly with that count, so
+    4 rho / l_min units more, with a margin of :data:`ROUNDING_MARGIN`, cover the
+    rounding.  The radius itself is off by eta <= 3 e + sqrt(3) n e max |x| / r, which
+    scales an area by 1 + 2 eta, a length by 1 + eta; every bound on a quantity that
+    scales has a term of at least e' |value| (the area gradient's; the areas' are 16 e'
+    |value|), so e' >= eta covers it, and twice that keeps the margin.  Together:
+
+        e' = e (1 + ROUNDING_MARGIN 4 rho / l_min) + ROUNDING_MARGIN eta
+
+    Where e' exceeds 2^-7 (the coarsest machine epsilon there is) or an edge has no
+    length, nothing is resolved: infinite (the bounds then judge nothing, and the runner
+    says so).  An exact implementation (e = 0) rescales exactly.
+
+    >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]
+    >>> bound_epsilon(parse("libigl"), 2.0 ** -52, V, F) == 2.0 ** -52
+    True
+    >>> small = bound_epsilon(parse({"input_scale": "unit_radius"}), 2.0 ** -52, V, F)
+    >>> far = bound_epsilon(parse({"input_scale": "unit_radius"}), 2.0 ** -52, V + [[1e3, 0, 0]], F)
+    >>> 2.0 ** -52 < small < 50 * 2.0 ** -52 < 1e4 * 2.0 ** -52 < far
+    True
+    """
+    if e == 0 or not any(c.rounds_input for c in conventions):
+        return e
+    V, F = _arrays(V, F)
+    if not len(F) or not len(V):
+        return e
+    from ..protocol.methods import COARSEST_EPSILON
+    with np.errstate(all="ignore"):
+        r = float(np.max(np.linalg.norm(V - V.mean(axis=0), axis=1)))
+        off = math.sqrt(3) * len(V) * e * float(np.max(np.abs(V)))   # the float mean's error
+        rho = 2 * r + off
+        eta = 3 * e + off / r if r > 0 else math.inf
+        X = V[F]
+        l_min = float(min(np.linalg.norm(X[:, (c + 1) % 3] - X[:, c], axis=1).min()
+                          for c in range(3)))
+        wider = e * (1 + ROUNDING_MARGIN * 4 * rho / l_min) + ROUNDING_MARGIN * eta if l_min > 0 else math.inf
+    return wider if math.isfinite(wider) and wider <= COARSEST_EPSILON else math.inf
 
 
 def to_reference(conventions, method: str, answer, V, F):

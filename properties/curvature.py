@@ -29,7 +29,8 @@ from ..reference.exact import exact_sum
 from .views import corner_angle_views, defect_views, mean_curvature_views, turning_views
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, vertex_tolerances)
-from .conventions import declared, widened
+from .conventions import declared
+from .harness import widened
 from .curvature_exact import (area_bound, mean_curvature_by_pair, steiner_views,
                               support_function_integral)
 from ..protocol.methods import ISOLATED_VERTEX, eps
@@ -83,7 +84,7 @@ def _defects(impl, case: Example, pid: str) -> np.ndarray:
 
 def _defect_bounds(impl, case: Example, K, corner_tol) -> np.ndarray:
     """The bounds of the angle defects ``K`` (:func:`.bounds.vertex_tolerances`), widened
-    for a declared pointwise curvature (:func:`.conventions.widened`)."""
+    for a declared pointwise curvature (:func:`.harness.widened`)."""
     return widened(declared(impl), "angle_defects", K, case, vertex_tolerances(case, corner_tol))
 
 

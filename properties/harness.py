@@ -21,6 +21,7 @@ from ..reference.laplacian import vertex_areas_floats
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
+from .conventions import pointwise_area
 from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
@@ -29,7 +30,7 @@ from .views import exact_laplacian, laplacian_view
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
-           "exact_spectrum", "dirichlet_solution"]
+           "exact_spectrum", "dirichlet_solution", "widened"]
 
 
 # --- the error ledger --------------------------------------------------------------------------------
@@ -259,6 +260,33 @@ class Exact(DenseViews):
         from the exact L u through the entry errors and a backward-stable evaluation or solve."""
         absu = np.abs(u)
         return self.Bs @ absu + gamma(3 * self.n + 3) * (abs(A) @ absu)
+
+
+def widened(conventions, method: str, answer, case, bound):
+    """``bound`` on ``method``'s ``answer`` (already mapped) on ``case``, widened by what the
+    declared conventions' maps cannot carry back exactly: a pointwise curvature multiplied
+    back by a float vertex area (:func:`.conventions.pointwise_area`).  The library divided by its own
+    float area and the map multiplies by another, each within L3.7's vertex-area bound B of
+    the exact A (:attr:`Exact.vertex_area_bounds`), so the answer is the angle
+    defect times 1 + d, |d| <= 2 B / (A - B): the bound grows by d (|answer| + bound), is
+    infinite where 0 < A <= B (the float area is not even of certain sign) and unchanged at
+    a vertex of no face (A = B = 0).  Every other
+    map adds at most two roundings, inside the bounds: ``bound`` unchanged.  ``case``: the
+    Example, or a function building it (called only if needed)."""
+    name = pointwise_area(c for c in conventions if c.applies(method))
+    if name is None:
+        return bound
+    X = Exact.of(case() if callable(case) else case)
+    B = X.vertex_area_bounds[0 if name == "vertex_areas_voronoi" else 1]
+    A = np.zeros(len(B))
+    A[X.keep] = X.vertex_areas(name)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # no area at all (a vertex of no face: the map puts the protocol's value there,
+        # nothing is divided): nothing to add; an area not even of certain sign: no bound
+        d = np.where(A > B, 2 * B / (A - B), np.where(B == 0, 0.0, np.inf))
+        extra = d * (np.abs(np.asarray(answer, dtype=np.float64)) + bound)
+    # inf * 0 is NaN, and a NaN bound fails every comparison: infinite stays infinite
+    return bound + np.where(np.isinf(d), np.inf, extra)
 
 
 def compact(case: Example, keep) -> PolyhedralSurface:

@@ -237,8 +237,9 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
 
         @functools.wraps(check)
         def checked(impl, example):
-            # tolerances inside the check read the implementation's own epsilon
-            with at_machine_epsilon(machine_epsilon(impl)), own_arithmetic(), \
+            # tolerances inside the check read the implementation's own epsilon (coarser
+            # where it declares rounding its own input: .conventions.bound_epsilon)
+            with at_machine_epsilon(_bound_epsilon(impl, example)), own_arithmetic(), \
                     example_time_limit(f"[{catalog_id}] {implementation_name(impl)}"):
                 check(impl, example)
 
@@ -248,6 +249,18 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
         check.property_id = catalog_id
         return check
     return register
+
+
+def _bound_epsilon(impl, example) -> float:
+    """The epsilon of ``impl``'s bounds on ``example``'s mesh (its declared machine epsilon,
+    coarser if it declares rounding its own input); each further mesh it is called on
+    widens it again (:class:`~.calls.Watched`)."""
+    from .conventions import bound_epsilon, declared
+    e = machine_epsilon(impl)
+    conventions = declared(impl)
+    if not any(c.rounds_input for c in conventions) or not hasattr(example, "mesh"):
+        return e
+    return bound_epsilon(conventions, e, *example.mesh)
 
 
 # --- what a mesh file must be for a check (check --mesh, compare) ------------------------------

@@ -143,6 +143,7 @@ ISOLATED_VERTEX: dict[str, float] = {
 
 FLOAT64_EPSILON = 2.0 ** -52
 _epsilon = contextvars.ContextVar("ddg_machine_epsilon", default=FLOAT64_EPSILON)
+_in_block = contextvars.ContextVar("ddg_in_epsilon_block", default=False)
 
 
 def machine_epsilon(impl) -> float:
@@ -192,11 +193,22 @@ def at_machine_epsilon(e: float):
     """Derive bounds for an implementation of machine epsilon ``e`` inside this block
     (:func:`eps`; the runner sets it per implementation, ``compare`` and the test vectors
     with this)."""
-    token = _epsilon.set(float(e))
+    token, inside = _epsilon.set(float(e)), _in_block.set(True)
     try:
         yield
     finally:
+        _in_block.reset(inside)
         _epsilon.reset(token)
+
+
+def at_least_machine_epsilon(e: float) -> None:
+    """From now on, until the innermost :func:`at_machine_epsilon` block ends, derive bounds
+    at ``e`` if it is coarser than the current epsilon (an implementation that rounds its
+    own input: :func:`ddg_oracle.properties.conventions.bound_epsilon`).  Outside such a
+    block nothing changes: the process's default stays float64's (a call outside a check
+    once left every later bound of the process infinite)."""
+    if _in_block.get() and not e <= _epsilon.get():
+        _epsilon.set(float(e))
 
 
 def declared_conventions(impl) -> tuple[str, str] | None:
