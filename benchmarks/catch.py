@@ -77,6 +77,7 @@ OLD_CLASSES = {
     "ChiOfUsedVertices": "isolated vertices", "ChiOfFirstComponent": "components",
     "OrientableByDirectedEdges": "orientation",
     "BoundaryLoopsByDirectedTwin": "orientation (F-libigl-1)",
+    "IntrinsicCompacted": "isolated vertices",
 }
 
 #: why a bug is not (yet) caught under the default profile, and which properties should catch

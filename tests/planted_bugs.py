@@ -348,6 +348,28 @@ class CompactedVertices(ReferenceImplementation):
         return np.concatenate([K, np.full(len(V) - len(used), 2 * np.pi)])
 
 
+class IntrinsicCompacted(ReferenceImplementation):
+    """Intrinsic Delaunay on the compacted mesh (np.unique of F), the faces of the result
+    left in the compacted numbering: right whenever every row of V is used."""
+
+    name = "intrinsic-compacted"
+    planted = ("intrinsic_delaunay_triangulation", "intrinsic_delaunay_laplacian")
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        return super().intrinsic_delaunay_triangulation(V[used], inverse.reshape(F.shape))
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        import numpy as np
+        import scipy.sparse as sp
+        V, F = np.asarray(V, float), np.asarray(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        L = sp.coo_matrix(super().intrinsic_delaunay_laplacian(V[used], inverse.reshape(F.shape)))
+        return sp.csr_matrix((L.data, (L.row, L.col)), shape=(len(V), len(V)))
+
+
 class TwinByReversedKey(ReferenceImplementation):
     """Cotan Laplacian that pairs halfedge i -> j with its twin by looking up j -> i: an
     interior edge between two inconsistently oriented faces (a reversed face, a Möbius

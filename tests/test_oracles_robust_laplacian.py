@@ -252,9 +252,11 @@ def test_every_applicable_property_passes_but_D48_on_the_flip_threshold_RL2():
     from ddg_oracle.application.report import known_finding, known_findings
     # which properties pass or fail (known_finding reads the status and property ID, not
     # the example): no shrink phase, the same seed, examples and budget as
-    # run_properties(RL, "default", seed=0) had; the shrunk D4.8 example is checked below
-    # from a run of its own that does shrink
-    results = {r.property_id: r for r in every_property_unshrunk(RL, 0)}
+    # run_properties(RL, "default", seed=1) had; the shrunk D4.8 example is checked below
+    # from a run of its own that does shrink.  Seed 1: since the intrinsic examples draw a
+    # vertex of no face (half of them), seed 0's 25 examples hold no closed near tie; one
+    # seed of 32 misses the threshold, as one of 32 did before (seeds 0-31, measured)
+    results = {r.property_id: r for r in every_property_unshrunk(RL, 1)}
     assert results["X4.2"].status == PASSED
     d48 = results["D4.8 / R4.9"]
     assert d48.status == FAILED, d48.status
@@ -264,7 +266,7 @@ def test_every_applicable_property_passes_but_D48_on_the_flip_threshold_RL2():
     # fresh clone's CI shrank from one of those to 24 faces) and no wall-clock limit on
     # shrinking (the default profile's 3 s); about 1 s
     d48 = run_property(PROPERTIES["D4.8 / R4.9"], RL, settings(profile("default"), database=None),
-                       0, budget=Budget(None, None))
+                       1, budget=Budget(None, None))
     assert d48.status == FAILED, d48.status
     V, F = (np.asarray(x) for x in d48.mesh)
     assert len(F) <= 12 and not len(boundary_edges(F)), d48.mesh     # shrunk, closed

@@ -29,6 +29,7 @@ from tests.property_checks import assert_element_on_mesh
 from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, BoundaryByMissingTwin,
                                 BoundaryLoopsByDirectedTwin, ChiOfFirstComponent,
                                 ChiOfUsedVertices, ClampedArccos, CompactedVertices,
+                                IntrinsicCompacted,
                                 FirstComponentOnly, MaxValence32, OffsetCancellation,
                                 OneBoundaryLoop, OrientableByDirectedEdges, TwinByReversedKey,
                                 WeldedByPosition)
@@ -215,6 +216,8 @@ DEFECTS = ("D2.2", "R2.4", "T2.6")          # the properties calling angle_defec
     (WeldedByPosition, DEFECTS, 8),           # ... touching it at a vertex
     (BincountWithoutMinlength, DEFECTS, 4),   # a tetrahedron and an isolated vertex last
     (CompactedVertices, DEFECTS, 4),          # a tetrahedron and an isolated vertex first
+    # chapter 4 drew no unused vertex before: the compacted numbering passed every property
+    (IntrinsicCompacted, ("A4.13", "D4.8 / R4.9"), 3),   # a triangle and an unused vertex
     (TwinByReversedKey, ("D3.1",), 6),        # a reversed face or a Möbius strip
 ])
 def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
@@ -387,21 +390,25 @@ def test_a_vertex_of_valence_17_is_drawn_in_a_small_mesh():
 def test_sweep_triangulations_and_near_ties_are_a_third_of_the_intrinsic_examples_each():
     """... and, beside any kind, a near tie and a convex fan in about one example of two
     each (a default run's 25 examples drew too few of a kind: IntrinsicSinglePass and
-    IntrinsicFlipTolerance1e6 were missed by one seed of three)."""
-    from hypothesis import given
+    IntrinsicFlipTolerance1e6 were missed by one seed of three).  Counted over four fixed
+    seeds: one derandomized run of 60 is one draw of Hypothesis's engine, whose mutations
+    repeat a kind in runs (at 120 examples one such run drew 8 'other' where seeds 0-7 of
+    60 draw 153 of 480)."""
+    from hypothesis import given, seed
     from ddg_oracle.properties.flipped import intrinsic_meshes
     kinds, beside = [], []
 
-    @settings(max_examples=60, database=None, deadline=None, derandomize=True,
-              suppress_health_check=list(HealthCheck), phases=[Phase.generate])
-    @given(intrinsic_meshes())
     def draw(c):
         own, *extra = c.recipe.split("; beside it ")
         kinds.append("sweep" if own.startswith(("planar triangulation", "fan of")) else
                      "tie" if "cocircular quad" in own else "other")
         beside.extend(extra)
-    draw()
-    assert all(kinds.count(k) >= len(kinds) // 6 for k in ("sweep", "tie", "other")), kinds
+    for k in range(4):
+        seed(k)(settings(max_examples=60, database=None, deadline=None,
+                         suppress_health_check=list(HealthCheck),
+                         phases=[Phase.generate])(given(intrinsic_meshes())(draw)))()
+    counts = {k: kinds.count(k) for k in ("sweep", "tie", "other")}
+    assert all(c >= len(kinds) // 6 for c in counts.values()), counts
     assert sum("cocircular quad" in x for x in beside) >= len(kinds) // 4
     assert sum("on a parabola" in x for x in beside) >= len(kinds) // 4
 
