@@ -368,7 +368,13 @@ class Executable:
         the program hangs)."""
         deadline = time.monotonic() + timeout
         buffer, seen = self._buffer, 0
-        while (end := buffer.find(b"\n", seen)) < 0:
+        # a blank line is no answer (console.log() with nothing to print): skipped, as
+        # serve() skips blank request lines
+        while (end := buffer.find(b"\n", seen)) < 0 or not buffer[:end].strip():
+            if end >= 0:
+                del buffer[:end + 1]
+                seen = 0
+                continue
             seen = len(buffer)
             left = deadline - time.monotonic()
             if left <= 0:

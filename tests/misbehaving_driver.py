@@ -10,7 +10,8 @@ prints a line that is not JSON; ``wrong-shape`` answers a list for the matrix;
 ``fails`` reports an error; ``flaky`` dies on every other request; ``hangs-later``
 answers three requests, then never answers; ``half-line`` writes the start of an answer
 and no end of line; ``huge-line`` streams an answer line of 100 MB; ``slow-hello`` takes a
-second to answer the handshake, then answers as ``ok``.
+second to answer the handshake, then answers as ``ok``; ``blank-lines`` prints an empty
+line before the handshake and before every answer (``console.log()``), else as ``ok``.
 """
 
 import json
@@ -23,6 +24,8 @@ MODE = sys.argv[1]
 count = 0
 for line in sys.stdin:
     request = json.loads(line)
+    if MODE == "blank-lines":
+        print(flush=True)
     if request["method"] == "hello":
         if MODE == "slow-hello":
             time.sleep(1)

@@ -113,6 +113,14 @@ def test_a_misbehaving_driver_is_a_crash_with_its_message(mode, words):
     impl.close()
 
 
+def test_blank_lines_before_answers_are_skipped_not_a_crash():
+    # console.log() with nothing to print: it was "answered a line that is not JSON: ''"
+    impl = _misbehaving("blank-lines")
+    V, F = TET
+    assert impl.euler_characteristic(V, F) == 2 and impl.euler_characteristic(V, F) == 2
+    impl.close()
+
+
 def test_a_driver_restarts_after_dying_and_declines_and_fails_are_answers():
     flaky = _misbehaving("flaky")
     V, F = TET
