@@ -77,7 +77,8 @@ OLD_CLASSES = {
     "ChiOfUsedVertices": "isolated vertices", "ChiOfFirstComponent": "components",
     "OrientableByDirectedEdges": "orientation",
     "BoundaryLoopsByDirectedTwin": "orientation (F-libigl-1)",
-    "IntrinsicCompacted": "isolated vertices",
+    "IntrinsicCompacted": "isolated vertices", "IntrinsicFirstHoleOnly": "isolated vertices",
+    "DelaunayKeyedByUsedCount": "isolated vertices",
 }
 
 #: why a bug is not (yet) caught under the default profile, and which properties should catch

@@ -82,7 +82,7 @@ class Watched:
             except _NOT_THE_IMPLEMENTATIONS:
                 raise
             except BaseException as e:
-                if rounding == np.inf and isinstance(e, Exception):
+                if rounding is not None and rounding[1] and isinstance(e, Exception):
                     raise _unresolved(attr, "raised " + type(e).__name__) from e
                 _mark(e)
                 raise
@@ -104,9 +104,9 @@ class Watched:
                 answer = to_reference(self._conventions, attr, answer, *(given or args[:2]))
             if rounding is not None:
                 # an input it rounds itself (a rescaling): the bounds count that rounding
-                at_least_machine_epsilon(rounding)
+                at_least_machine_epsilon(rounding[0])
             found = first_non_finite(attr, answer)
-            if found is not None and rounding == np.inf:
+            if found is not None and rounding is not None and rounding[1]:
                 raise _unresolved(attr, f"answered {found[1]!r}")
             if found is not None:
                 where, x = found
@@ -120,13 +120,16 @@ class Watched:
 
 
     def _rounding(self, args):
-        """The bounds' epsilon on this call's input if the implementation declares rounding
-        its input itself (:func:`.conventions.bound_epsilon`; infinite: its own rounding
-        resolves nothing of this mesh), else None."""
-        from .conventions import bound_epsilon
+        """(the bounds' epsilon on this call's input, whether its rounding may collapse an
+        edge) if the implementation declares rounding its input itself
+        (:func:`.conventions.bound_epsilon`, :func:`.conventions.rescaling_collapses`),
+        else None."""
+        from .conventions import bound_epsilon, rescaling_collapses
         if not any(c.rounds_input for c in self._conventions):
             return None
-        return bound_epsilon(self._conventions, machine_epsilon(self._impl), args[0], args[1])
+        e = machine_epsilon(self._impl)
+        return (bound_epsilon(self._conventions, e, args[0], args[1]),
+                rescaling_collapses(self._conventions, e, args[0], args[1]))
 
 
 def _mark(e: BaseException) -> None:
@@ -138,8 +141,9 @@ def _mark(e: BaseException) -> None:
 
 def _unresolved(method: str, what: str) -> OutsideDomain:
     """A declined input: the implementation rounds its input itself (a declared rescaling)
-    and that rounding leaves nothing of this mesh resolved (an edge below 2^-42 of the
-    radius in float64), so whatever it answers or raises judges nothing."""
+    and that rounding may collapse an edge of this mesh (an edge below 2^-50 of the radius
+    in float64: :func:`.conventions.rescaling_collapses`), so whatever it answers or raises
+    judges nothing."""
     return OutsideDomain(f"{method} {what} on a mesh its own declared rescaling "
                          "(input_scale) cannot resolve: not judged")
 

@@ -42,7 +42,7 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
-           "declaration_text", "pointwise_area", "bound_epsilon"]
+           "declaration_text", "pointwise_area", "bound_epsilon", "rescaling_collapses"]
 
 
 @dataclass(frozen=True)
@@ -149,6 +149,17 @@ def _expand_used(answer, V, F, isolated_value):
     return out
 
 
+def _renumbered_faces(answer, F):
+    """A triangulation (F2, l2) whose faces number the used vertices of F in order, put
+    back on the numbering of V (an index past them is left as it is: the property then
+    reports it)."""
+    F2, l2 = answer
+    used = np.unique(np.asarray(F, dtype=np.int64))
+    F2 = np.asarray(F2, dtype=np.int64)
+    inside = (F2 >= 0) & (F2 < len(used))
+    return np.where(inside, used[np.where(inside, F2, 0)], F2), l2
+
+
 def _scale(V) -> float:
     """The factor the DDG course's loader scales a mesh by: centred at the mean of its
     positions, its farthest vertex at distance 1."""
@@ -250,12 +261,14 @@ def _vocabulary() -> dict:
                        scaled(1 if method == "area_gradient" else 2)(a, V, F)),
                    rounds_input=True),
         Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX
-                   + ("euler_characteristic",),
+                   + ("euler_characteristic", "intrinsic_delaunay_triangulation"),
                    "answers only for the vertices some face uses, renumbered in order; "
                    "chi counts those only (LaPy's TriaMesh)",
                    lambda method, a, V, F: (
                        int(a) + len(_arrays(V, F)[0]) - len(np.unique(_arrays(V, F)[1]))
-                       if method == "euler_characteristic" else unused(method)(a, V, F))),
+                       if method == "euler_characteristic" else
+                       _renumbered_faces(a, F) if method == "intrinsic_delaunay_triangulation"
+                       else unused(method)(a, V, F))),
         Convention("mass", "whole_area", ("vertex_areas_barycentric",),
                    "a vertex gets the whole area of each incident face, three times the "
                    "barycentric area (mouette's area_weight_matrix)",
@@ -399,8 +412,12 @@ def bound_epsilon(conventions, e: float, V, F) -> float:
         e' = e (1 + ROUNDING_MARGIN 4 rho / l_min) + ROUNDING_MARGIN eta
 
     Where e' exceeds 2^-7 (the coarsest machine epsilon there is) or an edge has no
-    length, nothing is resolved: infinite (the bounds then judge nothing, and the runner
-    says so).  An exact implementation (e = 0) rescales exactly.
+    length: infinite (the bounds then judge nothing, and the runner says so).  An exact
+    implementation (e = 0) rescales exactly.  The scale must be the declared one (the
+    radius about the mean): a centre anywhere in the hull is covered only in the rounding
+    it causes.  One epsilon per mesh: the shortest edge anywhere sets it for every
+    element, so on a real scan (bunny10k: 3.1e4 x float64's) the bounds of an
+    implementation declaring a rescaling are far wider than its rounding of most faces.
 
     >>> V, F = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]
     >>> bound_epsilon(parse("libigl"), 2.0 ** -52, V, F) == 2.0 ** -52
@@ -412,20 +429,47 @@ def bound_epsilon(conventions, e: float, V, F) -> float:
     """
     if e == 0 or not any(c.rounds_input for c in conventions):
         return e
+    rho, eta, l_min = _rescaling(e, V, F)
+    from ..protocol.methods import COARSEST_EPSILON
+    with np.errstate(all="ignore"):
+        wider = e * (1 + ROUNDING_MARGIN * 4 * rho / l_min) + ROUNDING_MARGIN * eta \
+            if l_min > 0 else math.inf
+    return wider if math.isfinite(wider) and wider <= COARSEST_EPSILON else math.inf
+
+
+def rescaling_collapses(conventions, e: float, V, F) -> bool:
+    """Whether a declared rescaling (:func:`bound_epsilon`) may collapse an edge of (V, F):
+    it moves each vertex by up to e rho, so an edge of length l_min <= 4 e rho may come out
+    of zero length or reversed (a 1e-17 tetrahedron beside a point at distance 1, in
+    float64).  There whatever the implementation answers or raises judges nothing: the
+    example is declined.  Short of that the rescaled mesh keeps some bits of every edge,
+    and a crash or a NaN is the implementation's (float32: edges down to 2^-21 of the
+    radius; the decline once began at 2^-12, where a crash was hidden as "not applicable").
+
+    >>> tiny = [[0, 0, 0], [1e-17, 0, 0], [0, 1e-17, 0], [1, 1, 1]]
+    >>> ur = parse({"input_scale": "unit_radius"})
+    >>> rescaling_collapses(ur, 2.0 ** -52, tiny, [[0, 1, 2]]), rescaling_collapses(ur, 2.0 ** -23, [[0, 0, 0], [1e-4, 0, 0], [0, 1e-4, 0], [1, 1, 1]], [[0, 1, 2]])
+    (True, False)
+    """
+    if e == 0 or not any(c.rounds_input for c in conventions):
+        return False
+    rho, _, l_min = _rescaling(e, V, F)
+    return not l_min > 4 * e * rho
+
+
+def _rescaling(e: float, V, F) -> tuple[float, float, float]:
+    """(rho, eta, l_min) of :func:`bound_epsilon` on (V, F) (l_min infinite without faces)."""
     V, F = _arrays(V, F)
     if not len(F) or not len(V):
-        return e
-    from ..protocol.methods import COARSEST_EPSILON
+        return 0.0, 0.0, math.inf
     with np.errstate(all="ignore"):
         r = float(np.max(np.linalg.norm(V - V.mean(axis=0), axis=1)))
         off = math.sqrt(3) * len(V) * e * float(np.max(np.abs(V)))   # the float mean's error
-        rho = 2 * r + off
         eta = 3 * e + off / r if r > 0 else math.inf
         X = V[F]
         l_min = float(min(np.linalg.norm(X[:, (c + 1) % 3] - X[:, c], axis=1).min()
                           for c in range(3)))
-        wider = e * (1 + ROUNDING_MARGIN * 4 * rho / l_min) + ROUNDING_MARGIN * eta if l_min > 0 else math.inf
-    return wider if math.isfinite(wider) and wider <= COARSEST_EPSILON else math.inf
+    return 2 * r + off, eta, l_min
 
 
 def to_reference(conventions, method: str, answer, V, F):

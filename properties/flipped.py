@@ -80,9 +80,11 @@ def delaunay_test_meshes():
     (:func:`~.strategies.near_cocircular_meshes`: a test with a tolerance decides them
     wrongly); a third of either with faces reversed (:func:`~.strategies.with_reversed_faces`:
     a test that finds the other face of an edge by the reversed directed edge calls the
-    edge a boundary edge, hence Delaunay)."""
-    from .strategies import near_cocircular_meshes, with_reversed_faces
-    return with_reversed_faces(st.one_of(grouped(*_delaunay_kinds()), near_cocircular_meshes()))
+    edge a boundary edge, hence Delaunay); up to two vertices used by no face
+    (:func:`~.strategies.with_isolated`: a test keyed by compacted vertex numbers)."""
+    from .strategies import near_cocircular_meshes, with_isolated, with_reversed_faces
+    return with_isolated(with_reversed_faces(st.one_of(grouped(*_delaunay_kinds()),
+                                                       near_cocircular_meshes())))
 
 
 def _delaunay_kinds() -> list:
@@ -128,14 +130,15 @@ def intrinsic_meshes():
     boundary edge and never flips it).  Half of the near ties and cascades closed by cones
     (:func:`~.strategies.coned`): an implementation that declines boundary meets them too.
     Every kind maybe with a near-tie quad and a convex fan beside it
-    (:func:`~.strategies.with_traps_beside`), and half of them with a vertex used by no
-    face (:func:`~.strategies.with_isolated`: an implementation that computes on the
-    compacted mesh and answers in its numbering passed every chapter-4 property before)."""
+    (:func:`~.strategies.with_traps_beside`), and two thirds of them with one or two
+    vertices used by no face (:func:`~.strategies.with_isolated`: an implementation that
+    computes on the compacted mesh and answers in its numbering passed every chapter-4
+    property before; one that maps back past the first unused vertex only, two)."""
     from .strategies import (coned, near_cocircular_meshes, sweep_meshes, with_isolated,
                              with_reversed_faces, with_traps_beside)
     return with_isolated(with_reversed_faces(with_traps_beside(st.one_of(
         grouped(*_delaunay_kinds(), non_orientable_meshes()),
-        coned(near_cocircular_meshes()), coned(sweep_meshes())))), 1)
+        coned(near_cocircular_meshes()), coned(sweep_meshes())))))
 
 
 @st.composite

@@ -24,7 +24,7 @@ from . import memo
 from .conventions import pointwise_area
 from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
 from .example import Example
-from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, eps
+from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsilon, eps
 from .registry import PropertyFailure, TieDisagreement, judgeable
 from .views import exact_laplacian, laplacian_view
 
@@ -117,6 +117,9 @@ class Exact(DenseViews):
 
     def __init__(self, case: Example):
         self.case = case
+        # the epsilon of its memo key: the bounds computed later (cached properties) are
+        # this one's, whatever a watched call has raised the current epsilon to since
+        self.epsilon = eps()
         # vertices used by no face are not part of the surface (the reference refuses
         # them): the surface is built on the others, ``keep[v]`` is the case's index of
         # its vertex v, and the matrices below are embedded back on all case.n vertices
@@ -164,6 +167,10 @@ class Exact(DenseViews):
         """(k,) bound on the error of each face's area computed from the float points, by
         either route (:func:`.bounds.face_area_tolerances`: the cross product, or Heron on
         the side lengths), from the exact face (its area and squared sides as floats)."""
+        with at_machine_epsilon(self.epsilon):
+            return self._face_area_bounds()
+
+    def _face_area_bounds(self) -> np.ndarray:
         m, k = self.metric, self.triangulation.n_faces
         area = np.array([float(m.area(f)) for f in range(k)])
         # face_squared_lengths: opposite corners 2, 0, 1; columns here: corners 0, 1, 2
@@ -180,6 +187,10 @@ class Exact(DenseViews):
         barycentric area (L3.7): the corner cotangent bounds beta times the adjacent squared
         sides / 8, their rounding, and the face area's own bound (:attr:`face_area_bounds`)
         for the obtuse rule's A/2 and A/4 and the barycentric A/3."""
+        with at_machine_epsilon(self.epsilon):
+            return self._vertex_area_bounds()
+
+    def _vertex_area_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         t, m = self.triangulation, self.metric
         vb = np.zeros(self.n)      # bound of the Voronoi area of each vertex
         bb = np.zeros(self.n)      # of the barycentric one

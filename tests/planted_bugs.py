@@ -370,6 +370,67 @@ class IntrinsicCompacted(ReferenceImplementation):
         return sp.csr_matrix((L.data, (L.row, L.col)), shape=(len(V), len(V)))
 
 
+class IntrinsicFirstHoleOnly(ReferenceImplementation):
+    """Intrinsic Delaunay on the compacted mesh, mapped back by shifting the indices past the
+    first unused vertex by one: right with at most one unused vertex."""
+
+    name = "intrinsic-first-hole-only"
+    planted = ("intrinsic_delaunay_triangulation", "intrinsic_delaunay_laplacian")
+
+    @staticmethod
+    def _compacted(V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        k = np.arange(len(used))
+        holes = np.setdiff1d(np.arange(len(V)), used)
+        back = np.where(k >= holes[0], k + 1, k) if len(holes) else k
+        return V[used], inverse.reshape(F.shape), back
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        Vc, Fc, back = self._compacted(V, F)
+        F2, l2 = super().intrinsic_delaunay_triangulation(Vc, Fc)
+        return back[F2], l2
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        import scipy.sparse as sp
+        Vc, Fc, back = self._compacted(V, F)
+        L = sp.coo_matrix(super().intrinsic_delaunay_laplacian(Vc, Fc))
+        return sp.csr_matrix((L.data, (back[L.row], back[L.col])), shape=(len(V), len(V)))
+
+
+class DelaunayKeyedByUsedCount(ReferenceImplementation):
+    """is_locally_delaunay pairing halfedge i -> j with its twin under the key i k + j, k the
+    number of vertices the faces use (not len(V)): keys collide once an unused vertex sits
+    below the largest index, and an edge is paired with another edge's corner."""
+
+    name = "delaunay-keyed-by-used-count"
+    planted = ("is_locally_delaunay",)
+
+    def is_locally_delaunay(self, V, F):
+        import numpy as np
+        V, F = np.asarray(V, float), np.asarray(F, dtype=np.int64)
+        k = len(np.unique(F))
+        cot = np.empty(F.shape)
+        for c in range(3):
+            a = V[F[:, (c + 1) % 3]] - V[F[:, c]]
+            b = V[F[:, (c + 2) % 3]] - V[F[:, c]]
+            cot[:, c] = (a * b).sum(axis=1) / np.linalg.norm(np.cross(a, b), axis=1)
+        opposite = {}                   # key of the directed edge -> the corner opposite it
+        for f, face in enumerate(F):
+            for c in range(3):
+                i, j = face[(c + 1) % 3], face[(c + 2) % 3]
+                opposite[i * k + j] = (f, c)
+        out = np.ones(F.shape, dtype=bool)
+        for f, face in enumerate(F):
+            for c in range(3):
+                i, j = face[(c + 1) % 3], face[(c + 2) % 3]
+                twin = opposite.get(j * k + i)
+                if twin is not None and twin != (f, c):
+                    out[f, c] = cot[f, c] + cot[twin] >= 0
+        return out
+
+
 class TwinByReversedKey(ReferenceImplementation):
     """Cotan Laplacian that pairs halfedge i -> j with its twin by looking up j -> i: an
     interior edge between two inconsistently oriented faces (a reversed face, a Möbius

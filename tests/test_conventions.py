@@ -482,3 +482,56 @@ def test_a_rescaling_call_outside_a_check_leaves_the_process_epsilon_alone():
         Watched(UnitRadius(), "L3.7").vertex_areas_barycentric(np.array(V), np.array(F))
         assert eps() > 1e6 * FLOAT64_EPSILON
     assert eps() == FLOAT64_EPSILON
+
+
+class UnitRadius32Raises(UnitRadius):
+    """A float32 course implementation whose Laplacian raises (a bug of its own)."""
+    name = "unit-radius-32-raises"
+    machine_epsilon = 2.0 ** -23
+
+    def cotan_laplacian(self, V, F):
+        raise IndexError("index 7 is out of bounds")
+
+
+def test_a_crash_is_declined_only_where_the_rescaling_may_collapse_an_edge():
+    # float32, a triangle of edge 1e-4 beside a unit one: the bounds are infinite there
+    # (e' > 2^-7) but the rescaling keeps ~10 bits of every edge; the crash is the
+    # implementation's.  It was declined ("not applicable", exit 0) from e' > 2^-7 on
+    from ddg_oracle.properties.calls import Watched, raised_by_implementation
+    from ddg_oracle.protocol.methods import OutsideDomain
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [5, 5, 5], [5 + 1e-4, 5, 5], [5, 5 + 1e-4, 5]])
+    F = np.array([[0, 1, 2], [3, 4, 5]])
+    with pytest.raises(IndexError) as err:
+        Watched(UnitRadius32Raises(), "D3.1").cotan_laplacian(V, F)
+    assert raised_by_implementation(err.value)
+    V[4:] = V[3] + (V[4:] - V[3]) * 1e-14            # now 1e-18: the rescaling collapses it
+    with pytest.raises(OutsideDomain, match="cannot resolve"):
+        Watched(UnitRadius32Raises(), "D3.1").cotan_laplacian(V, F)
+
+
+class IntrinsicOnUsedVertices(ReferenceImplementation):
+    """LaPy-like: the intrinsic Delaunay triangulation and Laplacian of the used vertices
+    only, renumbered in order; declared."""
+    name = "intrinsic-on-used-vertices"
+    conventions = {"unused_vertices": "dropped"}
+
+    @staticmethod
+    def _used(V, F):
+        V, F = np.asarray(V, float), np.asarray(F)
+        used, inverse = np.unique(F, return_inverse=True)
+        return V[used], inverse.reshape(F.shape)
+
+    def intrinsic_delaunay_triangulation(self, V, F):
+        return super().intrinsic_delaunay_triangulation(*self._used(V, F))
+
+    def intrinsic_delaunay_laplacian(self, V, F):
+        return super().intrinsic_delaunay_laplacian(*self._used(V, F))
+
+
+def test_dropped_unused_vertices_cover_the_intrinsic_triangulation_too():
+    # the declaration mapped the Laplacian back and not the triangulation's faces: A4.13
+    # failed such an implementation ("the angle sum at vertex 0 changed", 5.2e13 x) once its
+    # examples drew unused vertices
+    for pid in ("A4.13", "D4.8 / R4.9"):
+        r = run_property(PROPERTIES[pid], IntrinsicOnUsedVertices(), profile("default"), seed=0)
+        assert r.status in (PASSED, TIE), (pid, r.status, r.error)

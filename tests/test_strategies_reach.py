@@ -29,7 +29,8 @@ from tests.property_checks import assert_element_on_mesh
 from tests.planted_bugs import (AbsoluteZeroArea, BincountWithoutMinlength, BoundaryByMissingTwin,
                                 BoundaryLoopsByDirectedTwin, ChiOfFirstComponent,
                                 ChiOfUsedVertices, ClampedArccos, CompactedVertices,
-                                IntrinsicCompacted,
+                                DelaunayKeyedByUsedCount, IntrinsicCompacted,
+                                IntrinsicFirstHoleOnly,
                                 FirstComponentOnly, MaxValence32, OffsetCancellation,
                                 OneBoundaryLoop, OrientableByDirectedEdges, TwinByReversedKey,
                                 WeldedByPosition)
@@ -218,6 +219,8 @@ DEFECTS = ("D2.2", "R2.4", "T2.6")          # the properties calling angle_defec
     (CompactedVertices, DEFECTS, 4),          # a tetrahedron and an isolated vertex first
     # chapter 4 drew no unused vertex before: the compacted numbering passed every property
     (IntrinsicCompacted, ("A4.13", "D4.8 / R4.9"), 3),   # a triangle and an unused vertex
+    (IntrinsicFirstHoleOnly, ("A4.13", "D4.8 / R4.9"), 3),   # ... and two unused vertices
+    (DelaunayKeyedByUsedCount, ("D4.4 / T4.7 / P4.9",), 6),  # an unused vertex below the top
     (TwinByReversedKey, ("D3.1",), 6),        # a reversed face or a Möbius strip
 ])
 def test_bugs_of_the_wider_classes_are_caught_and_shrink(bug, pids, max_faces):
