@@ -45,14 +45,6 @@ class Comparison:
     explained_by: tuple = ()
 
 
-def bounds_epsilon(impl, V, F) -> float:
-    """The machine epsilon of ``impl``'s bounds on (V, F): the one it declares, coarser if
-    it declares rounding its own input (:func:`~ddg_oracle.properties.conventions.bound_epsilon`)."""
-    from ..protocol.methods import machine_epsilon
-    from ..properties.conventions import bound_epsilon, declared
-    return bound_epsilon(declared(impl), machine_epsilon(impl), V, F)
-
-
 def _worst(err: np.ndarray, bound: np.ndarray):
     """(index, largest err / bound, how many exceed their bound)."""
     from ..properties.harness import ratios, worst
@@ -164,6 +156,7 @@ class _Plan:
     @classmethod
     def of(cls, mesh: MeshInput, impls, methods) -> "_Plan":
         from ..protocol.methods import METHODS, capabilities
+        from ..properties.conventions import bounds_epsilon_of
         from ..properties.registry import all_quantities, unmet
         quantities = all_quantities()
         ex = MeshExamples(mesh)
@@ -180,14 +173,14 @@ class _Plan:
                        or unmet(q.requires, ex.facts))
                 todo.append((impl, method, why))
                 if not why:
-                    asked.setdefault(method, set()).add(bounds_epsilon(impl, V, F))
+                    asked.setdefault(method, set()).add(bounds_epsilon_of(impl, (V, F)))
         return cls(mesh, ex, V, F, todo, asked)
 
 
 def _rows(plan: _Plan, answers, expected, explain) -> list:
     """The comparisons of one reading's answers with its expected values."""
     from ..protocol.methods import at_machine_epsilon, implementation_name
-    from ..properties.conventions import declared
+    from ..properties.conventions import bounds_epsilon_of, declared
     from ..properties.harness import widened
     from ..properties.registry import all_quantities
 
@@ -198,7 +191,7 @@ def _rows(plan: _Plan, answers, expected, explain) -> list:
         if isinstance(got, Comparison):
             rows.append(got)
             continue
-        epsilon = bounds_epsilon(impl, V, F)
+        epsilon = bounds_epsilon_of(impl, (V, F))
         with at_machine_epsilon(epsilon):
             try:
                 want, bound = expected(quantities[method], epsilon)

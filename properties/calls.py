@@ -118,7 +118,6 @@ class Watched:
             return answer
         return call
 
-
     def _rounding(self, args):
         """(the bounds' epsilon on this call's input, whether its rounding may collapse an
         edge) if the implementation declares rounding its input itself
@@ -141,7 +140,7 @@ def _mark(e: BaseException) -> None:
 
 def _unresolved(method: str, what: str) -> OutsideDomain:
     """A declined input: the implementation rounds its input itself (a declared rescaling)
-    and that rounding may collapse an edge of this mesh (an edge below 2^-50 of the radius
+    and that rounding may collapse an edge of this mesh (an edge below 2^-49 of the radius
     in float64: :func:`.conventions.rescaling_collapses`), so whatever it answers or raises
     judges nothing."""
     return OutsideDomain(f"{method} {what} on a mesh its own declared rescaling "

@@ -42,7 +42,8 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["Convention", "VOCABULARY", "PRESETS", "declared", "to_reference", "explaining",
-           "declaration_text", "pointwise_area", "bound_epsilon", "rescaling_collapses"]
+           "declaration_text", "pointwise_area", "bound_epsilon", "bounds_epsilon_of",
+           "rescaling_collapses"]
 
 
 @dataclass(frozen=True)
@@ -437,13 +438,24 @@ def bound_epsilon(conventions, e: float, V, F) -> float:
     return wider if math.isfinite(wider) and wider <= COARSEST_EPSILON else math.inf
 
 
+def bounds_epsilon_of(impl, mesh) -> float:
+    """The epsilon of ``impl``'s bounds on ``mesh`` ((V, F), or a function giving it, called
+    only if needed): its declared machine epsilon, coarser where it declares rounding its
+    own input (:func:`bound_epsilon`)."""
+    from ..protocol.methods import machine_epsilon
+    e, conventions = machine_epsilon(impl), declared(impl)
+    if not any(c.rounds_input for c in conventions):
+        return e
+    return bound_epsilon(conventions, e, *(mesh() if callable(mesh) else mesh))
+
+
 def rescaling_collapses(conventions, e: float, V, F) -> bool:
     """Whether a declared rescaling (:func:`bound_epsilon`) may collapse an edge of (V, F):
     it moves each vertex by up to e rho, so an edge of length l_min <= 4 e rho may come out
     of zero length or reversed (a 1e-17 tetrahedron beside a point at distance 1, in
     float64).  There whatever the implementation answers or raises judges nothing: the
     example is declined.  Short of that the rescaled mesh keeps some bits of every edge,
-    and a crash or a NaN is the implementation's (float32: edges down to 2^-21 of the
+    and a crash or a NaN is the implementation's (float32: edges down to 2^-20 of the
     radius; the decline once began at 2^-12, where a crash was hidden as "not applicable").
 
     >>> tiny = [[0, 0, 0], [1e-17, 0, 0], [0, 1e-17, 0], [1, 1, 1]]

@@ -252,15 +252,13 @@ def prop(catalog_id: str, statement: str, *, needs=(), strategy, on_mesh, needs_
 
 
 def _bound_epsilon(impl, example) -> float:
-    """The epsilon of ``impl``'s bounds on ``example``'s mesh (its declared machine epsilon,
-    coarser if it declares rounding its own input); each further mesh it is called on
-    widens it again (:class:`~.calls.Watched`)."""
-    from .conventions import bound_epsilon, declared
-    e = machine_epsilon(impl)
-    conventions = declared(impl)
-    if not any(c.rounds_input for c in conventions) or not hasattr(example, "mesh"):
-        return e
-    return bound_epsilon(conventions, e, *example.mesh)
+    """The epsilon of ``impl``'s bounds on ``example``'s mesh (:func:`.conventions.
+    bounds_epsilon_of`; an example without one: the declared epsilon); each further mesh it
+    is called on widens it again (:class:`~.calls.Watched`)."""
+    from .conventions import bounds_epsilon_of
+    if not hasattr(example, "mesh"):
+        return machine_epsilon(impl)
+    return bounds_epsilon_of(impl, lambda: example.mesh)
 
 
 # --- what a mesh file must be for a check (check --mesh, compare) ------------------------------
