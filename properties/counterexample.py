@@ -164,15 +164,52 @@ def mesh_text(mesh, exact=None, limit: int = INLINE_VERTICES, indent: str = "  "
 
 def implementation_spec(impl) -> str | None:
     """How :func:`ddg_oracle.application.implementations.load_implementation` loads ``impl`` again: its
-    ``spec`` (an isolated or built-in implementation), else ``module:Class`` of its class;
-    None for an object no import can rebuild (a class defined in a function, ``__main__``)."""
+    ``spec`` (an isolated or built-in implementation), else ``module:Class`` of its class,
+    with the constructor's options the object keeps (:func:`constructor_options`); None for
+    an object no import can rebuild (a class defined in a function, ``__main__``)."""
     spec = getattr(impl, "spec", None)
     if isinstance(spec, str):
         return spec
     cls = type(impl)
     if cls.__module__ == "__main__" or "<locals>" in cls.__qualname__:
         return None
-    return f"{cls.__module__}:{cls.__qualname__}"
+    options = constructor_options(impl)
+    shown = ", ".join(f"{k}={v!r}" for k, v in options.items())
+    return f"{cls.__module__}:{cls.__qualname__}" + (f"({shown})" if shown else "")
+
+
+def constructor_options(impl) -> dict:
+    """{parameter: value} of ``impl``'s constructor that the object keeps under the same
+    name (``self.tol = tol``, or ``self._tol``) with a value other than the default: a
+    number, a string, a bool or None, as a spec's options can say them.  An object built
+    with ``Mine(tol=0.5)`` failed and its replay built ``Mine()``, which passed.
+
+    >>> class Mine:
+    ...     def __init__(self, tol=1e-3, name="x", data=None):
+    ...         self.tol, self._name, self.data = tol, name, data
+    >>> constructor_options(Mine(tol=0.5)), constructor_options(Mine(data=[1, 2]))
+    ({'tol': 0.5}, {})
+    """
+    import inspect
+    import math
+    init = type(impl).__init__
+    if init is object.__init__:
+        return {}
+    try:
+        parameters = list(inspect.signature(init).parameters.values())[1:]
+    except (TypeError, ValueError):
+        return {}
+    kept, out = getattr(impl, "__dict__", {}), {}
+    for p in parameters:
+        if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            continue
+        value = kept.get(p.name, kept.get("_" + p.name, p.default))
+        plain = value is None or isinstance(value, (bool, int, str)) or \
+            (isinstance(value, float) and math.isfinite(value))
+        if plain and not (isinstance(value, str) and any(c in value for c in ",()'\"\\")) \
+                and (p.default is p.empty or value != p.default):
+            out[p.name] = value
+    return out
 
 
 def module_dir(spec: str) -> str | None:

@@ -97,3 +97,37 @@ def test_a_plugin_node_id_reruns_its_item_alone(tmp_path):
                            env=env, timeout=300)
     assert again.returncode == 1, again.stdout + again.stderr
     assert "1 failed" in again.stdout and "passed" not in again.stdout.splitlines()[-1]
+
+
+class ScaledDefects:
+    """A constructor option the object keeps: with scale 2 its angle defects are twice the
+    numpy example's (a bug); with the default 1 they are right."""
+    name = "scaled-defects"
+
+    def __init__(self, scale=1.0, label="plain"):
+        self.scale, self._label = scale, label
+
+    def angle_defects(self, V, F):
+        from examples.numpy_mesh import NumpyMesh
+        return self.scale * NumpyMesh().angle_defects(V, F)
+
+
+def test_an_object_checked_in_process_replays_with_its_constructor_options():
+    # check_implementation gets an object: its replay was load_implementation('module:Class'),
+    # built without the options, and passed where the object had failed
+    import pytest
+    from ddg_oracle.application.implementations import load_implementation
+    from ddg_oracle.properties.counterexample import replay
+    from ddg_oracle.properties.registry import PropertyFailure
+    from ddg_oracle.properties.runner import check_implementation
+    with pytest.raises(AssertionError):
+        check_implementation(ScaledDefects(scale=2.0), profile="ci", only={"D2.2"})
+    from ddg_oracle.properties import PROPERTIES
+    from ddg_oracle.properties.profiles import profile
+    from ddg_oracle.properties.runner import run_property
+    r = run_property(PROPERTIES["D2.2"], ScaledDefects(scale=2.0, label="mine"), profile("ci"))
+    assert r.spec == "tests.test_replays:ScaledDefects(scale=2.0, label='mine')", r.spec
+    again = load_implementation(r.spec)
+    assert again.scale == 2.0 and again._label == "mine"
+    with pytest.raises(PropertyFailure):
+        replay("D2.2", again, r.replay)
