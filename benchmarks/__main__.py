@@ -1,7 +1,8 @@
 """``python -m benchmarks [GROUP ...] [--quick] [--all] [--runs N] [--no-write] [--gc-paused]``.
 
 Groups: cotan, flips, r3, hypothesis (the default set), egregium (T2.5 and Gauss-Bonnet decided
-exactly after intrinsic flips of float meshes, the zero test as it is and as it was), real (the exact reference on
+exactly after intrinsic flips of float meshes, the zero test as it is and as it was), lazy (the
+exact intrinsic Delaunay of float meshes, eager and lazy, beside libigl's float one), real (the exact reference on
 PyMeshLab's sample meshes and generated fans), dirichlet (the certified Dirichlet
 enclosure on float meshes up to 30,000 vertices, and exact elimination's limit), suite (the test suite and one
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
@@ -28,6 +29,7 @@ GROUPS = {
     "flips": flips.run,
     "r3": flips.run_r3,
     "egregium": flips.run_egregium,
+    "lazy": flips.run_lazy,
     "real": real.run,
     "dirichlet": dirichlet.run,
     "hypothesis": suite.run_hypothesis,

@@ -4,7 +4,9 @@
 from __future__ import annotations
 
 import contextlib
+import math
 import random
+import time
 
 from ddg_oracle.reference.curvature import angle_sums, gauss_bonnet_holds
 from ddg_oracle.reference.delaunay import flip_to_delaunay
@@ -13,7 +15,7 @@ from ddg_oracle.reference.exact import angles
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from . import meshes, peers
-from .common import Mode, fit_exponent, median_time, say
+from .common import Mode, fit_exponent, median_time, say, start_clock
 
 TORI = (32, 50, 71, 100, 158)          # 2 n^2 faces: 2,048 ... 49,928
 
@@ -135,3 +137,83 @@ def run_egregium(mode: Mode) -> dict:
             say(f"  egregium seed {seed} {impl:6} T2.5 {t1:7.3f} s  Gauss-Bonnet {t2:7.3f} s"
                 f"  ({roots} square roots in a cotangent)")
     return {"rows": rows}
+
+
+#: CPU seconds the eager exact flips may take on one mesh before they are given up
+EAGER_LIMIT = 60
+
+
+def lifted_fan(n: int, seed: int = 0) -> PolyhedralSurface:
+    """A fan of n - 2 triangles from vertex 0 over an ellipse (axes 3 and 1), its vertices
+    lifted at random by up to 0.25: every flip depends on the one before (tests/test_lazy.py)."""
+    rng = random.Random(seed)
+    V = [(math.cos(2 * math.pi * k / n) * 3.0, math.sin(2 * math.pi * k / n),
+          rng.uniform(0, 0.25)) for k in range(n)]
+    return PolyhedralSurface.from_arrays(V, [(0, k, k + 1) for k in range(1, n - 1)])
+
+
+def _lazy_meshes(mode: Mode):
+    """(label, PolyhedralSurface): lifted fans, PyMeshLab's bunnies and, when the corpus is
+    fetched, CGAL's meshes whose exact flips outgrew the survey's time limit (issue 42)."""
+    import importlib.util
+    from ddg_oracle.application.meshes import load, resolve
+    from ddg_oracle.reference.errors import InputError
+    for n in (10, 16) if mode.quick else (10, 16, 40):
+        yield f"lifted fan {n}", lifted_fan(n)
+    names = ["pymeshlab:bunny10k_textured.obj"]
+    if not mode.quick:
+        names += ["pymeshlab:bunny.obj", "cgal:part.off", "cgal:anchor.off", "cgal:cheese.off",
+                  "cgal:turbine.off", "cgal:mpi.off"]
+    if importlib.util.find_spec("pymeshlab") is None:
+        names = [n for n in names if not n.startswith("pymeshlab:")]
+    for name in names:
+        try:
+            (n, path, _), = resolve([name])
+            m = load(n, path)
+        except (InputError, ValueError):           # the corpus is not fetched
+            continue
+        yield name, PolyhedralSurface.from_arrays(m.V, m.F)
+
+
+def run_lazy(mode: Mode) -> dict:
+    """Issue 46's target for the exact intrinsic Delaunay of float meshes (>= 0.05 x libigl's
+    float64 ``intrinsic_delaunay_triangulation``, the same flips as the exact algorithm):
+    ``flip_to_delaunay`` eager (exact square-root numbers, given up after
+    :data:`EAGER_LIMIT` CPU seconds) and lazy (``lazy=True``), libigl from the same float
+    edge lengths, side by side on each mesh; ``same``: the two exact runs' flip sequences
+    and final squared lengths equal (where the eager one finished)."""
+    import importlib.util
+    from ddg_oracle.properties.profiles import example_time_limit
+    from ddg_oracle.reference.errors import ExactArithmeticLimit, TermLimitExceeded
+    rows = []
+    for label, s in _lazy_meshes(mode):
+        m = s.metric()
+        nf = m.triangulation.n_faces
+        t_lazy, runs, (dl, logl) = median_time(lambda: flip_to_delaunay(m, lazy=True), mode)
+        t0 = start_clock()
+        try:
+            with example_time_limit("the eager exact flips", EAGER_LIMIT, cpu=True):
+                de, loge = flip_to_delaunay(m)
+            t_eager = time.process_time() - t0
+            same = ([r.edge for r in logl] == [r.edge for r in loge]
+                    and dl.squared_lengths == de.squared_lengths)
+        except (ExactArithmeticLimit, TermLimitExceeded) as e:
+            t_eager, same = None, None
+            gave_up = type(e).__name__
+        else:
+            gave_up = None
+        t_igl = None
+        if importlib.util.find_spec("igl") is not None:
+            import numpy as np
+            import igl
+            V, F = s.to_arrays()
+            V, F = np.asarray(V, dtype=float), np.asarray(F, dtype=np.int64)
+            l = igl.edge_lengths(V, F)
+            t_igl, _, _ = median_time(lambda: igl.intrinsic_delaunay_triangulation(l, F), mode)
+        rows.append({"mesh": label, "faces": nf, "flips": len(logl), "lazy_s": t_lazy,
+                     "runs": runs, "eager_s": t_eager, "eager_gave_up": gave_up,
+                     "same": same, "libigl_s": t_igl})
+        say(f"  lazy {label:34} {nf:6} faces {len(logl):6} flips  lazy {t_lazy:8.4f} s  "
+            f"eager " + (f"{t_eager:8.4f} s" if t_eager is not None else f"gave up ({gave_up})")
+            + (f"  libigl {t_igl:8.5f} s" if t_igl is not None else ""))
+    return {"rows": rows, "eager_limit": EAGER_LIMIT}

@@ -146,6 +146,21 @@ beside 11.3 s at 3528f6e, where its own table had 10.1 s: seed 4's big-integer w
 again slower on this machine that morning, while the small seeds' *before* rows did not move).
 """
 
+LAZY = """\
+### Exact intrinsic Delaunay of float meshes: eager and lazy exact numbers
+
+`flip_to_delaunay(m)` (eager: every flipped squared length and area an exact square-root
+number; after a few dozen flips of a surface from R^3 one has hundreds of terms, and a
+product of two takes seconds) and `flip_to_delaunay(m, lazy=True)` (lazy exact numbers,
+`reference/exact/lazy.py`: each flipped value a node with an integer enclosure, every
+decision taken from enclosures refined along the flips, the exact value computed only
+where they cannot decide), CPU seconds, with libigl's float64
+`intrinsic_delaunay_triangulation` on the same mesh's edge lengths.  The eager run is
+given up after the table's limit (or where a number would exceed the term limit);
+*same*: the eager and lazy runs made the same flips and reached the same exact squared
+lengths.  Issue 46's target: >= 0.05 x libigl.
+"""
+
 SUITE = """\
 ## 4. Test suite and `ddg-oracle check`
 
@@ -533,6 +548,17 @@ _TABLES = [
                             ("zero test", lambda r: r["impl"]),
                             ("T2.5 s", lambda r: f"{r['t25_s']:.3f}"),
                             ("Gauss-Bonnet s", lambda r: f"{r['gauss_bonnet_s']:.3f}")]),
+    ("lazy", LAZY, [("mesh", lambda r: r["mesh"]), ("faces", lambda r: f"{r['faces']:,}"),
+                    ("flips", lambda r: f"{r['flips']:,}"),
+                    ("eager s", lambda r: f"{r['eager_s']:.3f}" if r["eager_s"] is not None
+                     else f"gave up ({r['eager_gave_up']})"),
+                    ("lazy s", lambda r: f"{r['lazy_s']:.3f}"),
+                    ("eager / lazy", lambda r: f"{r['eager_s'] / r['lazy_s']:.1f}"
+                     if r["eager_s"] is not None and r["lazy_s"] else "-"),
+                    ("same", lambda r: {True: "yes", False: "NO", None: "-"}[r["same"]]),
+                    ("libigl s", lambda r: f"{r['libigl_s']:.4f}" if r["libigl_s"] else "-"),
+                    ("lazy speed / libigl", lambda r: f"{r['libigl_s'] / r['lazy_s']:.3f}"
+                     if r["libigl_s"] and r["lazy_s"] else "-")]),
     ("suite", SUITE, [("command", lambda r: r["command"]),
                       ("wall seconds", lambda r: f"{r['wall']:.0f}"),
                       ("CPU seconds", lambda r: f"{r['cpu']:.0f}" if "cpu" in r else "-"),
@@ -632,6 +658,16 @@ def _targets(results: dict) -> list[str]:
         t = flips[0]["seconds"]
         add("flips", f"| 20,000-face rational-metric surface to Delaunay < 10 s | {t:.1f} s | "
                      f"{'yes' if t < 10 else 'no'} |")
+    lazy = [r for r in results.get("lazy", {}).get("rows", [])
+            if r["libigl_s"] and r["lazy_s"] and r["faces"] >= 5000]
+    if lazy:
+        worst = min(lazy, key=lambda r: r["libigl_s"] / r["lazy_s"])
+        x = worst["libigl_s"] / worst["lazy_s"]
+        add("lazy", f"| exact intrinsic Delaunay of float meshes >= 0.05 x libigl's float one, "
+                    f"same flips (issue 46; meshes of 5,000 faces or more) | lowest {x:.3f} x "
+                    f"({worst['mesh']}); same flips wherever the eager run finished: "
+                    f"{'yes' if all(r['same'] is not False for r in lazy) else 'NO'} | "
+                    f"{'yes' if x >= 0.05 and all(r['same'] is not False for r in lazy) else 'no'} |")
     main = results.get("main")
     if main:
         m, slow, ci = main["median_default"], main["slowest_default"], main["ci"]

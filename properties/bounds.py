@@ -405,7 +405,9 @@ def _conditioning(metric, f: int) -> tuple[float, list[float]]:
         except OverflowError:
             pass                            # beyond the float range: as the exact route says
     A = metric.area(f)
-    return (float(Quotient(max(sq), 2 * A)),
+    # the largest by float: equal floats are within an ulp of either (no exact comparison
+    # of equal lazy lengths, which would compute their exact forms)
+    return (float(Quotient(max(sq, key=float), 2 * A)),
             [float(Quotient(n, 4 * A)) for n in metric.face_cot_numerators(f)])
 
 

@@ -102,10 +102,15 @@ def flip_amplification(metric, log) -> list[float]:
 
 
 def delaunay_of(metric):
-    """``flip_to_delaunay(metric)`` (A4.13: the Delaunay metric and the flip log), once per
+    """``flip_to_delaunay(metric, lazy=True)`` (A4.13: the Delaunay metric and the flip log;
+    lazy exact numbers: the same flips and values, exact forms only where asked), once per
     metric object (:func:`.memo.of`: the property's reference values and the reference
     adapter's answer on a mesh file are one run); read-only."""
-    return memo.of(flip_to_delaunay, metric)
+    return memo.of(_lazy_flip_to_delaunay, metric)
+
+
+def _lazy_flip_to_delaunay(metric):
+    return flip_to_delaunay(metric, lazy=True)
 
 
 class DelaunayExact(DenseViews):

@@ -69,6 +69,7 @@ from functools import cached_property
 from .combinatorics import Triangulation, TriangulationBuilder, checked_index, face_of, opposite_corner
 from .errors import InputError, NotFlippable, TermLimitExceeded
 from .exact import Surd, sign
+from .exact.lazy import Lazy, flipped
 from .exact.surds import simplest
 from .metric import PiecewiseFlatSurface
 
@@ -137,6 +138,14 @@ class Unfolding:
         return self._n[1]
 
     @cached_property
+    def _lazy(self):
+        # the flip as lazy exact numbers (.exact.lazy) when the data are (flip_to_delaunay's
+        # lazy mode): enclosures decide, the exact values are computed where asked
+        data = (self.sq_ij, self.sq_jk, self.sq_ki, self.sq_il, self.sq_lj, self.area_ijk,
+                self.area_jil)
+        return flipped(*data) if any(isinstance(x, Lazy) for x in data) else None
+
+    @cached_property
     def _inv_2e(self):
         # one exact inverse per flip: for an irrational e it is the costly step
         return 1 / (2 * self.sq_ij)
@@ -144,6 +153,8 @@ class Unfolding:
     @cached_property
     def new_squared_length(self):
         """``|kl|^2 = b + c - (e + b - a)(e + c - d)/(2e) + 8 A1 A2 / e`` (exact)."""
+        if self._lazy:
+            return self._lazy[0]
         e, a, b, c, d = self.sq_ij, self.sq_jk, self.sq_ki, self.sq_il, self.sq_lj
         return simplest(b + c + ((-(e + b - a)) * (e + c - d)
                                 + 16 * self.area_ijk * self.area_jil) * self._inv_2e)
@@ -151,17 +162,23 @@ class Unfolding:
     @cached_property
     def new_area_at_i(self):
         """Signed area of the new triangle ``(l, k, i)``: ``N_i / (2e)``."""
+        if self._lazy:
+            return self._lazy[1]
         return simplest(self._n_i * self._inv_2e)
 
     @cached_property
     def new_area_at_j(self):
         """Signed area of the new triangle ``(k, l, j)``: ``N_j / (2e)``
         ``= A1 + A2 - area(l, k, i)`` (computed so)."""
+        if self._lazy:
+            return self._lazy[2]
         return simplest(self.area_ijk + self.area_jil - self.new_area_at_i)
 
     def convexity(self):
         """``(sign at i, sign at j)``: the signs of ``N_i`` and ``N_j``, i.e. of
         ``pi - (angle sum of the two triangles)`` at ``i`` and at ``j``."""
+        if self._lazy:                  # N = 2e times the new area at that end, e > 0
+            return sign(self._lazy[1]), sign(self._lazy[2])
         return sign(self._n_i), sign(self._n_j)
 
 
@@ -305,6 +322,8 @@ def _flippable_unfolding(m, e: int) -> Unfolding:
 def _flipped_data(u: Unfolding):
     """``(|kl|^2, area(l, k, i), area(k, l, j))`` of a flippable unfolding (exact)."""
     try:
+        if u._lazy:
+            return u._lazy
         return u.new_squared_length, Surd(u.new_area_at_i), Surd(u.new_area_at_j)
     except TermLimitExceeded as err:
         raise TermLimitExceeded(f"flip of edge {u.edge}: {err}") from None
@@ -320,6 +339,11 @@ class IntrinsicTriangulation:
     checks, errors, closed formulas, face and edge numbering), so
     ``IntrinsicTriangulation(s)`` flipped at ``e1, e2, ...`` then frozen equals
     ``flip(flip(s, e1), e2) ...``.
+
+    With ``lazy=True`` each flip's new squared length and areas are lazy exact numbers
+    (:class:`~ddg_oracle.reference.exact.lazy.Lazy`): the same values, their signs and
+    floats decided by enclosures, their exact forms computed only where asked (after dozens
+    of flips of a surface from R^3 an exact squared length has hundreds of square roots).
 
     It reads like a :class:`~ddg_oracle.reference.metric.PiecewiseFlatSurface` where the
     edge-local functions need it (``squared_length``, ``face_squared_lengths``,
@@ -337,15 +361,17 @@ class IntrinsicTriangulation:
     True
     """
 
-    __slots__ = ("triangulation", "squared_lengths", "areas", "__weakref__")   # weakref: as metric.py
+    __slots__ = ("triangulation", "squared_lengths", "areas", "lazy",
+                 "__weakref__")   # weakref: as metric.py
 
-    def __init__(self, surface):
+    def __init__(self, surface, lazy: bool = False):
         m = surface_metric(surface)
         if isinstance(m, IntrinsicTriangulation):
             m = m.surface()
         self.triangulation = TriangulationBuilder(m.triangulation)
         self.squared_lengths = list(m.squared_lengths)
         self.areas = list(m.areas)
+        self.lazy = lazy
 
     def squared_length(self, h: int):
         """Squared length of the edge of halfedge h."""
@@ -370,6 +396,8 @@ class IntrinsicTriangulation:
     def flip_unfolded(self, u: Unfolding) -> None:
         """Flip the edge of ``u``, an unfolding of this surface already found
         flippable (saves unfolding twice in :func:`~ddg_oracle.reference.delaunay.flip_to_delaunay`)."""
+        if self.lazy and not u._lazy:
+            u = self._lazy_unfolding(u)
         new_sq, at_i, at_j = _flipped_data(u)
         self.triangulation.flip(u.edge)
         f, g = u.faces
@@ -377,10 +405,25 @@ class IntrinsicTriangulation:
         self.areas[f] = at_j
         self.areas[g] = at_i
 
+    def _lazy_unfolding(self, u: Unfolding) -> Unfolding:
+        """``u`` again, its five squared lengths and two areas made lazy exact numbers in
+        place (leaves, shared by every later flip that reads them)."""
+        t = self.triangulation
+        h, k = u.halfedges
+        for x in (h, t.next(h), t.prev(h), k, t.next(k), t.prev(k)):
+            e = t.eid[x]
+            self.squared_lengths[e] = Lazy.of(self.squared_lengths[e])
+        for f in u.faces:
+            self.areas[f] = Lazy.of(self.areas[f])
+        return unfold(self, u.edge)
+
     def surface(self) -> PiecewiseFlatSurface:
-        """The current surface, frozen (O(F))."""
-        return PiecewiseFlatSurface._trusted(self.triangulation.build(), self.squared_lengths,
-                                             self.areas)
+        """The current surface, frozen (O(F)); a value made lazy but never flipped is given
+        back as it was (a leaf's exact number)."""
+        def plain(xs):
+            return [x.exact() if isinstance(x, Lazy) and x.is_leaf else x for x in xs]
+        return PiecewiseFlatSurface._trusted(self.triangulation.build(),
+                                             plain(self.squared_lengths), plain(self.areas))
 
     def __repr__(self) -> str:
         t = self.triangulation

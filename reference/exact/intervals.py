@@ -170,11 +170,14 @@ def dot(u, v) -> Interval:
 
 def top_bit(x) -> int:
     """t with every term of the exact number ``x`` below 2^t in absolute value (an int or
-    Fraction: x itself; a Surd: its terms q sqrt(r)); read off bit lengths, no arithmetic.
+    Fraction: x itself; a Surd: its terms q sqrt(r); a number with its own ``top_bit()``,
+    :class:`~.lazy.Lazy`: its enclosure's); read off bit lengths, no arithmetic.
 
     >>> top_bit(Fraction(3, 4)), top_bit(Fraction(1, 2**100))
     (0, -99)
     """
+    if hasattr(x, "top_bit"):
+        return x.top_bit()
     pairs = (x.terms() if hasattr(x, "terms")
              else ((1, x if type(x) is Fraction else Fraction(x)),))
     return terms_top_bit(pairs)

@@ -778,6 +778,10 @@ def exact_sum(values):
     >>> exact_sum([sqrt(2), -sqrt(2), Fraction(1, 2)]), exact_sum([])
     (Fraction(1, 2), Fraction(0, 1))
     """
+    values = list(values)
+    for v in values:
+        if hasattr(v, "_lazy_sum"):         # a lazy exact number (.lazy): the sum stays lazy
+            return v._lazy_sum(values)
     rational_part = _ZERO
     surds = []
     for v in values:
@@ -817,8 +821,9 @@ class Quotient:
     __slots__ = ("n", "d", "_k", "_kept")
 
     def __init__(self, n, d):
-        self.n = n if isinstance(n, Surd) else rational(n, "numerator")
-        self.d = d if isinstance(d, Surd) else rational(d, "denominator")
+        # Surds and lazy exact numbers (.lazy) enclose themselves (scaled_bounds)
+        self.n = n if hasattr(n, "scaled_bounds") else rational(n, "numerator")
+        self.d = d if hasattr(d, "scaled_bounds") else rational(d, "denominator")
         if not self.d > 0:
             raise InputError(f"a quotient needs a positive denominator, got {_short(self.d)}")
         self._k = None
@@ -840,11 +845,11 @@ class Quotient:
         else:
             j = k + 16
             while True:
-                da, db = d.scaled_bounds(j) if isinstance(d, Surd) else _floor_ceil(d, j)
+                da, db = d.scaled_bounds(j) if hasattr(d, "scaled_bounds") else _floor_ceil(d, j)
                 if da <= 0:                     # d > 0, not yet told apart from 0 at 2**-j
                     j = 2 * j
                     continue
-                na, nb = n.scaled_bounds(j) if isinstance(n, Surd) else _floor_ceil(n, j)
+                na, nb = n.scaled_bounds(j) if hasattr(n, "scaled_bounds") else _floor_ceil(n, j)
                 lo = min((na << k) // da, (na << k) // db)
                 hi = max(-((-nb << k) // da), -((-nb << k) // db))
                 if hi - lo <= 2:
@@ -941,7 +946,7 @@ def rounded_sum(values) -> float:
     >>> rounded_sum([Quotient(sqrt(3), sqrt(2) + 1), Quotient(-sqrt(12), sqrt(8) + 2)])
     0.0
     """
-    values = [v if isinstance(v, (Surd, Quotient)) else Surd(rational(v)) for v in values]
+    values = [v if hasattr(v, "scaled_bounds") else Surd(rational(v)) for v in values]
     k = 64 + len(values).bit_length()
     zero_tested = False
     while k <= 4096:
