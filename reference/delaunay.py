@@ -355,6 +355,9 @@ def flip_to_delaunay(surface, max_flips: int | None = None, lazy: bool = False):
     while queue:
         e = queue.popleft()
         queued[e] = False
+        if lazy and known[e] != _YES:
+            # its faces' values as lazy leaves: enclosures decide the test and the flip
+            m.make_lazy(*{face_of(x) for x in tri.edge_halfedges(e) if x >= 0})
         if is_delaunay_edge(m, e) if known[e] == _UNKNOWN else known[e] == _YES:
             continue
         if max_flips is not None and len(log) >= max_flips:

@@ -405,16 +405,22 @@ class IntrinsicTriangulation:
         self.areas[f] = at_j
         self.areas[g] = at_i
 
+    def make_lazy(self, *faces: int) -> None:
+        """Make the squared lengths and areas of ``faces`` lazy exact numbers in place
+        (leaves: the same values, their enclosures computed once and shared by every later
+        test and flip that reads them)."""
+        eid, sq, areas = self.triangulation.eid, self.squared_lengths, self.areas
+        for f in faces:
+            for h in (3 * f, 3 * f + 1, 3 * f + 2):     # inline halfedge(f, c): hot
+                e = eid[h]
+                if not isinstance(sq[e], Lazy):
+                    sq[e] = Lazy.of(sq[e])
+            if not isinstance(areas[f], Lazy):
+                areas[f] = Lazy.of(areas[f])
+
     def _lazy_unfolding(self, u: Unfolding) -> Unfolding:
-        """``u`` again, its five squared lengths and two areas made lazy exact numbers in
-        place (leaves, shared by every later flip that reads them)."""
-        t = self.triangulation
-        h, k = u.halfedges
-        for x in (h, t.next(h), t.prev(h), k, t.next(k), t.prev(k)):
-            e = t.eid[x]
-            self.squared_lengths[e] = Lazy.of(self.squared_lengths[e])
-        for f in u.faces:
-            self.areas[f] = Lazy.of(self.areas[f])
+        """``u`` again, its values made lazy (:meth:`make_lazy`)."""
+        self.make_lazy(*u.faces)
         return unfold(self, u.edge)
 
     def surface(self) -> PiecewiseFlatSurface:

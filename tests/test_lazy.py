@@ -14,7 +14,7 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
 from ddg_oracle.reference.errors import TermLimitExceeded
 from ddg_oracle.reference.exact import limits, sign, simplest, sqrt
-from ddg_oracle.reference.exact.lazy import PRECISIONS, Lazy
+from ddg_oracle.reference.exact.lazy import PRECISIONS, Lazy, filtered_sign
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .test_delaunay import random_flips, start_surface
@@ -77,6 +77,21 @@ def test_exact_zeros_and_ties_fall_back_to_the_exact_value(x, y):
     assert ((lx + ly) * lx - (lx * lx + ly * lx)).sign() == 0
     assert (lx * ly == ly * lx) and not (lx * ly < ly * lx)
     assert (lx + ly > lx) == (sign(ey) > 0)
+
+
+FORMULAS = [lambda x, y: x * y - y * x + x, lambda x, y: (x + y) * (x - y) - x * x + y * y,
+            lambda x, y: x / (y * y + 1) - 2 * x, lambda x, y: 3 - x * y / (x * x + 1),
+            lambda x, y: -(x - y) * (y - x)]
+
+
+@SETTINGS
+@given(trees(2), trees(2), st.sampled_from(FORMULAS), st.booleans())
+def test_filtered_sign_is_the_exact_sign(x, y, fn, plain):
+    """filtered_sign: the formula on enclosures, else on Lazy numbers; with exact zeros
+    (the second formula) and values given as Lazy numbers or as plain exact ones."""
+    (lx, ex), (ly, ey) = x, y
+    args = (ex, ey) if plain else (lx, ly)
+    assert filtered_sign(fn, args) == sign(simplest(fn(ex, ey)))
 
 
 def test_float_of_a_tie_between_two_floats_is_rounded_half_to_even():

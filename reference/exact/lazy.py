@@ -349,7 +349,7 @@ class Lazy:
         :func:`~.surds.rounded_sum` enclose with)."""
         if self._exact is not _UNSET:
             return scaled_bounds(self._exact, k)
-        p = max(PRECISIONS[0], k + self.top_bit() + 4)     # bits down to 2**-k, and more
+        p = _ladder(k + self.top_bit() + 4)              # bits down to 2**-k, and more
         while p <= 4 * max(PRECISIONS[-1], k):
             x = self._enclosure(p)
             p *= 2
@@ -386,6 +386,12 @@ class Lazy:
 
     def __reduce__(self):
         return Lazy.of, (self.exact(),)
+
+
+def _ladder(bits: int) -> int:
+    """The working precision for ``bits``: the next power of two from 64 on, so that the
+    many enclosures asked of one DAG (a matrix's entries) share its nodes' refinements."""
+    return max(PRECISIONS[0], 1 << max(0, bits - 1).bit_length())
 
 
 def _to_float(n: int, k: int) -> float:
@@ -433,39 +439,76 @@ def _refine(root: Lazy, p: int) -> None:
 
 
 class _Enclosure:
-    """An enclosure at the first working precision, with the arithmetic of Lazy numbers but
-    no DAG: :func:`filtered_sign`'s first, cheap evaluation."""
+    """An enclosure ``lo <= x 2**k <= hi`` (``lo`` None: none known) with the arithmetic of
+    Lazy numbers but no DAG and no rounding of sums and products (a filter's formula is
+    short: its integers stay small): :func:`filtered_sign`'s first, cheap evaluation."""
 
-    __slots__ = ("t",)
+    __slots__ = ("lo", "hi", "k")
 
-    def __init__(self, t):
-        self.t = t
+    def __init__(self, lo, hi, k):
+        self.lo, self.hi, self.k = lo, hi, k
 
     @staticmethod
-    def _of(v):
-        if isinstance(v, _Enclosure):
-            return v.t
-        return _leaf(v, PRECISIONS[0]) if _is_exact_number(v) else None
+    def of(v) -> "_Enclosure":
+        if type(v) is _Enclosure:
+            return v
+        if isinstance(v, Lazy):
+            if v._p < PRECISIONS[0]:
+                _refine(v, PRECISIONS[0])
+            return _NONE if v._lo is None else _Enclosure(v._lo, v._hi, v._k)
+        if type(v) is int:
+            return _Enclosure(v, v, 0)
+        return _Enclosure(*_leaf(v, PRECISIONS[0]))
 
-    def _binary(fn, swap=False):
-        def method(self, other):
-            o = _Enclosure._of(other)
-            if self.t is None or o is None:
-                return _Enclosure(None)
-            return _Enclosure(fn(o, self.t) if swap else fn(self.t, o))
-        return method
+    def __add__(a, b):
+        if type(b) is not _Enclosure:
+            b = _Enclosure.of(b)
+        if a.lo is None or b.lo is None:
+            return _NONE
+        i, j = a.k, b.k
+        if i == j:
+            return _Enclosure(a.lo + b.lo, a.hi + b.hi, i)
+        if i > j:                               # to the finer scale: exact
+            return _Enclosure(a.lo + (b.lo << (i - j)), a.hi + (b.hi << (i - j)), i)
+        return _Enclosure((a.lo << (j - i)) + b.lo, (a.hi << (j - i)) + b.hi, j)
 
-    p = PRECISIONS[0]
-    __add__ = __radd__ = _binary(lambda x, y, p=p: _sum((x, y), p))
-    __sub__ = _binary(lambda x, y, p=p: _sum((x, _neg(y)), p))
-    __rsub__ = _binary(lambda x, y, p=p: _sum((x, _neg(y)), p), True)
-    __mul__ = __rmul__ = _binary(lambda x, y, p=p: _mul(x, y, p))
-    __truediv__ = _binary(lambda x, y, p=p: _div(x, y, p))
-    __rtruediv__ = _binary(lambda x, y, p=p: _div(x, y, p), True)
-    del _binary, p
+    __radd__ = __add__
 
-    def __neg__(self):
-        return _Enclosure(None if self.t is None else _neg(self.t))
+    def __neg__(a):
+        return _NONE if a.lo is None else _Enclosure(-a.hi, -a.lo, a.k)
+
+    def __sub__(a, b):
+        return a + -_Enclosure.of(b)
+
+    def __rsub__(a, b):
+        return _Enclosure.of(b) + -a
+
+    def __mul__(a, b):
+        if type(b) is not _Enclosure:
+            b = _Enclosure.of(b)
+        if a.lo is None or b.lo is None:
+            return _NONE
+        x, y, c, d = a.lo, a.hi, b.lo, b.hi
+        if x >= 0 and c >= 0:
+            return _Enclosure(x * c, y * d, a.k + b.k)
+        ps = (x * c, x * d, y * c, y * d)
+        return _Enclosure(min(ps), max(ps), a.k + b.k)
+
+    __rmul__ = __mul__
+
+    def __truediv__(a, b):
+        if type(b) is not _Enclosure:
+            b = _Enclosure.of(b)
+        if a.lo is None or b.lo is None:
+            return _NONE
+        r = _div((a.lo, a.hi, a.k), (b.lo, b.hi, b.k), PRECISIONS[0])
+        return _NONE if r is None else _Enclosure(*r)
+
+    def __rtruediv__(a, b):
+        return _Enclosure.of(b) / a
+
+
+_NONE = _Enclosure(None, None, 0)
 
 
 def filtered_sign(fn, values) -> int:
@@ -474,17 +517,9 @@ def filtered_sign(fn, values) -> int:
     built), and only when that does not decide, ``fn`` on Lazy numbers (:meth:`Lazy.sign`:
     enclosures refined, else the exact value).  One formula, two number types: the cheap
     filter and the exact decision cannot disagree on what they compute."""
-    encl = []
-    for v in values:
-        if isinstance(v, Lazy):
-            if v._p < PRECISIONS[0]:
-                _refine(v, PRECISIONS[0])
-            encl.append(_Enclosure(None if v._lo is None else (v._lo, v._hi, v._k)))
-        else:
-            encl.append(_Enclosure(_leaf(v, PRECISIONS[0])))
-    t = fn(*encl).t
-    if t is not None:
-        lo, hi, _ = t
+    x = fn(*[_Enclosure.of(v) for v in values])
+    lo, hi = x.lo, x.hi
+    if lo is not None:
         if lo > 0:
             return 1
         if hi < 0:
