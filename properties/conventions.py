@@ -224,6 +224,9 @@ def _vocabulary() -> dict:
     def scaled(power):
         return lambda a, V, F: np.asarray(a, dtype=np.float64) / _scale(V) ** power \
             if not hasattr(a, "tocsr") else a / _scale(V) ** power
+    def per_edge(H, V):
+        s = _scale(V)               # once per answer: per edge it made the map O(E V)
+        return {e: h / s for e, h in dict(H).items()}
     entries = [
         Convention("laplacian", "negative", _MATRICES,
                    "the matrix is -L, negative semidefinite (libigl's cotmatrix; gpytoolbox's "
@@ -257,8 +260,7 @@ def _vocabulary() -> dict:
                    "the input is first centred and scaled to unit radius (the DDG course's "
                    "loader): areas come out times s^2, lengths times s",
                    lambda method, a, V, F: (
-                       {e: h / _scale(V) for e, h in dict(a).items()}
-                       if method == "edge_mean_curvature" else
+                       per_edge(a, V) if method == "edge_mean_curvature" else
                        scaled(1 if method == "area_gradient" else 2)(a, V, F)),
                    rounds_input=True),
         Convention("unused_vertices", "dropped", _MATRICES + _PER_VERTEX
