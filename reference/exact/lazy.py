@@ -274,14 +274,9 @@ class Lazy:
             return exact_sign(self._exact)
         for p in PRECISIONS:
             x = self._enclosure(p)
-            if x is not None:
-                lo, hi, _ = x
-                if lo > 0:
-                    return 1
-                if hi < 0:
-                    return -1
-                if lo == hi == 0:
-                    return 0
+            s = None if x is None else _decided(x[0], x[1])
+            if s is not None:
+                return s
         return exact_sign(self.exact())
 
     def __bool__(self):
@@ -392,6 +387,15 @@ def _ladder(bits: int) -> int:
     """The working precision for ``bits``: the next power of two from 64 on, so that the
     many enclosures asked of one DAG (a matrix's entries) share its nodes' refinements."""
     return max(PRECISIONS[0], 1 << max(0, bits - 1).bit_length())
+
+
+def _decided(lo: int, hi: int) -> int | None:
+    """The sign an enclosure [lo, hi] decides (0 only for the point 0), else None."""
+    if lo > 0:
+        return 1
+    if hi < 0:
+        return -1
+    return 0 if lo == hi == 0 else None
 
 
 def _to_float(n: int, k: int) -> float:
@@ -518,14 +522,9 @@ def filtered_sign(fn, values) -> int:
     enclosures refined, else the exact value).  One formula, two number types: the cheap
     filter and the exact decision cannot disagree on what they compute."""
     x = fn(*[_Enclosure.of(v) for v in values])
-    lo, hi = x.lo, x.hi
-    if lo is not None:
-        if lo > 0:
-            return 1
-        if hi < 0:
-            return -1
-        if lo == hi == 0:
-            return 0
+    s = None if x.lo is None else _decided(x.lo, x.hi)
+    if s is not None:
+        return s
     return Lazy.of(fn(*(Lazy.of(v) for v in values))).sign()
 
 
