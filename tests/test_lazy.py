@@ -14,7 +14,7 @@ from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
 from ddg_oracle.reference.errors import TermLimitExceeded
 from ddg_oracle.reference.exact import limits, sign, simplest, sqrt
-from ddg_oracle.reference.exact.lazy import PRECISIONS, Lazy, filtered_sign
+from ddg_oracle.reference.exact.lazy import PRECISIONS, Lazy, filtered_sign, flipped
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 
 from .test_delaunay import random_flips, start_surface
@@ -100,6 +100,21 @@ def test_float_of_a_tie_between_two_floats_is_rounded_half_to_even():
     tie = Fraction(1) + Fraction(1, 2 ** 53)
     x = Lazy.of(sqrt(2)) * Lazy.of(sqrt(2)) / 2 - 1 + tie
     assert float(x) == float(tie) == 1.0
+
+
+def test_integers_divide_exactly():
+    """Ints divided by ints in the exact operations were floats (1 / 49 * 49 - 1 came out
+    -1.1e-16, sign -1): a hostile probe's find."""
+    x = Lazy.of(1) / 49 * 49 - 1
+    assert x.sign() == 0 and x.exact() == 0 and type(x.exact()) is Fraction
+    assert Lazy.of(1) / 49 * 49 == 1
+    assert filtered_sign(lambda a: a / 49 * 49 - 1, [1]) == 0
+    y = Lazy.of(1) / 3
+    assert y == Fraction(1, 3) and hash(y) == hash(Fraction(1, 3))
+    assert [v.exact() for v in flipped(3, 2, 2, 2, 2, 1, 1)] == [Fraction(31, 6), 1, 1]
+    assert all(type(v.exact()) is Fraction for v in flipped(3, 2, 2, 2, 2, 1, 1))
+    lo, hi = Lazy.of(sqrt(2)).interval(-3)          # as Surd.interval: any bits
+    assert lo <= sqrt(2) <= hi
 
 
 def test_deep_chains_need_no_recursion():

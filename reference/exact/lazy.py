@@ -195,7 +195,9 @@ class Lazy:
             raise TypeError(f"a lazy exact number needs an int, Fraction or Surd, got "
                             f"{type(v).__name__}")
         x = object.__new__(cls)
-        x._op, x._args, x._exact, x._p, x._lo = "leaf", (), v, -1, None
+        # an int as its Fraction: int / int would be a float in the exact operations
+        x._op, x._args, x._p, x._lo = "leaf", (), -1, None
+        x._exact = Fraction(v) if type(v) is int else v
         return x
 
     @classmethod
@@ -361,7 +363,7 @@ class Lazy:
 
     def interval(self, bits: int):
         """A rational enclosure ``(lo, hi)``, ``hi - lo <= 2**-bits`` (as :meth:`Surd.interval`)."""
-        k = bits + 2
+        k = max(0, bits) + 2
         lo, hi = self.scaled_bounds(k)
         return Fraction(lo, 1 << k), Fraction(hi, 1 << k)
 
