@@ -182,6 +182,32 @@ def test_lazy_flips_equal_exact_flips_on_surfaces_from_R3(name, seed):
     _same_run(m)
 
 
+@settings(max_examples=6, deadline=None, database=None,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 1 << 30))
+def test_lazy_flips_one_by_one_equal_exact_flips(seed):
+    """IntrinsicTriangulation(.., lazy=True).flip (its values made lazy at the flip, the
+    path flip_to_delaunay does not take) against the eager flips, edge by edge."""
+    from ddg_oracle.reference.intrinsic import IntrinsicTriangulation
+    rng = random.Random(seed)
+    base = surfaces.icosahedron().metric()
+    lazy, eager = IntrinsicTriangulation(base, lazy=True), IntrinsicTriangulation(base)
+    flips = 0
+    for _ in range(12):
+        e = rng.randrange(base.triangulation.n_edges)
+        if eager.is_flippable(e):
+            assert lazy.is_flippable(e)
+            eager.flip(e)
+            lazy.flip(e)
+            flips += 1
+        else:
+            assert not lazy.is_flippable(e)
+    a, b = lazy.surface(), eager.surface()
+    assert a.triangulation == b.triangulation
+    assert a.squared_lengths == b.squared_lengths and list(a.areas) == list(b.areas)
+    assert flips == 0 or any(isinstance(x, Lazy) for x in a.squared_lengths)
+
+
 def lifted_fan(n: int, seed: int = 0):
     """A fan of n - 2 triangles from vertex 0 over an ellipse, its vertices lifted at random:
     every flip depends on the one before (long chains, one more square root per flip)."""
