@@ -127,16 +127,47 @@ class Exact(DenseViews):
         self.keep = sorted({v for f in case.faces for v in f})
         self.surface = case.surface if len(self.keep) == case.n else compact(case, self.keep)
         self.metric = self.surface.metric()
-        t = self.triangulation = self.surface.triangulation
-        k = t.n_vertices
-        self.L = exact_laplacian(self.surface)
-        b = entry_bounds(self.metric, k)
-        self.cot, self.rho, self.beta = b.cot, b.rho, b.beta
-        # sparse (scipy CSR) on the case's n vertices: the float view of L, the entry bounds,
-        # the edge pattern; Lf, B, adjacent are their dense arrays, built only if asked
-        self.Ls = self.embed(laplacian_view(self.surface).copy())
-        self.Bs = self.embed(b.B)
-        self.adjacent_s = self.embed(b.adjacent)
+        self.triangulation = self.surface.triangulation
+        # the rest when first asked: a pointwise curvature's widened bound needs the vertex
+        # areas' bounds only, not the Laplacian (on CGAL's bull: 1.2 s of compare's own
+        # process, beside the workers that compute the Laplacian)
+
+    @cached_property
+    def L(self):
+        """The exact cotan Laplacian (D3.2; a SparseMatrix of exact numbers)."""
+        return exact_laplacian(self.surface)
+
+    @cached_property
+    def bounds(self):
+        """:func:`.bounds.entry_bounds` of the metric, at this object's epsilon."""
+        with at_machine_epsilon(self.epsilon):
+            return entry_bounds(self.metric, self.triangulation.n_vertices)
+
+    @property
+    def cot(self) -> np.ndarray:
+        return self.bounds.cot
+
+    @property
+    def rho(self) -> np.ndarray:
+        return self.bounds.rho
+
+    @property
+    def beta(self) -> np.ndarray:
+        return self.bounds.beta
+
+    # sparse (scipy CSR) on the case's n vertices: the float view of L, the entry bounds,
+    # the edge pattern; Lf, B, adjacent are their dense arrays, built only if asked
+    @cached_property
+    def Ls(self):
+        return self.embed(laplacian_view(self.surface).copy())
+
+    @cached_property
+    def Bs(self):
+        return self.embed(self.bounds.B)
+
+    @cached_property
+    def adjacent_s(self):
+        return self.embed(self.bounds.adjacent)
 
     @property
     def n(self) -> int:
@@ -170,12 +201,18 @@ class Exact(DenseViews):
         with at_machine_epsilon(self.epsilon):
             return self._face_area_bounds()
 
+    @cached_property
+    def squared_floats(self) -> np.ndarray:
+        """(k, 3) the faces' squared lengths (opposite corners 2, 0, 1), correctly rounded."""
+        m = self.metric
+        return np.array([[float(x) for x in m.face_squared_lengths(f)]
+                         for f in range(self.triangulation.n_faces)]).reshape(-1, 3)
+
     def _face_area_bounds(self) -> np.ndarray:
         m, k = self.metric, self.triangulation.n_faces
         area = np.array([float(m.area(f)) for f in range(k)])
         # face_squared_lengths: opposite corners 2, 0, 1; columns here: corners 0, 1, 2
-        squared = np.array([[float(x) for x in m.face_squared_lengths(f)]
-                            for f in range(k)]).reshape(-1, 3)[:, [1, 2, 0]]
+        squared = self.squared_floats[:, [1, 2, 0]]
         s = np.sqrt(squared)
         sides = np.stack([s[:, 1] * s[:, 2], s[:, 2] * s[:, 0], s[:, 0] * s[:, 1]],
                          axis=1).max(axis=1) / 2 if k else np.zeros(0)
@@ -191,21 +228,24 @@ class Exact(DenseViews):
             return self._vertex_area_bounds()
 
     def _vertex_area_bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        t, m = self.triangulation, self.metric
         vb = np.zeros(self.n)      # bound of the Voronoi area of each vertex
         bb = np.zeros(self.n)      # of the barycentric one
+        if not self.triangulation.n_faces:
+            return vb, bb
         fa = self.face_area_bounds
-        for f, face in enumerate(t.faces):
-            l0, l1, l2 = (float(x) for x in m.face_squared_lengths(f))
-            adj = ((l0, l2, 2, 1), (l0, l1, 2, 0), (l1, l2, 0, 1))   # sides at corner, opposite corners
-            for c in range(3):
-                la, lb, ca, cb = adj[c]
-                # either rule may be taken near a right angle; they agree there, so bound both
-                vor = (la * self.beta[f, ca] + lb * self.beta[f, cb]
-                       + 8 * eps() * (la * abs(self.cot[f, ca]) + lb * abs(self.cot[f, cb]))) / 8
-                v = self.keep[face[c]]
-                vb[v] += vor + fa[f]
-                bb[v] += fa[f] / 3
+        l0, l1, l2 = self.squared_floats.T
+        beta, cot = self.beta, np.abs(self.cot)
+        vor = []
+        # sides at the corner and their opposite corners, corners 0, 1, 2
+        for la, lb, ca, cb in ((l0, l2, 2, 1), (l0, l1, 2, 0), (l1, l2, 0, 1)):
+            # either rule may be taken near a right angle; they agree there, so bound both
+            vor.append((la * beta[:, ca] + lb * beta[:, cb]
+                        + 8 * eps() * (la * cot[:, ca] + lb * cot[:, cb])) / 8 + fa)
+        # added face by face, corner by corner (np.add.at keeps the order of its indices)
+        at = np.asarray(self.keep, dtype=np.int64)[np.array(self.triangulation.faces,
+                                                            dtype=np.int64)].ravel()
+        np.add.at(vb, at, np.stack(vor, axis=1).ravel())
+        np.add.at(bb, at, np.repeat(fa / 3, 3))
         return vb, bb
 
     def embed(self, M):

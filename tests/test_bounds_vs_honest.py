@@ -424,6 +424,75 @@ def test_conditioning_is_within_two_ulps_of_the_exact_values():
             assert abs(c - float(x)) <= 2 * math.ulp(float(x))
 
 
+def _factors_hold(m, rho, cot, faces=None) -> int:
+    """Assert that ``(rho, cot)`` bound face_conditioning's exact values from above within a
+    relative 2^-29, with the exact signs, comparing exactly (squares against 16 A^2, no
+    float); returns how many faces were checked."""
+    top = (1 + Fraction(1, 2 ** 29)) ** 2
+    checked = 0
+    for f in range(m.triangulation.n_faces) if faces is None else faces:
+        l0, l1, l2 = m.face_squared_lengths(f)
+        H = 2 * (l0 * l1 + l1 * l2 + l2 * l0) - l0 * l0 - l1 * l1 - l2 * l2     # 16 A^2
+        # rho = max l / (2 A): (2 rho)^2 A^2 = rho^2 H / 4 against max l^2
+        big = max((l0, l1, l2))
+        want = big * big * 4
+        r2 = Fraction(float(rho[f])) ** 2
+        assert r2 * H >= want and r2 * H <= want * top, f
+        for c, n in enumerate((l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0)):     # cot = n / sqrt(H)
+            x = Fraction(float(cot[f, c]))
+            assert (x > 0) == (n > 0) and (x < 0) == (n < 0), (f, c)
+            assert x * x * H >= n * n and x * x * H <= n * n * top, (f, c)
+        checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("seed", [8, 21])
+def test_face_conditioning_bounds_the_exact_factors_from_above(seed, monkeypatch):
+    """The vectorised factors (float64 with a derived error bound, the exact route where
+    the bound is not small) against the exact values, on needles, caps and slivers down to
+    the float64 limit, rescaled by 2^-150 and 2^150 (squared lengths within the filter's
+    range) and 2^-300 and 2^300 (beyond it), with exact right angles (cot 0: the exact route)."""
+    from ddg_oracle.properties import bounds
+    exact_route = []
+    monkeypatch.setattr(bounds, "_conditioning",
+                        lambda m, f, slow=bounds._conditioning: exact_route.append(f) or slow(m, f))
+    V, F = triangles(FORMATS[53], seed=seed, per_kind=12)
+    right = np.array([[0, 0, 0], [3, 0, 0], [0, 4, 0], [0, 0, 0], [1e-9, 0, 0], [0, 1, 0]])
+    for scale in (1.0, 2.0 ** -150, 2.0 ** 150, 2.0 ** -300, 2.0 ** 300):
+        W = np.concatenate([V, right]) * scale
+        G = np.arange(len(W)).reshape(-1, 3)
+        m = _case(W, G, f"adversarial triangles x {scale}").surface.metric()
+        exact_route.clear()
+        rho, cot = bounds.face_conditioning(m)
+        assert _factors_hold(m, rho, cot) == len(G)
+        assert cot[-2, 0] == 0 and cot[-1, 0] == 0              # the right angles, exactly
+        # both routes taken: the filter decides the well-shaped faces, within its range
+        assert len(G) - 2 in exact_route and len(G) - 1 in exact_route
+        beyond = not 2.0 ** -200 < scale < 2.0 ** 200
+        assert (len(exact_route) == len(G)) == beyond, len(exact_route)
+
+
+def test_face_conditioning_bounds_flipped_faces_from_above():
+    """After intrinsic flips (lazy exact lengths with square roots), the same, on the faces
+    the flips made."""
+    from fractions import Fraction as Q
+    from ddg_oracle.properties.bounds import face_conditioning
+    from ddg_oracle.properties.delaunay_exact import delaunay_of
+    rng = np.random.default_rng(5)
+    k = 12                       # a wavy grid: many flips, nearly right angles among them
+    P = [(float(i + rng.uniform(-.45, .45)), float(j + rng.uniform(-.45, .45)),
+          float(rng.uniform(-.3, .3))) for i in range(k) for j in range(k)]
+    F = [f for i in range(k - 1) for j in range(k - 1) for f in
+         ([i * k + j, (i + 1) * k + j, i * k + j + 1],
+          [(i + 1) * k + j, (i + 1) * k + j + 1, i * k + j + 1])]
+    d, log = delaunay_of(_case(np.array(P), np.array(F), "wavy grid").surface.metric())
+    rho, cot = face_conditioning(d)
+    flipped = [f for f in range(d.triangulation.n_faces)
+               if not all(type(x) is Q for x in d.face_squared_lengths(f))]
+    assert len(log) > 20 and len(flipped) > 20
+    assert _factors_hold(d, rho, cot, flipped) == len(flipped)
+
+
 # --- sums and views: gamma, total_area_view --------------------------------------------------------
 
 

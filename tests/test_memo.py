@@ -92,18 +92,30 @@ def test_what_a_float32_implementation_derived_is_not_handed_to_a_float64_one():
     def seen(c):
         return input_format().name, protocol.eps()
 
+    with inputs_at(2.0 ** -23), protocol.at_machine_epsilon(2.0 ** -23):
+        assert case.derived("seen", seen) == ("float32", 2.0 ** -23)
+    assert case.derived("seen", seen) == ("float64", 2.0 ** -52)
+
+
+def test_what_one_object_derived_is_shared_across_contexts():
+    # memo.of: the exact values of one object (a float32 reading is another object), once
+    # whatever the checked implementation's format and epsilon (its bounds are not kept
+    # there): a float32 reading's Delaunay flips served its float64 views and float32 bounds
+    from ddg_oracle.properties.precision import inputs_at
+    memo.clear()
+    calls = []
+
     class Surface:                                   # memo.of keeps values per live object
         pass
 
     def of(obj):
-        return seen(None)
+        calls.append(obj)
+        return len(calls)
 
-    s = Surface()
+    s, t = Surface(), Surface()
     with inputs_at(2.0 ** -23), protocol.at_machine_epsilon(2.0 ** -23):
-        assert case.derived("seen", seen) == ("float32", 2.0 ** -23)
-        assert memo.of(of, s) == ("float32", 2.0 ** -23)
-    assert case.derived("seen", seen) == ("float64", 2.0 ** -52)
-    assert memo.of(of, s) == ("float64", 2.0 ** -52)
+        assert memo.of(of, s) == 1
+    assert memo.of(of, s) == 1 and memo.of(of, t) == 2 and calls == [s, t]
 
 
 def test_every_property_passes_the_float64_reference_after_its_float32_twin():
