@@ -79,6 +79,18 @@ def choose(sets: list[str], max_faces: int) -> tuple[list[tuple[str, int]], list
     return chosen, left
 
 
+def _left_out_notes(left) -> str:
+    """The "Not done" lines on the meshes left out: too large, or not readable."""
+    notes = []
+    if any(n is not None for _, n, _ in left):
+        notes.append("- The meshes left out above as too large (the exact reference on them "
+                     "takes long;\n  `DDG_SURVEY_MAX_FACES=N` raises the limit).\n")
+    if any(n is None for _, n, _ in left):
+        notes.append("- The meshes left out above as unreadable (no faces, degenerate or "
+                     "non-manifold:\n  `ddg-oracle survey` skips each with its reason).\n")
+    return "".join(notes)
+
+
 def run(mode: Mode) -> dict:
     max_faces = int(os.environ.get("DDG_SURVEY_MAX_FACES")
                     or (QUICK_MAX_FACES if mode.quick else MAX_FACES))
@@ -167,9 +179,7 @@ Left out: {left_out}.
 - This document is measured locally (`--workers`: processes computing each mesh's exact
   values, meshes one after another); `ddg-oracle survey --scheduler ADDRESS` runs one mesh
   per task on a dask cluster and scores the same.
-- The meshes left out above (the exact reference on them takes too long for this
-  document; `ddg-oracle survey pymeshlab:` runs them all).
-"""
+{_left_out_notes(left)}"""
     DOC.write_text(text)
     say(f"wrote {DOC.relative_to(ROOT)}")
     return {"wall": wall, "command": shown, "exit": out.returncode, "meshes": len(done),
