@@ -219,79 +219,33 @@ def _rows(plan: _Plan, answers, expected, explain) -> list:
     return rows
 
 
-#: implementations in their own processes asked at once by :func:`_answers` (more would
-#: slow each call further beside the exact workers, towards its time limit)
-LIBRARIES_AT_ONCE = 2
-
-
 def _answers(todo, V, F) -> list:
     """(impl, method, answer on the reference's conventions, or a Comparison saying why
-    there is none) for each of ``todo``'s (impl, method, why not applicable), in order.
-
-    Implementations in processes of their own (:class:`~.isolation.Isolated`) are asked
-    :data:`LIBRARIES_AT_ONCE` at a time, each its methods in turn, on threads that only wait
-    for their answers: one library after the other left a core idle whenever the exact
-    values were done first (every other implementation is asked here, in turn)."""
-    import concurrent.futures as cf
-    import contextvars
-    from .isolation import Isolated
-    by_impl: dict = {}
-    for k, (impl, _, _) in enumerate(todo):
-        by_impl.setdefault(id(impl), []).append(k)
-    answers: list = [None] * len(todo)
-
-    def ask(ks):
-        for k in ks:
-            answers[k] = _answer(*todo[k], V, F)
-    isolated = []
-    for ks in by_impl.values():
-        if isinstance(todo[ks[0]][0], Isolated):
-            isolated.append(ks)
-        else:
-            ask(ks)                     # first: then this thread imports nothing beside them
-    if not isolated:
-        return answers
-    # what reading an answer imports, imported here first: two threads importing one
-    # package's circular modules at once deadlock (_DeadlockError, seen as the crash of an
-    # honest implementation)
-    import importlib
-    for module in ("scipy.sparse", "..properties.conventions", "..protocol.answers"):
-        importlib.import_module(module, __package__)
-    pool = cf.ThreadPoolExecutor(min(LIBRARIES_AT_ONCE, len(isolated)))
-    try:
-        # each thread in this context (a task's budget, the machine epsilon in force)
-        futures = [pool.submit(contextvars.copy_context().run, ask, ks) for ks in isolated]
-        for f in futures:
-            f.result()
-    finally:
-        # interrupted: not waiting for the libraries' calls (closing them ends the calls)
-        pool.shutdown(wait=False, cancel_futures=True)
-    return answers
-
-
-def _answer(impl, method, why, V, F) -> tuple:
-    """(impl, method, its answer on the reference's conventions, or a Comparison saying why
-    there is none)."""
+    there is none) for each of ``todo``'s (impl, method, why not applicable)."""
     from ..properties.conventions import declared, to_reference
     from ..protocol.answers import MalformedAnswer, read, short
     from ..protocol.methods import OutsideDomain, implementation_name
-    name = implementation_name(impl)
-    if why:
-        return impl, method, Comparison(method, name, "not applicable", note=why)
-    try:
-        got = getattr(impl, method)(V, F)
-    except OutsideDomain as e:          # the implementation has no value on this mesh
-        got = Comparison(method, name, "not applicable", note=str(e))
-    except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
-        got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
-    else:
-        # not of its method's kind (a string, 2.5 for an integer): it differs, said so,
-        # before anything reads it (int(2.5) == 2 would agree)
+    answers = []
+    for impl, method, why in todo:
+        name = implementation_name(impl)
+        if why:
+            answers.append((impl, method, Comparison(method, name, "not applicable", note=why)))
+            continue
         try:
-            got = to_reference(declared(impl), method, read(method, got), V, F)
-        except MalformedAnswer as e:
-            got = Comparison(method, name, "DIFFERS", note=str(e), observed=short(got))
-    return impl, method, got
+            got = getattr(impl, method)(V, F)
+        except OutsideDomain as e:          # the implementation has no value on this mesh
+            got = Comparison(method, name, "not applicable", note=str(e))
+        except Exception as e:  # noqa: BLE001  (a crash of the implementation is a result)
+            got = Comparison(method, name, "crashed", note=f"{type(e).__name__}: {e}")
+        else:
+            # not of its method's kind (a string, 2.5 for an integer): it differs, said so,
+            # before anything reads it (int(2.5) == 2 would agree)
+            try:
+                got = to_reference(declared(impl), method, read(method, got), V, F)
+            except MalformedAnswer as e:
+                got = Comparison(method, name, "DIFFERS", note=str(e), observed=short(got))
+        answers.append((impl, method, got))
+    return answers
 
 
 def _explained(q, impl, got, want, ex, bound, V, F) -> tuple:

@@ -39,13 +39,6 @@ class SlowOnCubes(ReferenceImplementation):
         return super().euler_characteristic(V, F)
 
 
-class SlowOnCubesTwin(SlowOnCubes):
-    """No bug: :class:`SlowOnCubes` under another name (asked beside it, the two seconds
-    overlap: tests/test_survey.py)."""
-
-    name = "slow-on-cubes-twin"
-
-
 class AlwaysOrientable(ReferenceImplementation):
     """Never looks for an orientation-reversing loop."""
 

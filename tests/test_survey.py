@@ -138,28 +138,6 @@ def test_an_honest_implementation_alone_exits_0(corpus, tmp_path):
     assert "2 of 2 meshes, 1 implementations" in out.stdout and " 0 DIFFERS" in out.stdout
 
 
-def test_the_libraries_are_asked_two_at_a_time(corpus):
-    """compare_mesh asks the implementations in processes of their own LIBRARIES_AT_ONCE at
-    a time: two that each take a second on the cube's Euler characteristic answer in about
-    one second together (one after the other: two), in the rows' usual order."""
-    from ddg_oracle.application.compare import LIBRARIES_AT_ONCE, compare_mesh
-    from ddg_oracle.application.isolation import Isolated
-    from ddg_oracle.application.meshes import load_all
-    from ddg_oracle.oracles.exact_reference import ReferenceImplementation
-    assert LIBRARIES_AT_ONCE == 2
-    mesh = load_all([corpus[2]])[0]
-    with Isolated("tests.planted_bugs:SlowOnCubes") as a, \
-            Isolated("tests.planted_bugs:SlowOnCubesTwin") as b:
-        started = time.monotonic()
-        rows = compare_mesh(mesh, [a, b], ReferenceImplementation(),
-                            methods={"euler_characteristic", "is_orientable"})
-        took = time.monotonic() - started
-    assert [(r.implementation, r.quantity, r.status) for r in rows] == [
-        (name, m, "agrees") for name in ("slow-on-cubes", "slow-on-cubes-twin")
-        for m in ("euler_characteristic", "is_orientable")]
-    assert took < 1.8, took
-
-
 def _lines(path: Path) -> int:
     try:
         return len(path.read_text().splitlines())
