@@ -128,9 +128,9 @@ class Exact(DenseViews):
         self.surface = case.surface if len(self.keep) == case.n else compact(case, self.keep)
         self.metric = self.surface.metric()
         self.triangulation = self.surface.triangulation
-        # the rest when first asked: a pointwise curvature's widened bound needs the vertex
-        # areas' bounds only, not the Laplacian (on CGAL's bull: 1.2 s of compare's own
-        # process, beside the workers that compute the Laplacian)
+        # the rest when first asked: a pointwise curvature's widened bound (in compare's own
+        # process, beside the workers that compute the Laplacian) needs only the vertex
+        # areas' bounds
 
     @cached_property
     def L(self):
