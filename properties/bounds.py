@@ -386,8 +386,10 @@ def face_conditioning(metric) -> tuple[np.ndarray, np.ndarray]:
     """(rho, cot): every face's aspect ratio rho = max l / (2 A) and its corners'
     cotangents (F x 3), as conditioning factors of bounds, once per metric object (read
     only).  Upper bounds: rho and |cot| are at least the exact values and exceed them by at
-    most a relative 2^-29; the signs are the exact ones (a bound's constants dwarf the
-    difference, and a larger factor only widens a bound).
+    most a relative 2^-29, except a |cot| below 2^-499, given as 2^-499; the signs are the
+    exact ones (a bound's constants dwarf the difference, and a larger factor only widens a
+    bound).  A rho beyond the float range raises OverflowError (as the exact route always
+    did: callers report an exact value beyond the float range).
 
     Vectorised (float64, numpy) from the correctly rounded squared lengths, with an error
     bound derived below for each face; a face whose bound is not that small (a needle, a
@@ -440,6 +442,13 @@ def _face_conditioning(metric):
     slow = np.flatnonzero(~ok)
     for f in slow:
         rho[f], cot[f] = _conditioning(metric, int(f))
+        # below 2^-499 the exact route's float may have underflowed (to 0: a sign lost, or
+        # to a subnormal: its relative error unbounded), off by at most 2^-537 absolutely:
+        # 2^-499 with the exact sign bounds it (a bound's terms 1 + cot^2 and eps |cot|
+        # cannot tell the difference)
+        for c, n in enumerate(metric.face_cot_numerators(int(f))):
+            if abs(cot[f, c]) < _TINY:
+                cot[f, c] = 0.0 if n == 0 else _TINY if n > 0 else -_TINY
     # the exact route is within 2 ulps either way: 4 ulps away from 0 make it an upper bound
     r, c = rho[slow], cot[slow]
     for _ in range(4):
@@ -447,6 +456,10 @@ def _face_conditioning(metric):
         c = np.where(c == 0, 0.0, np.nextafter(c, np.copysign(np.inf, c)))
     rho[slow], cot[slow] = r, c
     return rho, cot
+
+
+#: the smallest |cot| face_conditioning gives a corner that is not right (see there)
+_TINY = 2.0 ** -499
 
 
 def _conditioning(metric, f: int) -> tuple[float, list[float]]:
