@@ -455,6 +455,7 @@ def _face_conditioning(metric):
         r = np.nextafter(r, np.inf)
         c = np.where(c == 0, 0.0, np.nextafter(c, np.copysign(np.inf, c)))
     rho[slow], cot[slow] = r, c
+    rho.flags.writeable = cot.flags.writeable = False       # shared by every caller (memo.of)
     return rho, cot
 
 
