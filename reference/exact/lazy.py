@@ -138,21 +138,38 @@ def _flip_area_at_i(x, p):
 
 
 def _flip_area_at_j(x, p):
-    # area(k, l, j) = A1 + A2 - area(l, k, i) (computed so, as intrinsic.py does)
-    at_i = _flip_area_at_i(x, p)
-    return None if at_i is None else _sum((x[5], x[6], _neg(at_i)), p)
+    # area(k, l, j) = A1 + A2 - area(l, k, i) (computed so, as intrinsic.py does); its
+    # operands are A1, A2 and the node of area(l, k, i), whose enclosure and exact value it
+    # shares
+    return _sum((x[0], x[1], _neg(x[2])), p)
 
 
-def _exact_flip_length(e, a, b, c, d, A1, A2):
-    return b + c + ((-(e + b - a)) * (e + c - d) + 16 * A1 * A2) * (1 / (2 * e))
+# The exact values of a flip's new length and first area both divide by 2e: they take
+# 1 / (2e) as their first operand (:func:`_half_inverse`), computed once per flip (a Surd's
+# inverse, by conjugates, is the costly part of both).
+
+def _exact_flip_length(inv, e, a, b, c, d, A1, A2):
+    return b + c + ((-(e + b - a)) * (e + c - d) + 16 * A1 * A2) * inv
 
 
-def _exact_flip_area_at_i(e, a, b, c, d, A1, A2):
-    return ((e + b - a) * A2 + (e + c - d) * A1) * (1 / (2 * e))
+def _exact_flip_area_at_i(inv, e, a, b, c, d, A1, A2):
+    return ((e + b - a) * A2 + (e + c - d) * A1) * inv
 
 
-def _exact_flip_area_at_j(e, a, b, c, d, A1, A2):
-    return A1 + A2 - simplest(_exact_flip_area_at_i(e, a, b, c, d, A1, A2))
+def _exact_flip_area_at_j(A1, A2, at_i):
+    return A1 + A2 - at_i
+
+
+#: the nodes whose exact operation takes 1 / (2e) of their first operand e first
+_OVER_2E = frozenset({"flip_length", "flip_area_at_i"})
+
+
+def _half_inverse(e: "Lazy"):
+    """1 / (2e), exact, of a flipped edge's squared length e (a Lazy node), kept on it."""
+    inv = getattr(e, "_half_inv", None)
+    if inv is None:
+        inv = e._half_inv = simplest(1 / (2 * e.exact()))
+    return inv
 
 
 #: op name -> (enclosure from the operands' enclosures at precision p, exact value)
@@ -182,7 +199,7 @@ class Lazy:
     ``float()``; :meth:`exact` is the exact value (a Fraction where rational, else a Surd).
     """
 
-    __slots__ = ("_op", "_args", "_exact", "_p", "_lo", "_hi", "_k", "__weakref__")
+    __slots__ = ("_op", "_args", "_exact", "_p", "_lo", "_hi", "_k", "_half_inv", "__weakref__")
 
     # -- construction ----------------------------------------------------------------------
 
@@ -261,7 +278,10 @@ class Lazy:
                     stack.extend(todo)
                     continue
                 stack.pop()
-                x._exact = simplest(_OPS[x._op][1](*(a._exact for a in x._args)))
+                values = [a._exact for a in x._args]
+                if x._op in _OVER_2E:
+                    values.insert(0, _half_inverse(x._args[0]))
+                x._exact = simplest(_OPS[x._op][1](*values))
         return self._exact
 
     # -- decisions -------------------------------------------------------------------------
@@ -535,5 +555,6 @@ def flipped(e, a, b, c, d, A1, A2) -> tuple[Lazy, Lazy, Lazy]:
     b, c, d`` and areas ``A1, A2`` (L2.8; names of :mod:`ddg_oracle.reference.intrinsic`)
     as three Lazy numbers: ``|kl|^2``, ``area(l, k, i)``, ``area(k, l, j)``."""
     args = tuple(Lazy.of(v) for v in (e, a, b, c, d, A1, A2))
-    return (Lazy._node("flip_length", args), Lazy._node("flip_area_at_i", args),
-            Lazy._node("flip_area_at_j", args))
+    at_i = Lazy._node("flip_area_at_i", args)
+    return (Lazy._node("flip_length", args), at_i,
+            Lazy._node("flip_area_at_j", (args[5], args[6], at_i)))
