@@ -53,15 +53,14 @@ def _trim(lo, hi, k, p):
     return lo, hi, k
 
 
-def _aligned(xs):
-    """The enclosures on one scale (the finest): shifting up is exact."""
-    k = max(x[2] for x in xs)
-    return [(lo << (k - j), hi << (k - j)) for lo, hi, j in xs], k
-
-
 def _sum(xs, p):
-    ends, k = _aligned(xs)
-    return _trim(sum(lo for lo, _ in ends), sum(hi for _, hi in ends), k, p)
+    # the enclosures on one scale, the finest (shifting up is exact), added end by end
+    k = max(x[2] for x in xs)
+    lo = hi = 0
+    for a, b, j in xs:
+        lo += a << (k - j)
+        hi += b << (k - j)
+    return _trim(lo, hi, k, p)
 
 
 def _neg(x):
@@ -307,8 +306,11 @@ class Lazy:
     def _cmp(self, other) -> int | None:
         if other is self:
             return 0
-        if not isinstance(other, Lazy) and not _is_exact_number(other):
-            return None
+        if not isinstance(other, Lazy):
+            if not _is_exact_number(other):
+                return None
+            if type(other) in (int, Fraction) and not other:
+                return self.sign()              # against 0: no node for self - 0
         return (self - other).sign()
 
     def __eq__(self, other):
