@@ -57,6 +57,9 @@ from .conventions import declare
 from ..reference.combinatorics import next_corner, prev_corner
 
 _arrays = checked_arrays
+#: next_corner and prev_corner as tables, for arrays of corners
+_NEXT = np.array([next_corner(c) for c in range(3)])
+_PREV = np.array([prev_corner(c) for c in range(3)])
 
 
 #: option -> (finding, what the library's own convention differs by) (docs/findings.md)
@@ -138,18 +141,20 @@ class Gpytoolbox:
         uniq, inverse, counts = np.unique(pairs.reshape(-1, 2), axis=0, return_inverse=True,
                                           return_counts=True)
         two = counts[inverse.ravel()].reshape(-1, 3) == 2
-        out = {}
-        for f, c in zip(*np.nonzero(two)):
-            g = int(TT[f, c])
-            if g <= f:
-                continue                    # each edge once, from its lower face (-1: no face)
-            i, j = int(F[f, next_corner(c)]), int(F[f, prev_corner(c)])
-            t = float(theta[f, c])
-            if self.dihedral == "reference":
-                side = float(np.cross(N[f], N[g]) @ (V[j] - V[i]))
-                t = -t if side < 0 else t
-            out[(min(i, j), max(i, j))] = 0.5 * t * float(lengths[f, c])
-        return out
+        # array operations over all such edges at once (a loop in Python over the edges took
+        # 2.3 s on bunny.obj's 56k faces)
+        f, c = np.nonzero(two)
+        g = np.asarray(TT)[f, c]
+        keep = g > f                        # each edge once, from its lower face (-1: no face)
+        f, c, g = f[keep], c[keep], g[keep]
+        i, j = F[f, _NEXT[c]], F[f, _PREV[c]]
+        t = theta[f, c]
+        if self.dihedral == "reference":
+            side = np.einsum("ij,ij->i", np.cross(N[f], N[g]), V[j] - V[i])
+            t = np.where(side < 0, -t, t)
+        h = 0.5 * t * lengths[f, c]
+        return {(a, b): x for a, b, x in zip(np.minimum(i, j).tolist(), np.maximum(i, j).tolist(),
+                                              h.tolist())}
 
     def area(self, V, F) -> float:
         """``gpytoolbox.doublearea(V, F)`` summed with math.fsum and halved; gpytoolbox takes

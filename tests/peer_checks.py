@@ -163,3 +163,49 @@ def check_intrinsic_delaunay_laplacian(impl, case):
     got = impl.intrinsic_delaunay_laplacian(V, F).toarray()
     assert got.shape == D.Lf.shape
     assert np.all(np.abs(got - D.Lf) <= D.B), float(np.max(np.abs(got - D.Lf) - D.B))
+
+
+def python_calls(fn, *args, caller: str) -> int:
+    """How many Python-level functions the code of file ``caller`` calls while ``fn(*args)``
+    runs (``sys.setprofile``'s "call" events: C functions such as ``math.atan2`` are
+    "c_call" and not counted; a library's own Python code calling itself is not counted)."""
+    import gc
+    import sys
+    import warnings
+    n = 0
+
+    def count(frame, event, arg):
+        nonlocal n
+        n += event == "call" and frame.f_back is not None and \
+            frame.f_back.f_code.co_filename == caller
+
+    # no collection and no warning shown inside: a finalizer the collector runs, or the
+    # warning machinery, would count as called from the frame that happened to be running
+    gc.collect()
+    gc.disable()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sys.setprofile(count)
+        try:
+            fn(*args)
+        finally:
+            sys.setprofile(None)
+            gc.enable()
+    return n
+
+
+def check_array_methods(impl, methods):
+    """The Python functions each method of the adapter (of ``(V, F)``) calls are not more on
+    20,000 faces than on 800: it hands the library arrays and works on arrays.  A loop in
+    Python over the edges made libigl's edge_mean_curvature take over 120 s on 900k faces,
+    which the check reports as libigl hanging."""
+    import inspect
+    caller = inspect.getsourcefile(type(impl))
+    small, large = (surfaces.grid(n, n).to_arrays() for n in (20, 100))
+    methods = [m for m in methods if len(inspect.signature(getattr(impl, m)).parameters) == 2]
+    assert methods
+    calls = {m: [python_calls(getattr(impl, m), *a, caller=caller) for a in (small, large)]
+             for m in methods}
+    grown = {m: c for m, c in calls.items() if c[1] > c[0]}
+    assert not grown, f"Python calls on 800 and 20,000 faces: {grown}"
+    assert sum(c[0] for c in calls.values()) > 0            # the profile saw the adapter

@@ -192,3 +192,8 @@ def test_runs_in_a_worker_process():
     with Isolated("gpytoolbox", timeout=60) as impl:
         assert impl.euler_characteristic(V, F) == 0
         assert abs(sum(impl.angle_defects(V, F))) < 1e-12
+
+
+def test_the_adapter_works_on_arrays():
+    pc.check_array_methods(Gpytoolbox(), sorted(capabilities(Gpytoolbox())))
+    pc.check_array_methods(Gpytoolbox(dihedral="reference"), ["edge_mean_curvature"])

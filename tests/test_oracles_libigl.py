@@ -546,3 +546,9 @@ def test_runs_in_a_worker_process():
     with Isolated("ddg_oracle.oracles.libigl:Libigl", timeout=60) as impl:
         assert impl.euler_characteristic(c.V, c.F) == 0
         assert impl.genus(c.V, c.F) == 1
+
+
+def test_the_adapter_works_on_arrays():
+    from ddg_oracle.protocol.methods import capabilities
+    from tests import peer_checks as pc
+    pc.check_array_methods(Libigl(), sorted(capabilities(Libigl())))
