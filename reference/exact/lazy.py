@@ -164,7 +164,8 @@ _OVER_2E = frozenset({"flip_length", "flip_area_at_i"})
 
 
 def _half_inverse(e: "Lazy"):
-    """1 / (2e), exact, of a flipped edge's squared length e (a Lazy node), kept on it."""
+    """1 / (2e), exact, for the squared length e (a Lazy node) of the edge a flip replaces;
+    kept on that node."""
     inv = getattr(e, "_half_inv", None)
     if inv is None:
         inv = e._half_inv = simplest(1 / (2 * e.exact()))
