@@ -297,15 +297,22 @@ def known_findings() -> list[dict]:
         detail = line.split("|")[3].strip()            # "bug (never returns)"
         # "with `libigl(boundary=library)`": the finding is that option's, not the default's
         options = re.findall(r"with `?[\w-]+\(([^)`]*)\)", found_by)
-        ids = set()
-        for group in re.findall(r"propert(?:y|ies) ((?:[A-Z][\w.]*(?: / [A-Z][\w.]*)*"
-                                r"(?:, )?)+)", found_by):
-            for part in re.split(r",\s*|\s*/\s*", group):
+        ids, crashes = set(), set()
+        groups = list(re.finditer(r"propert(?:y|ies) ((?:[A-Z][\w.]*(?: / [A-Z][\w.]*)*"
+                                  r"(?:, )?)+)", found_by))
+        for i, group in enumerate(groups):
+            # what follows a group up to the next one says how it was found: "(... a crash)"
+            said = found_by[group.end():groups[i + 1].start() if i + 1 < len(groups) else None]
+            for part in re.split(r",\s*|\s*/\s*", group.group(1)):
                 if part:
                     ids.add(part.strip())
+                    if _CRASH_WORDS.search(said):
+                        crashes.add(part.strip())
+        never_answers = bool(_CRASH_WORDS.search(detail))      # "bug (never returns)"
         rows.append({"id": ident, "library": _base(re.sub(r"('s|[^\w-])+$", "", library)),
                      "kind": kind.strip(), "detail": detail, "properties": ids,
-                     "options": options})
+                     "crashes": ids if never_answers else crashes,
+                     "answers": set() if never_answers else ids, "options": options})
     return rows
 
 
@@ -318,22 +325,22 @@ def known_finding(r, findings) -> str | None:
         return None
 
     parts = {x.strip() for x in r.property_id.split("/")}
+    # a crash or hang is only ever the finding of a crash or hang on that property ("never
+    # returns", or "a crash" where the finding names it), an answer only one of an answer:
+    # a hang of CGAL's flips is not its documented precision limit on the same property
+    seen = "crashes" if r.status == CRASHED else "answers"
     hits = [f for f in findings
-            if f["library"] == _base(r.implementation) and parts & f["properties"]
+            if f["library"] == _base(r.implementation) and parts & f[seen]
             and (not f["options"]) == ("(" not in r.implementation)
             and all(o.replace("=", "='") in r.implementation or o in r.implementation
                     for o in f["options"])]
-    # a tie is a precision limit; a failure or crash a bug or convention
+    # a tie is first a precision limit; a failure first a bug or convention
     tie_kind = [f for f in hits if (f["kind"] == "precision limit") == (r.status == TIE)]
-    hits = tie_kind or hits
-    # a crash or hang is first the finding of a crash or hang ("never returns"), a wrong
-    # answer first one of a wrong answer: one library can have both for one property
-    crash_kind = [f for f in hits
-                  if bool(_CRASH_WORDS.search(f.get("detail", ""))) == (r.status == CRASHED)]
-    return (crash_kind or hits or [{"id": None}])[0]["id"]
+    return (tie_kind or hits or [{"id": None}])[0]["id"]
 
 
-_CRASH_WORDS = re.compile(r"never returns|crash|segfault|hang|abort|out of memory", re.I)
+_CRASH_WORDS = re.compile(r"never returns|crash|segfault|hang|abort|out of memory|bad_alloc",
+                          re.I)
 
 
 def fit(text: str, width: int) -> str:

@@ -204,6 +204,34 @@ def test_a_driver_declares_its_library_convention_and_expect_conventions_uses_it
     assert "documented convention F-cgal-3" in out.stdout and "cgal passes the same example" in out.stdout
 
 
+def test_F_cgal_4_a_hang_of_cgal_flips_is_reported_crashed_and_known(build, tmp_path):
+    """Three planar faces, two of them flat in float lengths but not in their coordinates:
+    CGAL's iDT flips NaN lengths forever.  `check --mesh` reports the hang of its
+    intrinsic Delaunay Laplacian as a crash labeled F-cgal-4 (a main job labeled the same
+    hang on A4.13 F-cgal-2, CGAL's precision limit there), and the reference's flips of the
+    same mesh terminate."""
+    from ddg_oracle.reference.delaunay import flip_to_delaunay, is_delaunay
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    exe = build / "cgal_driver"
+    if not os.access(exe, os.X_OK):
+        _missing("cgal_driver (CGAL was not found by CMake)")
+    V = [(2.0, 1.5, 0.0), (2.5, 2.0, 0.0), (3.000000000005457, 2.5000000000045475, 0.0),
+         (-2.0, 2.0, 0.0), (0.5, 0.0, 0.0)]
+    F = [(0, 4, 2), (1, 0, 2), (3, 1, 2)]
+    flipped, log = flip_to_delaunay(PolyhedralSurface.from_arrays(V, F).metric())
+    assert is_delaunay(flipped)                                     # exactly, and it ends
+    mesh = tmp_path / "flat.obj"
+    mesh.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in V)
+                    + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F))
+    out = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--mesh", str(mesh),
+                          "--impl", f"exec:{exe}", "--only", "D4.8", "--timeout", "3",
+                          "--workers", "1", "--wide"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 1, out.stdout + out.stderr
+    assert "intrinsic_delaunay_laplacian did not return within 3 s" in out.stdout, out.stdout
+    assert "known findings F-cgal-4 (" in out.stdout, out.stdout
+
+
 @pytest.mark.parametrize("pid", ["T3.2", "C3.4 / T3.5", "T3.9"])
 def test_cgal_area_gradient_and_dirichlet_solver_pass(cgal, pid):
     # T3.2 and C3.4 / T3.5 check the driver's own solve (Eigen's SparseLU on CGAL's

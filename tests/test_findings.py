@@ -109,3 +109,32 @@ def test_a_crash_is_the_finding_of_a_crash_and_a_wrong_answer_the_other():
                                property_id="D4.8 / R4.9")
     assert known_finding(result("crashed"), findings) == "F-libigl-4"
     assert known_finding(result("FAILED"), findings) == "F-libigl-6"
+
+
+def test_a_crash_is_never_labeled_with_a_finding_that_is_not_a_crash():
+    """A main job (seed 1650902268) labeled CGAL's intrinsic Delaunay hanging on A4.13
+    "(known: F-cgal-2)", CGAL's precision limit on that property: a crash fell back to any
+    finding of its library and property.  A crash is only a finding that never returns,
+    or one whose row says the property found it by a crash (F-libigl-1 on T1.1 / C1.2);
+    a wrong answer is never a finding that only never returns."""
+    from types import SimpleNamespace
+
+    from ddg_oracle.application.report import known_finding, known_findings
+    findings = {f["id"]: f for f in known_findings()}
+
+    def label(impl, prop, status):
+        return known_finding(SimpleNamespace(status=status, implementation=impl,
+                                             property_id=prop), list(findings.values()))
+    assert "A4.13" in findings["F-cgal-2"]["properties"]
+    assert label("cgal", "A4.13", "crashed") != "F-cgal-2"
+    assert label("cgal", "A4.13", "tie") == "F-cgal-2"
+    assert label("libigl", "T1.1 / C1.2", "crashed") == "F-libigl-1"
+    assert label("libigl", "R1.6", "FAILED") == "F-libigl-1"
+    assert label("libigl", "R1.6", "crashed") is None         # R1.6 found it by an answer
+    assert label("libigl", "C4.19", "FAILED") is None          # F-libigl-4 never returns
+    assert label("lapy", "R1.6", "FAILED") is None              # F-lapy-4 never returns
+    for f in findings.values():                                 # every label is of its kind
+        for prop in f["properties"]:
+            for status, kind in (("crashed", "crashes"), ("FAILED", "answers")):
+                got = label(f["library"], prop, status)
+                assert got is None or prop in findings[got][kind], (f["id"], prop, status)
