@@ -26,15 +26,17 @@ from ..reference import curvature as ref
 from ..reference import surfaces
 from ..reference.exact import exact_sum
 
-from .views import corner_angle_views, defect_views, mean_curvature_views, turning_views
+from .views import corner_angle_views, defect_views, mean_curvature_view_bounds, turning_views
 from .bounds import (area_tolerance, corner_tolerances, edge_mean_curvature_tolerances,
                      float_geometry, gamma, vertex_tolerances)
 from .conventions import declared
 from .harness import widened
-from .curvature_exact import (area_bound, mean_curvature_by_pair, steiner_views,
-                              support_function_integral)
+from .curvature_exact import (area_bound, mean_curvature_by_pair, steiner_area_view,
+                              steiner_mean_curvature_view, support_function_integral,
+                              twice_mean_curvature_range)
 from ..protocol.methods import ISOLATED_VERTEX, eps
-from .registry import PropertyFailure, TieDisagreement, prop, quantity, within
+from .registry import (PropertyFailure, TieDisagreement, count_unjudged, first_outside, prop,
+                       quantity, within)
 from .stars import (convex_polyhedra, pushable_surfaces, rational_motions, relabel_surface,
                     vertex_stars)
 from .strategies import Example, floated, jittered_surfaces
@@ -48,11 +50,6 @@ def _reference(case: Example, what: str) -> dict:
     """Float views (correctly rounded) of the exact angle defects (``what="defects"``, D2.2)
     or turning angles (``"turning"``, R2.4) of a case."""
     return (defect_views if what == "defects" else turning_views)(case.surface)
-
-
-def _reference_mean_curvature(case: Example):
-    """{(i, j): float(H(e))} of the exact D2.3 values over the interior edges."""
-    return mean_curvature_views(case.surface)
 
 
 def _call(impl, method: str, case: Example):
@@ -326,18 +323,21 @@ def _edge_dict(impl, case, pid):
       needs={"edge_mean_curvature"}, on_mesh=("oriented",), strategy=jittered_surfaces)
 def edge_mean_curvature_matches_reference(impl, case: Example):
     H = _edge_dict(impl, case, "D2.3")
-    expected = _reference_mean_curvature(case)
-    if set(H) != set(expected):
+    # the exact H(e) only where a rigorous float enclosure cannot decide (issue 46)
+    keys, edges, lo, hi = mean_curvature_view_bounds(case.surface)
+    if set(H) != set(keys):
         raise PropertyFailure("D2.3", impl, "edge_mean_curvature must have exactly the interior edges",
-                              mesh=case.mesh, expected=sorted(expected)[:20], observed=sorted(H)[:20])
+                              mesh=case.mesh, expected=sorted(keys)[:20], observed=sorted(H)[:20])
     tol = edge_mean_curvature_tolerances(case)
-    for key, h in expected.items():
+    hit = first_outside([H[k] for k in keys], lo, hi, [tol[k] for k in keys],
+                        lambda n: ref.mean_curvature_at(case.surface, edges[n]))
+    if hit is not None:
+        key, h = keys[hit[0]], hit[1]
         err = abs(H[key] - h)
-        if not within(err, tol[key]):
-            length, theta, _, _ = float_geometry(case)["edges"][key]
-            raise PropertyFailure("D2.3", impl, f"H(e) off: {_units(err, tol[key])}", mesh=case.mesh,
-                                  element=f"edge {key}, theta ~ {theta:.6g}, l ~ {length:.6g}",
-                                  expected=h, observed=H[key], bound=tol[key])
+        length, theta, _, _ = float_geometry(case)["edges"][key]
+        raise PropertyFailure("D2.3", impl, f"H(e) off: {_units(err, tol[key])}", mesh=case.mesh,
+                              element=f"edge {key}, theta ~ {theta:.6g}, l ~ {length:.6g}",
+                              expected=h, observed=H[key], bound=tol[key])
 
 
 @prop("T2.7", "total mean curvature of a convex polyhedron = integral of its support function over "
@@ -362,7 +362,7 @@ def total_mean_curvature_is_support_integral(impl, case: Example):
       on_mesh=("closed", "oriented"),
       strategy=lambda: jittered_surfaces(closed=True))
 def steiner_coefficients_match(impl, case: Example):
-    A_ref, err_A, twoH_ref, err_H = steiner_views(case)
+    A_ref, err_A = steiner_area_view(case)
     A = float(_call(impl, "area", case))
     bound_A = area_tolerance(case) + err_A
     if not within(abs(A - float(A_ref)), bound_A):
@@ -371,11 +371,20 @@ def steiner_coefficients_match(impl, case: Example):
     H = _edge_dict(impl, case, "R2.5")
     tol = edge_mean_curvature_tolerances(case)
     twoH = 2 * math.fsum(H.values())
-    bound_H = 2 * (sum(tol.values()) + gamma(len(H)) * sum(abs(h) for h in H.values())) + err_H
-    if not within(abs(twoH - float(twoH_ref)), bound_H):
-        err = abs(twoH - float(twoH_ref))
-        raise PropertyFailure("R2.5", impl, f"2 H(S) off: {_units(err, bound_H)}",
-                              mesh=case.mesh, expected=float(twoH_ref), observed=twoH, bound=bound_H)
+    base = 2 * (sum(tol.values()) + gamma(len(H)) * sum(abs(h) for h in H.values()))
+    # decided from the enclosures of the H(e) where it holds at both ends (issue 46)
+    sure = twice_mean_curvature_range(case)
+    if sure is not None and math.isfinite(base + sure[2]) and all(
+            abs(twoH - end) <= base + sure[2] for end in sure[:2]):
+        count_unjudged(0, 1)                            # one judged entry, as within() counts
+    else:
+        twoH_ref, err_H = steiner_mean_curvature_view(case)
+        bound_H = base + err_H
+        if not within(abs(twoH - float(twoH_ref)), bound_H):
+            err = abs(twoH - float(twoH_ref))
+            raise PropertyFailure("R2.5", impl, f"2 H(S) off: {_units(err, bound_H)}",
+                                  mesh=case.mesh, expected=float(twoH_ref), observed=twoH,
+                                  bound=bound_H)
     K = _defects(impl, case, "R2.5")
     _check_total("R2.5", impl, case, K, _defect_bounds(impl, case, K, corner_tolerances(case)))
 

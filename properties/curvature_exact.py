@@ -16,7 +16,7 @@ from ..reference import curvature as ref
 from .bounds import area_tolerance, gamma, total_area_view
 from .example import Example
 from .registry import EXACT_SUM_LIMIT
-from .views import mean_curvature_views
+from .views import mean_curvature_view_bounds, mean_curvature_views
 
 
 def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) -> tuple[float, float]:
@@ -87,23 +87,57 @@ def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) ->
     return value, bound
 
 
-def steiner_views(case: Example) -> tuple[float, float, float, float]:
-    """(A, err_A, 2 H(S), err_H): R2.5's area and total mean curvature as floats within
-    err of the exact ones.  Up to EXACT_SUM_LIMIT faces the exact sums correctly rounded
-    (err 0); beyond, an exact sum has a square root per face, so: the area correctly
-    rounded from enclosures (:func:`total_area_view`, err u A), and 2 H(S) = 2 fsum of the correctly rounded H(e) (each within
-    u |H(e)|, the fsum within u of its value: err_H = 2 u sum |H(e)| + u |2 H(S)|, with a
-    factor 1.0001 for |H(e)| <= (1 + u) |its float|).  The checks widen their bounds by err:
-    a pass is then certain; a failure by less than err (about 1e-16 relative) would go
-    unseen."""
+def steiner_area_view(case: Example) -> tuple[float, float]:
+    """(A, err_A): R2.5's area as a float within err_A of the exact one.  Up to
+    EXACT_SUM_LIMIT faces the exact sum correctly rounded (err 0); beyond, an exact sum
+    has a square root per face: the area correctly rounded from enclosures
+    (:func:`total_area_view`, err u A).  The check widens its bound by err: a pass is then
+    certain; a failure by less than err (about 1e-16 relative) would go unseen."""
     if len(case.faces) <= EXACT_SUM_LIMIT:
-        A, twoH, _ = case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
-        return float(A), 0.0, float(twoH), 0.0
-    A, err_A = total_area_view(case.surface.metric())
+        return float(_steiner(case)[0]), 0.0
+    return total_area_view(case.surface.metric())
+
+
+def steiner_mean_curvature_view(case: Example) -> tuple[float, float]:
+    """(2 H(S), err_H): R2.5's total mean curvature as a float within err_H of the exact
+    one.  Up to EXACT_SUM_LIMIT faces the exact sum correctly rounded (err 0); beyond,
+    2 fsum of the correctly rounded H(e) (each within u |H(e)|, the fsum within u of its
+    value: err_H = 2 u sum |H(e)| + u |2 H(S)|, with a factor 1.0001 for |H(e)| <= (1 + u)
+    |its float|), widening the check's bound as err_A does."""
+    if len(case.faces) <= EXACT_SUM_LIMIT:
+        return float(_steiner(case)[1]), 0.0
     views = list(mean_curvature_views(case.surface).values())
     twoH = 2 * math.fsum(views)
+    return twoH, _fsum_err(views, twoH)
+
+
+def _steiner(case: Example):
+    return case.derived("steiner", lambda c: ref.steiner_coefficients(c.surface))
+
+
+def _fsum_err(views, twoH: float) -> float:
     u = 2.0 ** -53
-    return A, err_A, twoH, 1.0001 * u * (2 * math.fsum(abs(h) for h in views) + abs(twoH))
+    return 1.0001 * u * (2 * math.fsum(abs(h) for h in views) + abs(twoH))
+
+
+def twice_mean_curvature_range(case: Example) -> tuple[float, float, float] | None:
+    """(lo, hi, err): beyond EXACT_SUM_LIMIT faces, :func:`steiner_mean_curvature_view`'s
+    2 H(S) lies in [lo, hi] and its err_H is at least ``err``, from the enclosures of the
+    H(e) alone (:func:`~.views.mean_curvature_view_bounds`: each correctly rounded H(e) in
+    [lo_e, hi_e]; fsum is monotone in each term, err_H in each |H(e)| and in |2 H(S)|).  A
+    check that holds at both ends within a bound widened by ``err`` holds for the exact
+    views.
+    None up to EXACT_SUM_LIMIT faces (the exact sums are cheap there)."""
+    if len(case.faces) <= EXACT_SUM_LIMIT:
+        return None
+    _, _, lo, hi = mean_curvature_view_bounds(case.surface)
+    if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+        return None
+    low, high = 2 * math.fsum(lo.tolist()), 2 * math.fsum(hi.tolist())
+    least = np.where((lo <= 0) & (hi >= 0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
+    least_total = 0.0 if low <= 0 <= high else min(abs(low), abs(high))
+    # the float formula of err_H is monotone in each input: at the least |H(e)| it is least
+    return low, high, _fsum_err(least.tolist(), least_total)
 
 
 def area_bound(example: Example, want) -> float:

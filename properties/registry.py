@@ -168,6 +168,36 @@ def within(err, bound):
     return bool(ok) if ok.ndim == 0 else ok
 
 
+def first_outside(observed, lo, hi, bound, exact_at):
+    """``within(|observed[n] - x[n]|, bound[n])`` for every n in order, where x[n] is the
+    correctly rounded exact value known only to lie in [lo[n], hi[n]] (an enclosure's
+    :func:`~.enclosures.rounding_bounds`): the first n where it fails and its x[n], or
+    None.  The rounded |o - x| is monotone in x on each side of o, so where it holds at lo
+    and at hi it holds at x; where lo == hi, x is known; the other entries ask
+    ``exact_at(n)`` for x[n], in order.  The verdict, the failing entry and the tally of
+    unjudged entries are those of the loop over the exact values."""
+    o = np.asarray(observed, dtype=np.float64)
+    b = np.asarray(bound, dtype=np.float64)
+    b = np.where(np.isnan(b), np.inf, b)
+    with np.errstate(invalid="ignore", over="ignore"):
+        e_lo, e_hi = np.abs(o - lo), np.abs(o - hi)
+        known = lo == hi
+        # an infinite bound passes any error but NaN ("never within")
+        sure = np.where(np.isinf(b), known & ~np.isnan(e_lo), (e_lo <= b) & (e_hi <= b))
+    stop = len(o)
+    found = None
+    for n in np.flatnonzero(~sure).tolist():
+        x = float(lo[n]) if known[n] else float(exact_at(n))
+        if not within(abs(float(o[n]) - x), float(b[n])):        # counts this entry
+            stop, found = n, (n, x)
+            break
+    # the sure entries before the stop, as within() would have counted them
+    head = sure[:stop]
+    open_ = head & np.isinf(b[:stop]) & (e_lo[:stop] != 0)
+    count_unjudged(np.count_nonzero(open_), np.count_nonzero(head) - np.count_nonzero(open_))
+    return found
+
+
 def _is_real(x) -> bool:
     return isinstance(x, numbers.Real) and not isinstance(x, bool)
 
@@ -279,7 +309,8 @@ REQUIREMENTS: dict[str, Callable[[dict], str | None]] = {
 
 #: largest face count for R2.5's exact sums (one square root per face of a float mesh):
 #: beyond it the total mean curvature is the fsum of the correctly rounded H(e), the bound
-#: widened (properties.curvature_exact.steiner_views)
+#: widened (properties.curvature_exact.steiner_mean_curvature_view), decided from the
+#: enclosures of the H(e) where they can (twice_mean_curvature_range)
 EXACT_SUM_LIMIT = 400
 
 

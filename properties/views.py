@@ -23,7 +23,7 @@ from ..reference.metric import PiecewiseFlatSurface
 from . import memo
 
 __all__ = ["corner_angle_views", "defect_views", "turning_views", "mean_curvature_views",
-           "exact_laplacian", "laplacian_view"]
+           "mean_curvature_view_bounds", "exact_laplacian", "laplacian_view"]
 
 
 def corner_angle_views(surface) -> np.ndarray:
@@ -70,6 +70,49 @@ def _mean_curvature_views(surface) -> dict:
     t = surface.triangulation
     return {tuple(sorted(t.edge_vertices(e))): float(h)
             for e, h in ref.mean_curvature(surface).items()}
+
+
+def mean_curvature_view_bounds(surface):
+    """(keys, edges, lo, hi): per interior edge of ``surface`` in :func:`mean_curvature_views`'
+    order, its key (i, j) (i < j), its edge id, and floats lo <= float(H(e)) <= hi from a
+    rigorous float enclosure of the exact H(e) (:mod:`.enclosures`), without the exact
+    values; once per surface object.  Raises as the exact values would: the faces'
+    degeneracy checked on the exact metric, and the edges where the exact route may raise
+    (faces oriented inconsistently, or folded onto each other) computed exactly first, in
+    order."""
+    return memo.of(_mean_curvature_view_bounds, surface)
+
+
+def _mean_curvature_view_bounds(surface):
+    from .enclosures import mean_curvature_enclosure, rounding_bounds
+    if getattr(surface, "dimension", None) != 3:
+        mean_curvature_views(surface)                       # raises as the exact route
+    surface.metric()                                        # raises DegenerateFace
+    t = surface.triangulation
+    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
+    edges, first, second, reversed_ = [], [], [], []
+    for e in range(t.n_edges):
+        h, h2 = t.edge_halfedges(e)
+        if h2 >= 0:
+            edges.append(e)
+            first.append(h)
+            second.append(h2)
+            if t.reversed_gluing(h):
+                reversed_.append(len(edges) - 1)
+    h, h2 = np.array(first, dtype=np.int64), np.array(second, dtype=np.int64)
+    f, c, g, c2 = h // 3, h % 3, h2 // 3, h2 % 3
+    I, J, K = F[f, c], F[f, (c + 1) % 3], F[f, (c + 2) % 3]   # h runs I -> J in (I, J, K)
+    L = F[g, (c2 + 2) % 3]                                   # the twin's opposite corner
+    enc, cos_part = mean_curvature_enclosure(surface.positions, I, J, K, L)
+    # the exact route raises at an inconsistent gluing or a fold (height 0, <n_f, n_g> <= 0):
+    # those edges exactly, first and in order, so that the same edge raises
+    with np.errstate(invalid="ignore"):
+        maybe_folded = (enc.value == 0) & ~(cos_part.value - cos_part.err > 0)
+    for n in sorted(set(reversed_) | set(np.flatnonzero(maybe_folded).tolist())):
+        ref.mean_curvature_at(surface, edges[n])
+    lo, hi = rounding_bounds(enc)
+    keys = list(zip(np.minimum(I, J).tolist(), np.maximum(I, J).tolist()))
+    return keys, edges, lo, hi
 
 
 def exact_laplacian(surface):

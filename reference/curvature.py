@@ -433,45 +433,49 @@ def _dihedral_angles_and_lengths(surface, what: str):
     exact length, both from the edge's integer vector (one square root per edge)."""
     s = _in_r3(surface, what)
     t = s.triangulation
-    x = s.positions
     # the points over a common denominator D: integer arithmetic, and the cotangent below
     # is homogeneous of degree 0 in the positions (D^4 / (D D^3)), so the integers give it
     # exactly; the signs are those of the rationals (D > 0)
-    shared = shared_denominator(x)
+    shared = shared_denominator(s.positions)
     for e in range(t.n_edges):
-        h, h2 = t.edge_halfedges(e)
-        if h2 < 0:
-            continue
-        f, g = face_of(h), face_of(h2)
-        if t.reversed_gluing(h):
-            raise InputError(
-                f"edge {e} {t.edge_vertices(e)}: faces {f} {t.faces[f]} and {g} {t.faces[g]} are "
-                "oriented inconsistently; the sign of a dihedral angle needs a consistent "
-                "orientation")
-        i, j, k = cyclic(t.faces[f], corner_of(h))
-        l_ = t.faces[g][opposite_corner(h2)]
-        if shared is not None:
-            P, D = shared
-            xi, xj, xk, xl = P[i], P[j], P[k], P[l_]
-        else:
-            (xi, xj, xk, xl), D = points_on_common_denominator(x[i], x[j], x[k], x[l_])
-        edge = sub(xj, xi)
-        nf = cross(edge, sub(xk, xi))
-        ng = cross(sub(xi, xj), sub(xl, xj))
-        height = dot(nf, sub(xl, xi))
-        cos_part = dot(nf, ng)
-        E = dot(edge, edge)
-        root = sqrt(E)                                  # D l(e)
-        length = root * Fraction(1, D)
-        if height == 0:
-            if cos_part > 0:
-                yield e, _ZERO_ANGLE, length
-                continue
-            raise InputError(f"edge {e} {t.edge_vertices(e)}: faces {f} and {g} are folded onto "
-                             "each other (dihedral angle +-pi)")
-        # cot |theta| = <n_f, n_g> / (sqrt(E) |height|) = <n_f, n_g> sqrt(E) / (E |height|)
-        theta = corner_angle(root * Fraction(cos_part, E * abs(height)))
-        yield e, (theta if height < 0 else -theta), length
+        if t.edge_halfedges(e)[1] >= 0:
+            yield (e, *_dihedral_angle_and_length(s, e, shared))
+
+
+def _dihedral_angle_and_length(s: PolyhedralSurface, e: int, shared=None):
+    """(theta(e), l(e)) of the interior edge ``e`` of ``s`` (``shared``: the positions over
+    their common denominator, if known; else the edge's four points are put over theirs)."""
+    t, x = s.triangulation, s.positions
+    h, h2 = t.edge_halfedges(e)
+    f, g = face_of(h), face_of(h2)
+    if t.reversed_gluing(h):
+        raise InputError(
+            f"edge {e} {t.edge_vertices(e)}: faces {f} {t.faces[f]} and {g} {t.faces[g]} are "
+            "oriented inconsistently; the sign of a dihedral angle needs a consistent "
+            "orientation")
+    i, j, k = cyclic(t.faces[f], corner_of(h))
+    l_ = t.faces[g][opposite_corner(h2)]
+    if shared is not None:
+        P, D = shared
+        xi, xj, xk, xl = P[i], P[j], P[k], P[l_]
+    else:
+        (xi, xj, xk, xl), D = points_on_common_denominator(x[i], x[j], x[k], x[l_])
+    edge = sub(xj, xi)
+    nf = cross(edge, sub(xk, xi))
+    ng = cross(sub(xi, xj), sub(xl, xj))
+    height = dot(nf, sub(xl, xi))
+    cos_part = dot(nf, ng)
+    E = dot(edge, edge)
+    root = sqrt(E)                                      # D l(e)
+    length = root * Fraction(1, D)
+    if height == 0:
+        if cos_part > 0:
+            return _ZERO_ANGLE, length
+        raise InputError(f"edge {e} {t.edge_vertices(e)}: faces {f} and {g} are folded onto "
+                         "each other (dihedral angle +-pi)")
+    # cot |theta| = <n_f, n_g> / (sqrt(E) |height|) = <n_f, n_g> sqrt(E) / (E |height|)
+    theta = corner_angle(root * Fraction(cos_part, E * abs(height)))
+    return (theta if height < 0 else -theta), length
 
 
 def mean_curvature(surface) -> dict[int, AngleLength]:
@@ -482,6 +486,18 @@ def mean_curvature(surface) -> dict[int, AngleLength]:
     """
     return {e: AngleLength.of(theta, length / 2)
             for e, theta, length in _dihedral_angles_and_lengths(surface, "mean_curvature")}
+
+
+def mean_curvature_at(surface, e: int) -> AngleLength:
+    """D2.3: H(e) = 1/2 theta(e) l(e) of the one interior edge ``e``, exact, as
+    :func:`mean_curvature` gives it (the edge's four points alone over a common
+    denominator: no pass over the whole surface)."""
+    s = _in_r3(surface, "mean_curvature")
+    if s.triangulation.edge_halfedges(e)[1] < 0:
+        raise InputError(f"edge {e} {s.triangulation.edge_vertices(e)} is a boundary edge: it "
+                         "has no dihedral angle")
+    theta, length = _dihedral_angle_and_length(s, e)
+    return AngleLength.of(theta, length / 2)
 
 
 def total_mean_curvature(surface) -> AngleLength:

@@ -1,0 +1,194 @@
+"""Rigorous float enclosures of exact values, vectorised: issue 46's filtered kernels.
+
+An :class:`Enclosure` is two float64 arrays, ``value`` and ``err``, with
+``|value - exact| <= err`` entry by entry, where ``exact`` is the real number the
+same formula gives on the exact inputs.  The arithmetic runs in numpy's round to
+nearest; each operation adds its own rounding and propagates its operands' errors
+(a running error analysis, Higham, *Accuracy and Stability of Numerical
+Algorithms*, 2nd ed., sec. 3.3), and each error term, itself computed in floats,
+is multiplied by ``1 + 2^-50`` (at most six roundings, each at most relative
+2^-53, in its formula) and given ``2^-1060`` more (a result below the normal range
+is rounded absolutely, by at most 2^-1075).  An infinite or NaN value or error
+leaves the entry undecided; so does a square root or an angle where the
+enclosure reaches the branch point.
+
+What the enclosures are for: a check compares an implementation's float with the
+correctly rounded float of an exact value; where the enclosure pins that float
+between two floats (:func:`rounding_bounds`) and the comparison holds at both
+(it is monotone on each side of the observed value), the check's verdict is the
+one the exact value gives, without computing it.  The entries left undecided
+are computed exactly (:func:`~ddg_oracle.properties.registry.within_enclosed`).
+Floats decide nothing inside ``reference/``: this module is the checks'.
+
+Assumed of the platform: IEEE 754 binary64 with round to nearest for numpy's
+``+ - * /`` and ``sqrt`` (correctly rounded), and ``arctan2`` within 4 ulps
+(glibc's documented bound for atan2 on x86_64 is 1 ulp; tests/test_enclosures.py
+compares it with mpmath on random and adversarial arguments).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["Enclosure", "rounding_bounds", "mean_curvature_enclosure"]
+
+U = 2.0 ** -53                      # unit roundoff of binary64
+_UP = 1.0 + 2.0 ** -50              # covers the rounding of an error term's own formula
+_TINY = 2.0 ** -1060                # covers a result rounded below the normal range
+_ATAN2_ULPS = 4.0
+
+
+class Enclosure:
+    """``value`` (float64 array) within ``err`` (float64 array, >= 0) of an exact value."""
+
+    __slots__ = ("value", "err")
+
+    def __init__(self, value, err=None):
+        self.value = np.asarray(value, dtype=np.float64)
+        self.err = (np.zeros_like(self.value) if err is None
+                    else np.asarray(err, dtype=np.float64))
+
+    @staticmethod
+    def _rounded(value, propagated) -> "Enclosure":
+        """``value`` computed in one rounding from operands within ``propagated``."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            return Enclosure(value, (propagated + U * np.abs(value)) * _UP + _TINY)
+
+    def __getitem__(self, index) -> "Enclosure":
+        return Enclosure(self.value[index], self.err[index])
+
+    def __add__(self, other: "Enclosure") -> "Enclosure":
+        with np.errstate(over="ignore", invalid="ignore"):
+            return self._rounded(self.value + other.value, self.err + other.err)
+
+    def __sub__(self, other: "Enclosure") -> "Enclosure":
+        with np.errstate(over="ignore", invalid="ignore"):
+            return self._rounded(self.value - other.value, self.err + other.err)
+
+    def __neg__(self) -> "Enclosure":
+        return Enclosure(-self.value, self.err)
+
+    def __mul__(self, other: "Enclosure") -> "Enclosure":
+        # x' y' - x y = x' (y' - y) + y' (x' - x) - (x' - x)(y' - y)
+        a, b = self, other
+        with np.errstate(over="ignore", invalid="ignore"):
+            prop = (np.abs(a.value) * b.err + np.abs(b.value) * a.err + a.err * b.err) * _UP
+            return self._rounded(a.value * b.value, prop)
+
+    def scaled(self, power_of_two: float) -> "Enclosure":
+        """Times a power of two: exact unless it leaves the normal range (then undecided
+        where it overflows, and ``_TINY`` covers an underflow)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            return Enclosure(self.value * power_of_two, self.err * power_of_two + _TINY)
+
+    def abs(self) -> "Enclosure":
+        return Enclosure(np.abs(self.value), self.err)          # | |x'| - |x| | <= |x' - x|
+
+    def sqrt(self) -> "Enclosure":
+        """The square root of an exact value known to be >= 0 (a sum of squares):
+        |sqrt(x) - sqrt(y)| <= min(sqrt|x - y|, |x - y| / sqrt(max(x, y)))."""
+        x = np.maximum(self.value, 0.0)          # closer to the exact value, which is >= 0
+        root = np.sqrt(x)
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            prop = np.minimum(np.sqrt(self.err), np.where(root > 0, self.err / root, np.inf))
+        return self._rounded(root, prop * _UP)
+
+    def dot(self, other: "Enclosure") -> "Enclosure":
+        """Sum over the last axis of the products (three-vectors: (n, 3) arrays)."""
+        p = self * other
+        out = p[..., 0]
+        for c in range(1, p.value.shape[-1]):
+            out = out + p[..., c]
+        return out
+
+    def cross(self, other: "Enclosure") -> "Enclosure":
+        a, b = self, other
+
+        def c(i, j):
+            return a[..., i] * b[..., j] - a[..., j] * b[..., i]
+        x, y, z = c(1, 2), c(2, 0), c(0, 1)
+        return Enclosure(np.stack([x.value, y.value, z.value], axis=-1),
+                         np.stack([x.err, y.err, z.err], axis=-1))
+
+    def bounded(self) -> np.ndarray:
+        """Where the enclosure says something: value and error finite."""
+        return np.isfinite(self.value) & np.isfinite(self.err)
+
+
+def angle_from(y: Enclosure, x: Enclosure) -> Enclosure:
+    """atan2(y, x) in [0, pi] for an exact y >= 0.  The disc of radius rho = err_x + err_y
+    around (x', y') holds the exact point; seen from the origin at distance r > rho it
+    subtends at most asin(rho / r) <= (pi / 2) rho / r; atan2 is continuous on the closed
+    upper half-plane without the origin.  Undecided (infinite error) where rho >= r."""
+    yv = np.maximum(y.value, 0.0)
+    value = np.arctan2(yv, x.value)
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        rho = (x.err + y.err) * _UP
+        r = np.hypot(yv, x.value) * (1.0 - 4.0 * U)          # hypot within 1 ulp: r below it
+        prop = np.where(rho < r, (math.pi / 2) * _UP * rho / r, np.inf)
+        err = (prop + _ATAN2_ULPS * 2.0 * U * np.abs(value)) * _UP + _TINY
+    return Enclosure(value, err)
+
+
+def rounding_bounds(e: Enclosure) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi): floats with lo <= fl(exact) <= hi for the correctly rounded float of every
+    exact value ``e`` encloses (-inf, inf where it is undecided).  fl(v - err) computed
+    once is the rounding of the real v - err, at most its neighbour above; one step down
+    is below it, and rounding is monotone."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        lo = np.nextafter(e.value - e.err, -np.inf)
+        hi = np.nextafter(e.value + e.err, np.inf)
+    ok = e.bounded() & np.isfinite(lo) & np.isfinite(hi)
+    return np.where(ok, lo, -np.inf), np.where(ok, hi, np.inf)
+
+
+def exact_floats(positions) -> bool:
+    """Whether every coordinate is exactly a float (the enclosures then start exact)."""
+    return all(_is_float(x) for p in positions for x in p)
+
+
+def _is_float(x) -> bool:
+    if type(x) is float:
+        return True
+    d = getattr(x, "denominator", None)
+    if d is not None and d & (d - 1) == 0 and d <= 2 ** 1074 \
+            and abs(x.numerator).bit_length() <= 53:
+        return True                  # n / 2^k with n of at most 53 bits, not below 2^-1074
+    try:
+        return float(x) == x         # exactly: a float compares with a Fraction exactly
+    except OverflowError:
+        return False
+
+
+def mean_curvature_enclosure(positions, I, J, K, L) -> tuple[Enclosure, Enclosure]:
+    """D2.3's H(e) = 1/2 theta(e) l(e) per interior edge, enclosed: the first halfedge of e
+    runs I -> J in face (I, J, K), its twin J -> I in (J, I, L), and the formula is the
+    reference's (``reference.curvature.dihedral_angles``): n_f = e x (x_K - x_I), n_g =
+    (x_I - x_J) x (x_L - x_J), height = <n_f, x_L - x_I>, |theta| = atan2(|e| |height|,
+    <n_f, n_g>), theta > 0 iff height < 0.  Where the sign of the height is not decided the
+    enclosure is 0 +- |H|'s bound (it holds for either sign).  Returns it and the
+    enclosure of <n_f, n_g> (where the height may be 0, its sign tells a fold)."""
+    try:
+        V = np.asarray(positions, dtype=np.float64)
+    except OverflowError:                       # beyond the float range: every entry exactly
+        V = np.full((len(positions), 3), np.nan)
+    exact = exact_floats(positions)
+    X = Enclosure(V, None if exact else U * np.abs(V) + _TINY)
+    xi, xj, xk, xl = X[I], X[J], X[K], X[L]
+    edge = xj - xi
+    nf = edge.cross(xk - xi)
+    ng = (xi - xj).cross(xl - xj)
+    height = nf.dot(xl - xi)
+    cos_part = nf.dot(ng)
+    length = edge.dot(edge).sqrt()
+    theta = angle_from(length * height.abs(), cos_part)
+    half = (theta * length).scaled(0.5)                 # |H|
+    with np.errstate(over="ignore", invalid="ignore"):
+        sign = np.where(height.value - height.err > 0, -1.0,
+                        np.where(height.value + height.err < 0, 1.0, 0.0))
+        undecided = sign == 0
+        value = np.where(undecided, 0.0, sign * half.value)
+        err = np.where(undecided, (np.abs(half.value) + half.err) * _UP, half.err)
+    return Enclosure(value, err), cos_part
