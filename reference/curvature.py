@@ -56,7 +56,8 @@ __all__ = [
     "turning_angles", "total_curvature", "gauss_bonnet_holds", "gauss_bonnet_holds_by_faces",
     "vertex_type",
     "is_convex_star", "is_planar_star", "is_saddle_star",
-    "dihedral_angles", "mean_curvature", "total_mean_curvature", "steiner_coefficients",
+    "dihedral_angles", "mean_curvature", "mean_curvature_at", "total_mean_curvature",
+    "steiner_coefficients",
     "cayley_rotation", "rigid_motion", "push_vertex_in",
 ]
 
