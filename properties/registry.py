@@ -168,6 +168,27 @@ def within(err, bound):
     return bool(ok) if ok.ndim == 0 else ok
 
 
+def _sure(observed, lo, hi, bound):
+    """(observed, bound, sure, known, e_lo) as arrays: ``sure`` where the comparison of
+    :func:`first_outside` holds at both ends of [lo, hi] (an infinite bound: where the
+    value is known, lo == hi, and the error is not NaN, "never within")."""
+    o = np.asarray(observed, dtype=np.float64)
+    b = np.asarray(bound, dtype=np.float64)
+    b = np.where(np.isnan(b), np.inf, b)
+    with np.errstate(invalid="ignore", over="ignore"):
+        e_lo, e_hi = np.abs(o - lo), np.abs(o - hi)
+        known = lo == hi
+        sure = np.where(np.isinf(b), known & ~np.isnan(e_lo), (e_lo <= b) & (e_hi <= b))
+    return o, b, sure, known, e_lo
+
+
+def _count_sure(sure, b, e_lo) -> None:
+    """Count the sure entries as :func:`within` would have (an infinite bound and an error
+    other than 0: unjudged)."""
+    open_ = sure & np.isinf(b) & (e_lo != 0)
+    count_unjudged(np.count_nonzero(open_), np.count_nonzero(sure) - np.count_nonzero(open_))
+
+
 def first_outside(observed, lo, hi, bound, exact_at):
     """``within(|observed[n] - x[n]|, bound[n])`` for every n in order, where x[n] is the
     correctly rounded exact value known only to lie in [lo[n], hi[n]] (an enclosure's
@@ -176,14 +197,7 @@ def first_outside(observed, lo, hi, bound, exact_at):
     and at hi it holds at x; where lo == hi, x is known; the other entries ask
     ``exact_at(n)`` for x[n], in order.  The verdict, the failing entry and the tally of
     unjudged entries are those of the loop over the exact values."""
-    o = np.asarray(observed, dtype=np.float64)
-    b = np.asarray(bound, dtype=np.float64)
-    b = np.where(np.isnan(b), np.inf, b)
-    with np.errstate(invalid="ignore", over="ignore"):
-        e_lo, e_hi = np.abs(o - lo), np.abs(o - hi)
-        known = lo == hi
-        # an infinite bound passes any error but NaN ("never within")
-        sure = np.where(np.isinf(b), known & ~np.isnan(e_lo), (e_lo <= b) & (e_hi <= b))
+    o, b, sure, known, e_lo = _sure(observed, lo, hi, bound)
     stop = len(o)
     found = None
     for n in np.flatnonzero(~sure).tolist():
@@ -191,11 +205,26 @@ def first_outside(observed, lo, hi, bound, exact_at):
         if not within(abs(float(o[n]) - x), float(b[n])):        # counts this entry
             stop, found = n, (n, x)
             break
-    # the sure entries before the stop, as within() would have counted them
-    head = sure[:stop]
-    open_ = head & np.isinf(b[:stop]) & (e_lo[:stop] != 0)
-    count_unjudged(np.count_nonzero(open_), np.count_nonzero(head) - np.count_nonzero(open_))
+    _count_sure(sure[:stop], b[:stop], e_lo[:stop])  # the sure ones before the stop
     return found
+
+
+def within_enclosed(observed, lo, hi, bound, exact_at):
+    """``(within(|observed - x|, bound), x)`` over whole arrays, x the correctly rounded
+    exact values known to lie in [lo, hi] (as :func:`first_outside`): ``exact_at(index)``
+    gives x at the (flat) indices the ends cannot decide; x is lo elsewhere (a stand-in: the
+    entry passes).  Result and tally are those of ``within`` on the exact values."""
+    o, b, sure, known, e_lo = _sure(observed, lo, hi, bound)
+    x = np.array(lo, dtype=np.float64, copy=True)
+    ok = sure.copy()
+    ask = np.flatnonzero(~sure & ~known)
+    if len(ask):
+        x.flat[ask] = [float(exact_at(int(n))) for n in ask]
+    rest = np.flatnonzero(~sure)
+    if len(rest):
+        ok.flat[rest] = within(np.abs(o.flat[rest] - x.flat[rest]), b.flat[rest])
+    _count_sure(sure, b, e_lo)
+    return ok, x
 
 
 def _is_real(x) -> bool:

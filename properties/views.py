@@ -22,8 +22,9 @@ from ..reference.metric import PiecewiseFlatSurface
 
 from . import memo
 
-__all__ = ["corner_angle_views", "defect_views", "turning_views", "mean_curvature_views",
-           "mean_curvature_view_bounds", "exact_laplacian", "laplacian_view"]
+__all__ = ["corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
+           "vertex_angle_view_bounds", "mean_curvature_views", "mean_curvature_view_bounds",
+           "exact_laplacian", "laplacian_view"]
 
 
 def corner_angle_views(surface) -> np.ndarray:
@@ -37,6 +38,54 @@ def corner_angle_views(surface) -> np.ndarray:
 
 def _corner_angle_views(surface) -> np.ndarray:
     return np.array([[float(a) for a in face] for face in ref.corner_angles(surface.metric())])
+
+
+def corner_angle_view_bounds(surface) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi), (m, 3) each: floats lo <= :func:`corner_angle_views` <= hi from rigorous
+    float enclosures of the exact angles (:mod:`.enclosures`), once per surface object;
+    the exact views themselves (lo = hi) for a surface without positions in R^3."""
+    return memo.of(_corner_angle_view_bounds, surface)
+
+
+def _corner_angle_view_bounds(surface):
+    from .enclosures import corner_angle_enclosure, rounding_bounds
+    surface.metric()                                        # raises DegenerateFace
+    if getattr(surface, "dimension", None) != 3:
+        x = corner_angle_views(surface)
+        return x, x
+    return rounding_bounds(corner_angle_enclosure(surface.positions, surface.triangulation.faces))
+
+
+def vertex_angle_view_bounds(surface, what: str):
+    """(vertices, lo, hi): ``what="defects"``: the interior vertices in :func:`defect_views`'
+    order and floats lo <= float(K(v)) <= hi; ``"turning"``: the boundary vertices and
+    the turning angles' (:func:`turning_views`); from the enclosures of the corner angles
+    summed (:mod:`.enclosures`), once per surface object."""
+    return memo.of(_vertex_angle_view_bounds, surface)[what]
+
+
+def _vertex_angle_view_bounds(surface):
+    from .enclosures import PI, TWO_PI, angle_sum_enclosure, corner_angle_enclosure
+    from .enclosures import rounding_bounds
+    t = surface.triangulation
+    boundary = t.boundary_vertices()
+    out = {}
+    for what, keep in (("defects", False), ("turning", True)):
+        out[what] = [v for v in range(t.n_vertices) if (v in boundary) == keep]
+    if getattr(surface, "dimension", None) != 3:
+        surface.metric()
+        exact = {"defects": defect_views(surface), "turning": turning_views(surface)}
+        return {w: (vs, *(2 * (np.array([exact[w][v] for v in vs], dtype=np.float64),)))
+                for w, vs in out.items()}
+    corners = corner_angle_enclosure(surface.positions, t.faces)
+    surface.metric()                                        # raises DegenerateFace
+    sums = angle_sum_enclosure(corners, t.faces, t.n_vertices)
+    result = {}
+    for what, vs in out.items():
+        idx = np.array(vs, dtype=np.int64)
+        lo, hi = rounding_bounds((TWO_PI if what == "defects" else PI) - sums[idx])
+        result[what] = (vs, lo, hi)
+    return result
 
 
 def defect_views(surface) -> dict:

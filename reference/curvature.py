@@ -52,7 +52,7 @@ from .linear import cross, det3, dot, sub
 
 __all__ = [
     "corner_angles", "corner_angles_from_cotangents", "angle_sums", "angle_sums_from_corners",
-    "angle_defects",
+    "angle_sum_at", "angle_defects",
     "turning_angles", "total_curvature", "gauss_bonnet_holds", "gauss_bonnet_holds_by_faces",
     "vertex_type",
     "is_convex_star", "is_planar_star", "is_saddle_star",
@@ -149,6 +149,14 @@ def angle_sums_from_corners(surface) -> list[Angle]:
                 acc[cot] = acc.get(cot, 0) + k
             r[v] += a.pi_coefficient
     return [Angle(p, q) for p, q in zip(parts, r)]
+
+
+def angle_sum_at(surface, v: int) -> Angle:
+    """The sum of the corner angles at the one vertex ``v`` (D2.2), exact: as
+    :func:`angle_sums` gives it, from the corners of the faces that use ``v`` alone."""
+    m = as_metric(surface)
+    return _sum_angles(m.corner_angle(f, c) for f, face in enumerate(m.triangulation.faces)
+                       for c, w in enumerate(face) if w == v)
 
 
 def angle_defects(surface) -> dict[int, Angle]:

@@ -29,7 +29,7 @@ from ddg_oracle.properties.strategies import jittered_surfaces
 from ddg_oracle.reference import curvature as ref
 from ddg_oracle.reference import surfaces
 from tests.honest_panel import Atan2Cross
-from tests.test_bounds_vs_honest import hinges
+from tests.test_bounds_vs_honest import fans, hinges, triangles
 
 
 def _case(V, F, recipe, exact=False):
@@ -39,7 +39,7 @@ def _case(V, F, recipe, exact=False):
 
 
 def _holds(value: float, err: float, exact) -> bool:
-    """Whether the exact AngleLength lies in [value - err, value + err] (Fractions)."""
+    """Whether the exact Angle or AngleLength lies in [value - err, value + err]."""
     a, b = Fraction(value) - Fraction(err), Fraction(value) + Fraction(err)
     for bits in (64, 128, 256, 1024, 4096):
         lo, hi = exact.interval_at(bits)
@@ -101,6 +101,53 @@ def test_mean_curvature_enclosures_hold_on_rational_coordinates_and_flat_edges()
 @given(jittered_surfaces(closed=True))
 def test_mean_curvature_enclosures_hold_on_drawn_surfaces(case):
     _enclosures_hold(case)
+
+
+def _angles_hold(case) -> None:
+    """Every corner angle's and every angle defect's and turning angle's enclosure holds
+    its exact value, and [lo, hi] its correctly rounded float."""
+    from ddg_oracle.properties.enclosures import (PI, TWO_PI, angle_sum_enclosure,
+                                                  corner_angle_enclosure)
+    s = case.surface
+    t = s.triangulation
+    corners = corner_angle_enclosure(s.positions, t.faces)
+    exact = ref.corner_angles(s)
+    lo, hi = views.corner_angle_view_bounds(s)
+    for f, angles in enumerate(exact):
+        for c, a in enumerate(angles):
+            if np.isfinite(corners.err[f, c]):
+                assert _holds(float(corners.value[f, c]), float(corners.err[f, c]), a), (f, c)
+            assert lo[f, c] <= float(a) <= hi[f, c], (case.recipe, f, c)
+    sums = angle_sum_enclosure(corners, t.faces, t.n_vertices)
+    boundary = t.boundary_vertices()
+    for what, turn, keep in (("defects", TWO_PI, False), ("turning", PI, True)):
+        vs, lo, hi = views.vertex_angle_view_bounds(s, what)
+        assert vs == [v for v in range(t.n_vertices) if (v in boundary) == keep]
+        enc = turn - sums[np.array(vs, dtype=np.int64)]
+        want = (views.defect_views if what == "defects" else views.turning_views)(s)
+        exact_v = (ref.angle_defects if what == "defects" else ref.turning_angles)(s)
+        for n, v in enumerate(vs):
+            if np.isfinite(enc.err[n]):
+                assert _holds(float(enc.value[n]), float(enc.err[n]), exact_v[v]), (what, v)
+            assert lo[n] <= want[v] <= hi[n], (case.recipe, what, v)
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_corner_angle_enclosures_hold_on_needles_caps_and_near_right_angles(bits):
+    V, F = triangles(FORMATS[bits], seed=13, per_kind=20)
+    _angles_hold(_case(V, F, f"triangles, {bits} bits"))
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_angle_defect_enclosures_hold_on_fans_with_needle_sectors(bits):
+    V, F = fans(FORMATS[bits], seed=17, count=20)
+    _angles_hold(_case(V, F, f"fans, {bits} bits"))
+
+
+@settings(max_examples=15, deadline=None)
+@given(jittered_surfaces(closed=False))
+def test_angle_enclosures_hold_on_drawn_surfaces(case):
+    _angles_hold(case)
 
 
 def test_arctan2_is_within_the_assumed_four_ulps():
@@ -212,10 +259,79 @@ def test_verdicts_from_enclosures_are_those_of_the_exact_values(pid, factor, mon
     def run():
         fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
         r = run_on_example(PROPERTIES[pid], _Shifted(fresh, factor), fresh, "torus")
-        return r.status, r.summary()
+        return r.status, r.summary(), str(r.failure), r.unjudged
     filtered = run()
     monkeypatch.setattr(views, "_mean_curvature_view_bounds", _exact_route)
     exact = run()
     assert filtered == exact
     if pid == "D2.3" and factor in (0.5, 2.0):
+        assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
+
+
+class _ShiftedAngles(Atan2Cross):
+    """Honest corner angles and angle defects moved to ``factor`` times the bound from the
+    exact values at every 7th entry (alternating signs)."""
+
+    def __init__(self, case, factor):
+        from ddg_oracle.properties.bounds import corner_tolerances
+        from ddg_oracle.properties.curvature import _defect_bounds
+        super().__init__()
+        x = views.corner_angle_views(case.surface)
+        tol = corner_tolerances(case)
+        self._corners = x + factor * tol * np.where(np.arange(x.size).reshape(x.shape) % 7, 0,
+                                                    (-1) ** np.arange(x.size).reshape(x.shape))
+        K = np.asarray(super().angle_defects(*case.arrays()), dtype=np.float64)
+        tolK = np.asarray(_defect_bounds(self, case, K, tol), dtype=np.float64)
+        exact = {**views.defect_views(case.surface), **views.turning_views(case.surface)}
+        self._defects = K.copy()
+        for n, v in enumerate(sorted(exact)):
+            if n % 7 == 0:
+                self._defects[v] = exact[v] + factor * tolK[v] * (-1) ** n
+
+    def corner_angles(self, V, F):
+        return self._corners.copy()
+
+    def angle_defects(self, V, F):
+        return self._defects.copy()
+
+
+def _exact_corners(surface):
+    x = views.corner_angle_views(surface)
+    return x, x.copy()
+
+
+def _exact_vertices(surface):
+    t = surface.triangulation
+    boundary = t.boundary_vertices()
+    out = {}
+    for what, keep, f in (("defects", False, views.defect_views),
+                          ("turning", True, views.turning_views)):
+        vs = [v for v in range(t.n_vertices) if (v in boundary) == keep]
+        x = np.array([f(surface)[v] for v in vs], dtype=np.float64)
+        out[what] = (vs, x, x.copy())
+    return out
+
+
+@pytest.mark.parametrize("factor", [0.5, 0.999, 1.0, 1.001, 2.0])
+@pytest.mark.parametrize("pid", ["D2.6", "D2.2", "R2.4"])
+def test_angle_verdicts_from_enclosures_are_those_of_the_exact_values(pid, factor, monkeypatch):
+    """As for the mean curvature: corner angles and angle defects (turning angles on a
+    grid with a boundary) at 0.5 .. 2 times their bounds, every 7th entry."""
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = surfaces.torus(6, 8) if pid != "R2.4" else surfaces.grid(6, 6)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    F = F.astype(np.int64)
+    V = V + np.random.default_rng(4).uniform(-2 ** -8, 2 ** -8, V.shape)
+    chi = 0 if pid != "R2.4" else 1
+
+    def run():
+        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), chi, "jittered")
+        r = run_on_example(PROPERTIES[pid], _ShiftedAngles(fresh, factor), fresh, "mesh")
+        return r.status, r.summary(), str(r.failure), r.unjudged
+    filtered = run()
+    monkeypatch.setattr(views, "_corner_angle_view_bounds", _exact_corners)
+    monkeypatch.setattr(views, "_vertex_angle_view_bounds", _exact_vertices)
+    exact = run()
+    assert filtered == exact
+    if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
