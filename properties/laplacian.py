@@ -29,12 +29,11 @@ from hypothesis import strategies as st
 
 from ..reference import areas, laplacian as ref
 from ..reference.dirichlet import directional_derivative
-from ..reference.laplacian import (dirichlet_energy_pl, dirichlet_energy_gradient_pl,
-                                            weight_signs_by_angles)
+from ..reference.laplacian import dirichlet_energy_pl, dirichlet_energy_gradient_pl
 from ..reference.polyhedral import PolyhedralSurface
 
-from . import memo
 from .bounds import gamma, total_area_view
+from .views import weight_signs
 from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, exact_spectrum, fail,
                       implementation_dense, implementation_matrix, record, worst, worst_sparse)
 from ..protocol.methods import ISOLATED_VERTEX, capabilities, eps
@@ -380,7 +379,7 @@ def weight_sign_by_opposite_angles(impl, case: Example):
     pairs = [[X.keep[v] for v in t.edge_vertices(e)] for e in range(t.n_edges)]
     I, J = (np.array([p[k] for p in pairs], dtype=np.int64) for k in (0, 1))
     weights, bounds = -entries_at(A, I, J), entries_at(X.Bs, I, J)
-    signs = memo.of(weight_signs_by_angles, X.surface)       # the example's, not the implementation's
+    signs = weight_signs(X.surface)          # the example's, not the implementation's
     for e in range(t.n_edges):
         i, j = pairs[e]
         s = signs[e]

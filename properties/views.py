@@ -23,7 +23,8 @@ from ..reference.metric import PiecewiseFlatSurface
 from . import memo
 
 __all__ = ["corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
-           "vertex_angle_view_bounds", "mean_curvature_views", "mean_curvature_view_bounds",
+           "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
+           "mean_curvature_view_bounds",
            "exact_laplacian", "laplacian_view"]
 
 
@@ -48,12 +49,52 @@ def corner_angle_view_bounds(surface) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _corner_angle_view_bounds(surface):
-    from .enclosures import corner_angle_enclosure, rounding_bounds
+    from .enclosures import rounding_bounds
     surface.metric()                                        # raises DegenerateFace
     if getattr(surface, "dimension", None) != 3:
         x = corner_angle_views(surface)
         return x, x
-    return rounding_bounds(corner_angle_enclosure(surface.positions, surface.triangulation.faces))
+    return rounding_bounds(_corner_enclosure(surface))
+
+
+def _corner_enclosure(surface):
+    """The corners' angle enclosure of a surface in R^3, once per surface object."""
+    return memo.of(_corners_of, surface)
+
+
+def _corners_of(surface):
+    from .enclosures import corner_angle_enclosure
+    return corner_angle_enclosure(surface.positions, surface.triangulation.faces)
+
+
+def weight_signs(surface) -> list[int]:
+    """E3.12's sign of pi - (alpha + alpha') per edge (pi / 2 - alpha on the boundary), as
+    ``reference.laplacian.weight_signs_by_angles`` gives them: from the enclosures of the
+    corner angles where they decide it (0 outside the enclosure), exactly per edge where
+    not; once per surface object."""
+    return memo.of(_weight_signs, surface)
+
+
+def _weight_signs(surface):
+    from .enclosures import PI, Enclosure
+    from ..reference.laplacian import weight_sign_by_angles, weight_signs_by_angles
+    if getattr(surface, "dimension", None) != 3:
+        return weight_signs_by_angles(surface)
+    surface.metric()                                        # raises DegenerateFace
+    t = surface.triangulation
+    corners = _corner_enclosure(surface)
+    pairs = np.array([t.edge_halfedges(e) for e in range(t.n_edges)], dtype=np.int64)
+    h, h2 = pairs[:, 0], pairs[:, 1]
+    inner = h2 >= 0
+    total = corners[h // 3, (h % 3 + 2) % 3]                 # the opposite corner of h
+    twin = corners[np.where(inner, h2, h) // 3, (np.where(inner, h2, h) % 3 + 2) % 3]
+    total = total + Enclosure(np.where(inner, twin.value, 0.0), np.where(inner, twin.err, 0.0))
+    half = Enclosure(np.where(inner, PI.value, PI.value / 2), np.where(inner, PI.err, PI.err / 2))
+    left = half - total
+    with np.errstate(invalid="ignore"):
+        sure = np.where(left.value - left.err > 0, 1, np.where(left.value + left.err < 0, -1, 0))
+    return [int(x) if x else weight_sign_by_angles(surface, e)
+            for e, x in enumerate(sure.tolist())]
 
 
 def vertex_angle_view_bounds(surface, what: str):
@@ -65,8 +106,7 @@ def vertex_angle_view_bounds(surface, what: str):
 
 
 def _vertex_angle_view_bounds(surface):
-    from .enclosures import PI, TWO_PI, angle_sum_enclosure, corner_angle_enclosure
-    from .enclosures import rounding_bounds
+    from .enclosures import PI, TWO_PI, angle_sum_enclosure, rounding_bounds
     t = surface.triangulation
     boundary = t.boundary_vertices()
     out = {}
@@ -77,8 +117,8 @@ def _vertex_angle_view_bounds(surface):
         exact = {"defects": defect_views(surface), "turning": turning_views(surface)}
         return {w: (vs, *(2 * (np.array([exact[w][v] for v in vs], dtype=np.float64),)))
                 for w, vs in out.items()}
-    corners = corner_angle_enclosure(surface.positions, t.faces)
     surface.metric()                                        # raises DegenerateFace
+    corners = _corner_enclosure(surface)
     sums = angle_sum_enclosure(corners, t.faces, t.n_vertices)
     result = {}
     for what, vs in out.items():

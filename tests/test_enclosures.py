@@ -32,6 +32,14 @@ from tests.honest_panel import Atan2Cross
 from tests.test_bounds_vs_honest import fans, hinges, triangles
 
 
+def st_obtuse_or_planar():
+    """E3.12's own strategy: obtuse and planar meshes."""
+    from hypothesis import strategies as st
+
+    from ddg_oracle.properties.strategies import obtuse_meshes, planar_meshes
+    return st.one_of(obtuse_meshes(), planar_meshes())
+
+
 def _case(V, F, recipe, exact=False):
     conv = (lambda x: x) if exact else (lambda x: Fraction(float(x)))
     pos = tuple(tuple(conv(x) for x in p) for p in V)
@@ -148,6 +156,33 @@ def test_angle_defect_enclosures_hold_on_fans_with_needle_sectors(bits):
 @given(jittered_surfaces(closed=False))
 def test_angle_enclosures_hold_on_drawn_surfaces(case):
     _angles_hold(case)
+
+
+def _signs_equal(case) -> int:
+    """Asserts E3.12's weight signs from the enclosures equal the exact ones; returns how
+    many edges the enclosures decided."""
+    from ddg_oracle.reference.laplacian import weight_signs_by_angles
+    got = views.weight_signs(case.surface)
+    assert got == weight_signs_by_angles(case.surface), case.recipe
+    return len(got)
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_weight_signs_from_enclosures_are_the_exact_signs(bits):
+    for make, seed in ((hinges, 19), (triangles, 23), (fans, 29)):
+        V, F = make(FORMATS[bits], seed=seed)
+        _signs_equal(_case(V, F, f"{make.__name__}, {bits} bits"))
+    # exactly cocircular and exactly right: pi - (alpha + alpha') = 0, decided exactly
+    s = surfaces.grid(4, 4)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    assert 0 in views.weight_signs(_case(V, F.astype(np.int64), "grid").surface)
+    _signs_equal(_case(V, F.astype(np.int64), "grid"))
+
+
+@settings(max_examples=15, deadline=None)
+@given(st_obtuse_or_planar())
+def test_weight_signs_from_enclosures_are_the_exact_signs_on_drawn_meshes(case):
+    _signs_equal(case)
 
 
 def test_arctan2_is_within_the_assumed_four_ulps():
