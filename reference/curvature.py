@@ -153,10 +153,10 @@ def angle_sums_from_corners(surface) -> list[Angle]:
 
 def angle_sum_at(surface, v: int) -> Angle:
     """The sum of the corner angles at the one vertex ``v`` (D2.2), exact: as
-    :func:`angle_sums` gives it, from the corners of the faces that use ``v`` alone."""
+    :func:`angle_sums` gives it, from the corners at ``v`` alone (its one fan: a
+    triangulation's vertices are manifold)."""
     m = as_metric(surface)
-    return _sum_angles(m.corner_angle(f, c) for f, face in enumerate(m.triangulation.faces)
-                       for c, w in enumerate(face) if w == v)
+    return _sum_angles(m.corner_angle(f, c) for f, c in m.triangulation.corners_around(v))
 
 
 def angle_defects(surface) -> dict[int, Angle]:

@@ -672,3 +672,24 @@ def test_T2_6_exact_gauss_bonnet_on_a_1000_face_float_mesh_is_fast():
     seconds = time.perf_counter() - t0
     assert holds and len(K) == 500
     assert seconds < 20, f"exact defects + Gauss-Bonnet took {seconds:.1f} s"
+
+
+def test_one_vertex_and_one_edge_functions_equal_the_whole_surface_ones():
+    """angle_sum_at and mean_curvature_at (the checks' exact fallback, issue 46) are the
+    entries of angle_sums and mean_curvature: boundary vertices, a torus, a lifted fan."""
+    from ddg_oracle.reference.curvature import (angle_sum_at, angle_sums, mean_curvature,
+                                                mean_curvature_at)
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    grid = surfaces.grid(3, 3)
+    pos = [list(p) for p in grid.positions]
+    pos[5][2] = Fraction(1, 7)                           # an interior vertex lifted
+    lifted = PolyhedralSurface(grid.triangulation, [tuple(p) for p in pos])
+    for s in (surfaces.torus(4, 5), lifted, surfaces.icosahedron()):
+        sums = angle_sums(s)
+        assert [angle_sum_at(s, v) for v in range(len(sums))] == sums
+        H = mean_curvature(s)
+        assert {e: mean_curvature_at(s, e) for e in H} == H
+    boundary = next(e for e in range(lifted.triangulation.n_edges)
+                    if lifted.triangulation.is_boundary_edge(e))
+    with pytest.raises(InputError, match="boundary edge"):
+        mean_curvature_at(lifted, boundary)
