@@ -6,7 +6,9 @@ exact intrinsic Delaunay of float meshes, eager and lazy, beside libigl's float 
 PyMeshLab's sample meshes and generated fans), dirichlet (the certified Dirichlet
 enclosure on float meshes up to 30,000 vertices, and exact elimination's limit), suite (the test suite and one
 check), main (``ddg-oracle check`` three times and with ci: the main job's time), meshcheck
-(``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), catch (the time
+(``ddg-oracle check --mesh`` on PyMeshLab's bunnies, every implementation and libigl), large
+(``check --mesh`` on bunny.obj loop-subdivided twice, 898,752 faces: wall, CPU and peak memory;
+long), catch (the time
 to catch each planted bug under the default profile), sidebyside (this checkout's numbers
 against another version's, ``--base-python``), mutation (mutmut on the core modules of
 reference/, the mutation score per module; long, docs/mutation.md), knockout (every public
@@ -20,8 +22,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from . import (catch, cotan, dirichlet, faults, flips, knockout, meshread, mutation, real,
-               report, sidebyside, suite)
+from . import (catch, cotan, dirichlet, faults, flips, knockout, large, meshread, mutation,
+               real, report, sidebyside, suite)
 from .common import Mode, load_results, machine, save_results, say
 
 GROUPS = {
@@ -36,6 +38,7 @@ GROUPS = {
     "suite": suite.run_suite,
     "main": suite.run_main,
     "meshcheck": suite.run_mesh_checks,
+    "large": large.run,
     "catch": catch.run,
     "sidebyside": sidebyside.run,
     "mutation": mutation.run,
@@ -45,7 +48,7 @@ GROUPS = {
     "survey": __import__("benchmarks.survey", fromlist=["run"]).run,
 }
 # not part of --all
-ONLY_NAMED = ("sidebyside", "mutation", "knockout", "faults", "meshread", "survey")
+ONLY_NAMED = ("sidebyside", "mutation", "knockout", "faults", "meshread", "survey", "large")
 DEFAULT = ["cotan", "flips", "r3", "hypothesis"]
 
 

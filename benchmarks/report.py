@@ -188,6 +188,19 @@ each exact value is computed once per worker that needs it and shared by the
 implementations it checks (and by the reference adapter's answer).
 """
 
+LARGE = """\
+## 6b. `ddg-oracle check --mesh` at a million faces
+
+`python -m benchmarks large` (issue 46's scale): PyMeshLab's bunny.obj loop-subdivided
+twice by `igl.loop` (898,752 faces, made by the benchmark), `ddg-oracle check --mesh
+MESH --report DIR` with libigl alone and with every installed implementation (2
+workers), one run each: *wall seconds*, *CPU seconds* of the check and every process it
+started, *peak MB*: the largest sum of the resident memory of its process tree, sampled
+every 0.2 s; a run whose tree passes 16 GB is stopped (the machine has 24 GB) and says
+so.  Issue 46's targets: libigl <= 60 s, every installed implementation <= 4 min, memory
+<= 6 GB.
+"""
+
 MAIN = """\
 ## 5. The main job: `ddg-oracle check`
 
@@ -585,6 +598,17 @@ _TABLES = [
          if "task_seconds" in r else "-"),
         ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.1f} s)"
          if "slowest" in r else "-")]),
+    ("large", LARGE, [
+        ("mesh", lambda r: r["mesh"]), ("faces", lambda r: f"{r['faces']:,}"),
+        ("implementations", lambda r: r["impl"]),
+        ("wall seconds", lambda r: f"{r['wall']:.0f}"), ("CPU seconds", lambda r: f"{r['cpu']:.0f}"),
+        ("peak MB", lambda r: f"{r['peak_mb']:,.0f}"),
+        ("exit", lambda r: "stopped: memory" if r.get("stopped") else str(r["exit"])),
+        ("load before", lambda r: str(r["load"])),
+        ("results", lambda r: ", ".join(f"{n} {s}" for s, n in sorted(r["statuses"].items()))
+         or "-"),
+        ("slowest task", lambda r: f"{r['slowest']} ({r['slowest_seconds']:.0f} s)"
+         if r.get("slowest") else "-")]),
     ("catch", CATCH, [("bug", lambda r: r["bug"]), ("planted", lambda r: ", ".join(r["planted"])),
                       ("caught", lambda r: f"{r['caught']}/{r['runs']}"),
                       ("first", lambda r: r.get("first", "-")),
@@ -713,6 +737,14 @@ def _targets(results: dict) -> list[str]:
                 f"| `ddg-oracle {r.get('command', 'check --mesh')} pymeshlab:bunny.obj` "
                 f"({r['impl']}) <= 60 s (issue 18) | median {r['wall']:.0f} s{slow} | "
                 f"{'yes' if r['wall'] <= 60 else 'no'} |")
+    for r in results.get("large", {}).get("rows", []):
+        limit = 60 if r["impl"] == "libigl" else 240
+        ok = r["wall"] <= limit and r["peak_mb"] <= 6 * 1024 and not r.get("stopped")
+        done = (f"stopped after {r['wall']:.0f} s at {r['peak_mb']:,.0f} MB"
+                if r.get("stopped") else
+                f"{r['wall']:.0f} s wall, {r['cpu']:.0f} s CPU, peak {r['peak_mb']:,.0f} MB")
+        add("large", f"| `ddg-oracle check --mesh` on {r['faces']:,} faces ({r['impl']}) <= "
+                     f"{limit} s, memory <= 6 GB (issue 46) | {done} | {'yes' if ok else 'no'} |")
     for r in results.get("suite", {}).get("rows", []):
         limit = 300 if r["command"].startswith("test suite, default") else \
             120 if r["command"].startswith("ddg-oracle") else None
