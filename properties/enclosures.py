@@ -9,8 +9,8 @@ Algorithms*, 2nd ed., sec. 3.3), and each error term, itself computed in floats,
 is multiplied by ``1 + 2^-50`` (at most six roundings, each at most relative
 2^-53, in its formula) and given ``2^-1060`` more (a result below the normal range
 is rounded absolutely, by at most 2^-1075).  An infinite or NaN value or error
-leaves the entry undecided; so does a square root or an angle where the
-enclosure reaches the branch point.
+leaves the entry undecided; so does an angle whose error disc reaches the
+origin (:func:`angle_from`).
 
 What the enclosures are for: a check compares an implementation's float with the
 correctly rounded float of an exact value; where the enclosure pins that float
@@ -67,9 +67,6 @@ class Enclosure:
     def __sub__(self, other: "Enclosure") -> "Enclosure":
         with np.errstate(over="ignore", invalid="ignore"):
             return self._rounded(self.value - other.value, self.err + other.err)
-
-    def __neg__(self) -> "Enclosure":
-        return Enclosure(-self.value, self.err)
 
     def __mul__(self, other: "Enclosure") -> "Enclosure":
         # x' y' - x y = x' (y' - y) + y' (x' - x) - (x' - x)(y' - y)
