@@ -29,7 +29,7 @@ import traceback
 from .containment import worker_context
 from ..protocol.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
                                           rows_of, stderr_tail)
-from ..protocol.budget import check_time_left, cut_short, time_left
+from ..protocol.budget import Hang, check_time_left, cut_short, time_left
 from ..protocol.methods import (METHODS, NotAnImplementation, OutsideDomain,
                                            declared_conventions, machine_epsilon, near_misses,
                                            require_protocol)
@@ -41,6 +41,10 @@ class ImplementationCrashed(RuntimeError):
     def __init__(self, implementation: str, method: str, how: str):
         self.implementation, self.method, self.how = implementation, method, how
         super().__init__(f"{implementation}.{method} {how}")
+
+
+class CallTimedOut(Hang, ImplementationCrashed):
+    """An isolated call killed at its own time limit: a crash of that call, and a hang."""
 
 
 class ImplementationError(RuntimeError):
@@ -243,10 +247,10 @@ class Isolated:
                 raise cut_short(f"{self.name}.{method}", started)
             scaled = "" if limit == self.timeout else \
                 f" ({self.timeout:g} s per {ROWS_PER_TIMEOUT:,} faces)"
-            raise ImplementationCrashed(self.name, method,
-                                        f"did not return within {limit:g} s{scaled} (killed); "
-                                        "raise the limit with Isolated(timeout=...) or "
-                                        "ddg-oracle check --timeout SECONDS")
+            raise CallTimedOut(self.name, method,
+                               f"did not return within {limit:g} s{scaled} (killed); raise "
+                               "the limit with Isolated(timeout=...) or ddg-oracle check "
+                               "--timeout SECONDS")
         try:
             status, payload, _ = self._conn.recv()
         except EOFError:

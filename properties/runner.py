@@ -56,7 +56,8 @@ from hypothesis.reporting import with_reporter
 
 from ..reference.errors import BeyondFloatRange, ExactArithmeticLimit
 
-from ..protocol.budget import Budget, BudgetExceeded, ImplementationHang, shrink_from_now, task_budget
+from ..protocol.budget import (Budget, BudgetExceeded, Hang, ImplementationHang, shrink_from_now,
+                              task_budget)
 from .calls import Watched, raised_by_implementation
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
@@ -204,7 +205,7 @@ def _crash_text(e: BaseException) -> str:
     """``module.Type: message`` of what the implementation raised, without the notes
     Hypothesis attaches (its seed, "Failing test case: body(...)", explanations): the
     input is reported on its own, as a mesh; ``hang: ...`` for a call the clock stopped."""
-    if isinstance(e, ImplementationHang):
+    if isinstance(e, Hang):                 # the budget's, or an isolated call's own limit
         return f"hang: {e}"
     name = type(e).__qualname__
     module = type(e).__module__

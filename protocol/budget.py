@@ -37,7 +37,13 @@ class BudgetExceeded(BaseException):
     to shrink).  Out of time *inside* a call is :class:`ImplementationHang` instead."""
 
 
-class ImplementationHang(BaseException):
+class Hang:
+    """Marks an exception as a hang of the checked implementation (reported as ``hang:
+    ...``, whichever clock stopped it: the task's budget, the time limit per example, or an
+    isolated call's own limit)."""
+
+
+class ImplementationHang(Hang, BaseException):
     """A call of the checked implementation was still running when its time ran out (the
     task's budget or the time limit per example): a hang of the implementation, reported
     with its input.  A BaseException, so that the implementation's own ``except
