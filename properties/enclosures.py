@@ -21,9 +21,12 @@ are computed exactly (:func:`~ddg_oracle.properties.registry.within_enclosed`).
 Floats decide nothing inside ``reference/``: this module is the checks'.
 
 Assumed of the platform: IEEE 754 binary64 with round to nearest for numpy's
-``+ - * /`` and ``sqrt`` (correctly rounded), and ``arctan2`` within 4 ulps
-(glibc's documented bound for atan2 on x86_64 is 1 ulp; tests/test_enclosures.py
-compares it with mpmath on random and adversarial arguments).
+``+ - * /`` and ``sqrt`` (correctly rounded), and ``arctan2`` within 16 ulps.  glibc
+does not promise correct rounding for atan2: its manual (sec. 19.7, "Known Maximum
+Errors in Math Functions") states the goal "within a few ulp" and lists the errors its
+tests measured, and its test suite refuses recorded errors above 9 ulps; 16 leaves a
+margin at no cost (the propagated errors dominate).  tests/test_enclosures.py compares
+numpy's arctan2 with mpmath on random and adversarial arguments.
 """
 
 from __future__ import annotations
@@ -38,7 +41,7 @@ __all__ = ["Enclosure", "rounding_bounds", "mean_curvature_enclosure", "corner_a
 U = 2.0 ** -53                      # unit roundoff of binary64
 _UP = 1.0 + 2.0 ** -50              # covers the rounding of an error term's own formula
 _TINY = 2.0 ** -1060                # covers a result rounded below the normal range
-_ATAN2_ULPS = 4.0
+_ATAN2_ULPS = 16.0
 
 
 class Enclosure:
