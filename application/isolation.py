@@ -27,15 +27,15 @@ import time
 import traceback
 
 from .containment import worker_context
-from ..protocol.processes import (ROWS_PER_TIMEOUT, NotSent, call_limit, exit_text,
-                                          rows_of, stderr_tail)
+from ..protocol.processes import (ROWS_PER_TIMEOUT, NotSent, SelfDescribed, call_limit,
+                                  exit_text, rows_of, stderr_tail)
 from ..protocol.budget import Hang, check_time_left, cut_short, time_left
 from ..protocol.methods import (METHODS, NotAnImplementation, OutsideDomain,
                                            declared_conventions, machine_epsilon, near_misses,
                                            require_protocol)
 
 
-class ImplementationCrashed(RuntimeError):
+class ImplementationCrashed(SelfDescribed, RuntimeError):
     """The implementation's process died or exceeded its time limit on this call."""
 
     def __init__(self, implementation: str, method: str, how: str):
@@ -47,7 +47,7 @@ class CallTimedOut(Hang, ImplementationCrashed):
     """An isolated call killed at its own time limit: a crash of that call, and a hang."""
 
 
-class ImplementationError(RuntimeError):
+class ImplementationError(SelfDescribed, RuntimeError):
     """The implementation raised a Python exception (its traceback is in the message)."""
 
 

@@ -58,6 +58,7 @@ from ..reference.errors import BeyondFloatRange, ExactArithmeticLimit
 
 from ..protocol.budget import (Budget, BudgetExceeded, Hang, ImplementationHang, shrink_from_now,
                               task_budget)
+from ..protocol.processes import SelfDescribed
 from .calls import Watched, raised_by_implementation
 from .counterexample import (INLINE_VERTICES, encode_example, exact_mesh, float_mesh,
                              implementation_spec, mesh_text, rounded_by_floats, snippet)
@@ -207,6 +208,8 @@ def _crash_text(e: BaseException) -> str:
     input is reported on its own, as a mesh; ``hang: ...`` for a call the clock stopped."""
     if isinstance(e, Hang):                 # the budget's, or an isolated call's own limit
         return f"hang: {e}"
+    if isinstance(e, SelfDescribed):        # "lib.method raised ValueError: ...": as it is
+        return str(e)
     name = type(e).__qualname__
     module = type(e).__module__
     if module not in ("builtins", "__main__"):

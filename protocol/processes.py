@@ -10,6 +10,12 @@ from __future__ import annotations
 import signal
 
 
+class SelfDescribed:
+    """Marks an exception about a checked implementation whose message says it all (the
+    implementation, its method, what happened): a report shows the message alone, not our
+    wrapper's class path before it."""
+
+
 class NotSent(ValueError):
     """An input no protocol request can carry (a NaN coordinate, an index out of range: the
     request's JSON would not be read as the same arrays): the program never saw it, so

@@ -59,6 +59,17 @@ def test_hang_is_killed_after_the_time_limit():
     assert _crash_text(e.value).startswith("hang: hangs-on-boundary.euler_characteristic did not")
 
 
+def test_an_exception_of_the_implementation_reads_as_its_own_not_our_wrapper():
+    """An isolated call that raised: "lib.method raised ValueError: ..." is the news; our
+    wrapper's class path before it (ddg_oracle.application.isolation.ImplementationError)
+    was noise in every crash line."""
+    from ddg_oracle.application.isolation import ImplementationError
+    from ddg_oracle.properties.runner import _crash_text
+    e = ImplementationError("libigl.genus raised ValueError: odd 2 - chi - k")
+    assert _crash_text(e) == "libigl.genus raised ValueError: odd 2 - chi - k"
+    assert _crash_text(ValueError("x")) == "ValueError: x"        # a raw exception: its type
+
+
 def test_the_time_limit_grows_with_the_mesh():
     # 1 s per 10,000 faces: a 2-second call is killed on a small mesh, not on 40,000 faces
     big = _arrays(surfaces.grid(100, 200).to_arrays())
