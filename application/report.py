@@ -285,7 +285,8 @@ def _base(implementation: str) -> str:
 
 def known_findings() -> list[dict]:
     """The summary table of docs/findings.md (installed as package data): per finding its
-    id, library, kind and the property IDs that find it."""
+    id, library, kind and the property IDs that find it, split into those on which it is a
+    crash or hang (``crashes``) and those on which it is a wrong answer (``answers``)."""
     path = Path(__file__).with_name("data") / "findings.md"
     rows = []
     for line in path.read_text(encoding="utf-8").splitlines():

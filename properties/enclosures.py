@@ -190,7 +190,7 @@ def corner_angle_enclosure(positions, F) -> Enclosure:
 
 
 def angle_sum_enclosure(corners: Enclosure, F, n: int) -> Enclosure:
-    """(n,): the sum of the corner angles at each vertex.  numpy adds each vertex's k terms
+    """D2.2: (n,) the sum of the corner angles at each vertex.  numpy adds each vertex's k terms
     in some order: within gamma_{k-1} of the sum of their absolute values (Higham, eq.
     4.4), which a float sum of non-negative terms underestimates by at most that factor
     again: both covered by 2 k U (k U <= 2^-20 for any mesh numpy holds)."""

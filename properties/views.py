@@ -24,7 +24,7 @@ from . import memo
 
 __all__ = ["corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
-           "mean_curvature_view_bounds",
+           "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
            "exact_laplacian", "laplacian_view"]
 
 
@@ -42,7 +42,7 @@ def _corner_angle_views(surface) -> np.ndarray:
 
 
 def corner_angle_view_bounds(surface) -> tuple[np.ndarray, np.ndarray]:
-    """(lo, hi), (m, 3) each: floats lo <= :func:`corner_angle_views` <= hi from rigorous
+    """D2.6: (lo, hi), (m, 3) each: floats lo <= :func:`corner_angle_views` <= hi from rigorous
     float enclosures of the exact angles (:mod:`.enclosures`), once per surface object;
     the exact views themselves (lo = hi) for a surface without positions in R^3."""
     return memo.of(_corner_angle_view_bounds, surface)
@@ -81,9 +81,8 @@ def _weight_signs(surface):
     if getattr(surface, "dimension", None) != 3:
         return weight_signs_by_angles(surface)
     surface.metric()                                        # raises DegenerateFace
-    t = surface.triangulation
     corners = _corner_enclosure(surface)
-    pairs = np.array([t.edge_halfedges(e) for e in range(t.n_edges)], dtype=np.int64)
+    pairs = halfedge_table(surface)
     h, h2 = pairs[:, 0], pairs[:, 1]
     inner = h2 >= 0
     total = corners[h // 3, (h % 3 + 2) % 3]                 # the opposite corner of h
@@ -98,10 +97,10 @@ def _weight_signs(surface):
 
 
 def vertex_angle_view_bounds(surface, what: str):
-    """(vertices, lo, hi): ``what="defects"``: the interior vertices in :func:`defect_views`'
-    order and floats lo <= float(K(v)) <= hi; ``"turning"``: the boundary vertices and
-    the turning angles' (:func:`turning_views`); from the enclosures of the corner angles
-    summed (:mod:`.enclosures`), once per surface object."""
+    """D2.2 / R2.4: (vertices, lo, hi): ``what="defects"``: the interior vertices in
+    :func:`defect_views`' order and floats lo <= float(K(v)) <= hi; ``"turning"``: the
+    boundary vertices and the turning angles' (:func:`turning_views`); from the enclosures
+    of the corner angles summed (:mod:`.enclosures`), once per surface object."""
     return memo.of(_vertex_angle_view_bounds, surface)[what]
 
 
@@ -177,21 +176,7 @@ def _mean_curvature_view_bounds(surface):
     if getattr(surface, "dimension", None) != 3:
         mean_curvature_views(surface)                       # raises as the exact route
     surface.metric()                                        # raises DegenerateFace
-    t = surface.triangulation
-    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
-    edges, first, second, reversed_ = [], [], [], []
-    for e in range(t.n_edges):
-        h, h2 = t.edge_halfedges(e)
-        if h2 >= 0:
-            edges.append(e)
-            first.append(h)
-            second.append(h2)
-            if t.reversed_gluing(h):
-                reversed_.append(len(edges) - 1)
-    h, h2 = np.array(first, dtype=np.int64), np.array(second, dtype=np.int64)
-    f, c, g, c2 = h // 3, h % 3, h2 // 3, h2 % 3
-    I, J, K = F[f, c], F[f, (c + 1) % 3], F[f, (c + 2) % 3]   # h runs I -> J in (I, J, K)
-    L = F[g, (c2 + 2) % 3]                                   # the twin's opposite corner
+    edges, I, J, K, L, reversed_ = interior_edge_corners(surface)
     enc, cos_part = mean_curvature_enclosure(surface.positions, I, J, K, L)
     # the exact route raises at an inconsistent gluing or a fold (height 0, <n_f, n_g> <= 0):
     # those edges exactly, first and in order, so that the same edge raises
@@ -202,6 +187,39 @@ def _mean_curvature_view_bounds(surface):
     lo, hi = rounding_bounds(enc)
     keys = list(zip(np.minimum(I, J).tolist(), np.maximum(I, J).tolist()))
     return keys, edges, lo, hi
+
+
+def halfedge_table(surface) -> np.ndarray:
+    """(n_edges, 2): each edge's two halfedges (-1 for a boundary edge's missing twin), once
+    per surface object."""
+    return memo.of(_halfedge_table, surface)
+
+
+def _halfedge_table(surface) -> np.ndarray:
+    t = surface.triangulation
+    return np.array([t.edge_halfedges(e) for e in range(t.n_edges)],
+                    dtype=np.int64).reshape(-1, 2)
+
+
+def interior_edge_corners(surface):
+    """(edges, I, J, K, L, reversed): the interior edges' ids and, per interior edge, the
+    vertices of D2.3's formula (its first halfedge runs I -> J in face (I, J, K), its twin
+    J -> I in (J, I, L)) and the positions (in that list) of the edges whose gluing is
+    reversed; once per surface object."""
+    return memo.of(_interior_edge_corners, surface)
+
+
+def _interior_edge_corners(surface):
+    t = surface.triangulation
+    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
+    table = halfedge_table(surface)
+    inner = table[:, 1] >= 0
+    h, h2 = table[inner, 0], table[inner, 1]
+    f, c, g, c2 = h // 3, h % 3, h2 // 3, h2 % 3
+    I, J, K = F[f, c], F[f, (c + 1) % 3], F[f, (c + 2) % 3]   # h runs I -> J in (I, J, K)
+    L = F[g, (c2 + 2) % 3]                                   # the twin's opposite corner
+    reversed_ = [n for n, x in enumerate(h.tolist()) if t.reversed_gluing(x)]
+    return np.flatnonzero(inner).tolist(), I, J, K, L, reversed_
 
 
 def exact_laplacian(surface):

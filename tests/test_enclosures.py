@@ -63,13 +63,10 @@ def _enclosures_hold(case) -> tuple[int, int]:
     exact H(e) and every [lo, hi] its correctly rounded float."""
     s = case.surface
     keys, edges, lo, hi = views.mean_curvature_view_bounds(s)
-    t, F = s.triangulation, np.asarray(s.triangulation.faces)
-    h = np.array([t.edge_halfedges(e)[0] for e in edges])
-    h2 = np.array([t.edge_halfedges(e)[1] for e in edges])
-    f, c, g, c2 = h // 3, h % 3, h2 // 3, h2 % 3
-    enc, _ = mean_curvature_enclosure(s.positions, F[f, c], F[f, (c + 1) % 3],
-                                      F[f, (c + 2) % 3], F[g, (c2 + 2) % 3])
+    _, I, J, K, L, _ = views.interior_edge_corners(s)
+    enc, _ = mean_curvature_enclosure(s.positions, I, J, K, L)
     exact = ref.mean_curvature(s)
+    assert list(exact) == edges                     # the same edges, in the same order
     for n, e in enumerate(edges):
         x = exact[e]
         if np.isfinite(enc.err[n]):
