@@ -29,8 +29,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
+from ..properties.enclosures import nondegenerate
 from ..reference.errors import InputError
 
 from . import corpus
@@ -144,30 +143,6 @@ def load(name: str, path: Path) -> MeshInput:
         after = " (faces numbered after the fan triangulation)" if polygons else ""
         raise type(e)(f"{name}: {e}{after}") from None
     return MeshInput(name, V, F, note)
-
-
-def nondegenerate(V, F) -> bool:
-    """True when every face certainly has a nonzero area: some coordinate of the float
-    cross product (p1 - p0) x (p2 - p0) exceeds its rounding error bound.  Each difference
-    is rounded once (relative 2^-53), each product and the subtraction once more: the
-    computed coordinate is within 4.1 * 2^-53 (|a| + |b|) of the exact one for its two
-    products a, b (doubled below for the products' own perturbation), plus 2^-1070 for
-    underflow.  False: some face is not certified, and the exact metric decides.
-
-    >>> nondegenerate([[0, 0, 0], [1, 0, 0], [0, 1e-300, 0]], [[0, 1, 2]])
-    True
-    >>> nondegenerate([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1, 2]])
-    False
-    """
-    P = np.asarray(V, dtype=np.float64)[np.asarray(F, dtype=np.int64)]
-    # underflow is in the bound (2^-1070) and overflow makes it infinite (not certified):
-    # whatever numpy error settings the caller has (np.seterr(all="raise")), no warning
-    with np.errstate(all="ignore"):
-        u, w = P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]
-        a = u[:, [1, 2, 0]] * w[:, [2, 0, 1]]
-        b = u[:, [2, 0, 1]] * w[:, [1, 2, 0]]
-        bound = 8.2 * 2.0 ** -53 * (np.abs(a) + np.abs(b)) + 2.0 ** -1070
-        return bool(np.all(np.any(np.abs(a - b) > bound, axis=1)))
 
 
 def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:

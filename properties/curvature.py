@@ -126,11 +126,11 @@ def _first_vertex_outside(case: Example, what: str, K, tol):
     vs, lo, hi = vertex_angle_view_bounds(case.surface, what)
     if not vs:
         return None
-    m = case.surface.metric()
     turn = 2 * pi if what == "defects" else pi
+    # the exact metric only when some entry is undecided (surface.metric() is built once)
     hit = first_outside(np.asarray(K, dtype=np.float64)[vs], lo, hi,
                         np.asarray(tol, dtype=np.float64)[vs],
-                        lambda n: turn - ref.angle_sum_at(m, vs[n]))
+                        lambda n: turn - ref.angle_sum_at(case.surface.metric(), vs[n]))
     return None if hit is None else (vs[hit[0]], hit[1])
 
 
@@ -308,9 +308,9 @@ def corner_angles_from_edge_lengths(impl, case: Example):
         raise PropertyFailure("D2.6", impl, "corner_angles must be an (m, 3) array", mesh=case.mesh,
                               expected=lo.shape, observed=A.shape)
     tol = corner_tolerances(case)
-    # the exact angles only where the enclosures cannot decide (issue 46)
-    m = case.surface.metric()
-    ok, expected = within_enclosed(A, lo, hi, tol, lambda n: m.corner_angle(*divmod(n, 3)))
+    # the exact angles (and metric) only where the enclosures cannot decide (issue 46)
+    ok, expected = within_enclosed(A, lo, hi, tol,
+                                   lambda n: case.surface.metric().corner_angle(*divmod(n, 3)))
     bad = np.where(ok, 0.0, np.abs(A - expected) - tol)
     if (bad > 0).any():
         f, c = np.unravel_index(int(np.argmax(bad)), bad.shape)

@@ -35,8 +35,8 @@ import math
 
 import numpy as np
 
-__all__ = ["Enclosure", "rounding_bounds", "mean_curvature_enclosure", "corner_angle_enclosure",
-           "angle_sum_enclosure"]
+__all__ = ["Enclosure", "rounding_bounds", "nondegenerate", "mean_curvature_enclosure",
+           "corner_angle_enclosure", "angle_sum_enclosure", "total_area_enclosure"]
 
 U = 2.0 ** -53                      # unit roundoff of binary64
 _UP = 1.0 + 2.0 ** -50              # covers the rounding of an error term's own formula
@@ -163,6 +163,30 @@ def _is_float(x) -> bool:
         return False
 
 
+def nondegenerate(V, F) -> bool:
+    """True when every face certainly has a nonzero area: some coordinate of the float
+    cross product (p1 - p0) x (p2 - p0) exceeds its rounding error bound.  Each difference
+    is rounded once (relative 2^-53), each product and the subtraction once more: the
+    computed coordinate is within 4.1 * 2^-53 (|a| + |b|) of the exact one for its two
+    products a, b (doubled below for the products' own perturbation), plus 2^-1070 for
+    underflow.  False: some face is not certified, and the exact metric decides.
+
+    >>> nondegenerate([[0, 0, 0], [1, 0, 0], [0, 1e-300, 0]], [[0, 1, 2]])
+    True
+    >>> nondegenerate([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1, 2]])
+    False
+    """
+    P = np.asarray(V, dtype=np.float64)[np.asarray(F, dtype=np.int64)]
+    # underflow is in the bound (2^-1070) and overflow makes it infinite (not certified):
+    # whatever numpy error settings the caller has (np.seterr(all="raise")), no warning
+    with np.errstate(all="ignore"):
+        u, w = P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]
+        a = u[:, [1, 2, 0]] * w[:, [2, 0, 1]]
+        b = u[:, [2, 0, 1]] * w[:, [1, 2, 0]]
+        bound = 8.2 * 2.0 ** -53 * (np.abs(a) + np.abs(b)) + 2.0 ** -1070
+        return bool(np.all(np.any(np.abs(a - b) > bound, axis=1)))
+
+
 def _points(positions) -> Enclosure:
     """The positions as an (n, 3) enclosure: exact where every coordinate is a float, else
     within the rounding of each (U |x|) of the exact rational."""
@@ -187,6 +211,23 @@ def corner_angle_enclosure(positions, F) -> Enclosure:
         out.append(angle_from(n.dot(n).sqrt(), a.dot(b)))
     return Enclosure(np.stack([e.value for e in out], axis=1),
                      np.stack([e.err for e in out], axis=1))
+
+
+def total_area_enclosure(positions, F) -> tuple[float, float]:
+    """(A, err): the total area of the faces (D2.6: each |a x b| / 2, Heron's of the exact
+    squared lengths identically) within err of the exact sum.  ``math.fsum`` of the faces'
+    floats is within u |A| of their real sum, which is within the sum of their errors of
+    the exact one; infinite err where some face is not enclosed."""
+    X = _points(positions)
+    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
+    x = X[F[:, 0]]
+    n = (X[F[:, 1]] - x).cross(X[F[:, 2]] - x)
+    areas = n.dot(n).sqrt().scaled(0.5)
+    if not areas.bounded().all():
+        return math.nan, math.inf
+    total = math.fsum(areas.value.tolist())
+    err = (math.fsum(areas.err.tolist()) * (1 + 2 * U) + U * abs(total)) * _UP + _TINY
+    return total, err
 
 
 def angle_sum_enclosure(corners: Enclosure, F, n: int) -> Enclosure:

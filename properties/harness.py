@@ -26,7 +26,7 @@ from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_prod
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsilon, eps
 from .registry import PropertyFailure, TieDisagreement, judgeable
-from .views import exact_laplacian, laplacian_view
+from .views import exact_laplacian, laplacian_view, validate
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
@@ -126,11 +126,16 @@ class Exact(DenseViews):
         # with zero rows and columns at the isolated ones (protocol.ISOLATED_VERTEX)
         self.keep = sorted({v for f in case.faces for v in f})
         self.surface = case.surface if len(self.keep) == case.n else compact(case, self.keep)
-        self.metric = self.surface.metric()
+        validate(self.surface)                  # raises DegenerateFace, as the metric would
         self.triangulation = self.surface.triangulation
         # the rest when first asked: a pointwise curvature's widened bound (in compare's own
         # process, beside the workers that compute the Laplacian) needs only the vertex
         # areas' bounds
+
+    @property
+    def metric(self):
+        """The exact metric (D2.6), built when first asked (once per surface)."""
+        return self.surface.metric()
 
     @cached_property
     def L(self):

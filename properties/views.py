@@ -22,10 +22,28 @@ from ..reference.metric import PiecewiseFlatSurface
 
 from . import memo
 
-__all__ = ["corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
+__all__ = ["validate", "corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
            "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
            "exact_laplacian", "laplacian_view"]
+
+
+def validate(surface) -> None:
+    """Raise :class:`~ddg_oracle.reference.errors.DegenerateFace` where ``surface.metric()``
+    would (a zero-length edge, or a face of zero area), without building the exact metric
+    when a float certificate shows every face's area nonzero (:func:`.enclosures.nondegenerate`:
+    positions in R^3 that are all floats); otherwise the exact metric decides, and names
+    the face.  Once per surface object."""
+    memo.of(_validate, surface)
+
+
+def _validate(surface) -> bool:
+    from .enclosures import exact_floats, nondegenerate
+    t = surface.triangulation
+    if not (getattr(surface, "dimension", None) == 3 and exact_floats(surface.positions)
+            and nondegenerate(surface.positions, t.faces)):
+        surface.metric()
+    return True
 
 
 def corner_angle_views(surface) -> np.ndarray:
@@ -50,7 +68,7 @@ def corner_angle_view_bounds(surface) -> tuple[np.ndarray, np.ndarray]:
 
 def _corner_angle_view_bounds(surface):
     from .enclosures import rounding_bounds
-    surface.metric()                                        # raises DegenerateFace
+    validate(surface)                                       # raises DegenerateFace
     if getattr(surface, "dimension", None) != 3:
         x = corner_angle_views(surface)
         return x, x
@@ -80,7 +98,7 @@ def _weight_signs(surface):
     from ..reference.laplacian import weight_sign_by_angles, weight_signs_by_angles
     if getattr(surface, "dimension", None) != 3:
         return weight_signs_by_angles(surface)
-    surface.metric()                                        # raises DegenerateFace
+    validate(surface)                                       # raises DegenerateFace
     corners = _corner_enclosure(surface)
     pairs = halfedge_table(surface)
     h, h2 = pairs[:, 0], pairs[:, 1]
@@ -116,7 +134,7 @@ def _vertex_angle_view_bounds(surface):
         exact = {"defects": defect_views(surface), "turning": turning_views(surface)}
         return {w: (vs, *(2 * (np.array([exact[w][v] for v in vs], dtype=np.float64),)))
                 for w, vs in out.items()}
-    surface.metric()                                        # raises DegenerateFace
+    validate(surface)                                       # raises DegenerateFace
     corners = _corner_enclosure(surface)
     sums = angle_sum_enclosure(corners, t.faces, t.n_vertices)
     result = {}
@@ -175,7 +193,7 @@ def _mean_curvature_view_bounds(surface):
     from .enclosures import mean_curvature_enclosure, rounding_bounds
     if getattr(surface, "dimension", None) != 3:
         mean_curvature_views(surface)                       # raises as the exact route
-    surface.metric()                                        # raises DegenerateFace
+    validate(surface)                                       # raises DegenerateFace
     edges, I, J, K, L, reversed_ = interior_edge_corners(surface)
     enc, cos_part = mean_curvature_enclosure(surface.positions, I, J, K, L)
     # the exact route raises at an inconsistent gluing or a fold (height 0, <n_f, n_g> <= 0):

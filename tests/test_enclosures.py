@@ -182,6 +182,59 @@ def test_weight_signs_from_enclosures_are_the_exact_signs_on_drawn_meshes(case):
     _signs_equal(case)
 
 
+def _total_area_holds(case):
+    """Asserts total_area_enclosure's (A, err) holds the exact total area (Heron on the
+    exact metric); returns err / A."""
+    from ddg_oracle.properties.enclosures import total_area_enclosure
+    s = case.surface
+    value, err = total_area_enclosure(s.positions, s.triangulation.faces)
+    exact = s.metric().total_area()
+    assert np.isfinite(err) and _holds_surd(value, err, exact), case.recipe
+    return err / value
+
+
+def _holds_surd(value: float, err: float, exact) -> bool:
+    a, b = Fraction(value) - Fraction(err), Fraction(value) + Fraction(err)
+    return exact >= a and exact <= b           # exact comparisons of a Surd with Fractions
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_total_area_enclosures_hold_on_needles_caps_and_fans(bits):
+    for make, seed in ((triangles, 31), (fans, 37), (hinges, 41)):
+        V, F = make(FORMATS[bits], seed=seed)
+        assert _total_area_holds(_case(V, F, f"{make.__name__}, {bits} bits")) < 2.0 ** -48
+    V, F = triangles(FORMATS[bits], seed=43, per_kind=10)
+    for f in F:                     # each face alone: its own error is the total's
+        _total_area_holds(_case([V[v] for v in f], [[0, 1, 2]], f"triangle {f}, {bits} bits"))
+
+
+@settings(max_examples=15, deadline=None)
+@given(jittered_surfaces(closed=False))
+def test_total_area_enclosures_hold_on_drawn_surfaces(case):
+    _total_area_holds(case)                 # rational coordinates too: enclosed as rounded
+
+
+def test_validate_raises_as_the_metric_and_builds_it_only_when_uncertified():
+    """views.validate: DegenerateFace with the exact metric's message (a zero-length edge
+    first, then a collinear face), the metric left unbuilt where the float certificate
+    holds (R2.5, D2.2, D2.3 and D2.6 decide a float mesh without it)."""
+    from ddg_oracle.reference.errors import DegenerateFace
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    F = [[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]
+    good = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    s = PolyhedralSurface.from_arrays(good, F)
+    views.validate(s)
+    assert s._metric is None                            # certified: no exact metric
+    for bad in ([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+                [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                [[1.0, 2.0, 3.0], [4.0, 6.0, 8.0], [7.0, 10.0, 13.0], [0.0, 0.0, 1.0]]):
+        with pytest.raises(DegenerateFace) as want:
+            PolyhedralSurface.from_arrays(bad, F).metric()
+        with pytest.raises(DegenerateFace) as got:
+            views.validate(PolyhedralSurface.from_arrays(bad, F))
+        assert str(got.value) == str(want.value)
+
+
 def test_arctan2_is_within_the_assumed_ulps():
     """numpy's arctan2 (the platform's libm) within the ulps the enclosures assume."""
     from ddg_oracle.properties.enclosures import _ATAN2_ULPS

@@ -151,10 +151,10 @@ def test_steiner_coefficients_run_on_a_mesh_beyond_the_exact_sum_limit():
 
 
 def test_the_zero_area_filter_certifies_only_what_is_certain():
-    # meshes.nondegenerate: a float cross product beyond its rounding bound certifies a
+    # enclosures.nondegenerate: a float cross product beyond its rounding bound certifies a
     # nonzero area; a face collinear in exact arithmetic is never certified (the exact
     # metric then names it), nor is one whose cross product is below the bound
-    from ddg_oracle.application.meshes import nondegenerate
+    from ddg_oracle.properties.enclosures import nondegenerate
     rng = np.random.default_rng(5)
     V = rng.standard_normal((30, 3))
     F = np.array([[i, i + 1, i + 2] for i in range(0, 27, 3)])
