@@ -16,8 +16,9 @@ from ..reference import curvature as ref
 from .bounds import area_tolerance, gamma, total_area_view
 from .example import Example
 from .registry import EXACT_SUM_LIMIT
-from .enclosures import exact_floats, total_area_enclosure
-from .views import mean_curvature_view_bounds, mean_curvature_views, validate
+from .enclosures import total_area_enclosure
+from .views import (float_positions, mean_curvature_view_bounds, mean_curvature_views,
+                    position_enclosure, validate)
 
 
 def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) -> tuple[float, float]:
@@ -101,8 +102,8 @@ def steiner_area_view(case: Example) -> tuple[float, float]:
         return float(_steiner(case)[0]), 0.0
     s = case.surface
     validate(s)                                  # raises DegenerateFace, as the metric would
-    if getattr(s, "dimension", None) == 3 and exact_floats(s.positions):
-        value, err = total_area_enclosure(s.positions, s.triangulation.faces)
+    if float_positions(s):
+        value, err = total_area_enclosure(position_enclosure(s), s.triangulation.faces)
         if math.isfinite(err):
             return value, err
     return total_area_view(s.metric())

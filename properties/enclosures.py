@@ -35,8 +35,9 @@ import math
 
 import numpy as np
 
-__all__ = ["Enclosure", "rounding_bounds", "nondegenerate", "mean_curvature_enclosure",
-           "corner_angle_enclosure", "angle_sum_enclosure", "total_area_enclosure"]
+__all__ = ["Enclosure", "rounding_bounds", "points", "nondegenerate", "mean_curvature_enclosure",
+           "corner_angle_enclosure", "corner_cot_enclosure", "summed", "angle_sum_enclosure",
+           "total_area_enclosure"]
 
 U = 2.0 ** -53                      # unit roundoff of binary64
 _UP = 1.0 + 2.0 ** -50              # covers the rounding of an error term's own formula
@@ -77,6 +78,17 @@ class Enclosure:
         with np.errstate(over="ignore", invalid="ignore"):
             prop = (np.abs(a.value) * b.err + np.abs(b.value) * a.err + a.err * b.err) * _UP
             return self._rounded(a.value * b.value, prop)
+
+    def __truediv__(self, other: "Enclosure") -> "Enclosure":
+        # x'/y' - x/y = (x' (y - y') + y' (x' - x)) / (y y'), |y| >= |y'| - e_y > 0
+        a, b = self, other
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            # a lower bound of |y| where > 0: the subtraction and product each round by at
+            # most u relative (a subnormal difference: absolutely, and 0 or below decides nothing)
+            below = (np.abs(b.value) - b.err) * (1 - 4 * U)
+            prop = np.where(below > 0, (np.abs(a.value) * b.err + np.abs(b.value) * a.err)
+                            * _UP / (np.abs(b.value) * below) * _UP, np.inf)
+            return self._rounded(a.value / b.value, prop)
 
     def scaled(self, power_of_two: float) -> "Enclosure":
         """Times a power of two: exact unless it leaves the normal range (then undecided
@@ -187,9 +199,13 @@ def nondegenerate(V, F) -> bool:
         return bool(np.all(np.any(np.abs(a - b) > bound, axis=1)))
 
 
-def _points(positions) -> Enclosure:
-    """The positions as an (n, 3) enclosure: exact where every coordinate is a float, else
-    within the rounding of each (U |x|) of the exact rational."""
+def points(positions) -> Enclosure:
+    """The positions as an (n, 3) enclosure: exact (``err`` all 0) where every coordinate
+    is a float, else within the rounding of each (U |x|) of the exact rational.  The
+    functions below take the positions or this enclosure of them (built once per surface:
+    :func:`.views.position_enclosure`)."""
+    if isinstance(positions, Enclosure):
+        return positions
     try:
         V = np.asarray(positions, dtype=np.float64)
     except OverflowError:                       # beyond the float range: every entry exactly
@@ -201,7 +217,7 @@ def corner_angle_enclosure(positions, F) -> Enclosure:
     """(m, 3): the angle at each corner of each face (D2.6, the triangle's own angle: the
     metric's), atan2(|a x b|, a . b) with a, b the sides from the corner to the next and
     previous corners."""
-    X = _points(positions)
+    X = points(positions)
     F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
     out = []
     for c in range(3):
@@ -218,7 +234,7 @@ def total_area_enclosure(positions, F) -> tuple[float, float]:
     squared lengths identically) within err of the exact sum.  ``math.fsum`` of the faces'
     floats is within u |A| of their real sum, which is within the sum of their errors of
     the exact one; infinite err where some face is not enclosed."""
-    X = _points(positions)
+    X = points(positions)
     F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
     x = X[F[:, 0]]
     n = (X[F[:, 1]] - x).cross(X[F[:, 2]] - x)
@@ -230,20 +246,41 @@ def total_area_enclosure(positions, F) -> tuple[float, float]:
     return total, err
 
 
-def angle_sum_enclosure(corners: Enclosure, F, n: int) -> Enclosure:
-    """D2.2: (n,) the sum of the corner angles at each vertex.  numpy adds each vertex's k terms
-    in some order: within gamma_{k-1} of the sum of their absolute values (Higham, eq.
-    4.4), which a float sum of non-negative terms underestimates by at most that factor
-    again: both covered by 2 k U (k U <= 2^-20 for any mesh numpy holds)."""
-    idx = np.asarray(F, dtype=np.int64).ravel()
+def corner_cot_enclosure(positions, F) -> Enclosure:
+    """(m, 3): the cotangent of the angle at each corner of each face (D3.1's terms),
+    (a . b) / |a x b| with a, b the sides from the corner to the next and previous corners;
+    undecided where |a x b|'s enclosure reaches 0."""
+    X = points(positions)
+    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
+    out = []
+    for c in range(3):
+        x = X[F[:, c]]
+        a, b = X[F[:, (c + 1) % 3]] - x, X[F[:, (c + 2) % 3]] - x
+        n = a.cross(b)
+        out.append(a.dot(b) / n.dot(n).sqrt())
+    return Enclosure(np.stack([e.value for e in out], axis=1),
+                     np.stack([e.err for e in out], axis=1))
+
+
+def summed(terms: Enclosure, index, n: int) -> Enclosure:
+    """(n,): the sums of ``terms`` (flat) by ``index`` (numpy's bincount).  It adds each
+    entry's k terms in some order: within gamma_{k-1} of the sum of their absolute values
+    (Higham, eq. 4.4), which a float sum of absolute values underestimates by at most that
+    factor again: both covered by 2 k U (k U <= 2^-20 for any mesh numpy holds)."""
+    idx = np.asarray(index, dtype=np.int64).ravel()
+    value, err = terms.value.ravel(), terms.err.ravel()
     k = np.bincount(idx, minlength=n).astype(np.float64)
-    value = np.bincount(idx, weights=corners.value.ravel(), minlength=n)
+    total = np.bincount(idx, weights=value, minlength=n)
     with np.errstate(over="ignore", invalid="ignore"):
-        spread = np.bincount(idx, weights=corners.err.ravel(), minlength=n)
-        size = np.bincount(idx, weights=np.abs(corners.value).ravel() + corners.err.ravel(),
-                           minlength=n)
+        spread = np.bincount(idx, weights=err, minlength=n)
+        size = np.bincount(idx, weights=np.abs(value) + err, minlength=n)
         err = ((1 + 2 * k * U) * spread + 2 * k * U * (1 + 2 * k * U) * size) * _UP + _TINY
-    return Enclosure(value, err)
+    return Enclosure(total, err)
+
+
+def angle_sum_enclosure(corners: Enclosure, F, n: int) -> Enclosure:
+    """D2.2: (n,) the sum of the corner angles at each vertex (:func:`summed`)."""
+    return summed(corners, F, n)
 
 
 #: 2 pi and pi as enclosures: |pi - fl(pi)| < 1.23e-16 < 2^-52
@@ -259,7 +296,7 @@ def mean_curvature_enclosure(positions, I, J, K, L) -> tuple[Enclosure, Enclosur
     <n_f, n_g>), theta > 0 iff height < 0.  Where the sign of the height is not decided the
     enclosure is 0 +- |H|'s bound (it holds for either sign).  Returns it and the
     enclosure of <n_f, n_g> (where the height may be 0, its sign tells a fold)."""
-    X = _points(positions)
+    X = points(positions)
     xi, xj, xk, xl = X[I], X[J], X[K], X[L]
     edge = xj - xi
     nf = edge.cross(xk - xi)

@@ -28,7 +28,7 @@ from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsi
 from .registry import PropertyFailure, TieDisagreement, judgeable
 from .views import exact_laplacian, laplacian_view, validate
 
-__all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "record", "ratios", "fail", "implementation_matrix",
+__all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "ledger_open", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
            "exact_spectrum", "dirichlet_solution", "widened"]
 
@@ -65,6 +65,12 @@ def recording(ledger: ErrorLedger):
         yield ledger
     finally:
         _LEDGER.reset(token)
+
+
+def ledger_open() -> bool:
+    """Whether an :class:`ErrorLedger` is recording now (a check then records its exact
+    error ratios, not only its verdict)."""
+    return _LEDGER.get() is not None
 
 
 def ratios(err, bound) -> np.ndarray:
@@ -288,9 +294,15 @@ class Exact(DenseViews):
         float positions P (T3.9): L V with a matrix within the entry bounds, plus its
         rounding.  Its own route may differ (1/2 n x (v_k - v_j)); that one has the same
         conditioning, 1 / sin of the face's smallest angle, as the cotangents."""
+        exact = self.area_gradient_at(P)
+        return exact, self.own_route_bound(P) + eps() * np.abs(exact)
+
+    def area_gradient_at(self, P) -> np.ndarray:
+        """(n, 3) exact area gradient (correctly rounded) at the case's vertices, the
+        protocol's value at an isolated vertex; P only gives the shape."""
         exact = np.full(np.shape(P), ISOLATED_VERTEX["area_gradient"])
         exact[self.keep] = self.area_gradient
-        return exact, self.own_route_bound(P) + eps() * np.abs(exact)
+        return exact
 
     def dirichlet_solution_bound(self, boundary, u) -> np.ndarray:
         """(n,) bound on |u~ - u| for an implementation's ``solve_dirichlet`` answer u~ whose

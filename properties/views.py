@@ -22,10 +22,10 @@ from ..reference.metric import PiecewiseFlatSurface
 
 from . import memo
 
-__all__ = ["validate", "corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
+__all__ = ["validate", "position_enclosure", "float_positions", "corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
            "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
-           "exact_laplacian", "laplacian_view"]
+           "exact_laplacian", "laplacian_view", "laplacian_view_bounds"]
 
 
 def validate(surface) -> None:
@@ -38,12 +38,30 @@ def validate(surface) -> None:
 
 
 def _validate(surface) -> bool:
-    from .enclosures import exact_floats, nondegenerate
+    from .enclosures import nondegenerate
     t = surface.triangulation
-    if not (getattr(surface, "dimension", None) == 3 and exact_floats(surface.positions)
-            and nondegenerate(surface.positions, t.faces)):
+    if not (float_positions(surface)
+            and nondegenerate(position_enclosure(surface).value, t.faces)):
         surface.metric()
     return True
+
+
+def position_enclosure(surface):
+    """The positions of a surface in R^3 as an enclosure (:func:`.enclosures.points`), once
+    per surface object: every enclosure of its quantities starts from it."""
+    return memo.of(_position_enclosure, surface)
+
+
+def _position_enclosure(surface):
+    from .enclosures import points
+    return points(surface.positions)
+
+
+def float_positions(surface) -> bool:
+    """Whether ``surface`` has positions in R^3 that are all floats (its enclosures then
+    start exact)."""
+    return (getattr(surface, "dimension", None) == 3
+            and not position_enclosure(surface).err.any())
 
 
 def corner_angle_views(surface) -> np.ndarray:
@@ -82,7 +100,7 @@ def _corner_enclosure(surface):
 
 def _corners_of(surface):
     from .enclosures import corner_angle_enclosure
-    return corner_angle_enclosure(surface.positions, surface.triangulation.faces)
+    return corner_angle_enclosure(position_enclosure(surface), surface.triangulation.faces)
 
 
 def weight_signs(surface) -> list[int]:
@@ -195,7 +213,7 @@ def _mean_curvature_view_bounds(surface):
         mean_curvature_views(surface)                       # raises as the exact route
     validate(surface)                                       # raises DegenerateFace
     edges, I, J, K, L, reversed_ = interior_edge_corners(surface)
-    enc, cos_part = mean_curvature_enclosure(surface.positions, I, J, K, L)
+    enc, cos_part = mean_curvature_enclosure(position_enclosure(surface), I, J, K, L)
     # the exact route raises at an inconsistent gluing or a fold (height 0, <n_f, n_g> <= 0):
     # those edges exactly, first and in order, so that the same edge raises
     with np.errstate(invalid="ignore"):
@@ -258,6 +276,46 @@ def _laplacian_view(surface):
             type(x) is Fraction for x in surface.squared_lengths):
         return _flipped_laplacian_view(surface)
     return exact_laplacian(surface).to_scipy()
+
+
+def laplacian_view_bounds(surface):
+    """D3.1: (rows, cols, lo, hi) or None: every edge's two off-diagonal entries of the exact
+    cotan Laplacian and every vertex's diagonal entry (arrays on the surface's vertices),
+    with floats lo <= x <= hi for the correctly rounded view x of each
+    (:func:`laplacian_view`'s entry; exact zeros included) from rigorous float enclosures
+    of the corner cotangents summed (:mod:`.enclosures`), without the exact values; once
+    per surface object.  None for a surface without positions in R^3 or with two edges
+    between one pair of vertices (their weights share an entry)."""
+    return memo.of(_laplacian_view_bounds, surface)
+
+
+def _laplacian_view_bounds(surface):
+    from .enclosures import Enclosure, corner_cot_enclosure, rounding_bounds, summed
+    if getattr(surface, "dimension", None) != 3:
+        return None
+    validate(surface)                                       # raises DegenerateFace
+    t = surface.triangulation
+    n = t.n_vertices
+    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
+    pairs = halfedge_table(surface)
+    h, h2 = pairs[:, 0], pairs[:, 1]
+    I, J = F[h // 3, h % 3], F[h // 3, (h % 3 + 1) % 3]
+    if len(np.unique(np.minimum(I, J) * n + np.maximum(I, J))) != len(I):
+        return None
+    cot = corner_cot_enclosure(position_enclosure(surface), F)
+    inner = h2 >= 0
+    first = cot[h // 3, (h % 3 + 2) % 3]                     # the corner opposite h
+    g = np.where(inner, h2, h)
+    twin = cot[g // 3, (g % 3 + 2) % 3]
+    # nu(ij) = 1/2 (cot a + cot b), 1/2 cot a on the boundary (D3.1, 3.3)
+    w = (first + Enclosure(np.where(inner, twin.value, 0.0),
+                           np.where(inner, twin.err, 0.0))).scaled(0.5)
+    diag = summed(Enclosure(np.concatenate([w.value, w.value]), np.concatenate([w.err, w.err])),
+                  np.concatenate([I, J]), n)
+    lo, hi = rounding_bounds(Enclosure(np.concatenate([-w.value, -w.value, diag.value]),
+                                       np.concatenate([w.err, w.err, diag.err])))
+    every = np.arange(n, dtype=np.int64)
+    return np.concatenate([I, J, every]), np.concatenate([J, I, every]), lo, hi
 
 
 def _flipped_laplacian_view(m):
