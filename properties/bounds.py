@@ -97,7 +97,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..reference.combinatorics import face_of, next_corner, opposite_corner, prev_corner
+from ..reference.combinatorics import next_corner, prev_corner
 from ..reference.exact import Quotient, rounded_sum
 from ..reference.exact.rationals import on_common_denominator
 from ..reference.metric import heron16
@@ -110,7 +110,7 @@ __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_toleranc
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
            "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
            "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
-           "total_area_view"]
+           "total_area_view", "area_view", "surface_conditioning"]
 
 
 def gamma(k: int, epsilon: float | None = None) -> float:
@@ -341,27 +341,30 @@ class EntryBounds:
 
 
 def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
+    """``metric``: a metric, or a surface (its metric's bounds, the metric built only where
+    :func:`surface_conditioning` needs it)."""
     import scipy.sparse as sp
+
+    from .views import halfedge_table
     t = metric.triangulation
-    rho, cot = face_conditioning(metric)
+    rho, cot = (face_conditioning(metric) if hasattr(metric, "face_squared_lengths")
+                else surface_conditioning(metric))
     amp = np.ones(t.n_faces) if amplification is None else np.asarray(amplification, float)
     beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
-    rows, cols, faces, corners = [], [], [], []
-    for e in range(t.n_edges):
-        i, j = t.edge_vertices(e)
-        if i == j:
-            continue
-        for h in t.edge_halfedges(e):
-            if h < 0:
-                continue
-            f, c = face_of(h), opposite_corner(h)
-            for x, y in ((i, j), (j, i), (i, i), (j, j)):
-                rows.append(x)
-                cols.append(y)
-                faces.append(f)
-                corners.append(c)
-    rows, cols = np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64)
-    faces, corners = np.array(faces, dtype=np.int64), np.array(corners, dtype=np.int64)
+    # per edge (i, j), i != j, and each of its halfedges h in order: the entries (i, j),
+    # (j, i), (i, i), (j, j) of h's face and opposite corner, in that order (the order
+    # fixes the float sums below)
+    table = halfedge_table(metric)                               # (edges, 2)
+    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
+    h0 = table[:, 0]
+    i, j = F[h0 // 3, h0 % 3], F[h0 // 3, (h0 % 3 + 1) % 3]
+    keep = (i != j)[:, None] & (table >= 0)                       # (edges, 2)
+    h = np.where(table >= 0, table, 0)
+    x = np.stack([i, j, i, j], axis=1)[:, None, :].repeat(2, axis=1)[keep]
+    y = np.stack([j, i, i, j], axis=1)[:, None, :].repeat(2, axis=1)[keep]
+    rows, cols = x.ravel(), y.ravel()
+    faces = (h // 3)[:, :, None].repeat(4, axis=2)[keep].ravel()
+    corners = ((h % 3 + 2) % 3)[:, :, None].repeat(4, axis=2)[keep].ravel()
 
     def summed(data):
         # one coordinate list for all three: after summing duplicates the same structure
@@ -404,9 +407,33 @@ def face_conditioning(metric) -> tuple[np.ndarray, np.ndarray]:
 _FILTER = 2.0 ** -31
 
 
+def surface_conditioning(surface) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`face_conditioning` of ``surface.metric()``, the same arrays, without building
+    the metric unless some face needs the exact route: the correctly rounded squared
+    lengths come from the positions (``reference.metric.squared_length_floats``: one
+    integer division per edge, no Fraction).  Once per surface object."""
+    return memo.of(_surface_conditioning, surface)
+
+
+def _surface_conditioning(surface):
+    from ..reference.metric import squared_length_floats
+    from .views import halfedge_table
+    t = surface.triangulation
+    try:
+        sq = np.array(squared_length_floats(surface.positions, t), dtype=np.float64)
+    except OverflowError:                           # a length beyond the float range
+        return face_conditioning(surface.metric())
+    table = halfedge_table(surface)
+    edge_of = np.empty(3 * t.n_faces, dtype=np.int64)
+    edge_of[table[:, 0]] = np.arange(len(table))
+    inner = table[:, 1] >= 0
+    edge_of[table[inner, 1]] = np.flatnonzero(inner)
+    # face_squared_lengths(f): the edges of halfedges 3f, 3f + 1, 3f + 2
+    return _conditioning_of(sq[edge_of].reshape(-1, 3), [], surface.metric)
+
+
 def _face_conditioning(metric):
     n_faces = metric.triangulation.n_faces
-    rho, cot = np.zeros(n_faces), np.zeros((n_faces, 3))
     L = np.zeros((n_faces, 3))
     exact = []                          # faces left to the exact route
     for f in range(n_faces):
@@ -414,6 +441,15 @@ def _face_conditioning(metric):
             L[f] = [float(x) for x in metric.face_squared_lengths(f)]
         except OverflowError:
             exact.append(f)
+    return _conditioning_of(L, exact, lambda: metric)
+
+
+def _conditioning_of(L, exact, metric_of):
+    """(rho, cot) from the correctly rounded squared lengths L (F x 3, opposite corners 2,
+    0, 1), the faces in ``exact`` and those the filter leaves to the exact route computed
+    from ``metric_of()`` (called only if there are any)."""
+    n_faces = len(L)
+    rho, cot = np.zeros(n_faces), np.zeros((n_faces, 3))
     u = 2.0 ** -53
     l0, l1, l2 = L[:, 0], L[:, 1], L[:, 2]               # opposite corners 2, 0, 1
     with np.errstate(all="ignore"):
@@ -440,6 +476,7 @@ def _face_conditioning(metric):
     ok[exact] = False
     rho[ok], cot[ok] = rho_f[ok], cot_f[ok]
     slow = np.flatnonzero(~ok)
+    metric = metric_of() if len(slow) else None
     for f in slow:
         rho[f], cot[f] = _conditioning(metric, int(f))
         # below 2^-499 the exact route's float may have underflowed (to 0: a sign lost, or
@@ -504,3 +541,19 @@ def total_area_view(metric) -> tuple[float, float]:
 
 def _rounded_total_area(metric) -> float:
     return rounded_sum(metric.areas)
+
+
+def area_view(surface) -> tuple[float, float]:
+    """(A, err) with |A - the exact total area| <= err (D2.6's face areas summed): for
+    positions in R^3 that are floats, an fsum of the faces' area enclosures
+    (:func:`.enclosures.total_area_enclosure`, err about 3 u A, no exact metric); else the
+    exact total correctly rounded (:func:`total_area_view`, err u A).  Raises
+    DegenerateFace as the metric would."""
+    from .enclosures import total_area_enclosure
+    from .views import float_positions, position_enclosure, validate
+    validate(surface)
+    if float_positions(surface):
+        value, err = total_area_enclosure(position_enclosure(surface), surface.triangulation.faces)
+        if np.isfinite(err):
+            return value, err
+    return total_area_view(surface.metric())

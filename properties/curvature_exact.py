@@ -13,12 +13,10 @@ import numpy as np
 from ..protocol.methods import FLOAT64_EPSILON
 from ..reference import curvature as ref
 
-from .bounds import area_tolerance, gamma, total_area_view
+from .bounds import area_tolerance, area_view, gamma, total_area_view
 from .example import Example
 from .registry import EXACT_SUM_LIMIT
-from .enclosures import total_area_enclosure
-from .views import (float_positions, mean_curvature_view_bounds, mean_curvature_views,
-                    position_enclosure, validate)
+from .views import mean_curvature_view_bounds, mean_curvature_views
 
 
 def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) -> tuple[float, float]:
@@ -92,21 +90,12 @@ def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) ->
 def steiner_area_view(case: Example) -> tuple[float, float]:
     """(A, err_A): R2.5's area as a float within err_A of the exact one.  Up to
     EXACT_SUM_LIMIT faces the exact sum correctly rounded (err 0); beyond, an exact sum
-    has a square root per face: a float sum of the face areas' float enclosures
-    (:func:`~.enclosures.total_area_enclosure`, err about 3 u A; no exact metric) where
-    the positions are floats in R^3, else the area correctly rounded from the exact
-    metric's (:func:`total_area_view`, err u A).  The check widens its bound by err: a
-    pass is then certain; a failure by less than err (about 1e-16 relative) would go
-    unseen."""
+    has a square root per face: :func:`~.views.area_view` (err about 3 u A).  The check
+    widens its bound by err: a pass is then certain; a failure by less than err (about
+    1e-16 relative) would go unseen."""
     if len(case.faces) <= EXACT_SUM_LIMIT:
         return float(_steiner(case)[0]), 0.0
-    s = case.surface
-    validate(s)                                  # raises DegenerateFace, as the metric would
-    if float_positions(s):
-        value, err = total_area_enclosure(position_enclosure(s), s.triangulation.faces)
-        if math.isfinite(err):
-            return value, err
-    return total_area_view(s.metric())
+    return area_view(case.surface)
 
 
 def steiner_mean_curvature_view(case: Example) -> tuple[float, float]:

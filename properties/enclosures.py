@@ -36,8 +36,8 @@ import math
 import numpy as np
 
 __all__ = ["Enclosure", "rounding_bounds", "points", "nondegenerate", "mean_curvature_enclosure",
-           "corner_angle_enclosure", "corner_cot_enclosure", "summed", "angle_sum_enclosure",
-           "total_area_enclosure"]
+           "corner_angle_enclosure", "corner_cot_enclosure", "area_gradient_enclosure",
+           "summed", "angle_sum_enclosure", "total_area_enclosure"]
 
 U = 2.0 ** -53                      # unit roundoff of binary64
 _UP = 1.0 + 2.0 ** -50              # covers the rounding of an error term's own formula
@@ -260,6 +260,31 @@ def corner_cot_enclosure(positions, F) -> Enclosure:
         out.append(a.dot(b) / n.dot(n).sqrt())
     return Enclosure(np.stack([e.value for e in out], axis=1),
                      np.stack([e.err for e in out], axis=1))
+
+
+def area_gradient_enclosure(positions, F, n: int) -> Enclosure:
+    """(n, 3): L3.8 / T3.9's gradient of the total area at each vertex, the sum over its
+    faces of (|w|^2 a - <a, w> w) / (2 |a x w|) at the corner (a = v_i - v_j, w = v_k - v_j,
+    j and k the next and previous corners: ``reference.areas.area_gradient_direct``)."""
+    X = points(positions)
+    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
+    values, errs = [], []
+    for c in range(3):
+        xj = X[F[:, (c + 1) % 3]]
+        a, w = X[F[:, c]] - xj, X[F[:, (c + 2) % 3]] - xj
+        cross = a.cross(w)
+        den = cross.dot(cross).sqrt().scaled(2.0)
+        ww, aw = w.dot(w), a.dot(w)
+        for x in range(3):
+            term = (ww * a[:, x] - aw * w[:, x]) / den
+            values.append(term.value)
+            errs.append(term.err)
+    # values[3 c + x]: corner c, coordinate x; summed per (vertex, coordinate)
+    value = np.stack(values).reshape(3, 3, -1).transpose(2, 0, 1)      # (m, corner, coord)
+    err = np.stack(errs).reshape(3, 3, -1).transpose(2, 0, 1)
+    index = (F[:, :, None] * 3 + np.arange(3)).ravel()
+    total = summed(Enclosure(value.ravel(), err.ravel()), index, 3 * n)
+    return Enclosure(total.value.reshape(n, 3), total.err.reshape(n, 3))
 
 
 def summed(terms: Enclosure, index, n: int) -> Enclosure:

@@ -26,7 +26,7 @@ from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_prod
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsilon, eps
 from .registry import PropertyFailure, TieDisagreement, judgeable
-from .views import exact_laplacian, laplacian_view, validate
+from .views import exact_laplacian, laplacian_view, laplacian_view_bounds, validate
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "ledger_open", "record", "ratios", "fail", "implementation_matrix",
            "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
@@ -150,9 +150,10 @@ class Exact(DenseViews):
 
     @cached_property
     def bounds(self):
-        """:func:`.bounds.entry_bounds` of the metric, at this object's epsilon."""
+        """:func:`.bounds.entry_bounds` of the metric, at this object's epsilon (from the
+        positions: the metric built only for a face the float filter leaves exact)."""
         with at_machine_epsilon(self.epsilon):
-            return entry_bounds(self.metric, self.triangulation.n_vertices)
+            return entry_bounds(self.surface, self.triangulation.n_vertices)
 
     @property
     def cot(self) -> np.ndarray:
@@ -286,7 +287,23 @@ class Exact(DenseViews):
         """:meth:`residual_bound` for an implementation's own solver or gradient, whose
         matrix is unseen: any matrix within the entry bounds of the exact L (|A| <= |L's
         float view| + B), used backward-stably."""
-        return self.residual_bound(abs(self.Ls) + self.Bs, u)
+        return self.residual_bound(self.L_magnitude + self.Bs, u)
+
+    @cached_property
+    def L_magnitude(self):
+        """Sparse, on the case's vertices: an upper bound of ``abs(Ls)`` entry by entry, from
+        the enclosures of the exact L where they hold every entry
+        (:func:`.views.laplacian_view_bounds`: max(|lo|, |hi|) >= |x|, within a few ulps
+        of it), else ``abs(Ls)`` itself.  A bound built on it is never smaller than one
+        built on the view (float sums of non-negative terms are monotone in each)."""
+        import scipy.sparse as sp
+        view = laplacian_view_bounds(self.surface)
+        if view is None or not (np.isfinite(view[2]).all() and np.isfinite(view[3]).all()):
+            return abs(self.Ls)
+        rows, cols, lo, hi = view
+        k = self.triangulation.n_vertices
+        return self.embed(sp.csr_matrix((np.maximum(np.abs(lo), np.abs(hi)), (rows, cols)),
+                                        shape=(k, k)))
 
     def area_gradient_bound(self, P) -> tuple[np.ndarray, np.ndarray]:
         """(n, 3) exact area gradient (correctly rounded; the protocol's value at an

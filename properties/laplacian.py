@@ -32,8 +32,8 @@ from ..reference.dirichlet import directional_derivative
 from ..reference.laplacian import dirichlet_energy_pl, dirichlet_energy_gradient_pl
 from ..reference.polyhedral import PolyhedralSurface
 
-from .bounds import gamma, total_area_view
-from .views import laplacian_view_bounds, weight_signs
+from .bounds import area_view, gamma
+from .views import area_gradient_view_bounds, laplacian_view_bounds, weight_signs
 from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, exact_spectrum, fail,
                       implementation_dense, implementation_matrix, ledger_open, record, worst,
                       worst_sparse)
@@ -447,19 +447,20 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
     X = Exact.of(case)
     P = np.array([[float(x) for x in p] for p in case.positions])
     if route == "cotan_laplacian":
-        # its own matrix's residual bound: no bound of an unseen matrix (that one needs the
-        # exact L's float view: 3 s of the bunny's 56,172 faces)
-        exact = X.area_gradient_at(P)
         A = implementation_matrix(impl, case, pid)
         got = A @ P
-        bound = X.residual_bound(A, P) + eps() * np.abs(exact)
+        residual = X.residual_bound(A, P)
     else:
-        exact, bound = X.area_gradient_bound(P)
         V, F = case.arrays()
         got = np.asarray(impl.area_gradient(V, F), dtype=np.float64)
         if got.shape != P.shape:
             fail(pid, impl, case, f"area_gradient has shape {got.shape}", expected=P.shape,
                   observed=got.shape)
+        residual = X.own_route_bound(P)
+    if _gradient_within_enclosed(X, got, residual):
+        return
+    exact = X.area_gradient_at(P)
+    bound = residual + eps() * np.abs(exact)            # as X.area_gradient_bound(P)
     err = np.abs(got - exact)
     err[~np.isfinite(got)] = np.inf
     record(pid, err, bound)
@@ -472,6 +473,28 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian"):
         fail(pid, impl, case, f"{label} is not the area gradient ({r:.3g} x the bound){what}",
               element=f"vertex {i}, coordinate {k}", expected=exact[i].tolist(),
               observed=got[i].tolist())
+
+
+def _gradient_within_enclosed(X: Exact, got, residual) -> bool:
+    """True when float enclosures of the exact area gradient x decide that every coordinate
+    is within its bound ``residual + eps |x|`` (issue 46): |got - x| at both ends of x's
+    rounding interval [lo, hi] within the bound at the least |x| there (0 where it spans
+    0; the rounded |got - x| is monotone in x on each side of got, the bound in |x|).  The
+    exact comparison (err / bound <= 1) then passes too; False leaves every verdict,
+    report and recorded ratio to it (also on a case with isolated vertices)."""
+    view = None if ledger_open() or len(X.keep) != X.n else area_gradient_view_bounds(X.surface)
+    if view is None:
+        return False
+    lo, hi = view
+    with np.errstate(invalid="ignore", over="ignore"):
+        least = np.where((lo <= 0) & (hi >= 0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
+        bound = residual + eps() * least
+        ok = (np.isfinite(got) & np.isfinite(bound) & (np.abs(got - lo) <= bound)
+              & (np.abs(got - hi) <= bound))
+    if not ok.all():
+        return False
+    count_unjudged(0, ok.size)                 # judged, as the exact comparison counts
+    return True
 
 
 @prop("T3.9", "area as Dirichlet energy: sum_k x_k^T L x_k / 2 = A(S) and L V = grad A (so L V = 0 "
@@ -490,7 +513,7 @@ def area_as_dirichlet_energy(impl, case: Example):
         X = Exact.of(case)
         P = np.array([[float(x) for x in p] for p in case.positions])
         energy = float(sum(P[:, k] @ (A @ P[:, k]) for k in range(3))) / 2
-        area, area_err = total_area_view(X.metric)
+        area, area_err = area_view(X.surface)
         aP, absA = np.abs(P), abs(A)
         bound = 0.5 * sum(aP[:, k] @ (X.Bs @ aP[:, k]) + gamma(2 * X.n + 6) * (aP[:, k] @ (absA @ aP[:, k]))
                           for k in range(3)) + eps() * area + area_err
@@ -557,7 +580,7 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
     X = Exact.of(case)
     V, F = case.arrays()
     n = X.n
-    area, area_err = total_area_view(X.metric)
+    area, area_err = area_view(X.surface)
     vb, bb = X.vertex_area_bounds
     has = capabilities(impl)
     checks = [(name, bound) for name, bound in (("vertex_areas_voronoi", vb),

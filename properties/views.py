@@ -25,7 +25,8 @@ from . import memo
 __all__ = ["validate", "position_enclosure", "float_positions", "corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
            "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
-           "exact_laplacian", "laplacian_view", "laplacian_view_bounds"]
+           "exact_laplacian", "laplacian_view", "laplacian_view_bounds",
+           "area_gradient_view_bounds"]
 
 
 def validate(surface) -> None:
@@ -316,6 +317,24 @@ def _laplacian_view_bounds(surface):
                                        np.concatenate([w.err, w.err, diag.err])))
     every = np.arange(n, dtype=np.int64)
     return np.concatenate([I, J, every]), np.concatenate([J, I, every]), lo, hi
+
+
+def area_gradient_view_bounds(surface):
+    """L3.8 / T3.9: (lo, hi), (k, 3) each, floats lo <= x <= hi for the correctly rounded
+    exact area gradient x at each vertex of ``surface`` (``reference.areas.area_gradient_floats``)
+    from rigorous float enclosures (:mod:`.enclosures`), or None for positions that are not
+    floats in R^3; once per surface object."""
+    return memo.of(_area_gradient_view_bounds, surface)
+
+
+def _area_gradient_view_bounds(surface):
+    from .enclosures import area_gradient_enclosure, rounding_bounds
+    if not float_positions(surface):
+        return None
+    validate(surface)                                       # raises DegenerateFace
+    t = surface.triangulation
+    return rounding_bounds(area_gradient_enclosure(position_enclosure(surface), t.faces,
+                                                   t.n_vertices))
 
 
 def _flipped_laplacian_view(m):

@@ -26,7 +26,8 @@ from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViol
 from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
 from .exact.rationals import points_on_common_denominator, shared_denominator
 
-__all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of", "heron16"]
+__all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of",
+           "squared_length_floats", "heron16"]
 
 
 @runtime_checkable
@@ -294,6 +295,33 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
             raise degenerate_face(t, f)
         areas.append(sqrt(Fraction(four_a2, D ** 4)) / 2)
     return PiecewiseFlatSurface._trusted(t, sq, areas)
+
+
+def squared_length_floats(points, triangulation: Triangulation) -> list[float]:
+    """D2.6: the exact squared length of every edge of a triangulation with exact points
+    in R^n, correctly rounded to a float, without building the metric: the points on one
+    common denominator D (as :func:`metric_of`), each |X_i - X_j|^2 / D^2 one correctly
+    rounded integer division (Python's int / int), no Fraction per edge.  A length beyond
+    the float range raises OverflowError (as ``float()`` of it would).
+
+    >>> from ddg_oracle.reference import Triangulation
+    >>> squared_length_floats([(0, 0, 0), (1, 0, 0), (0, Fraction(1, 3), 0)],
+    ...                       Triangulation.from_faces([[0, 1, 2]]))
+    [1.0, 1.1111111111111112, 0.1111111111111111]
+    """
+    t = triangulation
+    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
+                    for x in p) for i, p in enumerate(points)]
+    shared = shared_denominator(points)
+    out = []
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        if shared is not None:
+            (X, Y), D = (shared[0][i], shared[0][j]), shared[1]
+        else:
+            (X, Y), D = points_on_common_denominator(points[i], points[j])
+        out.append(sum((x - y) ** 2 for x, y in zip(X, Y)) / (D * D))
+    return out
 
 
 def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:

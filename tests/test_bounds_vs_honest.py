@@ -730,3 +730,88 @@ def test_the_flip_loops_corner_cotangent_is_the_panels_bit_for_bit(name):
             want = impl._cots_from_lengths(flips.l2, rule)[0]
         got = np.array([flips.cot(0, c) for c in range(3)], dtype=impl.dtype)
         assert np.array_equal(got, want, equal_nan=True), (row, got, want)
+
+
+def _same_bounds(V, F, recipe) -> bool:
+    """Asserts entry_bounds of a surface (from its positions) equal bit for bit those of
+    its exact metric; returns whether the metric was built (a face the filter left exact)."""
+    from ddg_oracle.properties.bounds import entry_bounds
+    from ddg_oracle.reference.metric import squared_length_floats
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    fresh, ref = (PolyhedralSurface.from_arrays(V, F) for _ in range(2))
+    n = fresh.triangulation.n_vertices
+    got = entry_bounds(fresh, n)
+    built = fresh._metric is not None
+    want = entry_bounds(ref.metric(), n)
+    assert np.array_equal(got.rho, want.rho) and np.array_equal(got.cot, want.cot), recipe
+    want.B = _entry_bounds_by_loop(ref.metric(), n, want.beta, want.cot)
+    for a, b in ((got.B, want.B), (got.adjacent, want.adjacent)):
+        assert np.array_equal(a.indptr, b.indptr) and np.array_equal(a.indices, b.indices)
+        assert np.array_equal(a.data, b.data), recipe
+
+    def floats(compute):
+        try:
+            return compute()
+        except OverflowError:                   # beyond the float range, both ways
+            return None
+    assert floats(lambda: squared_length_floats(fresh.positions, fresh.triangulation)) == \
+        floats(lambda: [float(x) for x in ref.metric().squared_lengths]), recipe
+    return built
+
+
+def _entry_bounds_by_loop(metric, n, beta, cot):
+    """entry_bounds' B as the loop over the edges that the vectorised assembly replaced."""
+    import scipy.sparse as sp
+
+    from ddg_oracle.protocol.methods import eps
+    from ddg_oracle.reference.combinatorics import face_of, opposite_corner
+    t = metric.triangulation
+    rows, cols, faces, corners = [], [], [], []
+    for e in range(t.n_edges):
+        i, j = t.edge_vertices(e)
+        if i == j:
+            continue
+        for h in t.edge_halfedges(e):
+            if h < 0:
+                continue
+            for x, y in ((i, j), (j, i), (i, i), (j, j)):
+                rows.append(x)
+                cols.append(y)
+                faces.append(face_of(h))
+                corners.append(opposite_corner(h))
+
+    def summed(data):
+        M = sp.csr_matrix((data, (rows, cols)), shape=(n, n))
+        M.sum_duplicates()
+        return M
+    b, m = summed(beta[faces, corners] / 2), summed(np.abs(cot[faces, corners]) / 2)
+    cnt = summed(np.ones(len(rows)))
+    B = b.copy()
+    B.data = b.data + cnt.data * eps() * m.data
+    return B
+
+
+def test_entry_bounds_from_positions_are_the_metric_ones():
+    """The entry bounds of D3.1, E3.12, T3.9 come from the positions (correctly rounded
+    squared lengths by integer division, the metric only for the faces the float filter
+    leaves exact): bit for bit those of the exact metric, on needles, caps and fans
+    (some faces exact), a jittered torus with a boundary cut (none), rational points
+    without a shared denominator, and lengths beyond the float range."""
+    for make, seed in ((triangles, 61), (fans, 67), (hinges, 71)):
+        V, F = make(FORMATS[53], seed=seed)
+        _same_bounds(V, F, make.__name__)
+    from ddg_oracle.reference import surfaces
+    s = surfaces.torus(8, 12)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    V = V + np.random.default_rng(7).uniform(-2 ** -6, 2 ** -6, V.shape)
+    F = F.astype(np.int64)[:-5]                               # a boundary
+    assert not _same_bounds(V.tolist(), F.tolist(), "torus")  # no face left exact
+    odd = [[Fraction(1, 3 ** k), Fraction(k, 7 ** k), Fraction(1, 11 ** k)] for k in range(1, 5)]
+    _same_bounds(odd, [[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]], "no shared denominator")
+    from ddg_oracle.properties.bounds import entry_bounds
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    huge = [[0.0, 0.0, 0.0], [1e300, 0.0, 0.0], [0.0, 1e300, 0.0], [0.0, 0.0, 1e300]]
+    for route in (lambda s: s, lambda s: s.metric()):        # beyond the float range: both
+        with pytest.raises(OverflowError):
+            entry_bounds(route(PolyhedralSurface.from_arrays(huge, [[0, 1, 2], [0, 2, 3],
+                                                                    [0, 3, 1], [1, 3, 2]])), 4)

@@ -520,3 +520,88 @@ def test_laplacian_verdicts_from_enclosures_are_those_of_the_exact_values(factor
     assert filtered == exact
     if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
+
+
+def _gradients_hold(case) -> None:
+    """Asserts the area gradient's enclosure holds the exact gradient coordinate by
+    coordinate, and its view bounds the correctly rounded one."""
+    from ddg_oracle.properties.enclosures import area_gradient_enclosure
+    from ddg_oracle.reference.areas import area_gradient, area_gradient_floats
+    s = case.surface
+    t = s.triangulation
+    enc = area_gradient_enclosure(s.positions, t.faces, t.n_vertices)
+    exact = area_gradient(s)
+    for v in range(t.n_vertices):
+        for x in range(3):
+            if np.isfinite(enc.err[v, x]):
+                assert _holds_surd(float(enc.value[v, x]), float(enc.err[v, x]),
+                                   exact[v][x]), (case.recipe, v, x)
+    view = views.area_gradient_view_bounds(s)
+    if view is not None:
+        lo, hi = view
+        x = np.array(area_gradient_floats(s), dtype=np.float64)
+        assert ((lo <= x) & (x <= hi)).all(), case.recipe
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_area_gradient_enclosures_hold_on_needles_caps_and_fans(bits):
+    for make, seed in ((triangles, 73), (fans, 79), (hinges, 83)):
+        V, F = make(FORMATS[bits], seed=seed, count=12) if make is not triangles else \
+            make(FORMATS[bits], seed=seed, per_kind=6)
+        _gradients_hold(_case(V, F, f"{make.__name__}, {bits} bits"))
+
+
+@settings(max_examples=10, deadline=None)
+@given(jittered_surfaces(closed=False))
+def test_area_gradient_enclosures_hold_on_drawn_surfaces(case):
+    _gradients_hold(case)
+
+
+class _ShiftedGradient(Atan2Cross):
+    """An area gradient at the exact one moved by ``factor`` times its bound at every 7th
+    coordinate (alternating signs, or all below)."""
+
+    def __init__(self, case, factor, below=False):
+        from ddg_oracle.properties.harness import Exact
+        super().__init__()
+        V = np.asarray(case.arrays()[0], dtype=np.float64)
+        exact, bound = Exact.of(case).area_gradient_bound(V)
+        n = np.arange(exact.size).reshape(exact.shape)
+        sign = -1.0 if below else (-1.0) ** n
+        self._G = exact + np.where(n % 7 == 0, factor * bound * sign, 0.0)
+
+    def area_gradient(self, V, F):
+        return self._G.copy()
+
+
+@pytest.mark.parametrize("below", [False, True])
+@pytest.mark.parametrize("factor", [0.5, 0.999, 1.0, 1.001, 2.0])
+def test_area_gradient_verdicts_from_enclosures_are_those_of_the_exact_values(factor, below,
+                                                                               monkeypatch):
+    """T3.9's area_gradient route at 0.5 - 2 times its bound: the same status, message and
+    tally whether the enclosures decide or the exact gradient does."""
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = surfaces.torus(10, 16)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    F = F.astype(np.int64)
+    V = V + np.random.default_rng(9).uniform(-2 ** -8, 2 ** -8, V.shape)
+
+    from ddg_oracle.properties import laplacian
+    decided = []
+    filter_ = laplacian._gradient_within_enclosed
+    monkeypatch.setattr(laplacian, "_gradient_within_enclosed",
+                        lambda *a: decided.append(filter_(*a)) or decided[-1])
+
+    def run():
+        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
+        r = run_on_example(PROPERTIES["T3.9"], _ShiftedGradient(fresh, factor, below), fresh,
+                           "torus")
+        return r.status, r.summary(), str(r.failure), r.unjudged
+    filtered = run()
+    # the matrix route's L V and, at 0.5, the own route: decided by the enclosures
+    assert decided[0] and decided[-1] == (factor == 0.5)
+    monkeypatch.setattr(views, "_area_gradient_view_bounds", lambda surface: None)
+    exact = run()
+    assert filtered == exact
+    if factor in (0.5, 2.0):
+        assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
