@@ -110,7 +110,7 @@ __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_toleranc
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
            "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
            "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
-           "total_area_view", "area_view", "surface_conditioning"]
+           "total_area_view", "area_view", "surface_conditioning", "surface_squared_floats"]
 
 
 def gamma(k: int, epsilon: float | None = None) -> float:
@@ -416,20 +416,35 @@ def surface_conditioning(surface) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _surface_conditioning(surface):
+    try:
+        L = surface_squared_floats(surface)
+    except OverflowError:                           # a length beyond the float range
+        return face_conditioning(surface.metric())
+    return _conditioning_of(L, [], surface.metric)
+
+
+def surface_squared_floats(surface) -> np.ndarray:
+    """(F, 3): each face's squared side lengths as ``metric.face_squared_lengths`` orders
+    them (opposite corners 2, 0, 1), correctly rounded, from the positions
+    (``reference.metric.squared_length_floats``: no metric); OverflowError for a length
+    beyond the float range.  Once per surface object; read-only."""
+    return memo.of(_surface_squared_floats, surface)
+
+
+def _surface_squared_floats(surface):
     from ..reference.metric import squared_length_floats
     from .views import halfedge_table
     t = surface.triangulation
-    try:
-        sq = np.array(squared_length_floats(surface.positions, t), dtype=np.float64)
-    except OverflowError:                           # a length beyond the float range
-        return face_conditioning(surface.metric())
+    sq = np.array(squared_length_floats(surface.positions, t), dtype=np.float64)
     table = halfedge_table(surface)
     edge_of = np.empty(3 * t.n_faces, dtype=np.int64)
     edge_of[table[:, 0]] = np.arange(len(table))
     inner = table[:, 1] >= 0
     edge_of[table[inner, 1]] = np.flatnonzero(inner)
     # face_squared_lengths(f): the edges of halfedges 3f, 3f + 1, 3f + 2
-    return _conditioning_of(sq[edge_of].reshape(-1, 3), [], surface.metric)
+    L = sq[edge_of].reshape(-1, 3)
+    L.flags.writeable = False
+    return L
 
 
 def _face_conditioning(metric):

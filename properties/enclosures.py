@@ -37,6 +37,7 @@ import numpy as np
 
 __all__ = ["Enclosure", "rounding_bounds", "points", "nondegenerate", "mean_curvature_enclosure",
            "corner_angle_enclosure", "corner_cot_enclosure", "area_gradient_enclosure",
+           "vertex_area_enclosures",
            "summed", "angle_sum_enclosure", "total_area_enclosure"]
 
 U = 2.0 ** -53                      # unit roundoff of binary64
@@ -285,6 +286,47 @@ def area_gradient_enclosure(positions, F, n: int) -> Enclosure:
     index = (F[:, :, None] * 3 + np.arange(3)).ravel()
     total = summed(Enclosure(value.ravel(), err.ravel()), index, 3 * n)
     return Enclosure(total.value.reshape(n, 3), total.err.reshape(n, 3))
+
+
+def vertex_area_enclosures(positions, F, n: int) -> tuple[Enclosure, Enclosure]:
+    """L3.7: (n,) each, the mixed Voronoi and the barycentric area of every vertex as
+    ``reference.laplacian.vertex_areas_voronoi`` and ``vertex_areas_barycentric`` define
+    them: per face with squared sides l0 = |01|^2, l1 = |12|^2, l2 = |20|^2, an obtuse
+    corner (its opposite side longer than the other two: o > a + b) takes A / 2 and the
+    others A / 4, else corners 0, 1, 2 take (l0 k2 + l2 k1) / 8, (l0 k2 + l1 k0) / 8,
+    (l1 k0 + l2 k1) / 8 (k the corner cotangents); A / 3 each for the barycentric areas.
+    The Voronoi area of a vertex of a face whose obtuse test the enclosures cannot decide
+    is undecided (infinite error)."""
+    X = points(positions)
+    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
+    x0, x1, x2 = X[F[:, 0]], X[F[:, 1]], X[F[:, 2]]
+    e01, e12, e20 = x1 - x0, x2 - x1, x0 - x2
+    l0, l1, l2 = e01.dot(e01), e12.dot(e12), e20.dot(e20)
+    cross = e01.cross(x2 - x0)
+    area = cross.dot(cross).sqrt().scaled(0.5)
+    k = corner_cot_enclosure(X, F)
+    k0, k1, k2 = k[:, 0], k[:, 1], k[:, 2]
+    acute = [(l0 * k2 + l2 * k1).scaled(0.125), (l0 * k2 + l1 * k0).scaled(0.125),
+             (l1 * k0 + l2 * k1).scaled(0.125)]
+    # n_c = a + b - o at corners 0, 1, 2 (sides a, b at the corner, o opposite): obtuse iff < 0
+    slack = [l0 + l2 - l1, l0 + l1 - l2, l1 + l2 - l0]
+    with np.errstate(invalid="ignore"):
+        obtuse = np.stack([n.value + n.err < 0 for n in slack], axis=1)
+        sure = np.stack([(n.value + n.err < 0) | (n.value - n.err >= 0) for n in slack],
+                        axis=1).all(axis=1)
+    half, quarter = area.scaled(0.5), area.scaled(0.25)
+    any_obtuse = obtuse.any(axis=1)
+    value, err = np.empty((len(F), 3)), np.empty((len(F), 3))
+    for c in range(3):
+        rule = Enclosure(np.where(obtuse[:, c], half.value, quarter.value),
+                         np.where(obtuse[:, c], half.err, quarter.err))
+        value[:, c] = np.where(any_obtuse, rule.value, acute[c].value)
+        err[:, c] = np.where(sure, np.where(any_obtuse, rule.err, acute[c].err), np.inf)
+    voronoi = summed(Enclosure(value, err), F, n)
+    third = area / Enclosure(np.float64(3.0))
+    bary = summed(Enclosure(np.repeat(third.value[:, None], 3, axis=1),
+                            np.repeat(third.err[:, None], 3, axis=1)), F, n)
+    return voronoi, bary
 
 
 def summed(terms: Enclosure, index, n: int) -> Enclosure:

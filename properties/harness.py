@@ -18,11 +18,13 @@ import numpy as np
 
 from ..reference.areas import area_gradient_floats
 from ..reference.laplacian import vertex_areas_floats
+from ..reference.metric import face_area_floats
 from ..reference.polyhedral import PolyhedralSurface
 
 from . import memo
 from .conventions import pointwise_area
-from .bounds import K_COT, entry_bounds, face_area_tolerances, gamma, heron_product
+from .bounds import (K_COT, entry_bounds, face_area_tolerances, gamma, heron_product,
+                     surface_squared_floats)
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsilon, eps
 from .registry import PropertyFailure, TieDisagreement, judgeable
@@ -215,14 +217,20 @@ class Exact(DenseViews):
 
     @cached_property
     def squared_floats(self) -> np.ndarray:
-        """(k, 3) the faces' squared lengths (opposite corners 2, 0, 1), correctly rounded."""
-        m = self.metric
-        return np.array([[float(x) for x in m.face_squared_lengths(f)]
-                         for f in range(self.triangulation.n_faces)]).reshape(-1, 3)
+        """(k, 3) the faces' squared lengths (opposite corners 2, 0, 1), correctly rounded
+        (from the positions: :func:`.bounds.surface_squared_floats`)."""
+        try:
+            return surface_squared_floats(self.surface)
+        except OverflowError:                   # as float() of the exact metric's says
+            m = self.metric
+            return np.array([[float(x) for x in m.face_squared_lengths(f)]
+                             for f in range(self.triangulation.n_faces)]).reshape(-1, 3)
 
     def _face_area_bounds(self) -> np.ndarray:
-        m, k = self.metric, self.triangulation.n_faces
-        area = np.array([float(m.area(f)) for f in range(k)])
+        k = self.triangulation.n_faces
+        # correctly rounded, from the positions (no metric)
+        area = np.array(face_area_floats(self.surface.positions, self.triangulation),
+                        dtype=np.float64).reshape(k)
         # face_squared_lengths: opposite corners 2, 0, 1; columns here: corners 0, 1, 2
         squared = self.squared_floats[:, [1, 2, 0]]
         s = np.sqrt(squared)

@@ -33,7 +33,8 @@ from ..reference.laplacian import dirichlet_energy_pl, dirichlet_energy_gradient
 from ..reference.polyhedral import PolyhedralSurface
 
 from .bounds import area_view, gamma
-from .views import area_gradient_view_bounds, laplacian_view_bounds, weight_signs
+from .views import (area_gradient_view_bounds, laplacian_view_bounds, vertex_area_view_bounds,
+                    weight_signs)
 from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, exact_spectrum, fail,
                       implementation_dense, implementation_matrix, ledger_open, record, worst,
                       worst_sparse)
@@ -567,6 +568,25 @@ def _face_areas(surface):
         yield sqrt(sum(x * x for x in u) * sum(y * y for y in v) - uv * uv) / 2
 
 
+def _areas_within_enclosed(X: Exact, name: str, got, bound) -> bool:
+    """True when float enclosures of the exact vertex areas x decide that every area is
+    within its bound of x at both ends of x's rounding interval
+    (:func:`.views.vertex_area_view_bounds`; issue 46): the exact comparison (err / bound
+    <= 1) then passes too; False leaves every verdict, report and recorded ratio to it
+    (also on a case with isolated vertices)."""
+    view = None if ledger_open() or len(X.keep) != X.n else vertex_area_view_bounds(X.surface)
+    if view is None:
+        return False
+    lo, hi = view[name]
+    with np.errstate(invalid="ignore", over="ignore"):
+        ok = (np.isfinite(got) & np.isfinite(bound) & (np.abs(got - lo) <= bound)
+              & (np.abs(got - hi) <= bound))
+    if not ok.all():
+        return False
+    count_unjudged(0, ok.size)                 # judged, as the exact comparison counts
+    return True
+
+
 @prop("L3.7", "mass matrices: mixed Voronoi areas (the circumcentric split of L3.7 on non-obtuse "
       "faces) and barycentric areas agree with the exact ones and sum to the total area",
       needs_any={"vertex_areas_voronoi", "vertex_areas_barycentric"},
@@ -589,15 +609,16 @@ def vertex_areas_sum_to_the_area(impl, case: Example):
         got = np.asarray(getattr(impl, name)(V, F), dtype=float).reshape(-1)
         if got.shape != (n,):
             fail("L3.7", impl, case, f"{name} has the wrong shape", expected=(n,), observed=got.shape)
-        exact = np.array([ISOLATED_VERTEX[name]] * n)
-        exact[X.keep] = X.vertex_areas(name)
-        err = np.abs(got - exact)
-        record("L3.7", err, bound)
-        (i,), r = worst(err, bound)
-        if r > 1:
-            fail("L3.7", impl, case, f"{name} differs from the exact area ({r:.3g} x the bound)",
-                  element=f"vertex {i}", expected=float(exact[i]), observed=float(got[i]),
-                  bound=bound[i])
+        if not _areas_within_enclosed(X, name, got, bound):
+            exact = np.array([ISOLATED_VERTEX[name]] * n)
+            exact[X.keep] = X.vertex_areas(name)
+            err = np.abs(got - exact)
+            record("L3.7", err, bound)
+            (i,), r = worst(err, bound)
+            if r > 1:
+                fail("L3.7", impl, case, f"{name} differs from the exact area ({r:.3g} x the "
+                      "bound)", element=f"vertex {i}", expected=float(exact[i]),
+                      observed=float(got[i]), bound=bound[i])
         total_bound = float(bound.sum()) + gamma(n) * float(np.abs(got).sum()) + area_err
         if abs(float(got.sum()) - area) > total_bound:
             fail("L3.7", impl, case, f"{name} does not sum to the total area",

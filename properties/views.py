@@ -26,7 +26,7 @@ __all__ = ["validate", "position_enclosure", "float_positions", "corner_angle_vi
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
            "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
            "exact_laplacian", "laplacian_view", "laplacian_view_bounds",
-           "area_gradient_view_bounds"]
+           "area_gradient_view_bounds", "vertex_area_view_bounds"]
 
 
 def validate(surface) -> None:
@@ -335,6 +335,26 @@ def _area_gradient_view_bounds(surface):
     t = surface.triangulation
     return rounding_bounds(area_gradient_enclosure(position_enclosure(surface), t.faces,
                                                    t.n_vertices))
+
+
+def vertex_area_view_bounds(surface):
+    """L3.7: {"vertex_areas_voronoi": (lo, hi), "vertex_areas_barycentric": (lo, hi)}, (k,)
+    each, floats lo <= x <= hi for the correctly rounded exact vertex areas x
+    (``reference.laplacian.vertex_areas_floats``) from rigorous float enclosures
+    (:mod:`.enclosures`), or None for positions that are not floats in R^3; once per
+    surface object."""
+    return memo.of(_vertex_area_view_bounds, surface)
+
+
+def _vertex_area_view_bounds(surface):
+    from .enclosures import rounding_bounds, vertex_area_enclosures
+    if not float_positions(surface):
+        return None
+    validate(surface)                                       # raises DegenerateFace
+    t = surface.triangulation
+    voronoi, bary = vertex_area_enclosures(position_enclosure(surface), t.faces, t.n_vertices)
+    return {"vertex_areas_voronoi": rounding_bounds(voronoi),
+            "vertex_areas_barycentric": rounding_bounds(bary)}
 
 
 def _flipped_laplacian_view(m):

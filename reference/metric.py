@@ -25,9 +25,10 @@ from .combinatorics import HalfedgeMesh, Triangulation, halfedge
 from .errors import BadShape, DegenerateFace, InputError, TriangleInequalityViolated
 from .exact import Angle, Surd, corner_angle, exact_sum, rational, sqrt
 from .exact.rationals import points_on_common_denominator, shared_denominator
+from .exact.surds import rounded_root_sum
 
 __all__ = ["PiecewiseFlatSurface", "Metric", "area", "as_metric", "metric_of",
-           "squared_length_floats", "heron16"]
+           "squared_length_floats", "face_area_floats", "heron16"]
 
 
 @runtime_checkable
@@ -321,6 +322,39 @@ def squared_length_floats(points, triangulation: Triangulation) -> list[float]:
         else:
             (X, Y), D = points_on_common_denominator(points[i], points[j])
         out.append(sum((x - y) ** 2 for x, y in zip(X, Y)) / (D * D))
+    return out
+
+
+def face_area_floats(points, triangulation: Triangulation) -> list[float]:
+    """D2.6: the exact area of every face of a triangulation with exact points in R^n,
+    correctly rounded to a float, without building the metric: with the points on one
+    common denominator D (as :func:`metric_of`), 4 A^2 D^4 = |u|^2 |v|^2 - (u.v)^2 = G
+    (an integer, the Lagrange identity) and A = G / sqrt(G) / (2 D^2), rounded by
+    :func:`~ddg_oracle.reference.exact.surds.rounded_root_sum`.  A zero area raises
+    :class:`DegenerateFace` as :func:`metric_of` does (checked first there).
+
+    >>> from ddg_oracle.reference import Triangulation
+    >>> face_area_floats([(0, 0, 0), (1, 0, 0), (0, Fraction(1, 3), 0)],
+    ...                  Triangulation.from_faces([[0, 1, 2]]))
+    [0.16666666666666666]
+    """
+    t = triangulation
+    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
+                    for x in p) for i, p in enumerate(points)]
+    shared = shared_denominator(points)
+    out = []
+    for f, face in enumerate(t.faces):
+        if shared is not None:
+            (P, Q, R), D = [shared[0][v] for v in face], shared[1]
+        else:
+            (P, Q, R), D = points_on_common_denominator(*(points[v] for v in face))
+        u = [y - x for x, y in zip(P, Q)]
+        v = [y - x for x, y in zip(P, R)]
+        uv = sum(x * y for x, y in zip(u, v))
+        G = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
+        if G == 0:
+            raise degenerate_face(t, f)
+        out.append(rounded_root_sum(((G, G),), 2 * D * D))
     return out
 
 

@@ -736,7 +736,7 @@ def _same_bounds(V, F, recipe) -> bool:
     """Asserts entry_bounds of a surface (from its positions) equal bit for bit those of
     its exact metric; returns whether the metric was built (a face the filter left exact)."""
     from ddg_oracle.properties.bounds import entry_bounds
-    from ddg_oracle.reference.metric import squared_length_floats
+    from ddg_oracle.reference.metric import face_area_floats, squared_length_floats
     from ddg_oracle.reference.polyhedral import PolyhedralSurface
     fresh, ref = (PolyhedralSurface.from_arrays(V, F) for _ in range(2))
     n = fresh.triangulation.n_vertices
@@ -756,6 +756,8 @@ def _same_bounds(V, F, recipe) -> bool:
             return None
     assert floats(lambda: squared_length_floats(fresh.positions, fresh.triangulation)) == \
         floats(lambda: [float(x) for x in ref.metric().squared_lengths]), recipe
+    assert floats(lambda: face_area_floats(fresh.positions, fresh.triangulation)) == \
+        floats(lambda: [float(a) for a in ref.metric().areas]), recipe
     return built
 
 
@@ -794,9 +796,10 @@ def _entry_bounds_by_loop(metric, n, beta, cot):
 def test_entry_bounds_from_positions_are_the_metric_ones():
     """The entry bounds of D3.1, E3.12, T3.9 come from the positions (correctly rounded
     squared lengths by integer division, the metric only for the faces the float filter
-    leaves exact): bit for bit those of the exact metric, on needles, caps and fans
-    (some faces exact), a jittered torus with a boundary cut (none), rational points
-    without a shared denominator, and lengths beyond the float range."""
+    leaves exact), and L3.7's face areas too: bit for bit those of the exact metric, on
+    needles, caps and fans (some faces exact), a jittered torus with a boundary cut
+    (none), rational points without a shared denominator, and lengths beyond the float
+    range."""
     for make, seed in ((triangles, 61), (fans, 67), (hinges, 71)):
         V, F = make(FORMATS[53], seed=seed)
         _same_bounds(V, F, make.__name__)

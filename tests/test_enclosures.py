@@ -605,3 +605,96 @@ def test_area_gradient_verdicts_from_enclosures_are_those_of_the_exact_values(fa
     assert filtered == exact
     if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
+
+
+def _vertex_areas_hold(case) -> None:
+    """Asserts the vertex area enclosures hold the exact areas, and their views bound the
+    correctly rounded ones."""
+    from ddg_oracle.properties.enclosures import vertex_area_enclosures
+    from ddg_oracle.reference.laplacian import (vertex_areas_barycentric, vertex_areas_floats,
+                                                vertex_areas_voronoi)
+    s = case.surface
+    t = s.triangulation
+    encs = vertex_area_enclosures(s.positions, t.faces, t.n_vertices)
+    for enc, exact in zip(encs, (vertex_areas_voronoi(s), vertex_areas_barycentric(s))):
+        for v in range(t.n_vertices):
+            if np.isfinite(enc.err[v]):
+                assert _holds_surd(float(enc.value[v]), float(enc.err[v]), exact[v]), \
+                    (case.recipe, v)
+    view = views.vertex_area_view_bounds(s)
+    if view is not None:
+        for name, kind in (("vertex_areas_voronoi", "voronoi"),
+                           ("vertex_areas_barycentric", "barycentric")):
+            lo, hi = view[name]
+            x = np.array(vertex_areas_floats(s, kind), dtype=np.float64)
+            assert ((lo <= x) & (x <= hi)).all(), (case.recipe, name)
+
+
+@pytest.mark.parametrize("bits", [53, 24])
+def test_vertex_area_enclosures_hold_on_needles_caps_right_angles_and_fans(bits):
+    for make, seed in ((triangles, 89), (fans, 97), (hinges, 101)):
+        V, F = make(FORMATS[bits], seed=seed, count=12) if make is not triangles else \
+            make(FORMATS[bits], seed=seed, per_kind=8)
+        _vertex_areas_hold(_case(V, F, f"{make.__name__}, {bits} bits"))
+    right = _case([[0.0, 0.0, 0.0], [3.0, 0.0, 0.0], [0.0, 4.0, 0.0]], [[0, 1, 2]], "right")
+    _vertex_areas_hold(right)
+
+
+@settings(max_examples=10, deadline=None)
+@given(jittered_surfaces(closed=False))
+def test_vertex_area_enclosures_hold_on_drawn_surfaces(case):
+    _vertex_areas_hold(case)
+
+
+class _ShiftedAreas(Atan2Cross):
+    """Vertex areas at the exact ones moved by ``factor`` times their bound at every 7th
+    vertex (alternating signs, or all below)."""
+
+    def __init__(self, case, factor, below=False):
+        from ddg_oracle.properties.harness import Exact
+        super().__init__()
+        X = Exact.of(case)
+        self._areas = {}
+        for name, bound in zip(("vertex_areas_voronoi", "vertex_areas_barycentric"),
+                               X.vertex_area_bounds):
+            exact = np.asarray(X.vertex_areas(name), dtype=np.float64)
+            n = np.arange(len(exact))
+            sign = -1.0 if below else (-1.0) ** n
+            self._areas[name] = exact + np.where(n % 7 == 0, factor * bound * sign, 0.0)
+
+    def vertex_areas_voronoi(self, V, F):
+        return self._areas["vertex_areas_voronoi"].copy()
+
+    def vertex_areas_barycentric(self, V, F):
+        return self._areas["vertex_areas_barycentric"].copy()
+
+
+@pytest.mark.parametrize("below", [False, True])
+@pytest.mark.parametrize("factor", [0.5, 0.999, 1.0, 1.001, 2.0])
+def test_vertex_area_verdicts_from_enclosures_are_those_of_the_exact_values(factor, below,
+                                                                             monkeypatch):
+    """L3.7 at 0.5 - 2 times its bound: the same status, message and tally whether the
+    enclosures decide or the exact areas do."""
+    from ddg_oracle.properties import laplacian
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = surfaces.torus(10, 16)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    F = F.astype(np.int64)
+    V = V + np.random.default_rng(11).uniform(-2 ** -8, 2 ** -8, V.shape)
+    decided = []
+    filter_ = laplacian._areas_within_enclosed
+    monkeypatch.setattr(laplacian, "_areas_within_enclosed",
+                        lambda *a: decided.append(filter_(*a)) or decided[-1])
+
+    def run():
+        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
+        r = run_on_example(PROPERTIES["L3.7"], _ShiftedAreas(fresh, factor, below), fresh,
+                           "torus")
+        return r.status, r.summary(), str(r.failure), r.unjudged
+    filtered = run()
+    assert decided[0] == (factor == 0.5)
+    monkeypatch.setattr(views, "_vertex_area_view_bounds", lambda surface: None)
+    exact = run()
+    assert filtered == exact
+    if factor in (0.5, 2.0):
+        assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
