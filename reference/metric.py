@@ -294,7 +294,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
         four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
         if four_a2 == 0:
             raise degenerate_face(t, f)
-        areas.append(sqrt(Fraction(four_a2, D ** 4)) / 2)
+        areas.append(sqrt(Fraction(four_a2, 4 * D ** 4)))      # sqrt(4 A^2 / 4): no division
     return PiecewiseFlatSurface._trusted(t, sq, areas)
 
 
