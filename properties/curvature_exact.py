@@ -90,7 +90,7 @@ def support_function_integral(points, n_theta: int = 256, n_coarse: int = 16) ->
 def steiner_area_view(case: Example) -> tuple[float, float]:
     """(A, err_A): R2.5's area as a float within err_A of the exact one.  Up to
     EXACT_SUM_LIMIT faces the exact sum correctly rounded (err 0); beyond, an exact sum
-    has a square root per face: :func:`~.views.area_view` (err about 3 u A).  The check
+    has a square root per face: :func:`~.bounds.area_view` (err about 3 u A).  The check
     widens its bound by err: a pass is then certain; a failure by less than err (about
     1e-16 relative) would go unseen."""
     if len(case.faces) <= EXACT_SUM_LIMIT:

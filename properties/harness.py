@@ -30,9 +30,9 @@ from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsi
 from .registry import PropertyFailure, TieDisagreement, judgeable
 from .views import exact_laplacian, laplacian_view, laplacian_view_bounds, validate
 
-__all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "ledger_open", "record", "ratios", "fail", "implementation_matrix",
-           "implementation_dense", "entries_at", "worst", "worst_sparse", "dirichlet_solve",
-           "exact_spectrum", "dirichlet_solution", "widened"]
+__all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "ledger_open", "record", "ratios",
+           "fail", "implementation_matrix", "implementation_dense", "entries_at", "worst",
+           "worst_sparse", "dirichlet_solve", "exact_spectrum", "dirichlet_solution", "widened"]
 
 
 # --- the error ledger --------------------------------------------------------------------------------

@@ -5,7 +5,10 @@ surface object (:func:`.memo.of`), read-only.
 Corner angles (D2.6), angle defects (D2.2), turning angles (R2.4), mean curvature per
 edge (D2.3) and the cotan Laplacian (D3.1) with its exact matrix.  Exact values are
 rounded once (``float()`` of an exact number is correctly rounded); the derived bounds
-they are compared within are :mod:`.bounds`'.
+they are compared within are :mod:`.bounds`'.  For positions in R^3, the ``*_view_bounds``
+functions give floats lo <= view <= hi from rigorous float enclosures (:mod:`.enclosures`,
+issue 46) of those, the weight signs (E3.12), the area gradient (T3.9) and the vertex
+areas (L3.7), so that a check decides without the exact values where the enclosures can.
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ from ..reference.metric import PiecewiseFlatSurface
 
 from . import memo
 
-__all__ = ["validate", "position_enclosure", "float_positions", "corner_angle_views", "corner_angle_view_bounds", "defect_views", "turning_views",
+__all__ = ["validate", "position_enclosure", "float_positions", "corner_angle_views",
+           "corner_angle_view_bounds", "defect_views", "turning_views",
            "vertex_angle_view_bounds", "weight_signs", "mean_curvature_views",
            "mean_curvature_view_bounds", "halfedge_table", "interior_edge_corners",
            "exact_laplacian", "laplacian_view", "laplacian_view_bounds",
@@ -321,9 +325,10 @@ def _laplacian_view_bounds(surface):
 
 def area_gradient_view_bounds(surface):
     """L3.8 / T3.9: (lo, hi), (k, 3) each, floats lo <= x <= hi for the correctly rounded
-    exact area gradient x at each vertex of ``surface`` (``reference.areas.area_gradient_floats``)
-    from rigorous float enclosures (:mod:`.enclosures`), or None for positions that are not
-    floats in R^3; once per surface object."""
+    exact area gradient x at each vertex of ``surface``
+    (``reference.areas.area_gradient_floats``) from rigorous float enclosures
+    (:mod:`.enclosures`), or None for positions that are not floats in R^3; once per
+    surface object."""
     return memo.of(_area_gradient_view_bounds, surface)
 
 
