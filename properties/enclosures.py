@@ -218,14 +218,19 @@ def corner_angle_enclosure(positions, F) -> Enclosure:
     """(m, 3): the angle at each corner of each face (D2.6, the triangle's own angle: the
     metric's), atan2(|a x b|, a . b) with a, b the sides from the corner to the next and
     previous corners."""
+    return _per_corner(positions, F, lambda a, b, n: angle_from(n.dot(n).sqrt(), a.dot(b)))
+
+
+def _per_corner(positions, F, corner) -> Enclosure:
+    """(m, 3): ``corner(a, b, a x b)`` at each corner of each face, a and b the sides from
+    the corner to the next and previous corners."""
     X = points(positions)
     F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
     out = []
     for c in range(3):
         x = X[F[:, c]]
         a, b = X[F[:, (c + 1) % 3]] - x, X[F[:, (c + 2) % 3]] - x
-        n = a.cross(b)
-        out.append(angle_from(n.dot(n).sqrt(), a.dot(b)))
+        out.append(corner(a, b, a.cross(b)))
     return Enclosure(np.stack([e.value for e in out], axis=1),
                      np.stack([e.err for e in out], axis=1))
 
@@ -251,16 +256,7 @@ def corner_cot_enclosure(positions, F) -> Enclosure:
     """(m, 3): the cotangent of the angle at each corner of each face (D3.1's terms),
     (a . b) / |a x b| with a, b the sides from the corner to the next and previous corners;
     undecided where |a x b|'s enclosure reaches 0."""
-    X = points(positions)
-    F = np.asarray(F, dtype=np.int64).reshape(-1, 3)
-    out = []
-    for c in range(3):
-        x = X[F[:, c]]
-        a, b = X[F[:, (c + 1) % 3]] - x, X[F[:, (c + 2) % 3]] - x
-        n = a.cross(b)
-        out.append(a.dot(b) / n.dot(n).sqrt())
-    return Enclosure(np.stack([e.value for e in out], axis=1),
-                     np.stack([e.err for e in out], axis=1))
+    return _per_corner(positions, F, lambda a, b, n: a.dot(b) / n.dot(n).sqrt())
 
 
 def area_gradient_enclosure(positions, F, n: int) -> Enclosure:

@@ -39,7 +39,7 @@ from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, ex
                       implementation_dense, implementation_matrix, ledger_open, record, worst,
                       worst_sparse)
 from ..protocol.methods import ISOLATED_VERTEX, capabilities, eps
-from .registry import TieDisagreement, count_unjudged, prop, quantity, within
+from .registry import TieDisagreement, decided_within, prop, quantity, within
 from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
                          obtuse_fans, obtuse_meshes, planar_meshes, scaled_meshes, single_triangles,
                          surface_meshes, with_boundary, with_functions, with_isolated)
@@ -107,13 +107,7 @@ def _entries_within_enclosed(A, X: Exact) -> bool:
     pattern = sp.csr_matrix((np.ones(len(r)), (r, c)), shape=A.shape)
     if not (entries_at(pattern, C.row[nz], C.col[nz]) > 0).all():
         return False                            # a nonzero off the pattern: reported exactly
-    o, b = entries_at(A, r, c), entries_at(X.Bs, r, c)
-    with np.errstate(invalid="ignore", over="ignore"):
-        ok = np.isfinite(b) & (np.abs(o - lo) <= b) & (np.abs(o - hi) <= b)
-    if not ok.all():
-        return False
-    count_unjudged(0, len(ok))                  # judged, as the exact comparison counts
-    return True
+    return decided_within(entries_at(A, r, c), lo, hi, entries_at(X.Bs, r, c))
 
 
 @prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "
@@ -487,15 +481,10 @@ def _gradient_within_enclosed(X: Exact, got, residual) -> bool:
     if view is None:
         return False
     lo, hi = view
+    least = np.where((lo <= 0) & (hi >= 0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
     with np.errstate(invalid="ignore", over="ignore"):
-        least = np.where((lo <= 0) & (hi >= 0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
         bound = residual + eps() * least
-        ok = (np.isfinite(got) & np.isfinite(bound) & (np.abs(got - lo) <= bound)
-              & (np.abs(got - hi) <= bound))
-    if not ok.all():
-        return False
-    count_unjudged(0, ok.size)                 # judged, as the exact comparison counts
-    return True
+    return decided_within(got, lo, hi, bound)
 
 
 @prop("T3.9", "area as Dirichlet energy: sum_k x_k^T L x_k / 2 = A(S) and L V = grad A (so L V = 0 "
@@ -577,14 +566,7 @@ def _areas_within_enclosed(X: Exact, name: str, got, bound) -> bool:
     view = None if ledger_open() or len(X.keep) != X.n else vertex_area_view_bounds(X.surface)
     if view is None:
         return False
-    lo, hi = view[name]
-    with np.errstate(invalid="ignore", over="ignore"):
-        ok = (np.isfinite(got) & np.isfinite(bound) & (np.abs(got - lo) <= bound)
-              & (np.abs(got - hi) <= bound))
-    if not ok.all():
-        return False
-    count_unjudged(0, ok.size)                 # judged, as the exact comparison counts
-    return True
+    return decided_within(got, *view[name], bound)
 
 
 @prop("L3.7", "mass matrices: mixed Voronoi areas (the circumcentric split of L3.7 on non-obtuse "

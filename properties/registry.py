@@ -227,6 +227,21 @@ def within_enclosed(observed, lo, hi, bound, exact_at):
     return ok, x
 
 
+def decided_within(observed, lo, hi, bound) -> bool:
+    """True when ``within(|observed - x|, bound)`` holds for every entry whatever the
+    correctly rounded exact x in [lo, hi] is (at both ends, every bound finite: the rounded
+    |o - x| is monotone in x on each side of o), the entries then counted judged as
+    :func:`within` counts them; False decides nothing (the caller compares exactly)."""
+    o = np.asarray(observed, dtype=np.float64)
+    b = np.asarray(bound, dtype=np.float64)
+    with np.errstate(invalid="ignore", over="ignore"):
+        ok = np.isfinite(o) & np.isfinite(b) & (np.abs(o - lo) <= b) & (np.abs(o - hi) <= b)
+    if not ok.all():
+        return False
+    count_unjudged(0, ok.size)
+    return True
+
+
 def _is_real(x) -> bool:
     return isinstance(x, numbers.Real) and not isinstance(x, bool)
 

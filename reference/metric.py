@@ -264,10 +264,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     ((Fraction(1, 1), Fraction(10, 9), Fraction(1, 9)), Surd('1/6'))
     """
     t = triangulation
-    # points may come as floats: take every coordinate exactly first
-    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
-                    for x in p) for i, p in enumerate(points)]
-    shared = shared_denominator(points)
+    points, shared = _on_shared_denominator(points)
 
     def on_denominator(*vertices):
         if shared is not None:                  # one denominator for all (float meshes)
@@ -311,9 +308,7 @@ def squared_length_floats(points, triangulation: Triangulation) -> list[float]:
     [1.0, 1.1111111111111112, 0.1111111111111111]
     """
     t = triangulation
-    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
-                    for x in p) for i, p in enumerate(points)]
-    shared = shared_denominator(points)
+    points, shared = _on_shared_denominator(points)
     out = []
     for e in range(t.n_edges):
         i, j = t.edge_vertices(e)
@@ -339,9 +334,7 @@ def face_area_floats(points, triangulation: Triangulation) -> list[float]:
     [0.16666666666666666]
     """
     t = triangulation
-    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
-                    for x in p) for i, p in enumerate(points)]
-    shared = shared_denominator(points)
+    points, shared = _on_shared_denominator(points)
     out = []
     for f, face in enumerate(t.faces):
         if shared is not None:
@@ -356,6 +349,14 @@ def face_area_floats(points, triangulation: Triangulation) -> list[float]:
             raise degenerate_face(t, f)
         out.append(rounded_root_sum(((G, G),), 2 * D * D))
     return out
+
+
+def _on_shared_denominator(points):
+    """(the points with every coordinate exact, :func:`shared_denominator` of them): points
+    may come as floats, each taken exactly."""
+    points = [tuple(x if isinstance(x, Fraction) else rational(x, where=f"vertex {i}")
+                    for x in p) for i, p in enumerate(points)]
+    return points, shared_denominator(points)
 
 
 def degenerate_face(t: Triangulation, f: int, positions=None) -> DegenerateFace:

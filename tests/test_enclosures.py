@@ -464,6 +464,35 @@ def test_a_quotient_by_an_enclosure_of_zero_is_undecided():
     assert np.isinf(q.err[0]) and q.value[1] == 0.5 and 0 < q.err[1] <= 2 * U
 
 
+def _filtered_and_exact(pid, shifted, filter_name, view_name, monkeypatch, rows=12, cols=20,
+                        seed=5):
+    """(status, summary, failure, unjudged) of property ``pid`` on a jittered torus for the
+    implementation ``shifted(case)``, decided with the enclosures and then with the exact
+    values (``views.<view_name>`` giving None), and what the check's filter
+    ``laplacian.<filter_name>`` returned, in order, in the first run."""
+    from ddg_oracle.properties import laplacian
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    s = surfaces.torus(rows, cols)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    F = F.astype(np.int64)
+    V = V + np.random.default_rng(seed).uniform(-2 ** -8, 2 ** -8, V.shape)
+    decided = []
+    filter_ = getattr(laplacian, filter_name)
+    monkeypatch.setattr(laplacian, filter_name,
+                        lambda *a: decided.append(filter_(*a)) or decided[-1])
+
+    def run():
+        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
+        r = run_on_example(PROPERTIES[pid], shifted(fresh), fresh, "torus")
+        return r.status, r.summary(), str(r.failure), r.unjudged
+    filtered = run()
+    first = list(decided)
+    monkeypatch.setattr(views, view_name, lambda surface: None)
+    exact = run()
+    assert not any(decided[len(first):])                # the second run: exact throughout
+    return filtered, exact, first
+
+
 class _ShiftedLaplacian(Atan2Cross):
     """The exact Laplacian's view moved to ``factor`` times its entry bound at every 7th
     stored entry (alternating signs, or all below with ``below``; symmetric pairs alike)."""
@@ -493,30 +522,12 @@ def test_laplacian_verdicts_from_enclosures_are_those_of_the_exact_values(factor
     """D3.1 with entries at 0.5, 0.999, 1, 1.001 and 2 times their bound (on both sides, or
     all below: within the bound of the enclosure's lower end, not of the exact value): the
     same status, message and tally whether the enclosures decide or the exact view does."""
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
-    s = surfaces.torus(12, 20)
-    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
-    F = F.astype(np.int64)
-    V = V + np.random.default_rng(5).uniform(-2 ** -8, 2 ** -8, V.shape)
-
-    from ddg_oracle.properties import laplacian
-    decided = []
-    filter_ = laplacian._entries_within_enclosed
-    monkeypatch.setattr(laplacian, "_entries_within_enclosed",
-                        lambda A, X: decided.append(filter_(A, X)) or decided[-1])
-
-    def run():
-        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
-        r = run_on_example(PROPERTIES["D3.1"], _ShiftedLaplacian(fresh, factor, below), fresh,
-                           "torus")
-        return r.status, r.summary(), str(r.failure), r.unjudged
-    filtered = run()
+    filtered, exact, decided = _filtered_and_exact(
+        "D3.1", lambda case: _ShiftedLaplacian(case, factor, below), "_entries_within_enclosed",
+        "_laplacian_view_bounds", monkeypatch)
     # at 0.5 the enclosures decide every entry; nearer the bound than their width (a few
     # per cent of it here) the moved entries are left to the exact view
     assert decided[-1] == (factor == 0.5)
-    monkeypatch.setattr(views, "_laplacian_view_bounds", lambda surface: None)
-    exact = run()
-    assert decided[-1] is False
     assert filtered == exact
     if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
@@ -580,28 +591,11 @@ def test_area_gradient_verdicts_from_enclosures_are_those_of_the_exact_values(fa
                                                                                monkeypatch):
     """T3.9's area_gradient route at 0.5 - 2 times its bound: the same status, message and
     tally whether the enclosures decide or the exact gradient does."""
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
-    s = surfaces.torus(10, 16)
-    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
-    F = F.astype(np.int64)
-    V = V + np.random.default_rng(9).uniform(-2 ** -8, 2 ** -8, V.shape)
-
-    from ddg_oracle.properties import laplacian
-    decided = []
-    filter_ = laplacian._gradient_within_enclosed
-    monkeypatch.setattr(laplacian, "_gradient_within_enclosed",
-                        lambda *a: decided.append(filter_(*a)) or decided[-1])
-
-    def run():
-        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
-        r = run_on_example(PROPERTIES["T3.9"], _ShiftedGradient(fresh, factor, below), fresh,
-                           "torus")
-        return r.status, r.summary(), str(r.failure), r.unjudged
-    filtered = run()
+    filtered, exact, decided = _filtered_and_exact(
+        "T3.9", lambda case: _ShiftedGradient(case, factor, below), "_gradient_within_enclosed",
+        "_area_gradient_view_bounds", monkeypatch, 10, 16, 9)
     # the matrix route's L V and, at 0.5, the own route: decided by the enclosures
     assert decided[0] and decided[-1] == (factor == 0.5)
-    monkeypatch.setattr(views, "_area_gradient_view_bounds", lambda surface: None)
-    exact = run()
     assert filtered == exact
     if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
@@ -675,26 +669,10 @@ def test_vertex_area_verdicts_from_enclosures_are_those_of_the_exact_values(fact
                                                                              monkeypatch):
     """L3.7 at 0.5 - 2 times its bound: the same status, message and tally whether the
     enclosures decide or the exact areas do."""
-    from ddg_oracle.properties import laplacian
-    from ddg_oracle.reference.polyhedral import PolyhedralSurface
-    s = surfaces.torus(10, 16)
-    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
-    F = F.astype(np.int64)
-    V = V + np.random.default_rng(11).uniform(-2 ** -8, 2 ** -8, V.shape)
-    decided = []
-    filter_ = laplacian._areas_within_enclosed
-    monkeypatch.setattr(laplacian, "_areas_within_enclosed",
-                        lambda *a: decided.append(filter_(*a)) or decided[-1])
-
-    def run():
-        fresh = Example.of_surface(PolyhedralSurface.from_arrays(V, F), 0, "jittered torus")
-        r = run_on_example(PROPERTIES["L3.7"], _ShiftedAreas(fresh, factor, below), fresh,
-                           "torus")
-        return r.status, r.summary(), str(r.failure), r.unjudged
-    filtered = run()
+    filtered, exact, decided = _filtered_and_exact(
+        "L3.7", lambda case: _ShiftedAreas(case, factor, below), "_areas_within_enclosed",
+        "_vertex_area_view_bounds", monkeypatch, 10, 16, 11)
     assert decided[0] == (factor == 0.5)
-    monkeypatch.setattr(views, "_vertex_area_view_bounds", lambda surface: None)
-    exact = run()
     assert filtered == exact
     if factor in (0.5, 2.0):
         assert filtered[0] == (PASSED if factor < 1 else FAILED), filtered
