@@ -577,3 +577,26 @@ def test_the_dirichlet_harness_counts_a_repeated_boundary_vertex_once():
     u, others = dirichlet_solve(A, [0, 0, 2], c)
     assert others == [1] and u[1] == 2.0                      # the mean of its neighbours
     assert np.array_equal(u, dirichlet_solve(A, [2, 0], c)[0])
+
+
+def test_t39_asks_the_implementation_for_its_matrix_once():
+    """T3.9 checks the energy and L V with one answer of ``cotan_laplacian`` (MeshLib's and
+    mouette's Laplacians take seconds on a scanned mesh; mouette's area gradient asks for
+    it once more), and the answer it checks is that one."""
+    from ddg_oracle.properties.example import Example
+    from ddg_oracle.properties.runner import run_on_example
+    from ddg_oracle.reference.polyhedral import PolyhedralSurface
+    from tests.honest_panel import Atan2Cross
+
+    class Counting(Atan2Cross):
+        calls = 0
+
+        def cotan_laplacian(self, V, F):
+            Counting.calls += 1
+            return super().cotan_laplacian(V, F)
+    s = surfaces.torus(6, 9)
+    V, F = (np.asarray(a, dtype=float) for a in s.to_arrays())
+    case = Example.of_surface(PolyhedralSurface.from_arrays(V + 2 ** -9, F.astype(np.int64)),
+                              0, "torus")
+    r = run_on_example(PROPERTIES["T3.9"], Counting(), case, "torus")
+    assert r.status == PASSED and Counting.calls == 1, (r.status, Counting.calls)
