@@ -564,6 +564,22 @@ def _check_arguments(argv) -> list[str]:
     return list(argv if argv is not None else sys.argv[2:])
 
 
+def counterexample_parent() -> str | None:
+    """Where ``check`` without ``--report`` makes its folder of counterexample files:
+    ``$DDG_COUNTEREXAMPLES`` (created if missing; a CI job's artifact folder), else None
+    (the system's temporary directory).  A folder that cannot be made or written is a usage
+    error before the run, not a lost report after it."""
+    parent = os.environ.get("DDG_COUNTEREXAMPLES") or None
+    if parent is not None:
+        try:
+            os.makedirs(parent, exist_ok=True)
+            tempfile.TemporaryDirectory(dir=parent).cleanup()      # writable
+        except OSError as e:
+            raise UsageError(f"DDG_COUNTEREXAMPLES={parent}: cannot make folders there "
+                             f"({e.strerror or e})") from None
+    return parent
+
+
 def _check(args, argv) -> int:
     from . import jobs
     from .implementations import available, built_drivers, missing
@@ -597,6 +613,7 @@ def _check(args, argv) -> int:
         seed = random.SystemRandom().getrandbits(32)
     if args.report and not args.resume:
         refuse_used_report_dir(args.report)             # before the run, not after it
+    counterexamples = None if args.report else counterexample_parent()
     meshes = []
     if args.mesh:
         from .meshes import file_properties, load_all
@@ -730,7 +747,7 @@ def _check(args, argv) -> int:
             files = {}
     else:
         # the whole mesh and the snippet of each counterexample, for those the terminal elides
-        where = Path(tempfile.mkdtemp(prefix="ddg-oracle-counterexamples-"))
+        where = Path(tempfile.mkdtemp(prefix="ddg-oracle-counterexamples-", dir=counterexamples))
         files = write_counterexamples(where, results, spec_of)
         if not files:
             where.rmdir()
@@ -754,7 +771,9 @@ def _check(args, argv) -> int:
     if args.report:
         print(f"report: {where / 'summary.md'}")
     elif files:
-        print(f"counterexample files (mesh.obj, reproduce.py): {where}")
+        said = "counterexample files (mesh.obj, reproduce.py):"
+        # a long folder (a deep $TMPDIR or $DDG_COUNTEREXAMPLES) on a line of its own
+        print(f"{said} {where}" if len(f"{said} {where}") <= args.width else f"{said}\n  {where}")
     if interrupted is not None:
         import signal
         name = signal.Signals(interrupted.signal).name

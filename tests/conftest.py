@@ -5,12 +5,22 @@
 This is our own test suite's choice: the package itself never loads a profile.
 """
 
+import atexit
 import os
+import shutil
+import tempfile
 
 from hypothesis import settings
 
 from ddg_oracle.application.containment import start_workers_from_a_forkserver
 from ddg_oracle.properties.profiles import PREFIX, register_profiles
+
+# the counterexample folders `ddg-oracle check` makes for its failing checks (thousands per
+# run: a full disk failed a CI run's install) in one folder, removed when the run ends;
+# xdist workers and the commands the tests start inherit it
+if "DDG_COUNTEREXAMPLES" not in os.environ:
+    os.environ["DDG_COUNTEREXAMPLES"] = tempfile.mkdtemp(prefix="ddgc-")
+    atexit.register(shutil.rmtree, os.environ["DDG_COUNTEREXAMPLES"], True)
 
 # the suite's own processes (xdist workers, the scripts and commands its tests start) load
 # no third-party Hypothesis plugin: trio's, installed with selenium for the browser tests,

@@ -10,6 +10,7 @@ gives a ``crashed`` result whose text is the implementation's own exception
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -122,11 +123,35 @@ def test_cli_prints_the_snippet_and_writes_the_files(user_project, tmp_path):
                          timeout=600)
     assert out.returncode == 1, out.stdout + out.stderr
     assert max(len(line) for line in out.stdout.splitlines()) <= 100
-    where = re.search(r"counterexample files \(mesh.obj, reproduce.py\): (\S+)", out.stdout)
+    where = re.search(r"counterexample files \(mesh.obj, reproduce.py\):\s+(\S+)", out.stdout)
     assert where is not None, out.stdout
     [folder] = Path(where.group(1)).glob("failures/*")
     rerun = run_elsewhere((folder / "reproduce.py").read_text(), tmp_path)
     assert "PropertyFailure: [D1.6] euler-bug" in rerun.stderr
+
+
+def test_counterexample_folders_go_where_ddg_counterexamples_says(user_project, tmp_path):
+    """$DDG_COUNTEREXAMPLES (created if missing): check's counterexample folder is made
+    there, not in the system's temporary directory; a path that cannot hold folders is one
+    line and exit 2 before anything runs."""
+    home = tmp_path / "artifacts" / "ddg"
+    argv = [sys.executable, "-m", "ddg_oracle", "check", "--impl", "planted_user_impl:EulerBug",
+            "--only", "D1.6", "--profile", "ci", "--workers", "1"]
+    out = subprocess.run(argv, cwd=user_project, capture_output=True, text=True, timeout=600,
+                         env={**os.environ, "DDG_COUNTEREXAMPLES": str(home)})
+    assert out.returncode == 1, out.stdout + out.stderr
+    [made] = home.glob("ddg-oracle-counterexamples-*")
+    said = re.search(r"counterexample files \(mesh.obj, reproduce.py\):\s+(\S+)", out.stdout)
+    assert said is not None and Path(said.group(1)) == made, out.stdout
+    # the folder on a line of its own when the line would pass 100 columns
+    assert all(len(x) <= 100 or x == f"  {made}" for x in out.stdout.splitlines()), out.stdout
+    assert list(made.glob("failures/*/reproduce.py"))
+    blocked = tmp_path / "a-file"
+    blocked.write_text("")
+    out = subprocess.run(argv, cwd=user_project, capture_output=True, text=True, timeout=600,
+                         env={**os.environ, "DDG_COUNTEREXAMPLES": str(blocked / "sub")})
+    assert out.returncode == 2 and out.stdout == "", out.stdout + out.stderr
+    assert out.stderr.count("\n") == 1 and "DDG_COUNTEREXAMPLES=" in out.stderr, out.stderr
 
 
 def test_examples_round_trip_and_planar_examples_have_their_mesh():

@@ -69,7 +69,7 @@ def test_the_cpp_drivers_planted_bug_is_caught_on_one_triangle_by_the_cli(cpp_dr
     assert "[D3.1] cpp-cotan-boundary-bug" in out.stdout
     faces = int(re.search(r"mesh: \d+ vertices, (\d+) faces", out.stdout).group(1))
     assert faces <= 2
-    where = re.search(r"counterexample files \(mesh.obj, reproduce.py\): (\S+)", out.stdout)
+    where = re.search(r"counterexample files \(mesh.obj, reproduce.py\):\s+(\S+)", out.stdout)
     [snippet] = Path(where.group(1)).glob("failures/*/reproduce.py")
     assert f"load_implementation('exec:{cpp_driver} --bug=boundary')" in snippet.read_text()
     rerun = subprocess.run([sys.executable, str(snippet)], cwd="/", capture_output=True,
