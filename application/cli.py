@@ -384,7 +384,15 @@ def _main(args, argv) -> int:
     except BrokenPipeError:                  # e.g. piped into head: stop quietly
         sys.stdout = open(os.devnull, "w")
         return EXIT_FINDINGS
-    except Exception:  # noqa: BLE001  (anything else is a bug of ours: say so, distinctly)
+    except Exception as e:  # noqa: BLE001  (anything else is a bug of ours: say so, distinctly)
+        if isinstance(e, OSError) and "AF_UNIX path too long" in str(e):
+            # the machine's setting, not our bug: Python's worker processes talk over sockets
+            # named in TMPDIR, and a socket's path holds at most 107 bytes
+            where = tempfile.gettempdir()
+            print(f"ddg-oracle: error: TMPDIR={where} ({len(where)} characters) is too long for "
+                  "the sockets of Python's worker processes (107 bytes with the names Python "
+                  "adds): set TMPDIR to a shorter folder, such as /tmp", file=sys.stderr)
+            return EXIT_USAGE
         traceback.print_exc()
         print(BUG_REPORT, file=sys.stderr)
         return EXIT_TOOL

@@ -759,3 +759,17 @@ def test_examples_sets_how_many_examples_each_check_runs(capsys, tmp_path):
     rc, _, err = _run(capsys, "check", "--impl", "reference", "--mesh", str(mesh),
                       "--examples", "5")
     assert rc == 2 and "with --mesh each file is checked once" in err and err.count("\n") == 1
+
+
+def test_a_tmpdir_too_long_for_worker_sockets_is_one_line_and_exit_2(tmp_path):
+    """Python's worker processes talk over AF_UNIX sockets named in TMPDIR (at most 107
+    bytes): a long TMPDIR made `check` end with a traceback and "a bug in ddg-oracle"
+    (exit 3); it is the machine's setting, said in one line (exit 2)."""
+    pytest.importorskip("igl")                 # a library: checked in a worker process
+    deep = tmp_path / ("d" * max(10, 100 - len(str(tmp_path))))
+    deep.mkdir()
+    out = subprocess.run([sys.executable, "-m", "ddg_oracle", "check", "--impl", "libigl",
+                          "--only", "D1.6", "--workers", "1"], capture_output=True, text=True,
+                         timeout=120, env={**os.environ, "TMPDIR": str(deep)})
+    assert out.returncode == 2, out.stdout + out.stderr
+    assert out.stderr.count("\n") == 1 and f"TMPDIR={deep}" in out.stderr, out.stderr
