@@ -218,13 +218,9 @@ class Exact(DenseViews):
     @cached_property
     def squared_floats(self) -> np.ndarray:
         """(k, 3) the faces' squared lengths (opposite corners 2, 0, 1), correctly rounded
-        (from the positions: :func:`.bounds.surface_squared_floats`)."""
-        try:
-            return surface_squared_floats(self.surface)
-        except OverflowError:                   # as float() of the exact metric's says
-            m = self.metric
-            return np.array([[float(x) for x in m.face_squared_lengths(f)]
-                             for f in range(self.triangulation.n_faces)]).reshape(-1, 3)
+        (from the positions: :func:`.bounds.surface_squared_floats`; a length beyond the
+        float range raises OverflowError, as ``float()`` of the metric's did)."""
+        return surface_squared_floats(self.surface)
 
     def _face_area_bounds(self) -> np.ndarray:
         k = self.triangulation.n_faces

@@ -334,12 +334,18 @@ def area_gradient_view_bounds(surface):
 
 def _area_gradient_view_bounds(surface):
     from .enclosures import area_gradient_enclosure, rounding_bounds
+    enc = _per_vertex_enclosure(surface, area_gradient_enclosure)
+    return None if enc is None else rounding_bounds(enc)
+
+
+def _per_vertex_enclosure(surface, enclose):
+    """``enclose(positions, faces, n_vertices)`` for a surface whose positions are floats in
+    R^3 (validated first: raises DegenerateFace as the metric would), else None."""
     if not float_positions(surface):
         return None
-    validate(surface)                                       # raises DegenerateFace
+    validate(surface)
     t = surface.triangulation
-    return rounding_bounds(area_gradient_enclosure(position_enclosure(surface), t.faces,
-                                                   t.n_vertices))
+    return enclose(position_enclosure(surface), t.faces, t.n_vertices)
 
 
 def vertex_area_view_bounds(surface):
@@ -353,11 +359,10 @@ def vertex_area_view_bounds(surface):
 
 def _vertex_area_view_bounds(surface):
     from .enclosures import rounding_bounds, vertex_area_enclosures
-    if not float_positions(surface):
+    encs = _per_vertex_enclosure(surface, vertex_area_enclosures)
+    if encs is None:
         return None
-    validate(surface)                                       # raises DegenerateFace
-    t = surface.triangulation
-    voronoi, bary = vertex_area_enclosures(position_enclosure(surface), t.faces, t.n_vertices)
+    voronoi, bary = encs
     return {"vertex_areas_voronoi": rounding_bounds(voronoi),
             "vertex_areas_barycentric": rounding_bounds(bary)}
 
