@@ -343,19 +343,24 @@ class EntryBounds:
 def entry_bounds(metric, n: int, amplification=None) -> EntryBounds:
     """``metric``: a metric, or a surface (its metric's bounds, the metric built only where
     :func:`surface_conditioning` needs it)."""
-    import scipy.sparse as sp
-
     from .views import halfedge_table
     t = metric.triangulation
     rho, cot = (face_conditioning(metric) if hasattr(metric, "face_squared_lengths")
                 else surface_conditioning(metric))
-    amp = np.ones(t.n_faces) if amplification is None else np.asarray(amplification, float)
+    return bounds_of(np.asarray(t.faces, dtype=np.int64).reshape(-1, 3), halfedge_table(metric),
+                     rho, cot, n, amplification)
+
+
+def bounds_of(F, table, rho, cot, n: int, amplification=None) -> EntryBounds:
+    """:func:`entry_bounds` of the triangulation with faces ``F`` (m, 3) and halfedge table
+    ``table`` (:func:`~.views.halfedge_table`'s) whose faces have the conditioning factors
+    ``rho``, ``cot`` (:func:`face_conditioning`'s)."""
+    import scipy.sparse as sp
+    amp = np.ones(len(F)) if amplification is None else np.asarray(amplification, float)
     beta = K_COT * eps() * (1 + cot ** 2) * (rho * amp)[:, None]
     # per edge (i, j), i != j, and each of its halfedges h in order: the entries (i, j),
     # (j, i), (i, i), (j, j) of h's face and opposite corner, in that order (the order
     # fixes the float sums below)
-    table = halfedge_table(metric)                               # (edges, 2)
-    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
     h0 = table[:, 0]
     i, j = F[h0 // 3, h0 % 3], F[h0 // 3, (h0 % 3 + 1) % 3]
     keep = (i != j)[:, None] & (table >= 0)                       # (edges, 2)

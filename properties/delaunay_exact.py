@@ -1,7 +1,9 @@
 """The exact intrinsic Delaunay operator on an example (A4.13, D4.8 / R4.9) with its float
-view, entry bounds and the error model of float flips; the total-area bound of a
-triangulation given by squared lengths.  Expected values and bounds only: the chapter-4
-checks are :mod:`.delaunay`'s.
+view, entry bounds and the error model of float flips; the same view's rounding intervals
+and bounds found without the whole exact metric, the exact flips run on the region the
+enclosures leave in doubt (:func:`local_delaunay`, :func:`delaunay_view_bounds`: issue 46);
+the total-area bound of a triangulation given by squared lengths.  Expected values and
+bounds only: the chapter-4 checks are :mod:`.delaunay`'s.
 
 Error model, derived and stated.  For the input triangulation: the corner bound
 ``beta = K_COT eps (1 + cot^2) rho`` of :mod:`ddg_oracle.properties.bounds`.  A float
@@ -26,6 +28,7 @@ from __future__ import annotations
 
 import math
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
@@ -33,8 +36,11 @@ from ..reference.delaunay import flip_to_delaunay
 from ..reference.exact import Quotient, rounded_sum
 
 from . import memo
-from .bounds import entry_bounds, gamma, heron_product
-from .views import exact_laplacian, laplacian_view
+from .bounds import (bounds_of, entry_bounds, face_conditioning, gamma, heron_product,
+                     surface_conditioning)
+from .enclosures import Enclosure, correctly_rounded
+from .views import (corner_cots, exact_laplacian, halfedge_table, laplacian_view, validate,
+                    view_bounds_of)
 from .harness import DenseViews, Exact, entries_at
 from .example import Example
 from ..protocol.methods import eps
@@ -233,6 +239,172 @@ class DelaunayExact(DenseViews):
         if not rows:
             return B
         return sp.csr_matrix(B + sp.csr_matrix((vals, (rows, cols)), shape=B.shape))
+
+
+# --- the same operator decided from enclosures (issue 46) ----------------------------------------
+
+
+class LocalDelaunay(NamedTuple):
+    """The Delaunay triangulation of a surface's metric as :func:`delaunay_of` reaches it,
+    found without the whole exact metric (:func:`local_delaunay`): faces (m, 3) and halfedge
+    table (:func:`.views.halfedge_table`'s) of the flipped triangulation, in the numbering
+    of ``delaunay_of(surface.metric())``'s; ``cot``, the corner cotangents enclosed; ``rho``,
+    ``cot_factors``: :func:`~.bounds.face_conditioning`'s factors; ``amplification``:
+    :func:`flip_amplification`'s."""
+
+    faces: np.ndarray
+    table: np.ndarray
+    cot: object
+    rho: np.ndarray
+    cot_factors: np.ndarray
+    amplification: np.ndarray
+
+
+def local_delaunay(surface):
+    """:class:`LocalDelaunay` of a surface with positions in R^3, or None where it is not
+    found this way; once per surface object.
+
+    Every interior edge whose enclosed cot sum is certainly > 0 is Delaunay, and stays so
+    until a flip changes one of its faces (:func:`~ddg_oracle.reference.delaunay.
+    flip_to_delaunay` then skips it).  The faces of the other edges, with a ring around
+    them, make a region R; the exact flip algorithm runs on R's own metric, its border
+    edges (one face in R) boundary there.  When no flip touches a border edge, the run on
+    R makes the same flips in the same order as the run on the whole metric (every edge it
+    tests has the same two faces there; the edges outside R are never tested differently:
+    certified and unchanged), so its result, stitched into the surface, is that run's.
+    Otherwise R grows by a ring and the run repeats (at most ``_ROUNDS`` times, R at most a
+    ``_SHARE`` of the faces; else None).  None too where the run raises: the exact route
+    then decides and says why."""
+    return memo.of(_local_delaunay, surface)
+
+
+_ROUNDS, _SHARE = 6, 0.25
+
+
+def _local_delaunay(surface):
+    if getattr(surface, "dimension", None) != 3:
+        return None
+    validate(surface)                                       # raises DegenerateFace
+    try:
+        rho, cot_factors = surface_conditioning(surface)
+    except OverflowError:               # a face the flips may remove: the exact route decides
+        return None
+    t = surface.triangulation
+    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
+    table = halfedge_table(surface)
+    cot = corner_cots(surface)
+    inner = table[:, 1] >= 0
+    h, g = table[:, 0], np.where(inner, table[:, 1], table[:, 0])
+    s = cot[h // 3, (h % 3 + 2) % 3] + cot[g // 3, (g % 3 + 2) % 3]
+    with np.errstate(invalid="ignore"):
+        doubt = inner & ~(s.value - s.err > 0)
+    m = len(F)
+    if not doubt.any():
+        return LocalDelaunay(F, table, cot, rho, cot_factors, np.ones(m))
+    # the faces across each edge of every face: (m, 3), -1 on the boundary
+    across = np.full(3 * m, -1, dtype=np.int64)
+    across[table[inner, 0]] = table[inner, 1] // 3
+    across[table[inner, 1]] = table[inner, 0] // 3
+    across = across.reshape(m, 3)
+    region = np.zeros(m, dtype=bool)
+    region[table[doubt].ravel() // 3] = True
+    for _ in range(_ROUNDS):
+        region[across[region][across[region] >= 0]] = True          # one ring more
+        if region.sum() > _SHARE * m:
+            return None
+        try:
+            found = _flipped_region(surface, F, table, np.flatnonzero(region))
+        except Exception:                       # the exact route decides, and says why
+            return None
+        if found is not None:
+            break
+    else:
+        return None
+    faces, rows, tab, cots, (r, c), amp = found
+    F2, table2, rho2, cf2 = F.copy(), table.copy(), rho.copy(), cot_factors.copy()
+    value, err = cot.value.copy(), cot.err.copy()
+    F2[faces], table2[rows], rho2[faces], cf2[faces] = tab[0], tab[1], r, c
+    value[faces], err[faces] = cots.value, cots.err
+    amplification = np.ones(m)
+    amplification[faces] = amp
+    return LocalDelaunay(F2, table2, Enclosure(value, err), rho2, cf2, amplification)
+
+
+def _flipped_region(surface, F, table, faces):
+    """The exact flips of the region ``faces`` (global ids, ascending) on its own metric
+    (:func:`local_delaunay`): None where a flip touched a border edge, else (faces, the
+    global ids of the region's edges but its border's, (the flipped faces in global vertex
+    ids, those edges' halfedges in global ids), the corner cotangents enclosed, the
+    conditioning factors, the amplification)."""
+    from ..reference.combinatorics import Triangulation
+    from ..reference.metric import metric_of
+    m = len(F)
+    local = np.full(m, -1, dtype=np.int64)
+    local[faces] = np.arange(len(faces))
+    verts = np.unique(F[faces])
+    vloc = np.full(int(F.max()) + 1, -1, dtype=np.int64)
+    vloc[verts] = np.arange(len(verts))
+    t = surface.triangulation
+
+    def loc(x):                                 # a global halfedge in the region, or -1
+        return -1 if x < 0 or local[x // 3] < 0 else 3 * int(local[x // 3]) + x % 3
+    edges, gluings, border = [], [], []
+    touching = (local[table[:, 0] // 3] >= 0) | (
+        (table[:, 1] >= 0) & (local[np.maximum(table[:, 1], 0) // 3] >= 0))
+    for e in np.flatnonzero(touching):
+        a, b = (loc(int(x)) for x in table[e])
+        if table[e, 1] >= 0 and (a < 0 or b < 0):       # one face in the region: a border edge
+            border.append(len(gluings))
+            gluings.append((max(a, b), -1, False))
+        else:                                   # both faces in the region, or a boundary edge
+            edges.append((len(gluings), int(e)))
+            gluings.append((a, b, b >= 0 and t.reversed_gluing(int(table[e, 0]))))
+    sub = Triangulation._trusted(vloc[F[faces]].tolist(), len(verts), tuple(gluings))
+    positions = surface.positions
+    metric = metric_of([positions[int(v)] for v in verts], sub)
+    d, log = flip_to_delaunay(metric, lazy=True)
+    flipped = {f for rec in log for f in rec.unfolding.faces}
+    dt = d.triangulation
+    if any(dt.edge_halfedges(b)[0] // 3 in flipped for b in border):
+        return None
+    lf = np.asarray(dt.faces, dtype=np.int64).reshape(-1, 3)
+    lh = np.array([dt.edge_halfedges(le) for le, _ in edges], dtype=np.int64).reshape(-1, 2)
+    gh = np.where(lh >= 0, 3 * faces[lh // 3] + lh % 3, -1)     # local halfedges to global
+    rows = np.array([e for _, e in edges], dtype=np.int64)
+    value = np.empty((len(faces), 3))
+    for f in range(len(faces)):                         # cot = n / (4 A), correctly rounded
+        four_a = 4 * d.area(f)
+        value[f] = [rounded_sum([Quotient(n, four_a)]) if n else 0.0
+                    for n in d.face_cot_numerators(f)]
+    return (faces, rows, (verts[lf], gh), correctly_rounded(value), face_conditioning(d),
+            np.asarray(flip_amplification(metric, log)))
+
+
+def delaunay_view_bounds(surface):
+    """D4.8 / R4.9: (rows, cols, lo, hi, B) or None: every edge's two off-diagonal entries
+    and every vertex's diagonal entry of the exact Laplace-Beltrami operator
+    (:class:`DelaunayExact`'s ``L``; arrays on the surface's vertices), floats lo <= x <= hi
+    for the correctly rounded view x of each and its entry bound, from
+    :func:`local_delaunay` without the exact metric; once per surface object.  The bounds
+    are ``Bs``'s floats at these entries (R4.9 widens ``Bs`` only at vertex pairs joined by
+    no edge: :meth:`DelaunayExact._widen_on_cocircular_cells`).  None where the
+    triangulation is not found, or where an edge is a loop or two edges join one pair of
+    vertices."""
+    return memo.of(_delaunay_view_bounds, surface)
+
+
+def _delaunay_view_bounds(surface):
+    found = local_delaunay(surface)
+    if found is None:
+        return None
+    k = surface.triangulation.n_vertices
+    view = view_bounds_of(found.faces, found.table, found.cot, k)
+    if view is None:
+        return None
+    rows, cols, lo, hi = view
+    B = entries_at(bounds_of(found.faces, found.table, found.rho, found.cot_factors, k,
+                             found.amplification).B, rows, cols)
+    return rows, cols, lo, hi, B
 
 
 def angles_from_squared_lengths(l2):

@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-__all__ = ["Enclosure", "rounding_bounds", "points", "nondegenerate", "mean_curvature_enclosure",
+__all__ = ["Enclosure", "rounding_bounds", "correctly_rounded", "points", "nondegenerate", "mean_curvature_enclosure",
            "corner_angle_enclosure", "corner_cot_enclosure", "area_gradient_enclosure",
            "vertex_area_enclosures",
            "summed", "angle_sum_enclosure", "total_area_enclosure"]
@@ -144,6 +144,13 @@ def angle_from(y: Enclosure, x: Enclosure) -> Enclosure:
         prop = np.where(rho < r, (math.pi / 2) * _UP * rho / r, np.inf)
         err = (prop + _ATAN2_ULPS * 2.0 * U * np.abs(value)) * _UP + _TINY
     return Enclosure(value, err)
+
+
+def correctly_rounded(values) -> Enclosure:
+    """Floats each the correctly rounded float of an exact value x: |fl(x) - x| <= U |x|
+    <= U |fl(x)| / (1 - U), or 2^-1075 below the normal range."""
+    v = np.asarray(values, dtype=np.float64)
+    return Enclosure(v, U * np.abs(v) * _UP + _TINY)
 
 
 def rounding_bounds(e: Enclosure) -> tuple[np.ndarray, np.ndarray]:

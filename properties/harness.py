@@ -27,7 +27,7 @@ from .bounds import (K_COT, entry_bounds, face_area_tolerances, gamma, heron_pro
                      surface_squared_floats)
 from .example import Example
 from ..protocol.methods import FLOAT64_EPSILON, ISOLATED_VERTEX, at_machine_epsilon, eps
-from .registry import PropertyFailure, TieDisagreement, judgeable
+from .registry import PropertyFailure, TieDisagreement, decided_within, judgeable
 from .views import exact_laplacian, laplacian_view, laplacian_view_bounds, validate
 
 __all__ = ["Exact", "DenseViews", "ErrorLedger", "recording", "ledger_open", "record", "ratios",
@@ -73,6 +73,30 @@ def ledger_open() -> bool:
     """Whether an :class:`ErrorLedger` is recording now (a check then records its exact
     error ratios, not only its verdict)."""
     return _LEDGER.get() is not None
+
+
+def matrix_decided(A, keep, view, bound) -> bool:
+    """True when float enclosures of an exact matrix decide that every entry of A (sparse,
+    on a case's vertices) is within its bound of the correctly rounded exact entry x (issue
+    46): ``view`` = (rows, cols, lo, hi) holds every entry that may be nonzero, on the
+    exact matrix's vertices (``keep`` maps them to A's), lo <= x <= hi; ``bound`` its
+    bounds there.  |A - x| <= bound at both ends of x's rounding interval (the rounded |A -
+    x| is monotone in x on each side of A), every stored nonzero of A on those positions
+    and every bound finite: the exact comparison (err / B <= 1) then passes too.  False
+    leaves every verdict, failure report and recorded ratio to it, and so does an open
+    :class:`ErrorLedger` (it records the exact ratios)."""
+    if view is None or ledger_open():
+        return False
+    import scipy.sparse as sp
+    rows, cols, lo, hi = view
+    keep = np.asarray(keep, dtype=np.int64)
+    r, c = keep[rows], keep[cols]
+    C = A.tocoo()
+    nz = C.data != 0
+    pattern = sp.csr_matrix((np.ones(len(r)), (r, c)), shape=A.shape)
+    if not (entries_at(pattern, C.row[nz], C.col[nz]) > 0).all():
+        return False                            # a nonzero off the pattern: reported exactly
+    return decided_within(entries_at(A, r, c), lo, hi, bound)
 
 
 def ratios(err, bound) -> np.ndarray:

@@ -36,8 +36,8 @@ from .bounds import area_view, gamma
 from .views import (area_gradient_view_bounds, laplacian_view_bounds, vertex_area_view_bounds,
                     weight_signs)
 from .harness import (Exact, dirichlet_solution, dirichlet_solve, entries_at, exact_spectrum, fail,
-                      implementation_dense, implementation_matrix, ledger_open, record, worst,
-                      worst_sparse)
+                      implementation_dense, implementation_matrix, ledger_open, matrix_decided,
+                      record, worst, worst_sparse)
 from ..protocol.methods import ISOLATED_VERTEX, capabilities, eps
 from .registry import TieDisagreement, decided_within, prop, quantity, within
 from .strategies import (Example, acute_meshes, any_meshes, closed_meshes, jittered_grids,
@@ -89,25 +89,13 @@ def cotan_laplacian_is_the_graph_laplacian_of_cotan_weights(impl, case: Example)
 
 
 def _entries_within_enclosed(A, X: Exact) -> bool:
-    """True when float enclosures of the exact L decide that every entry of A is within its
-    bound B of the correctly rounded exact entry x (issue 46): |A - x| <= B at both ends of
-    x's rounding interval (:func:`.views.laplacian_view_bounds`; the rounded |A - x| is
-    monotone in x on each side of A), every stored nonzero of A on the pattern compared
-    and every B finite.  D3.1's exact comparison (err / B <= 1) then passes too; False
-    leaves every verdict, failure report and recorded ratio to it."""
+    """:func:`.harness.matrix_decided` of A against the exact cotan Laplacian's enclosures
+    (:func:`.views.laplacian_view_bounds`) and D3.1's bounds."""
     view = None if ledger_open() else laplacian_view_bounds(X.surface)
     if view is None:
         return False
-    import scipy.sparse as sp
-    rows, cols, lo, hi = view
-    keep = np.asarray(X.keep, dtype=np.int64)
-    r, c = keep[rows], keep[cols]
-    C = A.tocoo()
-    nz = C.data != 0
-    pattern = sp.csr_matrix((np.ones(len(r)), (r, c)), shape=A.shape)
-    if not (entries_at(pattern, C.row[nz], C.col[nz]) > 0).all():
-        return False                            # a nonzero off the pattern: reported exactly
-    return decided_within(entries_at(A, r, c), lo, hi, entries_at(X.Bs, r, c))
+    rows, cols = (np.asarray(X.keep, dtype=np.int64)[x] for x in view[:2])
+    return matrix_decided(A, X.keep, view, entries_at(X.Bs, rows, cols))
 
 
 @prop("T3.6", "f^T L f / 2 equals the Dirichlet energy 1/2 integral |grad f|^2 of the piecewise "

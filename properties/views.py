@@ -295,19 +295,36 @@ def laplacian_view_bounds(surface):
 
 
 def _laplacian_view_bounds(surface):
-    from .enclosures import Enclosure, corner_cot_enclosure, rounding_bounds, summed
     if getattr(surface, "dimension", None) != 3:
         return None
     validate(surface)                                       # raises DegenerateFace
     t = surface.triangulation
-    n = t.n_vertices
-    F = np.asarray(t.faces, dtype=np.int64).reshape(-1, 3)
-    pairs = halfedge_table(surface)
-    h, h2 = pairs[:, 0], pairs[:, 1]
+    return view_bounds_of(np.asarray(t.faces, dtype=np.int64).reshape(-1, 3),
+                          halfedge_table(surface), corner_cots(surface), t.n_vertices)
+
+
+def corner_cots(surface):
+    """(m, 3) :class:`~.enclosures.Enclosure`: every corner's cotangent from the positions
+    (:func:`~.enclosures.corner_cot_enclosure`), once per surface object; read-only."""
+    return memo.of(_corner_cots, surface)
+
+
+def _corner_cots(surface):
+    from .enclosures import corner_cot_enclosure
+    return corner_cot_enclosure(position_enclosure(surface), surface.triangulation.faces)
+
+
+def view_bounds_of(F, table, cot, n: int):
+    """:func:`laplacian_view_bounds` of the triangulation with faces ``F`` (m, 3), halfedge
+    table ``table`` (:func:`halfedge_table`'s) and corner cotangents enclosed by ``cot``
+    ((m, 3) Enclosure) on ``n`` vertices: (rows, cols, lo, hi), the first ``len(table)``
+    entries the edges' (i, j) in edge order, or None where two edges join one pair of
+    vertices or an edge is a loop."""
+    from .enclosures import Enclosure, rounding_bounds, summed
+    h, h2 = table[:, 0], table[:, 1]
     I, J = F[h // 3, h % 3], F[h // 3, (h % 3 + 1) % 3]
-    if len(np.unique(np.minimum(I, J) * n + np.maximum(I, J))) != len(I):
+    if np.any(I == J) or len(np.unique(np.minimum(I, J) * n + np.maximum(I, J))) != len(I):
         return None
-    cot = corner_cot_enclosure(position_enclosure(surface), F)
     inner = h2 >= 0
     first = cot[h // 3, (h % 3 + 2) % 3]                     # the corner opposite h
     g = np.where(inner, h2, h)
