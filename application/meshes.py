@@ -26,6 +26,7 @@ requirements read.
 from __future__ import annotations
 
 import math
+import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -97,12 +98,24 @@ def resolve(args: list[str]) -> list[tuple[str, Path, bool]]:
 
 @dataclass
 class MeshInput:
-    """A mesh as read, with unreferenced vertices removed (``note`` says so)."""
+    """A mesh as read, with unreferenced vertices removed (``note`` says so).
+    ``triangulation``: F's validated triangulation, pickled (or None): a worker process
+    that checks the mesh unpickles it instead of validating F again (898,752 faces: 0.9 s
+    instead of 5.7 s; 30 MB where the object takes 660)."""
 
     name: str
     V: list
     F: list
     note: str | None = None
+    triangulation: bytes | None = field(default=None, repr=False, compare=False)
+
+    def surface(self, V=None):
+        """The surface of ``V`` (default: the mesh's positions) on F's triangulation."""
+        from ..reference.polyhedral import PolyhedralSurface
+        V = self.V if V is None else V
+        if self.triangulation is None:
+            return PolyhedralSurface.from_arrays(V, self.F)
+        return PolyhedralSurface(pickle.loads(self.triangulation), V)
 
 
 def load(name: str, path: Path) -> MeshInput:
@@ -142,7 +155,7 @@ def load(name: str, path: Path) -> MeshInput:
     except InputError as e:
         after = " (faces numbered after the fan triangulation)" if polygons else ""
         raise type(e)(f"{name}: {e}{after}") from None
-    return MeshInput(name, V, F, note)
+    return MeshInput(name, V, F, note, pickle.dumps(s.triangulation))
 
 
 def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
@@ -164,15 +177,15 @@ def as_read_by(mesh: MeshInput, epsilon: float) -> MeshInput:
     if V == [[float(x) for x in p] for p in mesh.V]:
         return mesh
     try:
-        from ..reference.polyhedral import PolyhedralSurface
-        s = PolyhedralSurface.from_arrays(V, mesh.F)
+        s = mesh.surface(V)
         if not nondegenerate(V, mesh.F):
             s.metric()          # a face the rounding collapsed (cgal-style far meshes), as load
     except InputError as e:
         raise InputError(f"{mesh.name} rounded to {fmt.name} (as this implementation reads "
                          f"it): {e}") from None
     note = f"coordinates rounded to {fmt.name}"
-    return MeshInput(mesh.name, V, mesh.F, note if mesh.note is None else f"{mesh.note}; {note}")
+    return MeshInput(mesh.name, V, mesh.F, note if mesh.note is None else f"{mesh.note}; {note}",
+                     mesh.triangulation)
 
 
 def load_all(args: list[str], warn=None) -> list[MeshInput]:
@@ -212,10 +225,9 @@ class MeshExamples:
     def surface(self):
         from ..properties import memo
         from ..properties.example import surface_key
-        from ..reference.polyhedral import PolyhedralSurface
 
         def build():
-            s = PolyhedralSurface.from_arrays(self.mesh.V, self.mesh.F)
+            s = self.mesh.surface()
             # the example's surface is this one (the same exact positions and faces): its
             # metric is computed once per process
             memo.DRAWN.shared(surface_key(s.positions, self.mesh.F), lambda: s)

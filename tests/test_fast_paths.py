@@ -736,3 +736,30 @@ def test_delaunay_by_integers_on_cocircular_and_irrational_metrics():
     assert not applies(t) and set(_delaunay_by_integers(t)) == {2}    # the definition decides
     d, log = flip_to_delaunay(t)
     assert [(r.edge, r.h_before, r.h_after) for r in log] == flip_to_delaunay_immutable(t)[1]
+
+
+def test_scaled_roots_are_the_rounded_root_sums_at_squares_midpoints_and_every_size():
+    """face_area_floats' direct sqrt(G) 2^-k (float meshes: a power-of-two denominator)
+    equals rounded_root_sum's bit for bit: exact squares and their neighbours (a root just
+    below or above an integer), G of 1 to 2,000 bits, results near the ends of the normal
+    range; None (the general route) below it."""
+    import random
+
+    from ddg_oracle.reference.exact.surds import rounded_root_sum
+    from ddg_oracle.reference.metric import _scaled_root
+    rng = random.Random(7)
+    cases = [rng.getrandbits(b) | 1 << (b - 1)
+             for b in (1, 2, 3, 52, 53, 54, 105, 106, 107, 108, 200, 2000) for _ in range(300)]
+    for b in (27, 53, 54, 80):
+        for _ in range(300):
+            r = rng.getrandbits(b) | 1
+            cases += [r * r - 1, r * r, r * r + 1]
+    compared = 0
+    for G in cases:
+        for k in (0, 1, 300, 1000, G.bit_length() // 2 + 1021):
+            got = _scaled_root(G, k)
+            if got is not None:
+                compared += 1
+                assert got == rounded_root_sum(((G, G),), 1 << k), (G, k)
+    assert compared > 20000
+    assert _scaled_root(1, 1074) is None and _scaled_root(2 ** 60, 1060) is None   # 2^-1030
