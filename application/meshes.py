@@ -225,12 +225,15 @@ class MeshExamples:
     def surface(self):
         from ..properties import memo
         from ..properties.example import surface_key
+        from ..properties.views import given_float_positions
 
         def build():
             s = self.mesh.surface()
             # the example's surface is this one (the same exact positions and faces): its
             # metric is computed once per process
             memo.DRAWN.shared(surface_key(s.positions, self.mesh.F), lambda: s)
+            if s.dimension == 3 and self.floats is not None:
+                given_float_positions(s, self.floats)
             return s
         return self._get("surface", build)
 
@@ -256,9 +259,27 @@ class MeshExamples:
             t, f = self.surface.triangulation, self.facts
             cls = t.classify() if f["components"] == 1 else \
                 Classification(f["orientable"], -1, f["boundary"], f["chi"])
-            x = Example.of_surface(self.surface, f["chi"], self.mesh.name)
+            import numpy as np
+            F = np.asarray(self.mesh.F, dtype=np.int64).reshape(-1, 3)
+            x = Example.of_surface(self.surface, f["chi"], self.mesh.name,
+                                   arrays=None if self.floats is None else (self.floats, F))
             return x.with_data(expected=cls)
         return self._get("example", build)
+
+    @property
+    def floats(self):
+        """The positions as an (n, 3) float64 array when every coordinate is a float (a
+        mesh file's: they are the surface's exact positions), else None; read-only."""
+        def build():
+            import numpy as np
+            V = self.mesh.V
+            if not V or {type(x) for p in V for x in p} != {float} or \
+                    {len(p) for p in V} != {3}:
+                return None
+            out = np.asarray(V, dtype=np.float64)
+            out.flags.writeable = False
+            return out
+        return self._get("floats", build)
 
 
 def file_properties(only=None) -> list:

@@ -107,7 +107,7 @@ from .example import Example
 from ..protocol.methods import eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
-           "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
+           "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances", "edge_geometry",
            "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
            "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
            "total_area_view", "area_view", "surface_conditioning", "surface_squared_floats"]
@@ -161,26 +161,37 @@ def _float_geometry(case: Example) -> dict:
     with np.errstate(divide="ignore", invalid="ignore"):
         inv_sin[:] = sides / twice_area[:, None]
         normal = cross / twice_area[:, None]
-    face_of = {}
-    for f, face in enumerate(F.tolist()):
-        for k in range(3):
-            face_of[(face[k], face[next_corner(k)])] = f
-    inner = [(i, j, f, g) for (i, j), f in face_of.items()
-             if i < j and (g := face_of.get((j, i))) is not None]
-    edges = {}
-    if inner:
-        # all interior edges at once (one np.cross per edge cost 3 s on a 52k-face mesh)
-        I, J, Fi, Gi = np.array(inner, dtype=np.int64).T
-        e = V[J] - V[I]
-        length = np.linalg.norm(e, axis=1)
-        nf, ng = normal[Fi], normal[Gi]
+    # the interior edges glued preserving orientation, (i, j) with i < j, f the face that
+    # runs i -> j and g the one that runs j -> i, ordered by f's halfedge
+    from .views import halfedge_table
+    table = halfedge_table(case.surface)
+    h, h2 = table[table[:, 1] >= 0].T
+    I, J = F[h // 3, h % 3], F[h // 3, (h + 1) % 3]
+    kept = (F[h2 // 3, h2 % 3] == J) & (F[h2 // 3, (h2 + 1) % 3] == I)
+    h, h2, I, J = h[kept], h2[kept], I[kept], J[kept]
+    first, second = np.where(I < J, h, h2), np.where(I < J, h2, h)
+    order = np.argsort(first, kind="stable")
+    first, second = first[order], second[order]
+    I, J = np.minimum(I, J)[order], np.maximum(I, J)[order]
+    Fi, Gi = first // 3, second // 3
+    # all interior edges at once (one np.cross per edge cost 3 s on a 52k-face mesh)
+    e = V[J] - V[I]
+    length = np.linalg.norm(e, axis=1)
+    nf, ng = normal[Fi], normal[Gi]
+    with np.errstate(divide="ignore", invalid="ignore"):
         theta = np.arctan2((np.cross(nf, ng) * e).sum(axis=1) / length, (nf * ng).sum(axis=1))
-        edges = {(i, j): (float(x), float(t), f, g)
-                 for (i, j, f, g), x, t in zip(inner, length, theta)}
-    with np.errstate(divide="ignore"):
         cot_sum = squared.sum(axis=1) / (2 * twice_area)
-    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2, edges=edges,
+    return dict(angles=angles, inv_sin=inv_sin, area=twice_area / 2,
+                edges=(I, J, length, theta, Fi, Gi),
                 cot_sum=cot_sum, sides=sides.max(axis=1) / 2, squared=squared)
+
+
+def edge_geometry(case: Example, key) -> tuple[float, float]:
+    """(length, theta) of interior edge ``key`` = (i, j), i < j, as :func:`float_geometry`
+    has them (for a failure's message)."""
+    I, J, length, theta, _, _ = float_geometry(case)["edges"]
+    k = int(np.flatnonzero((I == key[0]) & (J == key[1]))[0])
+    return float(length[k]), float(theta[k])
 
 
 def _input_scale(case: Example) -> np.ndarray:
@@ -245,16 +256,18 @@ def edge_mean_curvature_tolerances(case: Example) -> dict:
     length's and the product's rounding: (tol_theta l + |theta| 2 eps l) / 2 + eps |H|.
     """
     kappa = face_condition(case)
-    out = {}
-    for key, (length, theta, f, g) in float_geometry(case)["edges"].items():
-        delta = C_ANGLE * eps() * (1 + kappa[f] + kappa[g])
-        if not (math.isfinite(delta) and math.isfinite(theta)):
-            out[key] = math.inf         # a face whose float normal is 0: beyond resolution
-            continue
-        tol_theta = 2 * delta / max(abs(math.sin(theta)), math.sqrt(delta))
+    I, J, length, theta, f, g = float_geometry(case)["edges"]
+    e = eps()
+    with np.errstate(invalid="ignore", over="ignore"):
+        delta = C_ANGLE * e * (1 + kappa[f] + kappa[g])
+        # math.sin per edge: numpy's may differ from it in the last bit
+        sin = np.abs(np.fromiter(map(math.sin, theta.tolist()), np.float64, len(theta)))
+        tol_theta = 2 * delta / np.maximum(sin, np.sqrt(delta))
         H = theta * length / 2
-        out[key] = (tol_theta * length + abs(theta) * 2 * eps() * length) / 2 + eps() * abs(H)
-    return out
+        tol = (tol_theta * length + np.abs(theta) * 2 * e * length) / 2 + e * np.abs(H)
+    # a face whose float normal is 0: beyond resolution
+    tol[~(np.isfinite(delta) & np.isfinite(theta))] = math.inf
+    return dict(zip(zip(I.tolist(), J.tolist()), tol.tolist()))
 
 
 def heron_product(squared) -> np.ndarray:

@@ -97,12 +97,17 @@ class Example:
                    _given=triangulation)
 
     @classmethod
-    def of_surface(cls, surface: PolyhedralSurface, chi: int, recipe: str, **known) -> "Example":
+    def of_surface(cls, surface: PolyhedralSurface, chi: int, recipe: str, arrays=None,
+                   **known) -> "Example":
         """A polyhedral surface with float coordinates (an implementation sees them exactly)
-        and its Euler characteristic ``chi``; ``known``: vertex, kind, params, isolated."""
+        and its Euler characteristic ``chi``; ``known``: vertex, kind, params, isolated;
+        ``arrays``: (V, F) as :meth:`arrays` gives them, when the caller has them (a mesh
+        file's floats)."""
         x = cls(tuple(surface.positions), tuple(surface.triangulation.faces), recipe, chi=chi,
                 _given=surface.triangulation, **known)
         x._cache["surface"] = surface
+        if arrays is not None:
+            x._cache["arrays"] = arrays
         return x
 
     @classmethod
@@ -117,8 +122,8 @@ class Example:
         ``isolated``, ``recipe``), sharing the exact surface."""
         from dataclasses import replace
         x = replace(self, _cache={}, **changes)
-        if "surface" in self._cache:
-            x._cache["surface"] = self._cache["surface"]
+        kept = ("surface",) if "isolated" in changes else ("surface", "arrays")
+        x._cache.update((k, self._cache[k]) for k in kept if k in self._cache)
         return x
 
     # -- the mesh ------------------------------------------------------------------------------

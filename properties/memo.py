@@ -129,6 +129,19 @@ def of(fn, obj):
     >>> k = id(xs); del xs; k in _OF
     False
     """
+    values, name = _values_of(obj), (fn.__module__, fn.__qualname__)
+    if name not in values:
+        values[name] = fn(obj)
+    return values[name]
+
+
+def given(fn, obj, value) -> None:
+    """Keep ``value`` as :func:`of`'s ``fn(obj)``: for a caller that has it already (a mesh
+    file's float coordinates are its surface's positions as floats), without computing it."""
+    _values_of(obj)[(fn.__module__, fn.__qualname__)] = value
+
+
+def _values_of(obj) -> dict:
     k = id(obj)
     entry = _OF.get(k)
     if entry is None or entry[0]() is not obj:
@@ -136,10 +149,7 @@ def of(fn, obj):
             if table.get(k, (None,))[0] is ref:
                 del table[k]
         entry = _OF[k] = (weakref.ref(obj, drop), {})
-    values, name = entry[1], (fn.__module__, fn.__qualname__)
-    if name not in values:
-        values[name] = fn(obj)
-    return values[name]
+    return entry[1]
 
 
 #: id(object) -> (weak reference to it, {function name: value}) (see :func:`of`)

@@ -182,6 +182,8 @@ def _problem(method: str, answer) -> str | None:
     if kind == "edges":
         if not hasattr(answer, "items"):
             return f"{method} answered {_what(answer)}, not a dict {{(i, j): value}}"
+        if _plain_edges(answer):
+            return None
         for key, value in answer.items():
             if not (isinstance(key, tuple) and len(key) == 2 and all(_integral(i) for i in key)):
                 return f"{method} answered the key {_what(key)}, not a pair of vertex indices"
@@ -255,11 +257,32 @@ def normalized(method: str, answer):
     if kind == "loops":
         return [[int(v) for v in loop] for loop in answer]
     if kind == "edges":
+        if _plain_edges(answer, {int}):
+            return dict(answer)
         return {(int(i), int(j)): _scalar(h) for (i, j), h in answer.items()}
     if kind == "intrinsic triangulation":
         F2, l2 = answer
         return np.asarray(F2), np.asarray(l2)
     return answer
+
+
+def _plain_edges(answer, index_types=None) -> bool:
+    """Whether a dict answer of kind "edges" is what the per-item checks accept, decided by
+    the types present (at C speed: 1.35 million edges in a fraction of the loop's 2.5 s):
+    every key a tuple of two integers of ``index_types`` (default: any integer but a bool),
+    every value a real number that :func:`_scalar` leaves as it is.  False decides nothing
+    (the loop then looks at each item)."""
+    if type(answer) is not dict or not answer:
+        return False
+    keys = answer.keys()
+    if {type(k) for k in keys} != {tuple} or {len(k) for k in keys} != {2}:
+        return False
+    index = {type(i) for k in keys for i in k}
+    value = {type(v) for v in answer.values()}
+    integral = (index <= index_types if index_types is not None else all(
+        issubclass(t, numbers.Integral) and not issubclass(t, (bool, np.bool_)) for t in index))
+    return integral and all(issubclass(t, numbers.Real) and not issubclass(t, (bool, np.bool_))
+                            for t in value)
 
 
 def _iterable(x) -> bool:

@@ -166,3 +166,32 @@ def test_the_zero_area_filter_certifies_only_what_is_certain():
     assert nondegenerate(P, F)
     P[2, 2] = 13 + 2.0 ** -50 * 13                     # within the bound (8.2 u |a| ~ 1e-14)
     assert not nondegenerate(P, F)
+
+
+@pytest.mark.parametrize("epsilon", [2.0 ** -52, 2.0 ** -23])
+def test_a_mesh_files_floats_are_its_examples_arrays_and_exact_positions(tmp_path, epsilon):
+    """A mesh read from a file gives its example the arrays and the position enclosure it
+    has already (floats, and their triangulation pickled): the same as computing them from
+    the exact positions, for float64 and for the float32 reading; a mesh given with
+    Fractions or ints gets none (they are computed)."""
+    from fractions import Fraction
+    from pathlib import Path
+
+    from ddg_oracle.application.meshes import as_read_by, load
+    from ddg_oracle.application.meshfiles import write_obj
+    from ddg_oracle.properties.enclosures import points
+    from ddg_oracle.properties.example import _as_arrays
+    from ddg_oracle.properties.views import position_enclosure
+    V, F = _bumpy_grid(6)
+    V = np.asarray(V, dtype=float) * (1 + 1e-9)            # not float32 numbers
+    write_obj(tmp_path / "m.obj", V, F)
+    mesh = as_read_by(load("m.obj", Path(tmp_path / "m.obj")), epsilon)
+    ex = MeshExamples(mesh)
+    case = ex.example()
+    assert ex.floats is not None and mesh.triangulation is not None
+    got, want = position_enclosure(case.surface), points(case.surface.positions)
+    assert np.array_equal(got.value, want.value) and np.array_equal(got.err, want.err)
+    (V1, F1), (V2, F2) = case.arrays(), _as_arrays(case.mesh)
+    assert np.array_equal(V1, V2) and np.array_equal(F1, F2) and V1.flags.writeable
+    exact = MeshExamples(MeshInput("exact", [[Fraction(x) for x in p] for p in mesh.V], mesh.F))
+    assert exact.floats is None and "arrays" not in exact.example()._cache

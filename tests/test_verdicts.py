@@ -12,6 +12,7 @@ import sys
 import textwrap
 import time
 import warnings
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -1218,3 +1219,29 @@ def test_the_users_loaded_hypothesis_profile_changes_nothing_of_ours():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=120)
     assert out.stdout.split() == ["passed", "25"], out.stdout + out.stderr[-2000:]
+
+
+@pytest.mark.parametrize("answer", [
+    {(0, 1): 0.5, (1, 2): -1.0},
+    {(np.int64(0), np.int32(1)): np.float64(0.5)},
+    {(0, 1): 1, (2, 1): np.float32(2.5)},
+    {(True, 1): 0.5}, {(0, 1): True}, {(0, 1): np.bool_(True)},
+    {(0.0, 1.0): 0.5}, {(0.5, 1): 0.5}, {(0, 1, 2): 0.5}, {(0,): 0.5},
+    {(0, 1): np.array([0.5])}, {(0, 1): np.array([0.5, 1.0])}, {(0, 1): 1 + 2j},
+    {(0, 1): "0.5"}, {(0, 1): None}, {(0, 1): Fraction(1, 3)}, {}, {"01": 0.5},
+])
+def test_edge_answers_read_by_types_as_the_per_item_checks_read_them(answer, monkeypatch):
+    """An edge dict's reading decided from the types present (a million edges at C speed)
+    says what the per-item loop says, and normalises the same, for plain, numpy, bool,
+    float-index, wrong-length, array, complex, text and exact answers."""
+    from ddg_oracle.protocol import answers
+    fast = (answers.problem("edge_mean_curvature", answer),
+            None if answers.problem("edge_mean_curvature", answer)
+            else answers.normalized("edge_mean_curvature", answer))
+    monkeypatch.setattr(answers, "_plain_edges", lambda *a: False)
+    slow = (answers.problem("edge_mean_curvature", answer),
+            None if answers.problem("edge_mean_curvature", answer)
+            else answers.normalized("edge_mean_curvature", answer))
+    assert fast[0] == slow[0]
+    assert fast[1] == slow[1] and [type(k[0]) for k in fast[1] or ()] == \
+        [type(k[0]) for k in slow[1] or ()]
