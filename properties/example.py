@@ -122,7 +122,7 @@ class Example:
         ``isolated``, ``recipe``), sharing the exact surface."""
         from dataclasses import replace
         x = replace(self, _cache={}, **changes)
-        kept = ("surface",) if "isolated" in changes else ("surface", "arrays")
+        kept = ("surface", "mesh key") + (() if "isolated" in changes else ("arrays",))
         x._cache.update((k, self._cache[k]) for k in kept if k in self._cache)
         return x
 
@@ -223,6 +223,14 @@ class Example:
         return V.copy(), F.copy()
 
     # -- values derived from the example alone -----------------------------------------------
+
+    @property
+    def mesh_key(self) -> tuple:
+        """(positions, faces) as a memo key whose hash is computed once (hashing a million
+        Fractions takes seconds, and every check asks for the exact values by it)."""
+        if "mesh key" not in self._cache:
+            self._cache["mesh key"] = _Hashed((self.positions, self.faces))
+        return self._cache["mesh key"]
 
     @property
     def content(self) -> tuple:

@@ -429,7 +429,7 @@ def _area_gradient_check(pid, impl, case, route: str = "cotan_laplacian", A=None
     area gradient (T3.9, L3.8), within :meth:`Exact.residual_bound` of its matrix, or
     :meth:`Exact.area_gradient_bound` for its own gradient."""
     X = Exact.of(case)
-    P = np.array([[float(x) for x in p] for p in case.positions])
+    P = case.surface_arrays()[0]                # the positions as floats
     if route == "cotan_laplacian":
         A = implementation_matrix(impl, case, pid) if A is None else A
         got = A @ P
@@ -490,7 +490,7 @@ def area_as_dirichlet_energy(impl, case: Example):
     if "cotan_laplacian" in caps:
         A = implementation_matrix(impl, case, "T3.9")
         X = Exact.of(case)
-        P = np.array([[float(x) for x in p] for p in case.positions])
+        P = case.surface_arrays()[0]            # the positions as floats
         energy = float(sum(P[:, k] @ (A @ P[:, k]) for k in range(3))) / 2
         area, area_err = area_view(X.surface)
         aP, absA = np.abs(P), abs(A)
@@ -513,7 +513,7 @@ def area_as_dirichlet_energy(impl, case: Example):
 def minimal_surface_step_decreases_area(impl, case: Example):
     A = implementation_dense(impl, case, "A3.6")
     X = Exact.of(case)
-    P = np.array([[float(x) for x in p] for p in case.positions])
+    P = case.surface_arrays()[0]                # the positions as floats
     U, I = dirichlet_solve(A, list(case.boundary), P)
     if not I:
         return

@@ -142,3 +142,26 @@ def test_every_property_passes_the_float64_reference_after_its_float32_twin():
             if r.status not in (PASSED, NOT_APPLICABLE):
                 wrong.append(f"{pid} {impl.name}: {r.status} {r.failure or r.error}")
     assert not wrong, "\n".join(wrong)
+
+
+def test_a_cases_exact_values_are_found_again_without_hashing_its_positions():
+    """Exact.of hashes a case's positions once (a million Fractions take seconds to hash,
+    and every check of a mesh file asks for its exact values several times)."""
+    from fractions import Fraction
+
+    from ddg_oracle.properties.example import Example
+
+    class Counted(Fraction):
+        calls = 0
+
+        def __hash__(self):
+            Counted.calls += 1
+            return super().__hash__()
+    memo.clear()
+    P = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    case = Example.of_mesh([tuple(Counted(x) for x in p) for p in P],
+                           [(0, 1, 2), (0, 3, 1), (1, 3, 2), (0, 2, 3)], "counted")
+    first = Exact.of(case)
+    seen = Counted.calls
+    assert Exact.of(case) is first and Exact.of(case.with_data(recipe="again")) is first
+    assert Counted.calls == seen
