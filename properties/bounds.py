@@ -107,8 +107,8 @@ from .example import Example
 from ..protocol.methods import eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
-           "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances", "edge_geometry",
-           "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
+           "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
+           "edge_geometry", "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
            "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
            "total_area_view", "area_view", "surface_conditioning", "surface_squared_floats"]
 
@@ -137,8 +137,9 @@ C_HERON = 12.0                               # areas through the side lengths (d
 
 def float_geometry(case: Example):
     """Float geometry for the *tolerances* only (conditioning need not be exact): per corner
-    the angle and 1/sin of it, per face the area, per interior edge (i, j) its length, its
-    dihedral angle theta and its two faces.  Expected values never come from here."""
+    the angle and 1/sin of it, per face the area, and ``edges``: arrays (I, J, length,
+    theta, f, g) over the interior edges glued preserving orientation, i < j, f the face
+    that runs i -> j, theta the dihedral angle.  Expected values never come from here."""
     return case.derived("geometry", _float_geometry)
 
 

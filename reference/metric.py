@@ -372,7 +372,8 @@ def _scaled_root(G: int, k: int) -> float | None:
     not a normal float.  r = isqrt(G 4^s) has at least 55 bits; sqrt(G 4^s) lies in [r, r +
     1), so r with its last bit set where r^2 < G 4^s (a sticky bit, two places below the
     53rd) rounds as the root does; ``float()`` of an int rounds correctly (half to even),
-    and 2^-(s + k) is exact for a normal result.
+    and 2^-(s + k) is exact where that float times it is normal (checked on the float's
+    exponent, before a rounding into the subnormals could round it up to 2^-1022).
 
     >>> _scaled_root(2, 0) == 2 ** 0.5, _scaled_root(9, 1), _scaled_root(1, 1074)
     (True, 1.5, None)
@@ -383,10 +384,12 @@ def _scaled_root(G: int, k: int) -> float | None:
     if r * r != N:
         r |= 1
     try:
-        x = math.ldexp(float(r), -(s + k))
+        x = float(r)
+        if math.frexp(x)[1] - (s + k) < -1021:          # below 2^-1022
+            return None
+        return math.ldexp(x, -(s + k))
     except OverflowError:
         return None
-    return x if x >= 2.0 ** -1022 and x != math.inf else None
 
 
 def _on_shared_denominator(points):

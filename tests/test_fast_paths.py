@@ -763,3 +763,11 @@ def test_scaled_roots_are_the_rounded_root_sums_at_squares_midpoints_and_every_s
                 assert got == rounded_root_sum(((G, G),), 1 << k), (G, k)
     assert compared > 20000
     assert _scaled_root(1, 1074) is None and _scaled_root(2 ** 60, 1060) is None   # 2^-1030
+    # at 2^-1022: a root the 53-bit float rounds up to it is right; one just below the
+    # subnormal midpoint 2^-1022 - 2^-1075 (its float 53 bits below 2^-1022, which ldexp
+    # would round up to 2^-1022, half to even) is left to the general route
+    assert _scaled_root(2 ** 106 - 1, 1075) == 2.0 ** -1022 == \
+        rounded_root_sum(((2 ** 106 - 1, 2 ** 106 - 1),), 1 << 1075)
+    G = (2 ** 53 - 1) ** 2 - 1
+    assert _scaled_root(G, 1075) is None
+    assert rounded_root_sum(((G, G),), 1 << 1075) == 2.0 ** -1022 - 2.0 ** -1074
