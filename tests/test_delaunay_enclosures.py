@@ -20,6 +20,7 @@ from ddg_oracle.properties.views import halfedge_table, laplacian_view
 from ddg_oracle.reference import surfaces
 from ddg_oracle.reference.polyhedral import PolyhedralSurface
 from tests.honest_panel import Atan2Cross
+from tests.test_enclosures import shifted
 
 
 def _same_as_the_exact_route(case) -> int | None:
@@ -132,18 +133,12 @@ def test_a_region_too_large_leaves_the_exact_route(monkeypatch):
 
 class _ShiftedOperator(Atan2Cross):
     """The exact Laplace-Beltrami operator's view moved to ``factor`` times its entry bound
-    at every 7th stored entry (alternating signs, or all below; symmetric pairs alike)."""
+    at every 7th stored entry (:func:`tests.test_enclosures.shifted`)."""
 
     def __init__(self, case, factor, below=False):
-        import scipy.sparse as sp
         super().__init__()
         D = DelaunayExact.of(case)
-        L = sp.triu(D.Ls).tocoo()
-        b = entries_at(D.Bs, L.row, L.col)
-        n = np.arange(len(L.data))
-        shift = np.where(n % 7 == 0, factor * b * (-1.0 if below else (-1.0) ** n), 0.0)
-        upper = sp.coo_matrix((L.data + shift, (L.row, L.col)), shape=L.shape)
-        self._A = (upper + sp.triu(upper, k=1).T).tocsr()
+        self._A = shifted(D.Ls, D.Bs, factor, below)
 
     def intrinsic_delaunay_laplacian(self, V, F):
         return self._A.copy()

@@ -493,23 +493,28 @@ def _filtered_and_exact(pid, shifted, filter_name, view_name, monkeypatch, rows=
     return filtered, exact, first
 
 
-class _ShiftedLaplacian(Atan2Cross):
-    """The exact Laplacian's view moved to ``factor`` times its entry bound at every 7th
+def shifted(Ls, Bs, factor, below=False):
+    """The symmetric view ``Ls`` moved to ``factor`` times its entry bound ``Bs`` at every 7th
     stored entry (alternating signs, or all below with ``below``; symmetric pairs alike)."""
+    import scipy.sparse as sp
+
+    from ddg_oracle.properties.harness import entries_at
+    L = sp.triu(Ls).tocoo()
+    b = entries_at(Bs, L.row, L.col)
+    n = np.arange(len(L.data))
+    shift = np.where(n % 7 == 0, factor * b * (-1.0 if below else (-1.0) ** n), 0.0)
+    upper = sp.coo_matrix((L.data + shift, (L.row, L.col)), shape=L.shape)
+    return (upper + sp.triu(upper, k=1).T).tocsr()
+
+
+class _ShiftedLaplacian(Atan2Cross):
+    """The exact Laplacian's view :func:`shifted`."""
 
     def __init__(self, case, factor, below=False):
-        import scipy.sparse as sp
-
-        from ddg_oracle.properties.harness import Exact, entries_at
+        from ddg_oracle.properties.harness import Exact
         super().__init__()
         X = Exact.of(case)
-        L = sp.triu(X.Ls).tocoo()
-        b = entries_at(X.Bs, L.row, L.col)
-        n = np.arange(len(L.data))
-        shift = np.where(n % 7 == 0, factor * b * (-1.0 if below else (-1.0) ** n), 0.0)
-        upper = sp.coo_matrix((L.data + shift, (L.row, L.col)), shape=L.shape)
-        strict = sp.triu(upper, k=1)
-        self._A = (upper + strict.T).tocsr()
+        self._A = shifted(X.Ls, X.Bs, factor, below)
 
     def cotan_laplacian(self, V, F):
         return self._A.copy()
