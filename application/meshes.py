@@ -276,7 +276,9 @@ class MeshExamples:
             if not V or {type(x) for p in V for x in p} != {float} or \
                     {len(p) for p in V} != {3}:
                 return None
-            out = np.asarray(V, dtype=np.float64)
+            # + 0.0: a file's -0.0 is the exact 0, whose float is +0.0 (the sign of a zero
+            # can change what an implementation computes: atan2, 1 / x)
+            out = np.asarray(V, dtype=np.float64) + 0.0
             out.flags.writeable = False
             return out
         return self._get("floats", build)

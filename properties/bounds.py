@@ -108,8 +108,8 @@ from ..protocol.methods import eps
 
 __all__ = ["gamma", "C_ANGLE", "C_LENGTHS", "C_HERON", "K_COT", "corner_tolerances",
            "vertex_tolerances", "face_condition", "edge_mean_curvature_tolerances",
-           "edge_geometry", "area_tolerance", "face_area_tolerances", "heron_product", "heron_condition",
-           "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
+           "edge_geometry", "area_tolerance", "face_area_tolerances", "heron_product",
+           "heron_condition", "float_geometry", "EntryBounds", "entry_bounds", "face_conditioning",
            "total_area_view", "area_view", "surface_conditioning", "surface_squared_floats"]
 
 
@@ -188,7 +188,7 @@ def _float_geometry(case: Example) -> dict:
 
 
 def edge_geometry(case: Example, key) -> tuple[float, float]:
-    """(length, theta) of interior edge ``key`` = (i, j), i < j, as :func:`float_geometry`
+    """D2.3: (length, theta) of interior edge ``key`` = (i, j), i < j, as :func:`float_geometry`
     has them (for a failure's message)."""
     I, J, length, theta, _, _ = float_geometry(case)["edges"]
     k = int(np.flatnonzero((I == key[0]) & (J == key[1]))[0])

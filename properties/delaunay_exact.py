@@ -249,15 +249,25 @@ class LocalDelaunay(NamedTuple):
     found without the whole exact metric (:func:`local_delaunay`): faces (m, 3) and halfedge
     table (:func:`.views.halfedge_table`'s) of the flipped triangulation, in the numbering
     of ``delaunay_of(surface.metric())``'s; ``cot``, the corner cotangents enclosed; ``rho``,
-    ``cot_factors``: :func:`~.bounds.face_conditioning`'s factors; ``amplification``:
-    :func:`flip_amplification`'s."""
+    ``cot_factors``: :func:`~.bounds.face_conditioning`'s factors; ``region``: the faces the
+    flips ran on (ids of the surface), ``flips``: their metric and flip log (None without
+    flips).  Nothing here depends on the machine epsilon: :meth:`amplification` does."""
 
     faces: np.ndarray
     table: np.ndarray
     cot: object
     rho: np.ndarray
     cot_factors: np.ndarray
-    amplification: np.ndarray
+    region: np.ndarray
+    flips: tuple | None
+
+    def amplification(self) -> np.ndarray:
+        """:func:`flip_amplification` per face, at the current machine epsilon (the checked
+        implementation's: its flips' error model scales with it), 1 off the region."""
+        out = np.ones(len(self.faces))
+        if self.flips is not None:
+            out[self.region] = flip_amplification(*self.flips)
+        return out
 
 
 def local_delaunay(surface):
@@ -274,7 +284,7 @@ def local_delaunay(surface):
     certified and unchanged), so its result, stitched into the surface, is that run's.
     Otherwise R grows by a ring and the run repeats (at most ``_ROUNDS`` times, R at most a
     ``_SHARE`` of the faces; else None).  None too where the run raises: the exact route
-    then decides and says why."""
+    then decides and says why.  A4.13's flips, for D4.8 / R4.9's operator."""
     return memo.of(_local_delaunay, surface)
 
 
@@ -300,7 +310,7 @@ def _local_delaunay(surface):
         doubt = inner & ~(s.value - s.err > 0)
     m = len(F)
     if not doubt.any():
-        return LocalDelaunay(F, table, cot, rho, cot_factors, np.ones(m))
+        return LocalDelaunay(F, table, cot, rho, cot_factors, np.zeros(0, dtype=np.int64), None)
     # the faces across each edge of every face: (m, 3), -1 on the boundary
     across = np.full(3 * m, -1, dtype=np.int64)
     across[table[inner, 0]] = table[inner, 1] // 3
@@ -320,14 +330,12 @@ def _local_delaunay(surface):
             break
     else:
         return None
-    faces, rows, tab, cots, (r, c), amp = found
+    faces, rows, tab, cots, (r, c), flips = found
     F2, table2, rho2, cf2 = F.copy(), table.copy(), rho.copy(), cot_factors.copy()
     value, err = cot.value.copy(), cot.err.copy()
     F2[faces], table2[rows], rho2[faces], cf2[faces] = tab[0], tab[1], r, c
     value[faces], err[faces] = cots.value, cots.err
-    amplification = np.ones(m)
-    amplification[faces] = amp
-    return LocalDelaunay(F2, table2, Enclosure(value, err), rho2, cf2, amplification)
+    return LocalDelaunay(F2, table2, Enclosure(value, err), rho2, cf2, faces, flips)
 
 
 def _flipped_region(surface, F, table, faces):
@@ -335,7 +343,7 @@ def _flipped_region(surface, F, table, faces):
     (:func:`local_delaunay`): None where a flip touched a border edge, else (faces, the
     global ids of the region's edges but its border's, (the flipped faces in global vertex
     ids, those edges' halfedges in global ids), the corner cotangents enclosed, the
-    conditioning factors, the amplification)."""
+    conditioning factors, (the region's metric, the flip log))."""
     from ..reference.combinatorics import Triangulation
     from ..reference.metric import metric_of
     m = len(F)
@@ -377,7 +385,7 @@ def _flipped_region(surface, F, table, faces):
         value[f] = [rounded_sum([Quotient(n, four_a)]) if n else 0.0
                     for n in d.face_cot_numerators(f)]
     return (faces, rows, (verts[lf], gh), correctly_rounded(value), face_conditioning(d),
-            np.asarray(flip_amplification(metric, log)))
+            (metric, log))
 
 
 def delaunay_view_bounds(surface):
@@ -385,26 +393,27 @@ def delaunay_view_bounds(surface):
     and every vertex's diagonal entry of the exact Laplace-Beltrami operator
     (:class:`DelaunayExact`'s ``L``; arrays on the surface's vertices), floats lo <= x <= hi
     for the correctly rounded view x of each and its entry bound, from
-    :func:`local_delaunay` without the exact metric; once per surface object.  The bounds
-    are ``Bs``'s floats at these entries (R4.9 widens ``Bs`` only at vertex pairs joined by
-    no edge: :meth:`DelaunayExact._widen_on_cocircular_cells`).  None where the
-    triangulation is not found, or where an edge is a loop or two edges join one pair of
-    vertices."""
-    return memo.of(_delaunay_view_bounds, surface)
+    :func:`local_delaunay` without the exact metric.  The view once per surface object,
+    the bounds at each call: they are the current machine epsilon's (the checked
+    implementation's; a float32 and a float64 one may read one surface object).  They are
+    ``Bs``'s floats at these entries (R4.9 widens ``Bs`` only at vertex pairs joined by no
+    edge: :meth:`DelaunayExact._widen_on_cocircular_cells`).  None where the triangulation
+    is not found, or where an edge is a loop or two edges join one pair of vertices."""
+    view = memo.of(_delaunay_view, surface)
+    if view is None:
+        return None
+    found, (rows, cols, lo, hi) = view
+    B = bounds_of(found.faces, found.table, found.rho, found.cot_factors,
+                  surface.triangulation.n_vertices, found.amplification()).B
+    return rows, cols, lo, hi, entries_at(B, rows, cols)
 
 
-def _delaunay_view_bounds(surface):
+def _delaunay_view(surface):
     found = local_delaunay(surface)
     if found is None:
         return None
-    k = surface.triangulation.n_vertices
-    view = view_bounds_of(found.faces, found.table, found.cot, k)
-    if view is None:
-        return None
-    rows, cols, lo, hi = view
-    B = entries_at(bounds_of(found.faces, found.table, found.rho, found.cot_factors, k,
-                             found.amplification).B, rows, cols)
-    return rows, cols, lo, hi, B
+    view = view_bounds_of(found.faces, found.table, found.cot, surface.triangulation.n_vertices)
+    return None if view is None else (found, view)
 
 
 def angles_from_squared_lengths(l2):

@@ -312,8 +312,9 @@ def _laplacian_view_bounds(surface):
 
 
 def corner_cots(surface):
-    """(m, 3) :class:`~.enclosures.Enclosure`: every corner's cotangent from the positions
-    (:func:`~.enclosures.corner_cot_enclosure`), once per surface object; read-only."""
+    """D2.6 / D3.1: (m, 3) :class:`~.enclosures.Enclosure`, every corner's cotangent from the
+    positions (:func:`~.enclosures.corner_cot_enclosure`), once per surface object;
+    read-only."""
     return memo.of(_corner_cots, surface)
 
 
@@ -323,7 +324,7 @@ def _corner_cots(surface):
 
 
 def view_bounds_of(F, table, cot, n: int):
-    """:func:`laplacian_view_bounds` of the triangulation with faces ``F`` (m, 3), halfedge
+    """D3.1: :func:`laplacian_view_bounds` of the triangulation with faces ``F`` (m, 3), halfedge
     table ``table`` (:func:`halfedge_table`'s) and corner cotangents enclosed by ``cot``
     ((m, 3) Enclosure) on ``n`` vertices: (rows, cols, lo, hi), the first ``len(table)``
     entries the edges' (i, j) in edge order, or None where two edges join one pair of

@@ -276,7 +276,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     sq = []
     for e in range(t.n_edges):
         (X, Y), D = on_denominator(*t.edge_vertices(e))
-        sq.append(Fraction(sum((x - y) ** 2 for x, y in zip(X, Y)), D * D))
+        sq.append(Fraction(_squared_distance(X, Y), D * D))
     for e, x in enumerate(sq):
         # checked before the areas: a zero edge makes its faces zero-area, and
         # "coincident vertices" says more than "collinear"
@@ -287,10 +287,7 @@ def metric_of(points, triangulation: Triangulation) -> PiecewiseFlatSurface:
     areas = []
     for f, (i, j, k) in enumerate(t.faces):
         (P, Q, R), D = on_denominator(i, j, k)
-        u = [y - x for x, y in zip(P, Q)]
-        v = [y - x for x, y in zip(P, R)]
-        uv = sum(x * y for x, y in zip(u, v))
-        four_a2 = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
+        four_a2 = _lagrange(P, Q, R)
         if four_a2 == 0:
             raise degenerate_face(t, f)
         areas.append(sqrt(Fraction(four_a2, 4 * D ** 4)))      # sqrt(4 A^2 / 4): no division
@@ -318,11 +315,7 @@ def squared_length_floats(points, triangulation: Triangulation) -> list[float]:
             (X, Y), D = (shared[0][i], shared[0][j]), shared[1]
         else:
             (X, Y), D = points_on_common_denominator(points[i], points[j])
-        if len(X) == 3:                         # R^3 written out: twice as fast
-            dx, dy, dz = X[0] - Y[0], X[1] - Y[1], X[2] - Y[2]
-            out.append((dx * dx + dy * dy + dz * dz) / (D * D))
-        else:
-            out.append(sum((x - y) ** 2 for x, y in zip(X, Y)) / (D * D))
+        out.append(_squared_distance(X, Y) / (D * D))
     return out
 
 
@@ -350,21 +343,34 @@ def face_area_floats(points, triangulation: Triangulation) -> list[float]:
             (P, Q, R), D = [shared[0][v] for v in face], shared[1]
         else:
             (P, Q, R), D = points_on_common_denominator(*(points[v] for v in face))
-        if len(P) == 3:                         # R^3 written out: twice as fast
-            (px, py, pz), (qx, qy, qz), (rx, ry, rz) = P, Q, R
-            ux, uy, uz, vx, vy, vz = qx - px, qy - py, qz - pz, rx - px, ry - py, rz - pz
-            uv = ux * vx + uy * vy + uz * vz
-            G = (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz) - uv * uv
-        else:
-            u = [y - x for x, y in zip(P, Q)]
-            v = [y - x for x, y in zip(P, R)]
-            uv = sum(x * y for x, y in zip(u, v))
-            G = sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
+        G = _lagrange(P, Q, R)
         if G == 0:
             raise degenerate_face(t, f)
         a = _scaled_root(G, shift) if shift is not None else None
         out.append(a if a is not None else rounded_root_sum(((G, G),), 2 * D * D))
     return out
+
+
+def _squared_distance(X, Y):
+    """D2.6: |X - Y|^2 of two points with integer (or exact) coordinates."""
+    if len(X) == 3:                             # R^3 written out: twice as fast
+        dx, dy, dz = X[0] - Y[0], X[1] - Y[1], X[2] - Y[2]
+        return dx * dx + dy * dy + dz * dz
+    return sum((x - y) ** 2 for x, y in zip(X, Y))
+
+
+def _lagrange(P, Q, R):
+    """D2.6: |u|^2 |v|^2 - (u.v)^2 = 4 A^2 for u = Q - P, v = R - P (the Lagrange identity,
+    any dimension; exact)."""
+    if len(P) == 3:                             # R^3 written out: twice as fast
+        (px, py, pz), (qx, qy, qz), (rx, ry, rz) = P, Q, R
+        ux, uy, uz, vx, vy, vz = qx - px, qy - py, qz - pz, rx - px, ry - py, rz - pz
+        uv = ux * vx + uy * vy + uz * vz
+        return (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz) - uv * uv
+    u = [y - x for x, y in zip(P, Q)]
+    v = [y - x for x, y in zip(P, R)]
+    uv = sum(x * y for x, y in zip(u, v))
+    return sum(x * x for x in u) * sum(y * y for y in v) - uv * uv
 
 
 def _scaled_root(G: int, k: int) -> float | None:

@@ -184,6 +184,7 @@ def test_a_mesh_files_floats_are_its_examples_arrays_and_exact_positions(tmp_pat
     from ddg_oracle.properties.views import position_enclosure
     V, F = _bumpy_grid(6)
     V = np.asarray(V, dtype=float) * (1 + 1e-9)            # not float32 numbers
+    V[0, 2] = -0.0                                          # the exact 0: +0.0 as a float
     write_obj(tmp_path / "m.obj", V, F)
     mesh = as_read_by(load("m.obj", Path(tmp_path / "m.obj")), epsilon)
     ex = MeshExamples(mesh)
@@ -193,5 +194,6 @@ def test_a_mesh_files_floats_are_its_examples_arrays_and_exact_positions(tmp_pat
     assert np.array_equal(got.value, want.value) and np.array_equal(got.err, want.err)
     (V1, F1), (V2, F2) = case.arrays(), _as_arrays(case.mesh)
     assert np.array_equal(V1, V2) and np.array_equal(F1, F2) and V1.flags.writeable
+    assert np.array_equal(np.signbit(V1), np.signbit(V2)) and not np.signbit(V1[0, 2])
     exact = MeshExamples(MeshInput("exact", [[Fraction(x) for x in p] for p in mesh.V], mesh.F))
     assert exact.floats is None and "arrays" not in exact.example()._cache
